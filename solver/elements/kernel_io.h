@@ -1,0 +1,47 @@
+#pragma once
+// What every element kernel reads and writes: views into the domain's nodal arrays, the step just
+// taken, and what the kernel reports back. The integrator (solver/integration) owns the arrays.
+//
+// Time levels follow [2] of Bourel 2005: the kernel is called after u^{n+1} = u^n + dt^n v^{n+1/2};
+// it sees x = x0 + u^{n+1} and the mid-step velocities v^{n+1/2}, updates stresses from t^n to
+// t^{n+1} with the rate of deformation D(v^{n+1/2}) at the mid-step configuration, and ADDS the
+// internal forces f_int(u^{n+1}) into f (and moments into m for shells).
+#include <cstdint>
+#include <limits>
+
+namespace crashlink::elements {
+
+/// Views of the nodal arrays, all interleaved xyz, n = node count of the domain.
+struct NodalView {
+  const double* x = nullptr;      ///< [3n] coordinates at t^{n+1} [m]
+  const double* v = nullptr;      ///< [3n] velocities at t^{n+1/2} [m/s]
+  const double* omega = nullptr;  ///< [3n] angular velocities at t^{n+1/2} [rad/s] (shells)
+  double* f = nullptr;            ///< [3n] internal force accumulator [N]: kernels add f_int
+  double* m = nullptr;            ///< [3n] internal moment accumulator [N m] (shells)
+};
+
+/// The step just taken and the options that shape the element response.
+struct StepInfo {
+  double dt_s = 0.0;              ///< dt^n = t^{n+1} - t^n [s]; 0 at the initial call (t = 0)
+  bool bulk_viscosity = true;     ///< artificial bulk viscosity on (linear + quadratic)
+  double q_linear = 0.06;         ///< Q1 [-]
+  double q_quadratic = 1.5;       ///< Q2 [-]
+};
+
+/// What a kernel call reports. Energies are increments over [t^n, t^{n+1}] by the midpoint rule.
+struct KernelResult {
+  double dt_stable_s = std::numeric_limits<double>::infinity();  ///< min over the part, no safety factor
+  std::int64_t critical_element = -1;    ///< local index of the element giving dt_stable_s
+  double internal_energy_increment_J = 0.0;   ///< stress work incl. bulk viscosity
+  double hourglass_energy_increment_J = 0.0;  ///< work of the hourglass forces
+};
+
+/// Per-element output for field states and summaries.
+struct ElementOutput {
+  double* von_mises_Pa = nullptr;  ///< [ne] von Mises stress (max over integration points)
+  double* eps_p = nullptr;         ///< [ne] effective plastic strain (max over integration points)
+  double* stress_Pa = nullptr;     ///< [6*ne] Voigt xx,yy,zz,xy,yz,zx, global frame, element e at 6e
+                                   ///< (shells: mid-surface point); may be null
+};
+
+}  // namespace crashlink::elements

@@ -1,0 +1,129 @@
+#pragma once
+// The model: what a scenario describes, as flat arrays (structure of arrays). Pure input data:
+// no solution state lives here (see solver/integration/state.h). SI units throughout.
+//
+// Array layouts (n = node count, ne = element count of a part):
+//   Nodes::x0            [3n]  interleaved x,y,z of node i at 3i..3i+2            [m]
+//   Part::connectivity   [k*ne] node indices (0-based) of element e at k*e..k*e+k-1,
+//                        k = 8 (Hex8, LS-DYNA order: bottom face 0-3, top 4-7, both
+//                        counter-clockwise seen from the top) or 4 (Shell4; triangle: n3 == n2)
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/core/vec3.h"
+#include "solver/materials/material.h"
+#include "solver/model/curve.h"
+
+namespace crashlink::model {
+
+enum class ElementKind : std::uint8_t { Hex8, Shell4 };
+
+inline int nodes_per_element(ElementKind k) { return k == ElementKind::Hex8 ? 8 : 4; }
+
+struct Nodes {
+  std::vector<std::int64_t> id;  ///< [n] user ids (for messages and output)
+  std::vector<double> x0;        ///< [3n] reference coordinates [m]
+
+  std::size_t count() const { return id.size(); }
+};
+
+/// A part: elements of one kind, one material, one set of section properties.
+struct Part {
+  std::string name;
+  ElementKind kind = ElementKind::Hex8;
+  int material = -1;                         ///< index into Model::materials
+  std::vector<std::int32_t> connectivity;    ///< [k*ne], see the header comment
+  std::vector<std::int64_t> element_id;      ///< [ne] user ids
+  double thickness_m = 0.0;                  ///< Shell4 only
+  int through_thickness_points = 5;          ///< Shell4 only: Gauss points through the thickness (>= 3)
+  double hourglass_coefficient = 0.1;        ///< Flanagan–Belytschko / BT stiffness coefficient [-]
+
+  std::size_t element_count() const {
+    return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
+  }
+};
+
+/// Degrees of freedom bit mask: bits 0-2 translations x,y,z; bits 3-5 rotations x,y,z.
+enum DofBits : std::uint8_t { kUx = 1, kUy = 2, kUz = 4, kRx = 8, kRy = 16, kRz = 32 };
+
+/// Velocity imposed on one dof of a node set, as a function of time.
+struct PrescribedVelocity {
+  std::string name;
+  std::vector<std::int32_t> nodes;
+  int dof = 0;    ///< 0..2 translation x,y,z [m/s]; 3..5 rotation [rad/s]
+  Curve velocity; ///< [m/s] or [rad/s] against time [s]
+};
+
+/// Force on one translational dof of each node of a set, as a function of time.
+struct NodalLoad {
+  std::string name;
+  std::vector<std::int32_t> nodes;
+  int dof = 0;   ///< 0..2
+  Curve force;   ///< [N] per node against time [s]
+};
+
+struct InitialVelocity {
+  std::vector<std::int32_t> nodes;
+  Vec3 velocity_m_s{};
+};
+
+/// A rigid body made of the elements of one or more rigid parts; its nodes follow its motion.
+/// Mass and inertia come from the elements unless given (then they override).
+struct RigidBody {
+  std::string name;
+  std::vector<int> parts;                ///< indices of rigid parts forming the body
+  Vec3 velocity_m_s{};                   ///< initial velocity of the centre of mass
+  Vec3 angular_velocity_rad_s{};         ///< initial angular velocity (spatial)
+  double mass_kg = 0.0;                  ///< > 0: overrides the elements' mass
+  bool inertia_given = false;
+  Mat3 inertia_kg_m2{};                  ///< about the centre of mass, spatial frame at t = 0
+  bool centre_given = false;
+  Vec3 centre_m{};                       ///< centre of mass if given
+};
+
+/// A point whose history is written to /history/probes/<name>.
+struct Probe {
+  std::string name;
+  enum class Kind : std::uint8_t { Node, RigidBody } kind = Kind::Node;
+  int index = -1;  ///< node index or rigid body index
+};
+
+/// Run controls.
+struct Controls {
+  double end_time_s = 0.0;
+  double dt_scale = 0.9;                 ///< safety factor on the stable step [-]
+  double dt_max_s = 0.0;                 ///< > 0: upper bound on the step
+  double history_interval_s = 0.0;       ///< glstat/probe sampling; 0: every cycle
+  double field_interval_s = 0.0;         ///< field states; 0: first and last only
+  bool bulk_viscosity = true;            ///< linear + quadratic artificial bulk viscosity
+  double bulk_q_linear = 0.06;           ///< Q1 [-] (crash-code default)
+  double bulk_q_quadratic = 1.5;         ///< Q2 [-] (crash-code default)
+  bool shell_bulk_viscosity = false;     ///< apply it to shells too (membrane)
+  double energy_tolerance = 0.05;        ///< guard: |balance error| / reference energy
+  Vec3 gravity_m_s2{};                   ///< body acceleration
+};
+
+struct Model {
+  std::string name;
+  Nodes nodes;
+  std::vector<materials::Material> materials;
+  std::vector<Part> parts;
+  std::vector<std::uint8_t> fixed;       ///< [n] DofBits mask per node
+  std::vector<PrescribedVelocity> prescribed_velocities;
+  std::vector<NodalLoad> loads;
+  std::vector<InitialVelocity> initial_velocities;
+  std::vector<RigidBody> rigid_bodies;
+  std::vector<Probe> probes;
+  Controls controls;
+
+  /// Index of the node with user id `id`, or -1.
+  int node_index(std::int64_t id) const;
+  int part_index(const std::string& name) const;
+  std::size_t element_count() const;
+};
+
+/// Structural checks (sizes, index ranges, materials, thickness); throws ModelError with the fix.
+void validate(const Model& m);
+
+}  // namespace crashlink::model
