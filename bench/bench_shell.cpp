@@ -1,0 +1,114 @@
+// Belytschko-Tsay shell kernel throughput: ns per element per cycle on a flat 316 x 316 plate
+// (99,856 elements) with small random velocities (elastic) or a uniform stretch that keeps every
+// point plastic (J2, 5 through-thickness points). One kernel call = one cycle of the part.
+// Counters: ns_per_element (time per element and cycle), bytes_per_element (element history
+// ShellState + connectivity; the nodal arrays x, v, omega, f, m add 120 B per node, about one node
+// per element).
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "solver/elements/shell_bt.h"
+
+namespace {
+
+namespace model = crashlink::model;
+namespace materials = crashlink::materials;
+namespace el = crashlink::elements;
+
+constexpr int kN = 316;
+constexpr double kA = 0.005;  // element edge [m]
+
+struct Plate {
+  model::Part part;
+  std::vector<double> x, v, w, f, m;
+};
+
+Plate make_plate(int points, bool stretch) {
+  Plate p;
+  const std::size_t nn = static_cast<std::size_t>(kN + 1) * (kN + 1);
+  p.x.resize(3 * nn);
+  p.v.resize(3 * nn);
+  p.w.resize(3 * nn);
+  p.f.assign(3 * nn, 0.0);
+  p.m.assign(3 * nn, 0.0);
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int j = 0; j <= kN; ++j)
+    for (int i = 0; i <= kN; ++i) {
+      const std::size_t n = static_cast<std::size_t>(j * (kN + 1) + i);
+      p.x[3 * n] = i * kA;
+      p.x[3 * n + 1] = j * kA;
+      p.x[3 * n + 2] = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        p.v[3 * n + static_cast<std::size_t>(c)] = 0.1 * u(rng);   // [m/s]
+        p.w[3 * n + static_cast<std::size_t>(c)] = 10.0 * u(rng);  // [rad/s]
+      }
+      if (stretch) {  // biaxial-ish stretch rate 200 /s plus the noise: plastic every cycle
+        p.v[3 * n] += 200.0 * p.x[3 * n];
+        p.v[3 * n + 1] += 50.0 * p.x[3 * n + 1];
+      }
+    }
+  p.part.name = "plate";
+  p.part.kind = model::ElementKind::Shell4;
+  p.part.thickness_m = 0.001;
+  p.part.through_thickness_points = points;
+  p.part.connectivity.reserve(4 * static_cast<std::size_t>(kN) * kN);
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i) {
+      const int a = j * (kN + 1) + i;
+      p.part.connectivity.insert(p.part.connectivity.end(), {a, a + 1, a + kN + 2, a + kN + 1});
+      p.part.element_id.push_back(a);
+    }
+  return p;
+}
+
+void run(benchmark::State& state, const materials::Material& mat, int points, bool stretch) {
+  Plate p = make_plate(points, stretch);
+  el::ShellState st = el::make_shell_state(p.part);
+  const el::NodalView nv{p.x.data(), p.v.data(), p.w.data(), p.f.data(), p.m.data()};
+  const el::StepInfo step{5e-7};  // strain increment 1e-4 per cycle for the stretch
+  for (int i = 0; i < 30; ++i) el::shell_internal_forces(p.part, mat, st, nv, step);  // warm up
+  for (auto _ : state) {
+    auto r = el::shell_internal_forces(p.part, mat, st, nv, step);
+    benchmark::DoNotOptimize(r);
+    benchmark::ClobberMemory();
+  }
+  const double ne = static_cast<double>(p.part.element_count());
+  state.counters["ns_per_element"] = benchmark::Counter(
+      ne * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  const double bytes = static_cast<double>(
+      8 * (st.sigma_Pa.size() + st.eps_p.size() + st.thickness_m.size() + st.hourglass.size()) +
+      4 * p.part.connectivity.size());
+  state.counters["bytes_per_element"] = bytes / ne;
+  double plastic = 0.0;
+  for (std::size_t e = 0; e < st.element_count; ++e) plastic += st.eps_p[e] > 0.0 ? 1.0 : 0.0;
+  state.counters["plastic_fraction"] = plastic / ne;
+}
+
+materials::Material steel(bool plastic) {
+  materials::Material m{
+      "steel", plastic ? materials::MaterialKind::J2Plastic : materials::MaterialKind::Elastic,
+      7850.0,  210e9,
+      0.3,     {}};
+  if (plastic) m.hardening = {{0.0, 0.02, 0.1, 0.5}, {250e6, 300e6, 380e6, 500e6}};
+  return m;
+}
+
+void BM_ShellElastic3(benchmark::State& s) {
+  run(s, steel(false), 3, false);
+}
+void BM_ShellElastic5(benchmark::State& s) {
+  run(s, steel(false), 5, false);
+}
+void BM_ShellPlastic5(benchmark::State& s) {
+  run(s, steel(true), 5, true);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ShellElastic3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShellElastic5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShellPlastic5)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

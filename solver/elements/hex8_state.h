@@ -1,0 +1,34 @@
+#pragma once
+// Per-element history of a part of one-point hexahedra (Hex8), structure of arrays.
+//
+// Layouts (ne = element count, e = local element index, SI units):
+//   stress          [6*ne]   Cauchy stress, component c (Voigt xx,yy,zz,xy,yz,zx) at c*ne+e,
+//                            global frame [Pa]
+//   eps_p           [ne]     effective plastic strain [-] (0 for elastic parts)
+//   hourglass_force [12*ne]  Flanagan-Belytschko generalised hourglass forces Q_i,alpha
+//                            (alpha = 0..3 mode, i = 0..2 direction) at (3*alpha+i)*ne+e [N]
+//   volume0         [ne]     reference volume [m^3], recorded at the first kernel call (t = 0)
+//                            and used for the element mass rho*V0 in the stable step
+#include <cstddef>
+#include <vector>
+
+#include "solver/model/model.h"
+
+namespace crashlink::elements {
+
+struct Hex8State {
+  std::size_t element_count = 0;
+  std::vector<double> stress;
+  std::vector<double> eps_p;
+  std::vector<double> hourglass_force;
+  std::vector<double> volume0;
+  bool reference_recorded = false;  ///< volume0 filled (by the first hex8_internal_forces call)
+
+  /// Bytes of history per element (for the performance report).
+  static constexpr std::size_t bytes_per_element() { return (6 + 1 + 12 + 1) * sizeof(double); }
+};
+
+/// Zero stress, zero plastic strain, zero hourglass forces for every element of the part.
+Hex8State make_hex8_state(const model::Part& part);
+
+}  // namespace crashlink::elements

@@ -1,0 +1,414 @@
+#include "solver/integration/solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/core/errors.h"
+#include "solver/integration/central_difference.h"
+
+namespace crashlink::integration {
+
+namespace {
+
+using model::ElementKind;
+using materials::MaterialKind;
+
+bool is_rigid(const model::Model& m, const model::Part& p) {
+  return m.materials[static_cast<std::size_t>(p.material)].kind == MaterialKind::Rigid;
+}
+
+double dot3n(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+}  // namespace
+
+Solver::Solver(const model::Model& model, std::string domain_name)
+    : model_(model), domain_(std::move(domain_name)) {
+  model::validate(model_);
+  n_ = model_.nodes.count();
+}
+
+void Solver::assemble_masses() {
+  mass_.assign(n_, 0.0);
+  inertia_.assign(n_, 0.0);
+  const double* x0 = model_.nodes.x0.data();
+  for (const auto& p : model_.parts) {
+    const auto& mat = model_.materials[static_cast<std::size_t>(p.material)];
+    if (p.kind == ElementKind::Hex8)
+      elements::hex8_lumped_mass(p, mat, x0, mass_.data());
+    else
+      elements::shell_lumped_mass(p, mat, x0, mass_.data(), inertia_.data());
+  }
+}
+
+void Solver::build_rigid_bodies() {
+  rigid_node_.assign(n_, 0);
+  std::vector<int> part_body(model_.parts.size(), -1);
+  for (std::size_t b = 0; b < model_.rigid_bodies.size(); ++b) {
+    const auto& rb = model_.rigid_bodies[b];
+    RigidBodyState s;
+    for (int pi : rb.parts) {
+      part_body[static_cast<std::size_t>(pi)] = static_cast<int>(b);
+      for (auto c : model_.parts[static_cast<std::size_t>(pi)].connectivity) {
+        if (rigid_node_[static_cast<std::size_t>(c)] == 1) continue;
+        rigid_node_[static_cast<std::size_t>(c)] = 1;
+        s.nodes.push_back(c);
+      }
+    }
+    for (std::size_t other = 0; other < b; ++other)
+      for (auto c : bodies_[other].nodes)
+        if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end())
+          throw ModelError(fmt::format(
+              "node {} belongs to rigid bodies '{}' and '{}'; merge them into one body",
+              model_.nodes.id[static_cast<std::size_t>(c)], model_.rigid_bodies[other].name, rb.name));
+    double m_sum = 0.0;
+    Vec3 mx{};
+    for (auto c : s.nodes) {
+      const auto i = static_cast<std::size_t>(c);
+      m_sum += mass_[i];
+      mx = mx + mass_[i] * Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1], model_.nodes.x0[3 * i + 2]};
+    }
+    if (!(m_sum > 0.0) && !(rb.mass_kg > 0.0))
+      throw ModelError(fmt::format("rigid body '{}' has no mass: give its parts a density or set "
+                                   "its mass", rb.name));
+    s.mass_kg = rb.mass_kg > 0.0 ? rb.mass_kg : m_sum;
+    const double scale = m_sum > 0.0 ? s.mass_kg / m_sum : 0.0;  // given mass: scale the nodes
+    s.centre0 = rb.centre_given ? rb.centre_m : (1.0 / m_sum) * mx;
+    s.centre = s.centre0;
+    Mat3 j{};
+    s.offsets.resize(3 * s.nodes.size());
+    for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(s.nodes[k]);
+      const Vec3 r = Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1], model_.nodes.x0[3 * i + 2]} - s.centre0;
+      for (std::size_t d = 0; d < 3; ++d) s.offsets[3 * k + d] = r[d];
+      const double mi = scale * mass_[i];
+      for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t c = 0; c < 3; ++c)
+          j[a][c] += mi * ((a == c ? dot(r, r) : 0.0) - r[a] * r[c]);
+    }
+    s.inertia_body = rb.inertia_given ? rb.inertia_kg_m2 : j;
+    const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] - s.inertia_body[1][2] * s.inertia_body[2][1]) -
+                       s.inertia_body[0][1] * (s.inertia_body[1][0] * s.inertia_body[2][2] - s.inertia_body[1][2] * s.inertia_body[2][0]) +
+                       s.inertia_body[0][2] * (s.inertia_body[1][0] * s.inertia_body[2][1] - s.inertia_body[1][1] * s.inertia_body[2][0]);
+    if (!(det > 0.0))
+      throw ModelError(fmt::format("rigid body '{}': inertia tensor is singular (det {:.3e}); give "
+                                   "its inertia explicitly", rb.name, det));
+    s.inertia_body_inv = inverse(s.inertia_body);
+    s.velocity = rb.velocity_m_s;
+    s.velocity_prev = rb.velocity_m_s;
+    s.omega = rb.angular_velocity_rad_s;
+    s.omega_prev = rb.angular_velocity_rad_s;
+    s.angular_momentum = mul(s.inertia_body, rb.angular_velocity_rad_s);
+    bodies_.push_back(std::move(s));
+  }
+  for (std::size_t p = 0; p < model_.parts.size(); ++p)
+    if (is_rigid(model_, model_.parts[p]) && part_body[p] < 0)
+      throw ModelError(fmt::format("part '{}' is rigid but belongs to no rigid body; list it under "
+                                   "rigid_bodies", model_.parts[p].name));
+}
+
+void Solver::apply_initial_velocities() {
+  for (const auto& iv : model_.initial_velocities)
+    for (auto c : iv.nodes)
+      for (std::size_t d = 0; d < 3; ++d) v_[3 * static_cast<std::size_t>(c) + d] = iv.velocity_m_s[d];
+  for (auto& b : bodies_)
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(b.nodes[k]);
+      const Vec3 r{b.offsets[3 * k], b.offsets[3 * k + 1], b.offsets[3 * k + 2]};
+      const Vec3 vi = b.velocity + cross(b.omega, r);
+      for (std::size_t d = 0; d < 3; ++d) v_[3 * i + d] = vi[d];
+    }
+  for (const auto& pv : model_.prescribed_velocities) {
+    const bool rot = pv.dof >= 3;
+    for (auto c : pv.nodes) {
+      const std::size_t idx = 3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(pv.dof % 3);
+      if (rigid_node_[static_cast<std::size_t>(c)])
+        throw ModelError(fmt::format("prescribed velocity '{}': node {} follows a rigid body; "
+                                     "prescribe the body's motion instead",
+                                     pv.name, model_.nodes.id[static_cast<std::size_t>(c)]));
+      prescribed_.push_back({idx, rot, &pv.velocity});
+      (rot ? omega_ : v_)[idx] = pv.velocity.at(0.0);
+    }
+  }
+  v_prev_ = v_;
+  omega_prev_ = omega_;
+}
+
+void Solver::initialize() {
+  const std::size_t n3 = 3 * n_;
+  for (auto* vec : {&x_, &u_, &v_, &v_prev_, &a_, &omega_, &omega_prev_, &alpha_, &f_int_, &f_ext_,
+                    &m_int_, &du_})
+    vec->assign(n3, 0.0);
+  x_ = model_.nodes.x0;
+  assemble_masses();
+  parts_.clear();
+  for (const auto& p : model_.parts) {
+    PartRuntime r;
+    if (!is_rigid(model_, p)) {
+      if (p.kind == ElementKind::Hex8)
+        r.state = elements::make_hex8_state(p);
+      else
+        r.state = elements::make_shell_state(p);
+    }
+    parts_.push_back(std::move(r));
+  }
+  build_rigid_bodies();
+  inv_mass_.assign(n_, 0.0);
+  inv_inertia_.assign(n_, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (rigid_node_[i]) continue;
+    if (mass_[i] > 0.0) inv_mass_[i] = 1.0 / mass_[i];
+    if (inertia_[i] > 0.0) inv_inertia_[i] = 1.0 / inertia_[i];
+  }
+  apply_initial_velocities();
+  time_s_ = 0.0;
+  cycle_ = 0;
+  dt_prev_ = 0.0;
+  compute_forces(0.0);
+  compute_external_forces(0.0);
+  compute_accelerations();
+  propose_step();
+  dt_min_ = dt_;
+  energy_ = EnergyAccount{};
+  begun_ = false;
+}
+
+void Solver::compute_forces(double dt) {
+  std::fill(f_int_.begin(), f_int_.end(), 0.0);
+  std::fill(m_int_.begin(), m_int_.end(), 0.0);
+  const elements::NodalView nv{x_.data(), v_.data(), omega_.data(), f_int_.data(), m_int_.data()};
+  const auto& c = model_.controls;
+  dt_stable_ = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    const auto& part = model_.parts[p];
+    auto& rt = parts_[p];
+    const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
+    elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic};
+    if (auto* hs = std::get_if<elements::Hex8State>(&rt.state)) {
+      rt.last = elements::hex8_internal_forces(part, mat, *hs, nv, step);
+    } else if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {
+      step.bulk_viscosity = c.bulk_viscosity && c.shell_bulk_viscosity;
+      rt.last = elements::shell_internal_forces(part, mat, *ss, nv, step);
+    } else {
+      continue;
+    }
+    rt.internal_energy_J += rt.last.internal_energy_increment_J;
+    rt.hourglass_energy_J += rt.last.hourglass_energy_increment_J;
+    energy_.internal_J += rt.last.internal_energy_increment_J;
+    energy_.hourglass_J += rt.last.hourglass_energy_increment_J;
+    if (rt.last.dt_stable_s < dt_stable_) {
+      dt_stable_ = rt.last.dt_stable_s;
+      critical_part_ = p;
+      critical_local_ = rt.last.critical_element;
+    }
+  }
+}
+
+void Solver::compute_external_forces(double t) {
+  std::fill(f_ext_.begin(), f_ext_.end(), 0.0);
+  const Vec3& g = model_.controls.gravity_m_s2;
+  if (g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0)
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (rigid_node_[i]) continue;  // the body's weight is M g, added in gather_rigid_load
+      for (std::size_t d = 0; d < 3; ++d) f_ext_[3 * i + d] += mass_[i] * g[d];
+    }
+  for (const auto& load : model_.loads) {
+    const double f = load.force.at(t);
+    for (auto c : load.nodes) f_ext_[3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(load.dof)] += f;
+  }
+}
+
+void Solver::compute_accelerations() {
+  compute_acceleration(a_.data(), f_ext_.data(), f_int_.data(), inv_mass_.data(), n_);
+  for (std::size_t i = 0; i < 3 * n_; ++i) alpha_[i] = -m_int_[i] * inv_inertia_[i / 3];
+  for (auto& b : bodies_)
+    gather_rigid_load(b, f_ext_.data(), f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
+  if (!model_.fixed.empty())
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::uint8_t mask = model_.fixed[i];
+      if (mask == 0) continue;
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (mask & (1u << d)) a_[3 * i + d] = 0.0;
+        if (mask & (8u << d)) alpha_[3 * i + d] = 0.0;
+      }
+    }
+}
+
+void Solver::propose_step() {
+  const auto& c = model_.controls;
+  double dt = c.dt_scale * dt_stable_;
+  if (c.dt_max_s > 0.0) dt = std::min(dt, c.dt_max_s);
+  if (!std::isfinite(dt))
+    throw ModelError(fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
+                                 "set controls.dt_max", domain_));
+  if (!(dt > 0.0))
+    throw NumericalError(fmt::format("{}: stable step {:.3e} s at cycle {}, t = {:.6e} s, set by {}: "
+                                     "the element collapsed",
+                                     domain_, dt, cycle_, time_s_, critical_element()));
+  if (cycle_ > 0 && dt < 1e-4 * dt_min_)
+    throw NumericalError(fmt::format(
+        "{}: the stable step fell to {:.3e} s (1e-4 of the smallest step so far, {:.3e} s) at cycle "
+        "{}, t = {:.6e} s, set by {}: an element is collapsing; check its mesh and material",
+        domain_, dt, dt_min_, cycle_, time_s_, critical_element()));
+  dt_ = dt;
+}
+
+std::string Solver::critical_element() const {
+  if (critical_local_ < 0 || critical_part_ >= model_.parts.size()) return "no element";
+  const auto& p = model_.parts[critical_part_];
+  return fmt::format("part '{}' element {}", p.name, p.element_id[static_cast<std::size_t>(critical_local_)]);
+}
+
+double Solver::kinetic_energy() const {
+  // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h)
+  double ke = 0.0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (rigid_node_[i]) continue;
+    const double tr = v_prev_[3 * i] * v_[3 * i] + v_prev_[3 * i + 1] * v_[3 * i + 1] +
+                      v_prev_[3 * i + 2] * v_[3 * i + 2];
+    const double rot = omega_prev_[3 * i] * omega_[3 * i] + omega_prev_[3 * i + 1] * omega_[3 * i + 1] +
+                       omega_prev_[3 * i + 2] * omega_[3 * i + 2];
+    ke += mass_[i] * tr + inertia_[i] * rot;
+  }
+  ke *= 0.5;
+  for (const auto& b : bodies_) ke += rigid_kinetic_energy(b);
+  return ke;
+}
+
+GuardContext Solver::guard_context() const { return {cycle_, time_s_, dt_, domain_}; }
+
+void Solver::begin_cycle() {
+  const double dt_mid = mid_step(dt_prev_, dt_);  // dt^{n-1/2}, [2]
+  v_prev_ = v_;
+  omega_prev_ = omega_;
+  update_velocity(v_.data(), a_.data(), dt_mid, v_.size());          // [2]
+  update_velocity(omega_.data(), alpha_.data(), dt_mid, omega_.size());
+  for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+  if (cycle_ == 0) {
+    // The start v^{1/2} = v^0 + dt^0/2 a^0 is a half step; the kinetic energy's product form
+    // needs the full-step partner v^{-1/2} = v^0 - dt^0/2 a^0 = 2 v^0 - v^{1/2} so that
+    // KE^0 + IE^0 balances the trapezoid work exactly (docs/energy-balance.md).
+    for (std::size_t i = 0; i < v_.size(); ++i) {
+      v_prev_[i] = 2.0 * v_prev_[i] - v_[i];
+      omega_prev_[i] = 2.0 * omega_prev_[i] - omega_[i];
+    }
+    for (auto& b : bodies_) {
+      b.velocity_prev = 2.0 * b.velocity_prev - b.velocity;
+      b.omega_prev = 2.0 * b.omega_prev - b.omega;
+    }
+  }
+  if (!model_.fixed.empty())
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::uint8_t mask = model_.fixed[i];
+      if (mask == 0) continue;
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (mask & (1u << d)) v_[3 * i + d] = 0.0;
+        if (mask & (8u << d)) omega_[3 * i + d] = 0.0;
+      }
+    }
+  // Prescribed velocities and the work of their reactions R^n = m a^n - (f_ext - f_int)^n,
+  // trapezoid rule over [t^{n-1}, t^n] (energy.h).
+  const double t_mid = time_s_ + 0.5 * dt_;
+  for (auto& p : prescribed_) {
+    auto& vel = p.rotational ? omega_ : v_;
+    const auto& vel_prev = p.rotational ? omega_prev_ : v_prev_;
+    vel[p.index] = p.curve->at(t_mid);
+    const std::size_t node = p.index / 3;
+    const double m = p.rotational ? inertia_[node] : mass_[node];
+    const double f_net = p.rotational ? -m_int_[p.index] : f_ext_[p.index] - f_int_[p.index];
+    // M (v^{n+1/2} - v^{n-1/2}) = dt (F + R), with dt the step that pairs the two velocities:
+    // dt^{n-1/2}, or the full dt^0 at the first cycle (see above).
+    const double dt_pair = cycle_ == 0 ? dt_ : dt_mid;
+    const double reaction = m * (vel[p.index] - vel_prev[p.index]) / dt_pair - f_net;
+    const double increment = p.rotational ? dt_prev_ * vel_prev[p.index] : du_[p.index];
+    if (cycle_ > 0) energy_.external_work_J += 0.5 * (p.reaction_prev + reaction) * increment;
+    p.reaction_prev = reaction;
+  }
+  energy_.kinetic_J = kinetic_energy();
+  const GuardContext ctx = guard_context();
+  if (!std::isfinite(energy_.kinetic_J)) check_finite_velocities(model_, v_.data(), ctx);
+  if (cycle_ == 0) energy_.initial_total_J = energy_.total_J();
+  energy_.update_reference();
+  check_energy_balance(model_, energy_, model_.controls.energy_tolerance, v_.data(), ctx);
+  begun_ = true;
+}
+
+void Solver::end_cycle() {
+  CRASHLINK_ASSERT(begun_);
+  const double dt = dt_;
+  for (std::size_t i = 0; i < du_.size(); ++i) du_[i] = dt * v_[i];
+  update_displacement(u_.data(), v_.data(), dt, u_.size());  // [2]
+  const Vec3& g = model_.controls.gravity_m_s2;
+  double rigid_gravity_work = 0.0;
+  for (auto& b : bodies_) {
+    move_rigid_body(b, dt, model_.nodes.x0.data(), u_.data(), v_.data());
+    for (auto c : b.nodes)
+      for (std::size_t d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * static_cast<std::size_t>(c) + d;
+        du_[k] = dt * v_[k];
+      }
+    rigid_gravity_work += b.mass_kg * dot(g, dt * b.velocity);
+  }
+  for (std::size_t i = 0; i < x_.size(); ++i) x_[i] = model_.nodes.x0[i] + u_[i];
+  time_s_ += dt;
+  // External work, trapezoid: 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n)
+  energy_.external_work_J += 0.5 * dot3n(f_ext_, du_) + rigid_gravity_work;
+  compute_forces(dt);
+  compute_external_forces(time_s_);
+  energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
+  compute_accelerations();
+  dt_prev_ = dt;
+  ++cycle_;
+  propose_step();
+  dt_min_ = std::min(dt_min_, dt_);
+  begun_ = false;
+}
+
+Vec3 Solver::node_velocity(std::size_t i) const {
+  return {0.5 * (v_prev_[3 * i] + v_[3 * i]), 0.5 * (v_prev_[3 * i + 1] + v_[3 * i + 1]),
+          0.5 * (v_prev_[3 * i + 2] + v_[3 * i + 2])};
+}
+
+ProbeValue Solver::probe(const model::Probe& p) const {
+  ProbeValue r;
+  const auto i = static_cast<std::size_t>(p.index);
+  if (p.kind == model::Probe::Kind::Node) {
+    r.displacement_m = {u_[3 * i], u_[3 * i + 1], u_[3 * i + 2]};
+    r.velocity_m_s = node_velocity(i);
+    r.acceleration_m_s2 = {a_[3 * i], a_[3 * i + 1], a_[3 * i + 2]};
+  } else {
+    const auto& b = bodies_[i];
+    r.displacement_m = b.centre - b.centre0;
+    r.velocity_m_s = 0.5 * (b.velocity_prev + b.velocity);
+    r.acceleration_m_s2 = (1.0 / b.mass_kg) * b.force;
+  }
+  return r;
+}
+
+void Solver::element_output(std::size_t p, const elements::ElementOutput& out) const {
+  const auto& part = model_.parts[p];
+  if (const auto* hs = std::get_if<elements::Hex8State>(&parts_[p].state)) {
+    elements::hex8_element_output(part, *hs, out);
+  } else if (const auto* ss = std::get_if<elements::ShellState>(&parts_[p].state)) {
+    elements::shell_element_output(part, *ss, out);
+  } else {
+    const std::size_t ne = part.element_count();
+    if (out.von_mises_Pa) std::fill(out.von_mises_Pa, out.von_mises_Pa + ne, 0.0);
+    if (out.eps_p) std::fill(out.eps_p, out.eps_p + ne, 0.0);
+    if (out.stress_Pa) std::fill(out.stress_Pa, out.stress_Pa + 6 * ne, 0.0);
+  }
+}
+
+double Solver::total_mass_kg() const {
+  double m = 0.0;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!rigid_node_[i]) m += mass_[i];
+  for (const auto& b : bodies_) m += b.mass_kg;
+  return m;
+}
+
+}  // namespace crashlink::integration

@@ -1,0 +1,123 @@
+#pragma once
+// One domain's explicit solver: lumped masses, central differences [1]-[2] of Bourel 2005,
+// element kernels per part, rigid bodies, boundary conditions, energy account and guard.
+//
+// A cycle is split in two so that the state at t^n is complete when it is reported:
+//   begin_cycle():  v^{n+1/2} = v^{n-1/2} + dt^{n-1/2} a^n, boundary conditions, energies at t^n,
+//                   guard.  Here u^n, v^{n-1/2}, v^{n+1/2}, a^n all hold: sample output now.
+//   end_cycle():    u^{n+1} = u^n + dt^n v^{n+1/2}, t^{n+1}, element forces f_int(u^{n+1}),
+//                   external forces, a^{n+1} = M^{-1}(f_ext - f_int) ([1]), next stable step.
+// Run loop: initialize(); for (;;) { begin_cycle(); sample(); if (finished()) break; end_cycle(); }
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "solver/elements/hex8.h"
+#include "solver/elements/kernel_io.h"
+#include "solver/elements/shell_bt.h"
+#include "solver/integration/energy.h"
+#include "solver/integration/guard.h"
+#include "solver/integration/rigid_body.h"
+#include "solver/model/model.h"
+
+namespace crashlink::integration {
+
+/// Per-part runtime data: element history and energy totals.
+struct PartRuntime {
+  std::variant<std::monostate, elements::Hex8State, elements::ShellState> state;  // monostate: rigid
+  elements::KernelResult last;     ///< last kernel call (stable step of the part)
+  double internal_energy_J = 0.0;
+  double hourglass_energy_J = 0.0;
+};
+
+/// A kinematic sample of one probe at t^n.
+struct ProbeValue {
+  Vec3 displacement_m{};
+  Vec3 velocity_m_s{};
+  Vec3 acceleration_m_s2{};
+};
+
+class Solver {
+ public:
+  /// The model must outlive the solver. Validates it (ModelError on inconsistency).
+  explicit Solver(const model::Model& model, std::string domain_name = "model");
+
+  /// t = 0: masses, rigid bodies, initial velocities, f^0, a^0 and the first stable step.
+  void initialize();
+  void begin_cycle();
+  void end_cycle();
+  /// True when t^n has reached the end time (checked after begin_cycle()).
+  bool finished() const { return time_s_ >= model_.controls.end_time_s * (1.0 - 1e-12); }
+
+  double time_s() const { return time_s_; }
+  std::int64_t cycle() const { return cycle_; }
+  double dt_s() const { return dt_; }            ///< dt^n, the step about to be taken
+  double dt_min_s() const { return dt_min_; }    ///< smallest step taken so far
+  /// Smallest element step (before the safety factor) and where it is.
+  double dt_stable_s() const { return dt_stable_; }
+  std::string critical_element() const;
+  const EnergyAccount& energy() const { return energy_; }
+  const model::Model& model() const { return model_; }
+  const std::string& domain_name() const { return domain_; }
+
+  // Nodal state, interleaved xyz [3n]. velocity_mid() is v^{n+1/2} after begin_cycle().
+  const std::vector<double>& displacement() const { return u_; }
+  const std::vector<double>& velocity_mid() const { return v_; }
+  const std::vector<double>& acceleration() const { return a_; }
+  const std::vector<double>& mass() const { return mass_; }
+  /// v^n = (v^{n-1/2} + v^{n+1/2}) / 2 of node i (after begin_cycle()).
+  Vec3 node_velocity(std::size_t i) const;
+  ProbeValue probe(const model::Probe& p) const;
+  const std::vector<RigidBodyState>& rigid_bodies() const { return bodies_; }
+  const std::vector<PartRuntime>& parts() const { return parts_; }
+  /// Element output of part p (von Mises, eps_p, stress); rigid parts give zeros.
+  void element_output(std::size_t p, const elements::ElementOutput& out) const;
+  /// Total mass of the model [kg] (nodes + rigid bodies).
+  double total_mass_kg() const;
+
+ private:
+  void assemble_masses();
+  void build_rigid_bodies();
+  void apply_initial_velocities();
+  void compute_forces(double dt);       // f_int, m_int at the current configuration
+  void compute_external_forces(double t);
+  void compute_accelerations();
+  double kinetic_energy() const;
+  void propose_step();
+  GuardContext guard_context() const;
+
+  const model::Model& model_;
+  std::string domain_;
+  std::size_t n_ = 0;
+
+  std::vector<double> mass_, inv_mass_;          // [n] kg, 1/kg (0: rigid or massless)
+  std::vector<double> inertia_, inv_inertia_;    // [n] kg m^2 (shell nodes)
+  std::vector<double> x_;                        // [3n] current coordinates
+  std::vector<double> u_, v_, v_prev_, a_;       // [3n] u^n, v^{n+1/2}, v^{n-1/2}, a^n
+  std::vector<double> omega_, omega_prev_, alpha_;  // [3n] rotational dofs
+  std::vector<double> f_int_, f_ext_, m_int_;    // [3n]
+  std::vector<double> du_;                       // [3n] u^n - u^{n-1}
+  std::vector<std::uint8_t> rigid_node_;         // [n] 1 if the node follows a rigid body
+  std::vector<PartRuntime> parts_;
+  std::vector<RigidBodyState> bodies_;
+
+  // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
+  struct PrescribedDof {
+    std::size_t index;
+    bool rotational;
+    const model::Curve* curve;
+    double reaction_prev = 0.0;
+  };
+  std::vector<PrescribedDof> prescribed_;
+
+  EnergyAccount energy_;
+  double time_s_ = 0.0;
+  std::int64_t cycle_ = 0;
+  double dt_ = 0.0, dt_prev_ = 0.0, dt_min_ = 0.0, dt_stable_ = 0.0;
+  std::size_t critical_part_ = 0;
+  std::int64_t critical_local_ = -1;
+  bool begun_ = false;
+};
+
+}  // namespace crashlink::integration

@@ -1,0 +1,467 @@
+#include "solver/io/result_writer.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <set>
+
+#include "solver/io/hdf5_handles.h"
+#include "solver/io/xdmf_writer.h"
+
+namespace crashlink::io {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The /history/glstat columns (DESIGN.md §4) in GlstatSample order, with their units.
+struct GlstatColumn {
+  const char* name;
+  const char* units;
+  double GlstatSample::*value;
+};
+constexpr std::array<GlstatColumn, 8> kGlstat{{
+    {"time", "s", &GlstatSample::time_s},
+    {"kinetic_energy", "J", &GlstatSample::kinetic_energy_J},
+    {"internal_energy", "J", &GlstatSample::internal_energy_J},
+    {"hourglass_energy", "J", &GlstatSample::hourglass_energy_J},
+    {"contact_energy", "J", &GlstatSample::contact_energy_J},
+    {"external_work", "J", &GlstatSample::external_work_J},
+    {"total_energy", "J", &GlstatSample::total_energy_J},
+    {"energy_balance_error", "1", &GlstatSample::energy_balance_error},
+}};
+
+/// An HDF5 link name for a user name: '/' would nest groups, so it becomes '_'; "" and "." too.
+std::string link_name(const std::string& name, const char* fallback, std::size_t index) {
+  if (name.empty() || name == "." || name == "..") return fmt::format("{}_{}", fallback, index);
+  std::string s = name;
+  for (char& c : s) {
+    if (c == '/') c = '_';
+  }
+  return s;
+}
+
+/// Link names for a list of user names; throws ModelError on a collision.
+template <class T, class NameOf>
+std::vector<std::string> link_names(const std::vector<T>& items, NameOf name_of, const char* what) {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out.push_back(link_name(name_of(items[i]), what, i));
+    if (!seen.insert(out.back()).second) {
+      throw ModelError(fmt::format(
+          "result writer: two {}s are named '{}' (after replacing '/' by '_'); give every {} a "
+          "unique name in the scenario",
+          what, out.back(), what));
+    }
+  }
+  return out;
+}
+
+/// Checks the arrays the writer reads (sizes and index ranges); throws ModelError.
+void check_model(const model::Model& m) {
+  const std::size_t n = m.nodes.count();
+  if (m.nodes.x0.size() != 3 * n) {
+    throw ModelError(
+        fmt::format("result writer: model '{}' has {} node ids but {} coordinates "
+                    "(expected 3 per node)",
+                    m.name, n, m.nodes.x0.size()));
+  }
+  for (const model::Part& p : m.parts) {
+    const auto k = static_cast<std::size_t>(model::nodes_per_element(p.kind));
+    if (p.connectivity.size() % k != 0) {
+      throw ModelError(
+          fmt::format("result writer: part '{}' has {} connectivity entries, not a "
+                      "multiple of {} nodes per element",
+                      p.name, p.connectivity.size(), k));
+    }
+    for (const std::int32_t node : p.connectivity) {
+      if (node < 0 || static_cast<std::size_t>(node) >= n) {
+        throw ModelError(
+            fmt::format("result writer: part '{}' refers to node index {}, outside "
+                        "[0, {})",
+                        p.name, node, n));
+      }
+    }
+  }
+}
+
+struct ProbeOut {
+  std::string path;  // /history/probes/<name>
+  DatasetHandle time, displacement, velocity, acceleration;
+  std::vector<double> t, u, v, a;  // buffered rows: [k], [3k], [3k], [3k]
+};
+
+}  // namespace
+
+struct ResultWriter::Impl {
+  std::string h5_path;
+  ResultWriterOptions options;
+  FileHandle file;
+  std::array<DatasetHandle, kGlstat.size()> glstat;
+  std::array<std::vector<double>, kGlstat.size()> glstat_buffer;
+  std::vector<ProbeOut> probes;
+  std::size_t buffered = 0;
+  Clock::time_point last_flush = Clock::now();
+  std::size_t node_count = 0;
+  std::vector<double> x0;               // [3n] reference coordinates (the model may not outlive us)
+  std::vector<std::string> part_links;  // link names of the parts
+  std::vector<std::size_t> part_elements;
+  XdmfDocument xdmf;
+
+  Location root() const { return Location{file.get(), h5_path, "/"}; }
+
+  void flush_file() {
+    if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) {
+      throw ResultFileError(h5_path, "/", "H5Fflush (flush the result file to disk)");
+    }
+  }
+
+  /// Appends the buffered rows; the buffers are emptied even if a write fails (no row is ever
+  /// written twice). Returns the number of rows written.
+  std::size_t write_history() {
+    const std::size_t rows = buffered;
+    struct Clear {
+      Impl* self;
+      ~Clear() {
+        for (auto& b : self->glstat_buffer) b.clear();
+        for (auto& p : self->probes) {
+          p.t.clear();
+          p.u.clear();
+          p.v.clear();
+          p.a.clear();
+        }
+        self->buffered = 0;
+        self->last_flush = Clock::now();
+      }
+    } clear{this};
+    if (rows == 0) return 0;
+    for (std::size_t c = 0; c < kGlstat.size(); ++c) {
+      append_rows(
+          Location{glstat[c].get(), h5_path, std::string("/history/glstat/") + kGlstat[c].name},
+          glstat_buffer[c], 0);
+    }
+    for (ProbeOut& p : probes) {
+      append_rows(Location{p.time.get(), h5_path, p.path + "/time"}, p.t, 0);
+      append_rows(Location{p.displacement.get(), h5_path, p.path + "/displacement"}, p.u, 3);
+      append_rows(Location{p.velocity.get(), h5_path, p.path + "/velocity"}, p.v, 3);
+      append_rows(Location{p.acceleration.get(), h5_path, p.path + "/acceleration"}, p.a, 3);
+    }
+    return rows;
+  }
+
+  void write_mesh(const model::Model& m) {
+    GroupHandle mesh = create_group(root(), "mesh");
+    const Location at{mesh.get(), h5_path, "/mesh"};
+    const hsize_t n = node_count;
+    const hsize_t xdims[2] = {n, 3};
+    write_dataset(at, "coordinates", std::span<const double>(m.nodes.x0), xdims, "m");
+    const hsize_t ndims[1] = {n};
+    write_dataset(at, "node_ids", std::span<const std::int64_t>(m.nodes.id), ndims);
+    std::vector<std::string> names;
+    for (const auto& p : m.parts) names.push_back(p.name);
+    write_strings(at, "part_names", names);
+
+    GroupHandle parts = create_group(at, "parts");
+    const Location pat{parts.get(), h5_path, "/mesh/parts"};
+    xdmf.node_count = node_count;
+    xdmf.reference_coordinates = "/mesh/coordinates";
+    for (std::size_t i = 0; i < m.parts.size(); ++i) {
+      const model::Part& p = m.parts[i];
+      const auto k = static_cast<hsize_t>(model::nodes_per_element(p.kind));
+      const hsize_t ne = p.connectivity.size() / k;
+      GroupHandle g = create_group(pat, part_links[i]);
+      const Location gat{g.get(), h5_path, pat.child(part_links[i])};
+      write_attribute(gat, "name", p.name);
+      write_attribute(gat, "kind",
+                      std::string(p.kind == model::ElementKind::Hex8 ? "hex8" : "shell4"));
+      write_attribute(gat, "index", static_cast<std::int64_t>(i));
+      const hsize_t cdims[2] = {ne, k};
+      write_dataset(gat, "connectivity", std::span<const std::int32_t>(p.connectivity), cdims);
+      const hsize_t edims[1] = {ne};
+      if (p.element_id.size() == ne) {
+        write_dataset(gat, "element_ids", std::span<const std::int64_t>(p.element_id), edims);
+      } else {  // ids not given: 1-based positions, so the dataset always exists
+        std::vector<std::int64_t> ids(ne);
+        for (std::size_t e = 0; e < ne; ++e) ids[e] = static_cast<std::int64_t>(e + 1);
+        write_dataset(gat, "element_ids", std::span<const std::int64_t>(ids), edims);
+      }
+      part_elements.push_back(ne);
+      xdmf.parts.push_back(
+          XdmfPart{p.name, p.kind == model::ElementKind::Hex8, ne, gat.path + "/connectivity"});
+    }
+  }
+
+  void create_history(const model::Model& m, const std::vector<std::string>& probe_links) {
+    const hsize_t chunk = options.history_chunk_rows == 0 ? 1024 : options.history_chunk_rows;
+    GroupHandle history = create_group(root(), "history");
+    const Location hat{history.get(), h5_path, "/history"};
+    GroupHandle gl = create_group(hat, "glstat");
+    const Location gat{gl.get(), h5_path, "/history/glstat"};
+    for (std::size_t c = 0; c < kGlstat.size(); ++c) {
+      glstat[c] = create_extendible(gat, kGlstat[c].name, 0, chunk, kGlstat[c].units);
+    }
+    GroupHandle pr = create_group(hat, "probes");
+    const Location pat{pr.get(), h5_path, "/history/probes"};
+    for (std::size_t i = 0; i < m.probes.size(); ++i) {
+      const model::Probe& probe = m.probes[i];
+      GroupHandle g = create_group(pat, probe_links[i]);
+      ProbeOut out;
+      out.path = pat.child(probe_links[i]);
+      const Location at{g.get(), h5_path, out.path};
+      write_attribute(at, "name", probe.name);
+      if (probe.kind == model::Probe::Kind::Node) {
+        write_attribute(at, "kind", std::string("node"));
+        const bool known = probe.index >= 0 && static_cast<std::size_t>(probe.index) < node_count;
+        write_attribute(
+            at, "node_id",
+            known ? m.nodes.id[static_cast<std::size_t>(probe.index)] : std::int64_t{-1});
+      } else {
+        write_attribute(at, "kind", std::string("rigid_body"));
+        const bool known =
+            probe.index >= 0 && static_cast<std::size_t>(probe.index) < m.rigid_bodies.size();
+        write_attribute(
+            at, "rigid_body",
+            known ? m.rigid_bodies[static_cast<std::size_t>(probe.index)].name : std::string());
+      }
+      out.time = create_extendible(at, "time", 0, chunk, "s");
+      out.displacement = create_extendible(at, "displacement", 3, chunk, "m");
+      out.velocity = create_extendible(at, "velocity", 3, chunk, "m/s");
+      out.acceleration = create_extendible(at, "acceleration", 3, chunk, "m/s^2");
+      probes.push_back(std::move(out));
+    }
+  }
+};
+
+ResultWriter::ResultWriter(const std::string& dir, const model::Model& model,
+                           ResultWriterOptions options) {
+  check_model(model);
+  const std::vector<std::string> part_links = link_names(
+      model.parts, [](const model::Part& p) { return p.name; }, "part");
+  const std::vector<std::string> probe_links = link_names(
+      model.probes, [](const model::Probe& p) { return p.name; }, "probe");
+
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw ResultFileError(dir, "/",
+                          fmt::format("cannot create the output directory: {}", ec.message()));
+  }
+  h5_path_ = (std::filesystem::path(dir) / "result.h5").string();
+  xdmf_path_ = (std::filesystem::path(dir) / "result.xdmf").string();
+
+  auto impl = std::make_unique<Impl>();
+  impl->h5_path = h5_path_;
+  impl->options = options;
+  impl->node_count = model.nodes.count();
+  impl->x0 = model.nodes.x0;
+  impl->part_links = part_links;
+  impl->file = create_file(h5_path_);
+  const Location root = impl->root();
+  write_attribute(root, "format", std::string("crashlink-result"));
+  write_attribute(root, "format_version", std::int64_t{1});
+  write_attribute(root, "model", model.name);
+  impl->write_mesh(model);
+  impl->create_history(model, probe_links);
+  {
+    GroupHandle states = create_group(root, "states");
+    write_attribute(Location{states.get(), h5_path_, "/states"}, "count", std::int64_t{0});
+  }
+  impl->flush_file();
+  write_xdmf(xdmf_path_, impl->xdmf);
+  impl_ = std::move(impl);
+}
+
+ResultWriter::~ResultWriter() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "crashlink: closing the result file failed: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "crashlink: closing the result file %s failed\n", h5_path_.c_str());
+  }
+}
+
+namespace {
+[[noreturn]] void closed(const std::string& path, const char* call) {
+  throw ResultFileError(path, "/",
+                        fmt::format("{} after close(): the result writer is closed; "
+                                    "write everything before closing it",
+                                    call));
+}
+}  // namespace
+
+void ResultWriter::append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes) {
+  if (!impl_) closed(h5_path_, "append_history");
+  Impl& w = *impl_;
+  if (probes.size() != w.probes.size()) {
+    throw ResultFileError(h5_path_, "/history/probes",
+                          fmt::format("append_history: {} probe samples given, the model has {} "
+                                      "probes (pass one sample per model.probes, same order)",
+                                      probes.size(), w.probes.size()));
+  }
+  for (std::size_t c = 0; c < kGlstat.size(); ++c)
+    w.glstat_buffer[c].push_back(g.*kGlstat[c].value);
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    ProbeOut& p = w.probes[i];
+    p.t.push_back(g.time_s);
+    p.u.insert(p.u.end(), probes[i].displacement_m, probes[i].displacement_m + 3);
+    p.v.insert(p.v.end(), probes[i].velocity_m_s, probes[i].velocity_m_s + 3);
+    p.a.insert(p.a.end(), probes[i].acceleration_m_s2, probes[i].acceleration_m_s2 + 3);
+  }
+  ++w.buffered;
+  const auto wall = std::chrono::duration<double>(Clock::now() - w.last_flush).count();
+  if (w.buffered >= w.options.history_flush_samples || wall >= w.options.history_flush_wall_s) {
+    flush_history();
+  }
+}
+
+void ResultWriter::flush_history() {
+  if (!impl_) closed(h5_path_, "flush_history");
+  history_rows_ += impl_->write_history();
+  impl_->flush_file();
+}
+
+void ResultWriter::flush() {
+  flush_history();
+}
+
+void ResultWriter::write_field_state(const FieldState& s) {
+  if (!impl_) closed(h5_path_, "write_field_state");
+  Impl& w = *impl_;
+  const std::size_t k = state_count_;
+  const std::string path = fmt::format("/states/{}", k);
+  const std::size_t n = w.node_count;
+  auto check_size = [&](std::span<const double> a, std::size_t expected, const std::string& what,
+                        bool required) {
+    if ((required || !a.empty()) && a.size() != expected) {
+      throw ResultFileError(h5_path_, path + "/" + what,
+                            fmt::format("write_field_state: {} has {} values, expected {}", what,
+                                        a.size(), expected));
+    }
+  };
+  check_size(s.displacement_m, 3 * n, "displacement", true);
+  check_size(s.velocity_m_s, 3 * n, "velocity", false);
+  if (!s.parts.empty() && s.parts.size() != w.part_links.size()) {
+    throw ResultFileError(h5_path_, path,
+                          fmt::format("write_field_state: {} part states given, the model has {} "
+                                      "parts (pass none or one per model.parts, same order)",
+                                      s.parts.size(), w.part_links.size()));
+  }
+  for (std::size_t p = 0; p < s.parts.size(); ++p) {
+    const std::size_t ne = w.part_elements[p];
+    const std::string part = "parts/" + w.part_links[p];
+    check_size(s.parts[p].eps_p, ne, part + "/eps_p", false);
+    check_size(s.parts[p].von_mises_Pa, ne, part + "/von_mises", false);
+    check_size(s.parts[p].stress_Pa, 6 * ne, part + "/stress", false);
+  }
+
+  GroupHandle states = open_group(w.root(), "states");
+  const Location sat{states.get(), h5_path_, "/states"};
+  GroupHandle g = create_group(sat, std::to_string(k));
+  const Location at{g.get(), h5_path_, path};
+  write_attribute(at, "time", s.time_s);
+  XdmfState xs;
+  xs.time_s = s.time_s;
+  const hsize_t ndims[2] = {n, 3};
+  std::vector<double> x(3 * n);
+  for (std::size_t i = 0; i < 3 * n; ++i) x[i] = w.x0[i] + s.displacement_m[i];
+  write_dataset(at, "coordinates", std::span<const double>(x), ndims, "m");
+  write_dataset(at, "displacement", s.displacement_m, ndims, "m");
+  xs.coordinates = path + "/coordinates";
+  xs.displacement = path + "/displacement";
+  if (!s.velocity_m_s.empty()) {
+    write_dataset(at, "velocity", s.velocity_m_s, ndims, "m/s");
+    xs.velocity = path + "/velocity";
+  }
+  if (!s.parts.empty()) {
+    GroupHandle parts = create_group(at, "parts");
+    const Location pat{parts.get(), h5_path_, path + "/parts"};
+    for (std::size_t p = 0; p < s.parts.size(); ++p) {
+      const PartFieldState& f = s.parts[p];
+      XdmfPartFields xf;
+      if (!f.eps_p.empty() || !f.von_mises_Pa.empty() || !f.stress_Pa.empty()) {
+        GroupHandle pg = create_group(pat, w.part_links[p]);
+        const Location gat{pg.get(), h5_path_, pat.child(w.part_links[p])};
+        const hsize_t ne = w.part_elements[p];
+        const hsize_t edims[1] = {ne};
+        if (!f.eps_p.empty()) {
+          write_dataset(gat, "eps_p", f.eps_p, edims, "1");
+          xf.eps_p = gat.path + "/eps_p";
+        }
+        if (!f.von_mises_Pa.empty()) {
+          write_dataset(gat, "von_mises", f.von_mises_Pa, edims, "Pa");
+          xf.von_mises = gat.path + "/von_mises";
+        }
+        if (!f.stress_Pa.empty()) {
+          const hsize_t sdims[2] = {ne, 6};
+          write_dataset(gat, "stress", f.stress_Pa, sdims, "Pa");
+          DatasetHandle ds(H5Dopen2(pg.get(), "stress", H5P_DEFAULT));
+          if (!ds) throw ResultFileError(h5_path_, gat.path + "/stress", "H5Dopen2");
+          write_attribute(Location{ds.get(), h5_path_, gat.path + "/stress"}, "components",
+                          std::string("xx yy zz xy yz zx"));
+          xf.stress = gat.path + "/stress";
+        }
+      }
+      xs.parts.push_back(std::move(xf));
+    }
+  }
+  write_attribute(sat, "count", static_cast<std::int64_t>(k + 1));
+  ++state_count_;
+  w.xdmf.states.push_back(std::move(xs));
+  w.flush_file();
+  write_xdmf(xdmf_path_, w.xdmf);
+}
+
+void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seconds,
+                                const std::vector<DomainTiming>& domains) {
+  if (!impl_) closed(h5_path_, "write_timing");
+  Impl& w = *impl_;
+  const std::vector<std::string> links = link_names(
+      domains, [](const DomainTiming& d) { return d.name; }, "domain");
+  const Location root = w.root();
+  GroupHandle timing =
+      link_exists(root, "timing") ? open_group(root, "timing") : create_group(root, "timing");
+  const Location at{timing.get(), h5_path_, "/timing"};
+  write_attribute(at, "wall_seconds", wall_seconds);
+  write_attribute(at, "coordinator_cpu_seconds", coordinator_cpu_seconds);
+  for (std::size_t i = 0; i < domains.size(); ++i) {
+    const DomainTiming& d = domains[i];
+    GroupHandle g =
+        link_exists(at, links[i]) ? open_group(at, links[i]) : create_group(at, links[i]);
+    const Location dat{g.get(), h5_path_, at.child(links[i])};
+    write_attribute(dat, "name", d.name);
+    write_attribute(dat, "cpu_seconds", d.cpu_seconds);
+    write_attribute(dat, "cycles", d.cycles);
+    write_attribute(dat, "dt_min", d.dt_min_s);
+    write_attribute(dat, "elements", d.elements);
+  }
+  w.flush_file();
+}
+
+void ResultWriter::close() {
+  if (!impl_) return;
+  std::unique_ptr<Impl> w = std::move(impl_);  // closed from here on, whatever happens below
+  std::exception_ptr first;
+  auto attempt = [&](auto&& step) {
+    try {
+      step();
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+  };
+  attempt([&] { history_rows_ += w->write_history(); });
+  attempt([&] {
+    for (auto& d : w->glstat) d.reset();
+    w->probes.clear();
+    if (!w->file.close()) throw ResultFileError(h5_path_, "/", "H5Fclose (close the result file)");
+  });
+  attempt([&] { write_xdmf(xdmf_path_, w->xdmf); });
+  if (first) std::rethrow_exception(first);
+}
+
+}  // namespace crashlink::io

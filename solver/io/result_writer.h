@@ -1,0 +1,120 @@
+#pragma once
+// The result writer: DIR/result.h5 (layout: docs/result-format.md, contract: DESIGN.md §4) and
+// DIR/result.xdmf for ParaView. Plain data in, no solver internals. SI units; every dataset
+// carries a "units" attribute.
+//
+// Robustness: history is buffered and written by flush_history(), which runs automatically every
+// ResultWriterOptions::history_flush_samples samples or history_flush_wall_s wall seconds and is
+// followed by H5Fflush, so a run that dies leaves a readable file with every sample up to the last
+// flush. Field states and timing are flushed as they are written, and result.xdmf is rewritten
+// (atomically) after each field state. The destructor closes everything, also during stack
+// unwinding, and never throws. HDF5 failures throw ResultFileError (solver/io/hdf5_handles.h)
+// naming the file, the object and the call.
+//
+// Array layouts: n = model node count, ne = element count of a part.
+//   FieldState::displacement_m, velocity_m_s  [3n] interleaved xyz, node i at 3i..3i+2
+//   PartFieldState::eps_p, von_mises_Pa        [ne]
+//   PartFieldState::stress_Pa                  [6ne] Voigt xx,yy,zz,xy,yz,zx, element e at 6e
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "solver/model/model.h"
+
+namespace crashlink::io {
+
+/// One glstat row: global energies of the whole model at time_s.
+struct GlstatSample {
+  double time_s = 0.0;
+  double kinetic_energy_J = 0.0;
+  double internal_energy_J = 0.0;  ///< stress work incl. bulk viscosity
+  double hourglass_energy_J = 0.0;
+  double contact_energy_J = 0.0;
+  double external_work_J = 0.0;  ///< work of loads, prescribed motion, gravity (and coupling)
+  double total_energy_J = 0.0;
+  double energy_balance_error = 0.0;  ///< relative: |total - initial - external| / reference [-]
+};
+
+/// One probe row (node or rigid-body centre of mass), global frame.
+struct ProbeSample {
+  double displacement_m[3] = {0.0, 0.0, 0.0};
+  double velocity_m_s[3] = {0.0, 0.0, 0.0};
+  double acceleration_m_s2[3] = {0.0, 0.0, 0.0};
+};
+
+/// Element results of one part; an empty span means "not available" (not written).
+struct PartFieldState {
+  std::span<const double> eps_p;         ///< [ne] effective plastic strain [-]
+  std::span<const double> von_mises_Pa;  ///< [ne]
+  std::span<const double> stress_Pa;     ///< [6ne] Voigt, see the header comment
+};
+
+/// One field state. `parts` is empty (no element results) or one entry per model.parts, in order.
+struct FieldState {
+  double time_s = 0.0;
+  std::span<const double> displacement_m;  ///< [3n], required
+  std::span<const double> velocity_m_s;    ///< [3n], empty: not written
+  std::vector<PartFieldState> parts;
+};
+
+/// Cost of one domain (daemon) over the run.
+struct DomainTiming {
+  std::string name;
+  double cpu_seconds = 0.0;
+  std::int64_t cycles = 0;
+  double dt_min_s = 0.0;
+  std::int64_t elements = 0;
+};
+
+struct ResultWriterOptions {
+  std::size_t history_flush_samples = 1000;  ///< flush history after this many buffered samples
+  double history_flush_wall_s = 5.0;         ///< ... or when this much wall time has passed
+  std::size_t history_chunk_rows = 1024;     ///< HDF5 chunk length of the history datasets
+};
+
+/// Not thread-safe (nor is the serial HDF5 library): one thread owns the writer.
+class ResultWriter {
+ public:
+  /// Creates `dir` if needed, DIR/result.h5 (truncated) with /mesh, empty /history datasets and
+  /// /states, and a mesh-only DIR/result.xdmf. Throws ResultFileError, or ModelError if the model's
+  /// arrays are inconsistent (x0 not 3n, connectivity not a multiple of the element's node count,
+  /// duplicate part or probe names).
+  ResultWriter(const std::string& dir, const model::Model& model, ResultWriterOptions options = {});
+  ResultWriter(const ResultWriter&) = delete;
+  ResultWriter& operator=(const ResultWriter&) = delete;
+  ~ResultWriter();  ///< close(); never throws (a failure is printed to stderr)
+
+  /// Buffers one history row; `probes` has one sample per model.probes, same order.
+  /// May flush (see ResultWriterOptions).
+  void append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes);
+  /// Writes the buffered history rows and H5Fflush-es the file.
+  void flush_history();
+  /// Writes /states/<k> (k = 0, 1, ...), flushes, and rewrites result.xdmf.
+  void write_field_state(const FieldState& s);
+  /// Writes (or replaces) /timing; flushes.
+  void write_timing(double wall_seconds, double coordinator_cpu_seconds,
+                    const std::vector<DomainTiming>& domains);
+  /// flush_history() (buffers written, H5Fflush).
+  void flush();
+  /// Flushes, writes result.xdmf and closes result.h5. Idempotent; after it every other call
+  /// throws ResultFileError. If a step fails the file is still closed and the first error thrown.
+  void close();
+
+  bool is_open() const { return impl_ != nullptr; }
+  const std::string& h5_path() const { return h5_path_; }
+  const std::string& xdmf_path() const { return xdmf_path_; }
+  std::size_t state_count() const { return state_count_; }            ///< field states written
+  std::size_t history_rows_written() const { return history_rows_; }  ///< rows on disk (flushed)
+
+ private:
+  struct Impl;
+  std::string h5_path_;
+  std::string xdmf_path_;
+  std::size_t state_count_ = 0;
+  std::size_t history_rows_ = 0;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crashlink::io

@@ -1,0 +1,144 @@
+// Rigid bodies and probes (docs/scenario-format.md).
+#include <cmath>
+#include <limits>
+
+#include "solver/core/errors.h"
+#include "solver/io/scenario_sections.h"
+
+namespace crashlink::io::detail {
+
+namespace {
+
+using materials::MaterialKind;
+
+bool is_rigid_part(const model::Model& m, int p) {
+  const auto& part = m.parts[static_cast<std::size_t>(p)];
+  return m.materials[static_cast<std::size_t>(part.material)].kind == MaterialKind::Rigid;
+}
+
+/// `inertia`: [Ixx, Iyy, Izz] (principal, along x, y, z) or a symmetric 3x3 [[..], [..], [..]].
+Mat3 read_inertia(const YamlNode& in) {
+  const auto rows = in.items("[Ixx, Iyy, Izz] or a 3x3 matrix, kg m^2");
+  Mat3 I{};
+  if (rows.size() == 3 && rows[0].is_scalar()) {
+    for (std::size_t i = 0; i < 3; ++i) I[i][i] = rows[i].positive();
+    return I;
+  }
+  if (rows.size() != 3)
+    in.fail(fmt::format("expected [Ixx, Iyy, Izz] or 3 rows of 3, got {} entries", rows.size()));
+  for (std::size_t i = 0; i < 3; ++i) I[i] = rows[i].vec3();
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (std::abs(I[i][j] - I[j][i]) > 1e-12 * (std::abs(I[i][j]) + std::abs(I[j][i]) + 1e-300))
+        in.fail(fmt::format("not symmetric: I[{}][{}] = {} but I[{}][{}] = {}", i, j, I[i][j], j, i,
+                            I[j][i]));
+  for (std::size_t i = 0; i < 3; ++i)
+    if (!(I[i][i] > 0.0))
+      in.fail(fmt::format("diagonal term I[{}][{}] = {} must be > 0", i, i, I[i][i]));
+  return I;
+}
+
+}  // namespace
+
+void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b) {
+  auto& m = b.model;
+  std::vector<std::string> owner(m.parts.size());  // body owning each part
+  if (section) {
+    for (const auto& [name, body] : section->entries("rigid bodies (name: {parts, ...})")) {
+      body.expect_keys({"parts", "velocity", "angular_velocity", "mass", "inertia", "centre"});
+      model::RigidBody rb;
+      rb.name = name;
+      const auto parts = body.required("parts", "names of rigid parts, e.g. [headform]");
+      for (const auto& pn : parts.items("part names")) {
+        const int p = read_part_reference(pn, b);
+        if (!is_rigid_part(m, p))
+          pn.fail(
+              "part '" + pn.text() + "' has material '" +
+              m.materials[static_cast<std::size_t>(m.parts[static_cast<std::size_t>(p)].material)]
+                  .name +
+              "', which is not rigid; give it a material of type rigid");
+        auto& o = owner[static_cast<std::size_t>(p)];
+        if (!o.empty())
+          pn.fail("part '" + pn.text() + "' already belongs to rigid body '" + o +
+                  "'; a part belongs to one body");
+        o = name;
+        rb.parts.push_back(p);
+      }
+      if (rb.parts.empty()) parts.fail("lists no part; give at least one rigid part");
+      rb.velocity_m_s = body.vec3_or("velocity", {0.0, 0.0, 0.0});
+      rb.angular_velocity_rad_s = body.vec3_or("angular_velocity", {0.0, 0.0, 0.0});
+      if (auto mass = body.optional("mass")) rb.mass_kg = mass->positive();
+      if (auto in = body.optional("inertia")) {
+        rb.inertia_given = true;
+        rb.inertia_kg_m2 = read_inertia(*in);
+      }
+      if (auto c = body.optional("centre")) {
+        rb.centre_given = true;
+        rb.centre_m = c->vec3();
+      }
+      b.rigid_body_index[name] = static_cast<int>(m.rigid_bodies.size());
+      m.rigid_bodies.push_back(std::move(rb));
+    }
+  }
+  for (std::size_t p = 0; p < m.parts.size(); ++p)
+    if (is_rigid_part(m, static_cast<int>(p)) && owner[p].empty())
+      throw InputError(b.file, b.part_line.at(m.parts[p].name), "parts." + m.parts[p].name,
+                       "has a rigid material but belongs to no rigid body; add it to "
+                       "'rigid_bodies: {name: {parts: [" +
+                           m.parts[p].name + "]}}'");
+}
+
+void read_probes(const YamlNode& section, ScenarioBuild& b) {
+  const auto& m = b.model;
+  for (const auto& [name, pr] : section.entries("probes (name: {node | node_near | rigid_body})")) {
+    pr.expect_keys({"node", "node_near", "part", "rigid_body"});
+    model::Probe probe;
+    probe.name = name;
+    const auto node = pr.optional("node");
+    const auto near = pr.optional("node_near");
+    const auto body = pr.optional("rigid_body");
+    if ((node ? 1 : 0) + (near ? 1 : 0) + (body ? 1 : 0) != 1)
+      pr.fail("give exactly one of 'node: id', 'node_near: [x, y, z]' or 'rigid_body: name'");
+    if (auto part = pr.optional("part"); part && !near)
+      part->fail("'part' only narrows 'node_near'; remove it");
+    if (node) {
+      probe.kind = model::Probe::Kind::Node;
+      probe.index = m.node_index(node->integer());
+      if (probe.index < 0)
+        node->fail(
+            fmt::format("node id {} is not in the model; use node_near: [x, y, z] to pick "
+                        "a node by position",
+                        node->integer()));
+    } else if (near) {
+      probe.kind = model::Probe::Kind::Node;
+      const Vec3 x = near->vec3();
+      std::vector<std::int32_t> candidates;
+      if (auto part = pr.optional("part"))
+        candidates = b.part_nodes(read_part_reference(*part, b));
+      else
+        for (std::size_t i = 0; i < m.nodes.count(); ++i)
+          candidates.push_back(static_cast<std::int32_t>(i));
+      double best = std::numeric_limits<double>::infinity();
+      for (auto i : candidates) {
+        const auto k = static_cast<std::size_t>(i);
+        const Vec3 y{m.nodes.x0[3 * k], m.nodes.x0[3 * k + 1], m.nodes.x0[3 * k + 2]};
+        const double d = norm(y - x);
+        if (d < best) {
+          best = d;
+          probe.index = i;
+        }
+      }
+    } else {
+      probe.kind = model::Probe::Kind::RigidBody;
+      const std::string bn = body->text();
+      const auto it = b.rigid_body_index.find(bn);
+      if (it == b.rigid_body_index.end())
+        body->fail("unknown rigid body '" + bn + "';" + did_you_mean(bn, b.rigid_body_names()) +
+                   " define it under 'rigid_bodies'");
+      probe.index = it->second;
+    }
+    b.model.probes.push_back(std::move(probe));
+  }
+}
+
+}  // namespace crashlink::io::detail

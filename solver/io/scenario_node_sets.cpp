@@ -1,0 +1,143 @@
+// Node selections and the `node_sets` section (docs/scenario-format.md).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/core/errors.h"
+#include "solver/io/scenario_sections.h"
+
+namespace crashlink::io::detail {
+
+namespace {
+
+/// Bounding box [lo, hi] of the nodes `sel` (all nodes if empty pointer).
+std::pair<Vec3, Vec3> bounds(const model::Model& m, const std::vector<std::int32_t>* sel) {
+  Vec3 lo{}, hi{};
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  auto add = [&](std::size_t i) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], m.nodes.x0[3 * i + a]);
+      hi[a] = std::max(hi[a], m.nodes.x0[3 * i + a]);
+    }
+  };
+  if (sel) {
+    for (auto i : *sel) add(static_cast<std::size_t>(i));
+  } else {
+    for (std::size_t i = 0; i < m.nodes.count(); ++i) add(i);
+  }
+  return {lo, hi};
+}
+
+std::string format_box(const std::pair<Vec3, Vec3>& b) {
+  return fmt::format("min [{:g}, {:g}, {:g}], max [{:g}, {:g}, {:g}]", b.first[0], b.first[1],
+                     b.first[2], b.second[0], b.second[1], b.second[2]);
+}
+
+}  // namespace
+
+int read_part_reference(const YamlNode& ref, const ScenarioBuild& b) {
+  const std::string name = ref.text();
+  const int p = b.model.part_index(name);
+  if (p < 0)
+    ref.fail("unknown part '" + name + "';" + did_you_mean(name, b.part_names()) +
+             " parts defined: " + quoted_list(b.part_names()));
+  return p;
+}
+
+std::vector<std::int32_t> read_selection(const YamlNode& sel, const ScenarioBuild& b) {
+  sel.expect_keys({"part", "box", "nodes"});
+  const model::Model& m = b.model;
+  if (auto ids = sel.optional("nodes")) {
+    for (const char* k : {"part", "box"})
+      if (auto v = sel.optional(k))
+        v->fail("an explicit 'nodes' list cannot be combined with 'part' or 'box'; use one");
+    std::vector<std::int32_t> out;
+    for (const auto& item : ids->items("node ids")) {
+      const std::int64_t id = item.integer();
+      const int i = m.node_index(id);
+      if (i < 0)
+        item.fail(
+            fmt::format("node id {} is not in the model (ids run from {} to {} after mesh "
+                        "generation; see docs/scenario-format.md, 'Numbering')",
+                        id, m.nodes.id.empty() ? 0 : m.nodes.id.front(),
+                        m.nodes.id.empty() ? 0 : m.nodes.id.back()));
+      out.push_back(i);
+    }
+    if (out.empty()) ids->fail("empty node list; give at least one node id");
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  const auto part = sel.optional("part");
+  const auto box = sel.optional("box");
+  if (!part && !box)
+    sel.fail(
+        "a selection needs 'part: name', 'box: {min: [..], max: [..]}' (or both), or "
+        "'nodes: [ids]'");
+  std::vector<std::int32_t> candidates;
+  if (part) {
+    candidates = b.part_nodes(read_part_reference(*part, b));
+  } else {
+    candidates.resize(m.nodes.count());
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      candidates[i] = static_cast<std::int32_t>(i);
+  }
+  if (!box) return candidates;  // a part always has nodes
+
+  box->expect_keys({"min", "max"});
+  const auto min_node = box->required("min", "[x, y, z] in m");
+  const Vec3 lo = min_node.vec3();
+  const Vec3 hi = box->required("max", "[x, y, z] in m").vec3();
+  for (std::size_t a = 0; a < 3; ++a)
+    if (lo[a] > hi[a])
+      min_node.fail(
+          fmt::format("min[{}] = {} is above max[{}] = {}; swap them", a, lo[a], a, hi[a]));
+  // Inclusive bounds, widened by 1e-9 of the model's size so nodes exactly on a face are in.
+  const auto all = bounds(m, nullptr);
+  const double eps = 1e-9 * (norm(all.second - all.first) + 1.0);
+  std::vector<std::int32_t> out;
+  for (auto i : candidates) {
+    const double* x = &m.nodes.x0[3 * static_cast<std::size_t>(i)];
+    bool inside = true;
+    for (std::size_t a = 0; a < 3; ++a)
+      inside = inside && x[a] >= lo[a] - eps && x[a] <= hi[a] + eps;
+    if (inside) out.push_back(i);
+  }
+  if (out.empty())
+    box->fail("selects no node; the " + std::string(part ? "part's" : "model's") + " nodes span " +
+              format_box(bounds(m, &candidates)) + " [m]; widen the box");
+  return out;
+}
+
+std::vector<std::int32_t> read_node_reference(const YamlNode& ref, const ScenarioBuild& b) {
+  if (ref.is_map()) return read_selection(ref, b);
+  const std::string name = ref.text();
+  const auto it = b.node_sets.find(name);
+  if (it == b.node_sets.end())
+    ref.fail("unknown node set '" + name + "';" + did_you_mean(name, b.node_set_names()) +
+             " define it under 'node_sets' or write a selection {part, box} here" +
+             (b.node_sets.empty() ? "" : " (defined: " + quoted_list(b.node_set_names()) + ")"));
+  return it->second;
+}
+
+void read_node_sets(const YamlNode& section, ScenarioBuild& b) {
+  for (const auto& [name, sel] : section.entries("node sets (name: {part, box} or {nodes})")) {
+    if (!sel.is_sequence()) {
+      b.node_sets[name] = read_selection(sel, b);
+      continue;
+    }
+    // A list of selections: their union.
+    std::vector<std::int32_t> all;
+    for (const auto& item : sel.items("selections")) {
+      const auto one = read_selection(item, b);
+      all.insert(all.end(), one.begin(), one.end());
+    }
+    if (all.empty()) sel.fail("empty list; give at least one selection {part, box}");
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    b.node_sets[name] = std::move(all);
+  }
+}
+
+}  // namespace crashlink::io::detail

@@ -1,0 +1,19 @@
+#pragma once
+// Scenario files (YAML, SI units) -> model::Model. The format is documented key by key in
+// docs/scenario-format.md. Every mistake in the input throws crashlink::InputError whose message
+// is "file:line: key.path: what; fix" (1-based line); nothing is returned from bad input.
+#include <string>
+
+#include "solver/model/model.h"
+
+namespace crashlink::io {
+
+/// Reads and checks the scenario file at `path`, generates its meshes and returns the model
+/// (already passed through model::validate).
+model::Model read_scenario(const std::string& path);
+
+/// Same, from YAML text; `name_for_messages` stands for the file name in error messages and is
+/// the model's default name.
+model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages);
+
+}  // namespace crashlink::io

@@ -1,0 +1,45 @@
+#pragma once
+// Runs one model as one domain (the `mono` reference) to completion, writing DIR/result.h5.
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "solver/integration/energy.h"
+#include "solver/model/model.h"
+
+namespace crashlink::run {
+
+struct RunOptions {
+  std::string out_dir = "out";
+  bool progress = true;            ///< progress line on stderr
+  std::string domain_name = "model";
+};
+
+struct RunSummary {
+  std::string domain;
+  std::int64_t cycles = 0;
+  std::int64_t elements = 0;
+  double end_time_s = 0.0;
+  double dt_min_s = 0.0;
+  double cpu_seconds = 0.0;
+  double wall_seconds = 0.0;
+  integration::EnergyAccount energy;
+  std::string result_h5;
+  std::string result_xdmf;
+  bool failed = false;             ///< the guard stopped the run
+  std::string failure;             ///< its message
+
+  /// CPU nanoseconds per element per cycle (0 without elements or cycles).
+  double ns_per_element_cycle() const;
+};
+
+/// Runs the model; output sampled at controls.history_interval_s / field_interval_s. On a
+/// NumericalError the history so far, the last (finite) state and the timing are written, the
+/// file is closed, and the summary comes back with failed = true (nothing is thrown).
+/// Other errors (input, I/O) propagate.
+RunSummary run_single_domain(const model::Model& model, const RunOptions& options);
+
+/// Prints the end-of-run table (cycles, CPU, step, energy balance, files) to `out`.
+void print_summary(std::FILE* out, const RunSummary& s);
+
+}  // namespace crashlink::run
