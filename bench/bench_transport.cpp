@@ -1,0 +1,119 @@
+// Wire round trip (DESIGN.md §2.6, §3): a daemon sends a FreeState with N interface nodes
+// (accelerations and displacements, 3N doubles each), the coordinator answers a Correction of the
+// same N (3N accelerations), over the full stack (DaemonLink / CoordinatorLink: protobuf
+// serialization, ZeroMQ, session bookkeeping). Coordinator and daemon are two threads of this
+// process, each with its own socket; tcp runs on loopback (ephemeral port), ipc in the temp dir.
+// Time is wall-clock per round trip; counters median_us and p99_us are over every round trip of
+// the run, MB_per_s counts both directions' payload.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "transport/coordinator_link.h"
+#include "transport/daemon_link.h"
+#include "transport/endpoint.h"
+
+namespace {
+
+using namespace std::chrono_literals;
+namespace wire = crashlink::wire;
+using crashlink::transport::CoordinatorConfig;
+using crashlink::transport::CoordinatorLink;
+using crashlink::transport::DaemonLink;
+using crashlink::transport::Scheme;
+
+constexpr const char* kHash = "bench";
+
+/// Answers every FreeState with a Correction of the same size until the daemon's Bye (or 10 s of
+/// silence, so a failed benchmark never hangs).
+void serve(CoordinatorLink& coordinator) {
+  wire::Envelope correction;
+  auto silent_since = std::chrono::steady_clock::now();
+  for (;;) {
+    auto in = coordinator.poll(100ms);
+    if (!in) {
+      if (std::chrono::steady_clock::now() - silent_since > 10s) return;
+      continue;
+    }
+    silent_since = std::chrono::steady_clock::now();
+    if (in->envelope.has_bye()) return;
+    if (!in->envelope.has_free_state()) continue;
+    const auto& f = in->envelope.free_state();
+    auto* c = correction.mutable_correction();
+    c->set_time_ticks(f.time_ticks());
+    *c->mutable_accelerations_m_s2() = f.accelerations_m_s2();  // stands in for the sum [8]
+    c->set_imposed_step_ticks(f.stable_step_ticks());
+    coordinator.send(in->domain, correction);
+  }
+}
+
+void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  CoordinatorLink coordinator(crashlink::transport::local_endpoint(scheme, "bench"),
+                              CoordinatorConfig{kHash, {"daemon"}, 1'000'000'000'000'000, {}});
+  std::thread server([&] { serve(coordinator); });
+  {
+    DaemonLink daemon(coordinator.endpoint(), crashlink::transport::daemon_hello("daemon", kHash));
+    wire::Envelope e;
+    auto* f = e.mutable_free_state();
+    for (std::size_t i = 0; i < 3 * n; ++i) {
+      f->add_accelerations_m_s2(1e3 * static_cast<double>(i) / 7.0);
+      f->add_displacements_m(1e-4 * static_cast<double>(i) / 3.0);
+    }
+    f->set_stable_step_ticks(1'000'000'000);
+    std::vector<double> us;
+    std::int64_t t = 0;
+    for (auto _ : state) {
+      const auto t0 = std::chrono::steady_clock::now();
+      f->set_time_ticks(++t);
+      daemon.send(e);
+      const auto answer = daemon.receive(5s);
+      if (!answer || !answer->has_correction() ||
+          answer->correction().accelerations_m_s2_size() != static_cast<int>(3 * n)) {
+        state.SkipWithError("no Correction of the right size within 5 s");
+        break;
+      }
+      us.push_back(
+          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    }
+    daemon.bye("benchmark done");
+    if (!us.empty()) {
+      std::sort(us.begin(), us.end());
+      state.counters["median_us"] = us[us.size() / 2];
+      state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+    }
+    const double bytes_per_trip = 8.0 * 9.0 * static_cast<double>(n);  // 6N + 3N doubles
+    state.counters["MB_per_s"] =
+        benchmark::Counter(bytes_per_trip * 1e-6 * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate);
+  }
+  server.join();
+}
+
+BENCHMARK_CAPTURE(BM_RoundTrip, tcp, Scheme::tcp)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_RoundTrip, ipc, Scheme::ipc)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_RoundTrip, inproc, Scheme::inproc)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,245 @@
+#include "transport/coordinator_link.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "proto/protocol_version.h"
+#include "transport/errors.h"
+
+namespace crashlink::transport {
+
+namespace {
+
+constexpr std::size_t kMaxNotices = 1000;
+
+std::chrono::milliseconds since(std::chrono::steady_clock::time_point then,
+                                std::chrono::steady_clock::time_point now) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(now - then);
+}
+
+}  // namespace
+
+CoordinatorLink::CoordinatorLink(std::string_view endpoint, CoordinatorConfig config)
+    : config_(std::move(config)), router_(endpoint, config_.options.socket) {
+  config_.options.validate(router_.endpoint());
+  heartbeat_.mutable_heartbeat();
+}
+
+std::optional<Incoming> CoordinatorLink::poll(std::chrono::milliseconds timeout) {
+  if (!queued_.empty()) {
+    Incoming in = std::move(queued_.front());
+    queued_.pop_front();
+    return in;
+  }
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    auto now = Clock::now();
+    send_heartbeats(now);
+    const auto until = std::min(deadline, next_heartbeat());
+    const auto wait = std::max(std::chrono::ceil<std::chrono::milliseconds>(until - now),
+                               std::chrono::milliseconds{0});
+    if (auto received = router_.receive(wait)) {
+      const auto joins_before = joins_;
+      if (auto in = handle(*received, Clock::now())) return in;
+      if (joins_ != joins_before) return std::nullopt;  // a domain joined: an event too
+    }
+    if (Clock::now() >= deadline) return std::nullopt;
+  }
+}
+
+std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_point now) {
+  const std::string& id = received.peer;
+  const auto it = peers_.find(id);
+  Peer* peer = it == peers_.end() ? nullptr : &it->second;
+  if (peer != nullptr && peer->active) peer->last_heard = now;  // any message at all counts
+  if (!received.ok()) {
+    const std::string text =
+        fmt::format("peer '{}' sent {}; refused", printable_peer(id), received.error);
+    notice(id, text);
+    reply_error(id, wire::ERROR_CODE_PROTOCOL, text);
+    return std::nullopt;
+  }
+  wire::Envelope& envelope = received.envelope;
+  if (envelope.has_hello()) {
+    if (peer != nullptr && peer->active) {
+      const std::string text =
+          fmt::format("domain '{}' sent a second Hello in the middle of its session; refused", id);
+      notice(id, text);
+      reply_error(id, wire::ERROR_CODE_PROTOCOL, text);
+      return std::nullopt;
+    }
+    handshake(id, envelope.hello(), now);
+    return std::nullopt;
+  }
+  if (peer == nullptr || !peer->active) {
+    const char* what = peer == nullptr ? "before its Hello" : "after the end of its session";
+    const std::string text = fmt::format(
+        "peer '{}' sent a {} {}; dropped (every connection starts with a Hello)",
+        printable_peer(id),
+        wire::Envelope::descriptor()->FindFieldByNumber(envelope.body_case())->name(), what);
+    notice(id, text);
+    if (peer == nullptr) reply_error(id, wire::ERROR_CODE_PROTOCOL, text);
+    return std::nullopt;
+  }
+  switch (envelope.body_case()) {
+    case wire::Envelope::kHeartbeat:
+      return std::nullopt;
+    case wire::Envelope::kError:
+      if (envelope.error().domain().empty()) envelope.mutable_error()->set_domain(id);
+      peer->active = false;
+      break;
+    case wire::Envelope::kBye:
+      peer->active = false;
+      break;
+    default:
+      break;
+  }
+  return Incoming{id, std::move(envelope)};
+}
+
+void CoordinatorLink::handshake(const std::string& routing_id, const wire::Hello& hello,
+                                Clock::time_point now) {
+  if (auto refusal = check_hello(hello, routing_id, config_.scenario_hash, config_.domains)) {
+    notice(routing_id, fmt::format("refused Hello from '{}': {}", printable_peer(routing_id),
+                                   refusal->message()));
+    wire::Envelope e;
+    *e.mutable_error() = std::move(*refusal);
+    try {
+      router_.send(routing_id, e);
+    } catch (const TransportError& x) {
+      notice(routing_id, x.what());
+    }
+    return;
+  }
+  wire::Envelope reply;
+  auto* h = reply.mutable_hello();
+  h->set_protocol_version(wire::kProtocolVersion);
+  h->set_scenario_hash(config_.scenario_hash);
+  h->set_role(wire::PEER_ROLE_COORDINATOR);
+  h->set_ticks_per_second(config_.ticks_per_second);
+  router_.send(routing_id, reply);
+  peers_[routing_id] = Peer{now, now, true};
+  ++joins_;
+}
+
+void CoordinatorLink::reply_error(const std::string& routing_id, wire::ErrorCode code,
+                                  const std::string& text) {
+  try {
+    router_.send(routing_id, make_error(code, text, printable_peer(routing_id)));
+  } catch (const TransportError& x) {
+    notice(routing_id, x.what());  // the garbage sender is gone already
+  }
+}
+
+void CoordinatorLink::send(std::string_view domain, const wire::Envelope& envelope) {
+  const auto it = peers_.find(std::string(domain));
+  if (it == peers_.end() || !it->second.active) {
+    throw TransportError(endpoint(),
+                         fmt::format("send to domain '{}': it has not joined or its session has "
+                                     "ended (Bye or Error)",
+                                     domain));
+  }
+  router_.send(domain, envelope);
+  it->second.last_sent = Clock::now();
+  if (envelope.has_bye() || envelope.has_error()) it->second.active = false;
+}
+
+bool CoordinatorLink::joined(std::string_view domain) const {
+  const auto it = peers_.find(std::string(domain));
+  return it != peers_.end() && it->second.active;
+}
+
+bool CoordinatorLink::all_joined() const {
+  return missing().empty();
+}
+
+std::vector<std::string> CoordinatorLink::missing() const {
+  std::vector<std::string> out;
+  for (const auto& d : config_.domains) {
+    if (!peers_.contains(d)) out.push_back(d);
+  }
+  return out;
+}
+
+void CoordinatorLink::await_all_joined(std::chrono::milliseconds timeout) {
+  const auto deadline = Clock::now() + timeout;
+  while (!all_joined()) {
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) {
+      throw TransportError(
+          endpoint(),
+          fmt::format("domains '{}' did not join within {:.3f} s (no accepted Hello); "
+                      "are their daemons started and connected to this endpoint?",
+                      fmt::join(missing(), "', '"), static_cast<double>(timeout.count()) * 1e-3));
+    }
+    // Messages of domains that joined already are kept in order for poll().
+    auto queued = std::move(queued_);
+    queued_.clear();
+    auto in = poll(left);
+    queued_ = std::move(queued);
+    if (in) queued_.push_back(std::move(*in));
+  }
+}
+
+std::vector<std::string> CoordinatorLink::dead_peers() const {
+  const auto now = Clock::now();
+  std::vector<std::string> out;
+  for (const auto& d : config_.domains) {
+    const auto it = peers_.find(d);
+    if (it != peers_.end() && it->second.active &&
+        now - it->second.last_heard > config_.options.peer_timeout) {
+      out.push_back(d);
+    }
+  }
+  return out;
+}
+
+void CoordinatorLink::check_alive() const {
+  const auto dead = dead_peers();
+  if (dead.empty()) return;
+  const auto silent = since(peers_.at(dead.front()).last_heard, Clock::now());
+  const std::string description =
+      fmt::format("{} '{}'", dead.size() == 1 ? "domain" : "domains", fmt::join(dead, "', '"));
+  throw PeerTimeoutError(endpoint(), dead.front(), description, silent,
+                         config_.options.peer_timeout);
+}
+
+std::vector<Notice> CoordinatorLink::take_notices() {
+  return std::exchange(notices_, {});
+}
+
+void CoordinatorLink::send_heartbeats(Clock::time_point now) {
+  for (auto& [id, peer] : peers_) {
+    if (!peer.active || now - peer.last_sent < config_.options.heartbeat_interval) continue;
+    heartbeat_.mutable_heartbeat()->set_sequence(++heartbeat_sequence_);
+    peer.last_sent = now;
+    try {
+      // Never wait: a full queue means the peer is not reading; the timeout will tell.
+      (void)router_.try_send(id, heartbeat_);
+    } catch (const TransportError& x) {
+      // Disconnected: the peer timeout will name it; keep serving the others.
+      notice(id, fmt::format("heartbeat to domain '{}' failed: {}", id, x.what()));
+    }
+  }
+}
+
+CoordinatorLink::Clock::time_point CoordinatorLink::next_heartbeat() const {
+  auto next = Clock::time_point::max();
+  for (const auto& [id, peer] : peers_) {
+    if (peer.active) next = std::min(next, peer.last_sent + config_.options.heartbeat_interval);
+  }
+  return next;
+}
+
+void CoordinatorLink::notice(const std::string& routing_id, std::string text) {
+  if (notices_.size() >= kMaxNotices) {
+    ++dropped_notices_;
+    return;
+  }
+  notices_.push_back(Notice{printable_peer(routing_id), std::move(text)});
+}
+
+}  // namespace crashlink::transport

@@ -1,0 +1,149 @@
+#include "transport/daemon_link.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "transport/errors.h"
+
+namespace crashlink::transport {
+
+namespace {
+
+const std::string kCoordinator = "coordinator";
+
+std::string body_name(const wire::Envelope& e) {
+  const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(e.body_case());
+  return field != nullptr ? field->name() : "empty Envelope";
+}
+
+}  // namespace
+
+DaemonLink::DaemonLink(std::string_view endpoint, const wire::Hello& hello,
+                       const SessionOptions& options)
+    : options_(options), dealer_(endpoint, hello.domain(), options.socket) {
+  options_.validate(dealer_.endpoint());
+  heartbeat_.mutable_heartbeat();
+  wire::Envelope e;
+  *e.mutable_hello() = hello;
+  dealer_.send(e);
+  const auto start = Clock::now();
+  last_sent_ = start;
+  const auto deadline = start + options_.handshake_timeout;
+  for (;;) {
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) {
+      throw TransportError(
+          dealer_.endpoint(),
+          fmt::format("domain '{}': no answer to its Hello within {:.3f} s; is the coordinator "
+                      "running and listening on this endpoint?",
+                      hello.domain(),
+                      static_cast<double>(options_.handshake_timeout.count()) * 1e-3));
+    }
+    auto r = dealer_.receive(left);
+    if (!r) continue;
+    if (!r->ok()) {
+      throw ProtocolError(kCoordinator,
+                          fmt::format("the coordinator at {} answered the Hello of domain '{}' "
+                                      "with {}",
+                                      dealer_.endpoint(), hello.domain(), r->error));
+    }
+    if (r->envelope.has_error()) throw RemoteError(r->envelope.error());
+    if (!r->envelope.has_hello() || r->envelope.hello().role() != wire::PEER_ROLE_COORDINATOR) {
+      throw ProtocolError(kCoordinator,
+                          fmt::format("the coordinator at {} answered the Hello of domain '{}' "
+                                      "with a {} instead of a coordinator Hello",
+                                      dealer_.endpoint(), hello.domain(), body_name(r->envelope)));
+    }
+    coordinator_hello_ = r->envelope.hello();
+    break;
+  }
+  last_heard_ = Clock::now();
+  open_ = true;
+}
+
+void DaemonLink::send(const wire::Envelope& envelope) {
+  dealer_.send(envelope);
+  last_sent_ = Clock::now();
+  if (envelope.has_bye() || envelope.has_error()) open_ = false;
+}
+
+void DaemonLink::send_error(wire::ErrorCode code, std::string message) {
+  send(make_error(code, std::move(message), domain()));
+}
+
+void DaemonLink::bye(std::string reason) {
+  send(make_bye(std::move(reason)));
+}
+
+std::optional<wire::Envelope> DaemonLink::receive(std::chrono::milliseconds timeout) {
+  if (!open_) {
+    throw ProtocolError(kCoordinator,
+                        fmt::format("domain '{}': receive after the session with {} ended (Bye "
+                                    "or Error)",
+                                    domain(), endpoint()));
+  }
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    auto now = Clock::now();
+    send_heartbeat_if_idle(now);
+    check_coordinator(now);
+    // Wake up for the next heartbeat and for the peer timeout, whichever comes first.
+    const auto until =
+        std::min({deadline, last_sent_ + options_.heartbeat_interval,
+                  last_heard_ + options_.peer_timeout + std::chrono::milliseconds{1}});
+    const auto wait = std::max(std::chrono::ceil<std::chrono::milliseconds>(until - now),
+                               std::chrono::milliseconds{0});
+    if (auto r = dealer_.receive(wait)) {
+      last_heard_ = Clock::now();
+      if (!r->ok()) {
+        throw ProtocolError(kCoordinator, fmt::format("the coordinator at {} sent domain '{}' {}",
+                                                      endpoint(), domain(), r->error));
+      }
+      switch (r->envelope.body_case()) {
+        case wire::Envelope::kHeartbeat:
+          break;
+        case wire::Envelope::kError:
+          open_ = false;
+          throw RemoteError(r->envelope.error());
+        case wire::Envelope::kHello:
+          throw ProtocolError(kCoordinator,
+                              fmt::format("the coordinator at {} sent domain '{}' a second Hello "
+                                          "in the middle of the session",
+                                          endpoint(), domain()));
+        case wire::Envelope::kBye:
+          open_ = false;
+          return std::move(r->envelope);
+        default:
+          return std::move(r->envelope);
+      }
+    }
+    if (Clock::now() >= deadline) return std::nullopt;
+  }
+}
+
+void DaemonLink::keep_alive() {
+  const auto now = Clock::now();
+  send_heartbeat_if_idle(now);
+  check_coordinator(now);
+}
+
+void DaemonLink::check_coordinator(Clock::time_point now) const {
+  if (now - last_heard_ > options_.peer_timeout) {
+    throw PeerTimeoutError(
+        endpoint(), kCoordinator,
+        fmt::format("the coordinator at {} (seen by domain '{}')", endpoint(), domain()),
+        std::chrono::duration_cast<std::chrono::milliseconds>(now - last_heard_),
+        options_.peer_timeout);
+  }
+}
+
+void DaemonLink::send_heartbeat_if_idle(Clock::time_point now) {
+  if (!open_ || now - last_sent_ < options_.heartbeat_interval) return;
+  heartbeat_.mutable_heartbeat()->set_sequence(++heartbeat_sequence_);
+  (void)dealer_.try_send(heartbeat_);  // never wait: if it cannot queue, the timeout will tell
+  last_sent_ = now;
+}
+
+}  // namespace crashlink::transport

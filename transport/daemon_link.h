@@ -1,0 +1,75 @@
+#pragma once
+// Daemon end of the session (session.h) over a Dealer whose routing id is the domain name.
+//
+//   DaemonLink link(endpoint, daemon_hello("wiper", hash));   // handshake; throws on refusal
+//   link.send(register_envelope);
+//   while (auto m = link.receive(5s)) { ... }                 // Setup, Correction, ..., Bye
+//   link.bye("end time reached");
+//
+// The constructor sends the Hello and waits for the coordinator's answer: its Hello
+// (coordinator_hello(), with ticks_per_second) or an Error, thrown as RemoteError whose text is
+// the coordinator's (both values and the fix for a version or scenario mismatch). receive()
+// swallows Heartbeats, sends its own when idle, and throws PeerTimeoutError naming the
+// coordinator's endpoint when the coordinator has been silent for the peer timeout. A daemon busy
+// computing for longer than the heartbeat interval calls keep_alive() now and then.
+// One thread at a time.
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "proto/crashlink.pb.h"
+#include "transport/dealer.h"
+#include "transport/session.h"
+
+namespace crashlink::transport {
+
+class DaemonLink {
+ public:
+  /// Connects to `endpoint` as hello.domain() and performs the handshake. Throws RemoteError (the
+  /// coordinator refused: version, scenario, unknown domain), TransportError (no answer within
+  /// options.handshake_timeout, bad endpoint) or ProtocolError (an answer that is not a Hello).
+  DaemonLink(std::string_view endpoint, const wire::Hello& hello,
+             const SessionOptions& options = {});
+
+  const std::string& endpoint() const { return dealer_.endpoint(); }
+  const std::string& domain() const { return dealer_.routing_id(); }
+  const wire::Hello& coordinator_hello() const { return coordinator_hello_; }
+  /// False after a Bye or Error was sent or received.
+  bool open() const { return open_; }
+
+  /// Sends one Envelope; a Bye or an Error ends the session. Throws TransportError.
+  void send(const wire::Envelope& envelope);
+  /// Reports a failure of this daemon to the coordinator and ends the session.
+  void send_error(wire::ErrorCode code, std::string message);
+  /// Ends the session cleanly.
+  void bye(std::string reason);
+
+  /// The next message from the coordinator other than a Heartbeat, or nullopt after `timeout`
+  /// (0: do not wait). A Bye is returned and ends the session. Throws RemoteError (the
+  /// coordinator sent an Error), PeerTimeoutError (coordinator silent for the peer timeout),
+  /// ProtocolError (bytes that are not an Envelope, a Hello mid-session, session ended).
+  std::optional<wire::Envelope> receive(std::chrono::milliseconds timeout);
+
+  /// Sends a Heartbeat if nothing was sent for the heartbeat interval, and throws
+  /// PeerTimeoutError if the coordinator has been silent for the peer timeout. Cheap (a clock
+  /// read); call it from long computations.
+  void keep_alive();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void check_coordinator(Clock::time_point now) const;
+  void send_heartbeat_if_idle(Clock::time_point now);
+
+  SessionOptions options_;
+  Dealer dealer_;
+  wire::Hello coordinator_hello_;
+  Clock::time_point last_heard_;
+  Clock::time_point last_sent_;
+  bool open_ = false;
+  std::uint64_t heartbeat_sequence_ = 0;
+  wire::Envelope heartbeat_;
+};
+
+}  // namespace crashlink::transport

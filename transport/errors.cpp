@@ -1,0 +1,45 @@
+#include "transport/errors.h"
+
+#include <fmt/format.h>
+
+#include <utility>
+
+namespace crashlink::transport {
+
+namespace {
+
+double seconds(std::chrono::milliseconds t) {
+  return static_cast<double>(t.count()) * 1e-3;
+}
+
+std::string remote_text(const wire::Error& e) {
+  const std::string code = wire::ErrorCode_Name(e.code());
+  if (e.domain().empty()) return fmt::format("{}: {}", code, e.message());
+  return fmt::format("{} (domain '{}'): {}", code, e.domain(), e.message());
+}
+
+}  // namespace
+
+TransportError::TransportError(std::string endpoint, std::string cause)
+    : Error(fmt::format("transport {}: {}", endpoint, cause)),
+      endpoint_(std::move(endpoint)),
+      cause_(std::move(cause)) {}
+
+PeerTimeoutError::PeerTimeoutError(std::string endpoint, std::string peer,
+                                   const std::string& description,
+                                   std::chrono::milliseconds silent_for,
+                                   std::chrono::milliseconds timeout)
+    : TransportError(std::move(endpoint),
+                     fmt::format("{} silent for {:.3f} s (peer timeout {:.3f} s): no message and "
+                                 "no heartbeat; the process died, hangs or the network is down",
+                                 description, seconds(silent_for), seconds(timeout))),
+      peer_(std::move(peer)),
+      silent_for_(silent_for) {}
+
+ProtocolError::ProtocolError(std::string peer, const std::string& what)
+    : Error(what), peer_(std::move(peer)) {}
+
+RemoteError::RemoteError(const wire::Error& error)
+    : Error(remote_text(error)), code_(error.code()), domain_(error.domain()) {}
+
+}  // namespace crashlink::transport

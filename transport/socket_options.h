@@ -1,0 +1,23 @@
+#pragma once
+// Socket settings shared by Router and Dealer (DESIGN.md §3: "set linger, poll with timeouts").
+#include <cstdint>
+
+namespace crashlink::transport {
+
+struct SocketOptions {
+  /// How long unsent messages (a last Bye or Error) may keep the process-wide context alive at
+  /// exit, ms. Closing a socket never blocks; only the context's termination at exit waits.
+  int linger_ms = 500;
+  /// High-water marks, messages (one message = one Envelope). A session has at most a few
+  /// messages in flight per peer; 1000 leaves room for bursts without unbounded memory.
+  int send_hwm = 1000;
+  int receive_hwm = 1000;
+  /// A send that cannot queue for this long (peer's queue at the high-water mark) throws
+  /// TransportError instead of blocking forever, ms.
+  int send_timeout_ms = 5000;
+  /// Larger incoming messages are dropped by ZeroMQ (and the connection closed): a bound on what
+  /// garbage can make us allocate. 256 MiB is 11 million interface nodes' 3-vectors.
+  std::int64_t max_message_bytes = std::int64_t{256} << 20;
+};
+
+}  // namespace crashlink::transport
