@@ -1,9 +1,10 @@
-// crashlink: the user's command. Subcommands: run (more come with the co-simulation work).
+// crashlink: the user's command. Subcommands: run, hic (more come with the co-simulation work).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>
 
+#include "apps/cmd_hic.h"
 #include "solver/core/errors.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/run_single.h"
@@ -53,6 +54,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", quiet, "no progress display");
 
+  crashlink::apps::HicOptions hic_options;
+  auto* hic = crashlink::apps::add_hic_command(app, hic_options);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -60,6 +64,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*run) return cmd_run(scenario, out, mode, coupling, transport, quiet);
+    if (*hic) return crashlink::apps::run_hic(hic_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

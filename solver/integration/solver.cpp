@@ -141,7 +141,7 @@ void Solver::apply_initial_velocities() {
 void Solver::initialize() {
   const std::size_t n3 = 3 * n_;
   for (auto* vec : {&x_, &u_, &v_, &v_prev_, &a_, &omega_, &omega_prev_, &alpha_, &f_int_, &f_ext_,
-                    &m_int_, &du_})
+                    &m_int_, &du_, &f_cont_, &f_load_})
     vec->assign(n3, 0.0);
   x_ = model_.nodes.x0;
   assemble_masses();
@@ -165,10 +165,14 @@ void Solver::initialize() {
     if (inertia_[i] > 0.0) inv_inertia_[i] = 1.0 / inertia_[i];
   }
   apply_initial_velocities();
+  contacts_.clear();
+  for (const auto& c : model_.contacts) contacts_.emplace_back(model_, c, mass_.data());
+  contact_steps_.assign(contacts_.size(), {});
   time_s_ = 0.0;
   cycle_ = 0;
   dt_prev_ = 0.0;
   compute_forces(0.0);
+  compute_contact_forces(0.0);
   compute_external_forces(0.0);
   compute_accelerations();
   propose_step();
@@ -208,6 +212,20 @@ void Solver::compute_forces(double dt) {
   }
 }
 
+void Solver::compute_contact_forces(double dt) {
+  if (contacts_.empty()) return;
+  std::fill(f_cont_.begin(), f_cont_.end(), 0.0);
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());
+    // Penalty springs bound the step like elements do (their bound carries no safety factor).
+    if (contact_steps_[k].dt_stable_s < dt_stable_) {
+      dt_stable_ = contact_steps_[k].dt_stable_s;
+      critical_part_ = model_.parts.size();  // "no element": reported as the contact below
+      critical_local_ = -1 - static_cast<std::int64_t>(k);
+    }
+  }
+}
+
 void Solver::compute_external_forces(double t) {
   std::fill(f_ext_.begin(), f_ext_.end(), 0.0);
   const Vec3& g = model_.controls.gravity_m_s2;
@@ -223,10 +241,15 @@ void Solver::compute_external_forces(double t) {
 }
 
 void Solver::compute_accelerations() {
-  compute_acceleration(a_.data(), f_ext_.data(), f_int_.data(), inv_mass_.data(), n_);
+  const double* f_drive = f_ext_.data();
+  if (!contacts_.empty()) {
+    for (std::size_t i = 0; i < f_load_.size(); ++i) f_load_[i] = f_ext_[i] + f_cont_[i];
+    f_drive = f_load_.data();
+  }
+  compute_acceleration(a_.data(), f_drive, f_int_.data(), inv_mass_.data(), n_);
   for (std::size_t i = 0; i < 3 * n_; ++i) alpha_[i] = -m_int_[i] * inv_inertia_[i / 3];
   for (auto& b : bodies_)
-    gather_rigid_load(b, f_ext_.data(), f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
+    gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
   if (!model_.fixed.empty())
     for (std::size_t i = 0; i < n_; ++i) {
       const std::uint8_t mask = model_.fixed[i];
@@ -258,6 +281,10 @@ void Solver::propose_step() {
 }
 
 std::string Solver::critical_element() const {
+  if (critical_local_ < 0 && critical_part_ == model_.parts.size()) {
+    const auto k = static_cast<std::size_t>(-1 - critical_local_);
+    return fmt::format("the penalty springs of contact '{}'", model_.contacts[k].name);
+  }
   if (critical_local_ < 0 || critical_part_ >= model_.parts.size()) return "no element";
   const auto& p = model_.parts[critical_part_];
   return fmt::format("part '{}' element {}", p.name, p.element_id[static_cast<std::size_t>(critical_local_)]);
@@ -319,7 +346,8 @@ void Solver::begin_cycle() {
     vel[p.index] = p.curve->at(t_mid);
     const std::size_t node = p.index / 3;
     const double m = p.rotational ? inertia_[node] : mass_[node];
-    const double f_net = p.rotational ? -m_int_[p.index] : f_ext_[p.index] - f_int_[p.index];
+    const double f_net =
+        p.rotational ? -m_int_[p.index] : f_ext_[p.index] + f_cont_[p.index] - f_int_[p.index];
     // M (v^{n+1/2} - v^{n-1/2}) = dt (F + R), with dt the step that pairs the two velocities:
     // dt^{n-1/2}, or the full dt^0 at the first cycle (see above).
     const double dt_pair = cycle_ == 0 ? dt_ : dt_mid;
@@ -357,9 +385,14 @@ void Solver::end_cycle() {
   time_s_ += dt;
   // External work, trapezoid: 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n)
   energy_.external_work_J += 0.5 * dot3n(f_ext_, du_) + rigid_gravity_work;
+  // Contact energy = minus the work of the contact forces (penalty spring energy + friction
+  // dissipation), trapezoid rule like every other work term.
+  if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
   compute_forces(dt);
+  compute_contact_forces(dt);
   compute_external_forces(time_s_);
   energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
+  if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
   compute_accelerations();
   dt_prev_ = dt;
   ++cycle_;

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "solver/contact/contact_interface.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/kernel_io.h"
 #include "solver/elements/shell_bt.h"
@@ -75,6 +76,9 @@ class Solver {
   void element_output(std::size_t p, const elements::ElementOutput& out) const;
   /// Total mass of the model [kg] (nodes + rigid bodies).
   double total_mass_kg() const;
+  /// Contact interfaces (model.contacts order) and their last step (resultant force on the slave
+  /// side at t^n).
+  const std::vector<contact::ContactStep>& contact_steps() const { return contact_steps_; }
 
  private:
   void assemble_masses();
@@ -82,6 +86,7 @@ class Solver {
   void apply_initial_velocities();
   void compute_forces(double dt);       // f_int, m_int at the current configuration
   void compute_external_forces(double t);
+  void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
   double kinetic_energy() const;
   void propose_step();
@@ -97,10 +102,14 @@ class Solver {
   std::vector<double> u_, v_, v_prev_, a_;       // [3n] u^n, v^{n+1/2}, v^{n-1/2}, a^n
   std::vector<double> omega_, omega_prev_, alpha_;  // [3n] rotational dofs
   std::vector<double> f_int_, f_ext_, m_int_;    // [3n]
+  std::vector<double> f_cont_;                   // [3n] contact forces (push on the node)
+  std::vector<double> f_load_;                   // [3n] f_ext + f_cont: what drives the nodes
   std::vector<double> du_;                       // [3n] u^n - u^{n-1}
   std::vector<std::uint8_t> rigid_node_;         // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
   std::vector<RigidBodyState> bodies_;
+  std::vector<contact::ContactInterface> contacts_;
+  std::vector<contact::ContactStep> contact_steps_;
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
   struct PrescribedDof {

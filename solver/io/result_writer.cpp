@@ -96,6 +96,12 @@ struct ProbeOut {
   std::vector<double> t, u, v, a;  // buffered rows: [k], [3k], [3k], [3k]
 };
 
+struct ContactOut {
+  std::string path;  // /history/contacts/<name>
+  DatasetHandle time, force;
+  std::vector<double> t, f;  // buffered rows: [k], [3k]
+};
+
 }  // namespace
 
 struct ResultWriter::Impl {
@@ -105,6 +111,7 @@ struct ResultWriter::Impl {
   std::array<DatasetHandle, kGlstat.size()> glstat;
   std::array<std::vector<double>, kGlstat.size()> glstat_buffer;
   std::vector<ProbeOut> probes;
+  std::vector<ContactOut> contacts;
   std::size_t buffered = 0;
   Clock::time_point last_flush = Clock::now();
   std::size_t node_count = 0;
@@ -135,6 +142,10 @@ struct ResultWriter::Impl {
           p.v.clear();
           p.a.clear();
         }
+        for (auto& c : self->contacts) {
+          c.t.clear();
+          c.f.clear();
+        }
         self->buffered = 0;
         self->last_flush = Clock::now();
       }
@@ -150,6 +161,10 @@ struct ResultWriter::Impl {
       append_rows(Location{p.displacement.get(), h5_path, p.path + "/displacement"}, p.u, 3);
       append_rows(Location{p.velocity.get(), h5_path, p.path + "/velocity"}, p.v, 3);
       append_rows(Location{p.acceleration.get(), h5_path, p.path + "/acceleration"}, p.a, 3);
+    }
+    for (ContactOut& c : contacts) {
+      append_rows(Location{c.time.get(), h5_path, c.path + "/time"}, c.t, 0);
+      append_rows(Location{c.force.get(), h5_path, c.path + "/force"}, c.f, 3);
     }
     return rows;
   }
@@ -234,6 +249,20 @@ struct ResultWriter::Impl {
       out.acceleration = create_extendible(at, "acceleration", 3, chunk, "m/s^2");
       probes.push_back(std::move(out));
     }
+    GroupHandle co = create_group(hat, "contacts");
+    const Location cat{co.get(), h5_path, "/history/contacts"};
+    const std::vector<std::string> contact_links = link_names(
+        m.contacts, [](const model::Contact& c) { return c.name; }, "contact");
+    for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+      GroupHandle g = create_group(cat, contact_links[i]);
+      ContactOut out;
+      out.path = cat.child(contact_links[i]);
+      const Location at{g.get(), h5_path, out.path};
+      write_attribute(at, "name", m.contacts[i].name);
+      out.time = create_extendible(at, "time", 0, chunk, "s");
+      out.force = create_extendible(at, "force", 3, chunk, "N");
+      contacts.push_back(std::move(out));
+    }
   }
 };
 
@@ -295,9 +324,21 @@ namespace {
 }
 }  // namespace
 
-void ResultWriter::append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes) {
+void ResultWriter::append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes,
+                                  const std::vector<ContactSample>& contacts) {
   if (!impl_) closed(h5_path_, "append_history");
   Impl& w = *impl_;
+  if (contacts.size() != w.contacts.size()) {
+    throw ResultFileError(h5_path_, "/history/contacts",
+                          fmt::format("append_history: {} contact samples given, the model has {} "
+                                      "contacts (pass one sample per model.contacts, same order)",
+                                      contacts.size(), w.contacts.size()));
+  }
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    ContactOut& c = w.contacts[i];
+    c.t.push_back(g.time_s);
+    c.f.insert(c.f.end(), contacts[i].force_N, contacts[i].force_N + 3);
+  }
   if (probes.size() != w.probes.size()) {
     throw ResultFileError(h5_path_, "/history/probes",
                           fmt::format("append_history: {} probe samples given, the model has {} "
@@ -458,6 +499,7 @@ void ResultWriter::close() {
   attempt([&] {
     for (auto& d : w->glstat) d.reset();
     w->probes.clear();
+    w->contacts.clear();
     if (!w->file.close()) throw ResultFileError(h5_path_, "/", "H5Fclose (close the result file)");
   });
   attempt([&] { write_xdmf(xdmf_path_, w->xdmf); });

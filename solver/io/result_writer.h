@@ -44,6 +44,11 @@ struct ProbeSample {
   double acceleration_m_s2[3] = {0.0, 0.0, 0.0};
 };
 
+/// One contact row: resultant force on the slave side of an interface, global frame.
+struct ContactSample {
+  double force_N[3] = {0.0, 0.0, 0.0};
+};
+
 /// Element results of one part; an empty span means "not available" (not written).
 struct PartFieldState {
   std::span<const double> eps_p;         ///< [ne] effective plastic strain [-]
@@ -86,9 +91,11 @@ class ResultWriter {
   ResultWriter& operator=(const ResultWriter&) = delete;
   ~ResultWriter();  ///< close(); never throws (a failure is printed to stderr)
 
-  /// Buffers one history row; `probes` has one sample per model.probes, same order.
+  /// Buffers one history row; `probes` has one sample per model.probes and `contacts` one per
+  /// model.contacts (/history/contacts/<name>/{time, force}), same order.
   /// May flush (see ResultWriterOptions).
-  void append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes);
+  void append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes,
+                      const std::vector<ContactSample>& contacts = {});
   /// Writes the buffered history rows and H5Fflush-es the file.
   void flush_history();
   /// Writes /states/<k> (k = 0, 1, ...), flushes, and rewrites result.xdmf.

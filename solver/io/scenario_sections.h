@@ -40,6 +40,7 @@ void read_loads(const YamlNode& list, ScenarioBuild& b);
 void read_initial_velocities(const YamlNode& list, ScenarioBuild& b);
 /// Also checks that every part of rigid material belongs to a body (so it runs even if absent).
 void read_rigid_bodies(const std::optional<YamlNode>& bodies, ScenarioBuild& b);
+void read_contacts(const YamlNode& contacts, ScenarioBuild& b);
 void read_probes(const YamlNode& probes, ScenarioBuild& b);
 
 /// A node selection: a mapping {part, box: {min, max}} or {nodes: [ids]} (see node_sets in

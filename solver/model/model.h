@@ -82,6 +82,22 @@ struct RigidBody {
   Vec3 centre_m{};                       ///< centre of mass if given
 };
 
+/// Penalty node-to-segment contact (master/slave), [1] and §2.1 of Bourel 2005: slave nodes
+/// against the segments of master parts (shell quads/triangles with thickness offsets on both
+/// sides, exterior faces of hexahedra). Friction: Coulomb with exponential decay from static to
+/// dynamic, mu = mu_d + (mu_s - mu_d) exp(-decay |v_rel|).
+struct Contact {
+  std::string name;
+  std::vector<std::int32_t> slave_nodes;  ///< node indices
+  std::vector<int> master_parts;          ///< part indices whose elements give the segments
+  double penalty_scale = 0.1;             ///< scale factor on the segment stiffness [-]
+  bool soft = false;                      ///< also a stiffness from nodal mass and step
+  double soft_scale = 0.1;                ///< scale on k_soft = m / dt^2 [-]
+  double static_friction = 0.0;           ///< mu_s [-]
+  double dynamic_friction = 0.0;          ///< mu_d [-]
+  double friction_decay_s_m = 0.0;        ///< decay coefficient [s/m]
+};
+
 /// A point whose history is written to /history/probes/<name>.
 struct Probe {
   std::string name;
@@ -114,6 +130,7 @@ struct Model {
   std::vector<NodalLoad> loads;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<RigidBody> rigid_bodies;
+  std::vector<Contact> contacts;
   std::vector<Probe> probes;
   Controls controls;
 

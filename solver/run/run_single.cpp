@@ -43,6 +43,13 @@ std::vector<io::ProbeSample> probes(const integration::Solver& s) {
   return out;
 }
 
+std::vector<io::ContactSample> contact_samples(const integration::Solver& s) {
+  std::vector<io::ContactSample> out(s.contact_steps().size());
+  for (std::size_t k = 0; k < out.size(); ++k)
+    for (std::size_t d = 0; d < 3; ++d) out[k].force_N[d] = s.contact_steps()[k].resultant_N[d];
+  return out;
+}
+
 /// Element results of every part, kept between field states (no allocation per state).
 struct FieldBuffers {
   std::vector<std::vector<double>> eps_p, von_mises, stress;
@@ -109,7 +116,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
       solver.begin_cycle();  // state at t^n complete; guard passed
       const double t = solver.time_s();
       if (t >= next_history) {
-        writer.append_history(glstat(solver), probes(solver));
+        writer.append_history(glstat(solver), probes(solver), contact_samples(solver));
         do next_history += c.history_interval_s; while (c.history_interval_s > 0.0 && next_history <= t);
       }
       if (t >= next_field) {

@@ -4,6 +4,8 @@
 // kinematics and round-off, both far below the bound at this amplitude.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "tests/integration/run_helpers.h"
 #include "tests/integration/test_models.h"
 
@@ -38,10 +40,14 @@ double energy_drift(model::Model& m, double length, int cycles) {
 
 TEST(EnergyConservation, ShellFreeVibration1e5Steps) {
   auto m = shell_cantilever(0.2, 0.02, 0.002, 20, 2, steel(0.3));
-  EXPECT_LT(energy_drift(m, 0.2, 100000), 1e-3);
+  const double drift = energy_drift(m, 0.2, 100000);
+  EXPECT_LT(drift, 1e-3);
+  std::printf("[measured] shell free vibration, 1e5 steps: max |dE|/E0 = %.3e\n", drift);
 }
 
 TEST(EnergyConservation, HexFreeVibration1e5Steps) {
   auto m = hex_cantilever(0.2, 0.01, 0.01, 20, 1, 2, steel(0.3));
-  EXPECT_LT(energy_drift(m, 0.2, 100000), 1e-3);
+  const double drift = energy_drift(m, 0.2, 100000);
+  EXPECT_LT(drift, 1e-3);
+  std::printf("[measured] hex free vibration, 1e5 steps: max |dE|/E0 = %.3e\n", drift);
 }

@@ -1,0 +1,408 @@
+// Node-to-segment penalty contact (§2.1 of Bourel 2005: penalty [BEL 00], master/slave).
+//
+// Per cycle, for every slave node s and its candidate segments (bucket_search.h):
+//   closest point x_c, shape functions N_a, unit normal n pointing to the slave side
+//   (projection.h); h = o_s + o_m (thickness offsets: o_s = half the thickness of the shells
+//   the slave node belongs to, 0 for solid nodes; o_m = t/2 for shells, 0 for solid faces);
+//   distance d from the mid-surface; penetration g = h - d. The segment with the nearest
+//   closest point among those with g > 0 (beyond round-off, 1e-10 of the segment size) acts,
+//   except that the segment in contact last cycle keeps the node while the node projects inside
+//   it (a node entering a solid near an edge is pushed back out through the face it crossed):
+//     F_n = k g n on the slave, -N_a F_n on the segment's nodes           (Belytschko, Liu &
+//   Moran, Nonlinear Finite Elements for Continua and Structures (2000), 10.4.3 penalty;
+//   Hallquist, LS-DYNA Theory Manual, "Penalty method": f_s = -k_i l n_i, f_m^i = N_i f_s).
+//   Since sum_a N_a = 1 the forces sum to zero: momentum is conserved to round-off.
+// Friction: friction.h, history F_t per slave node, stick stiffness = the same k.
+//
+// Sides: shells are two-sided; the side is the sign of (x_s - x_c).n when contact starts and is
+// kept while the node stays in contact (so a node pushed past the mid-surface is pushed back,
+// not through); solid faces are one-sided (outward normal) and accept penetrations up to
+// depth_m (half the element's thickness) below the face. Off the edges of a segment the
+// direction x_s - x_c replaces n (rounded edges: continuous force around a convex edge).
+//
+// Stiffness k of a pair (segments.h for the segment's own k):
+//   deformable master: the segment's k;
+//   rigid master: the slave node's own elements (the largest k of the shells s K A / max diag
+//     and solids s K A_mean^2 / V around it) - the rigid part's moduli mean nothing physical; if
+//     the slave node is rigid too, the rigid master's moduli (docs/scenario-format.md);
+//   soft option (LS-DYNA SOFT=1-like): k = max(k, soft_scale m_eff / dt^2), dt = the last step.
+// Step bound per candidate pair (active or potential): dt <= sqrt(2 m_eff / k), the nodal step
+// of a mass m_eff on a spring k (Radioss nodal time step sqrt(2 m / k)), no safety factor;
+// m_eff = m_s m_m / (m_s + m_m), m_m = mean nodal mass of the segment (a rigid body's nodes
+// count with the body's mass; a node fixed in x, y and z counts as infinitely heavy).
+//
+// Search (bucket_search.h) re-sorted only when needed. Bound: a pair (s, i) can come into
+// contact only if x_s lies within h of segment i, i.e. inside the segment's node box inflated
+// by h (+ depth for solid faces). The sort inflates it further by `margin`. Since the sort,
+// every node has moved at most D = sum_cycles dt^n max_j |v_j^{n+1/2}| (exact: x^{n+1} - x^n =
+// dt^n v^{n+1/2}); the node box of a segment grows by at most D and x_s moves by at most D, so
+// the candidate list is complete while 2 D <= margin. We re-sort when 2 D > margin.
+#include "solver/contact/contact_interface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/contact/bucket_search.h"
+#include "solver/contact/friction.h"
+#include "solver/contact/projection.h"
+#include "solver/contact/segments.h"
+#include "solver/core/errors.h"
+
+namespace crashlink::contact {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double reduced_mass(double a, double b) {
+  if (std::isinf(a)) return b;
+  if (std::isinf(b)) return a;
+  return a + b > 0.0 ? a * b / (a + b) : 0.0;
+}
+
+bool is_rigid(const model::Model& m, const model::Part& p) {
+  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
+}
+
+}  // namespace
+
+struct ContactInterface::Impl {
+  std::string name;
+  SegmentSet seg;
+  std::vector<std::int32_t> slave;      // [ns] node indices
+  std::vector<double> slave_offset_m;   // [ns]
+  std::vector<double> slave_k_N_m;      // [ns] stiffness from the slave node's own elements
+  std::vector<double> slave_mass_kg;    // [ns] effective mass (body mass if rigid, inf if fixed)
+  std::vector<double> seg_mass_kg;      // [nseg]
+  std::vector<double> reach_m;          // [nseg] box inflation for the search
+  std::vector<double> contact_reach_m;  // [nseg] box inflation for contact (reach - margin)
+  std::vector<std::int32_t> moving;     // nodes whose speed bounds the travel
+  double margin_m = 0.0;
+  double travelled_m = 0.0;
+  bool need_sort = true;
+  std::int64_t sorts = 0;
+  bool soft = false;
+  double soft_scale = 0.1;
+  FrictionLaw friction;
+  double dt_last_s = 0.0;
+  CandidateList cand;
+  BucketWork work;
+  std::vector<double> ft_N;        // [3 ns] friction history on the slave nodes
+  std::vector<std::int8_t> side;   // [ns] shell side while in contact (+1, -1; 0 = none)
+  std::vector<std::int32_t> last;  // [ns] segment in contact last cycle (-1: none)
+  std::vector<double> seg_size_m;  // [nseg] sqrt of the reference area
+
+  double pair_stiffness(std::size_t k, std::size_t i, double m_eff) const {
+    double kp = seg.rigid[i] ? (slave_k_N_m[k] > 0.0 ? slave_k_N_m[k] : seg.rigid_stiffness_N_m[i])
+                             : seg.stiffness_N_m[i];
+    if (soft && dt_last_s > 0.0 && std::isfinite(m_eff))
+      kp = std::max(kp, soft_scale * m_eff / (dt_last_s * dt_last_s));
+    return kp;
+  }
+};
+
+ContactInterface::ContactInterface(const model::Model& m, const model::Contact& c,
+                                   const double* mass)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.name = c.name;
+  const std::size_t n = m.nodes.count();
+  const std::string who = "contact '" + c.name + "'";
+  if (c.slave_nodes.empty())
+    throw ModelError(who + ": no slave node; give a node set or {part: name} as slave");
+  if (c.master_parts.empty())
+    throw ModelError(who + ": no master part; list the parts whose surface is hit");
+  if (!(c.penalty_scale > 0.0))
+    throw ModelError(
+        fmt::format("{}: penalty_scale {} must be > 0 (default 0.1)", who, c.penalty_scale));
+  if (c.soft && !(c.soft_scale > 0.0))
+    throw ModelError(fmt::format("{}: soft scale {} must be > 0 (default 0.1)", who, c.soft_scale));
+  if (c.static_friction < 0.0 || c.dynamic_friction < 0.0 || c.friction_decay_s_m < 0.0)
+    throw ModelError(
+        fmt::format("{}: friction coefficients must be >= 0 (static {}, dynamic {}, "
+                    "decay {})",
+                    who, c.static_friction, c.dynamic_friction, c.friction_decay_s_m));
+  for (auto i : c.slave_nodes)
+    if (i < 0 || static_cast<std::size_t>(i) >= n)
+      throw ModelError(
+          fmt::format("{}: slave node index {} out of range (model has {} nodes)", who, i, n));
+  s.seg = build_segments(m, c.master_parts, c.penalty_scale);
+  s.slave = c.slave_nodes;
+  std::sort(s.slave.begin(), s.slave.end());
+  s.slave.erase(std::unique(s.slave.begin(), s.slave.end()), s.slave.end());
+  s.soft = c.soft;
+  s.soft_scale = c.soft_scale;
+  s.friction = {c.static_friction, c.dynamic_friction, c.friction_decay_s_m};
+
+  const double* x0 = m.nodes.x0.data();
+  // Per node: half shell thickness, own-element stiffness, effective mass.
+  std::vector<double> half_t(n, 0.0), k_node(n, 0.0), m_eff(n, 0.0);
+  for (const auto& part : m.parts) {
+    const auto& mat = m.materials[static_cast<std::size_t>(part.material)];
+    const double K = mat.bulk_modulus_Pa();
+    const bool rigid = is_rigid(m, part);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (part.kind == model::ElementKind::Shell4) {
+        const std::int32_t* q = &part.connectivity[4 * e];
+        const double k =
+            shell_stiffness(c.penalty_scale, K, segment_area(x0, q), segment_max_diagonal(x0, q));
+        for (int a = 0; a < 4; ++a) {
+          auto& ht = half_t[static_cast<std::size_t>(q[a])];
+          ht = std::max(ht, 0.5 * part.thickness_m);
+          if (!rigid)
+            k_node[static_cast<std::size_t>(q[a])] =
+                std::max(k_node[static_cast<std::size_t>(q[a])], k);
+        }
+      } else if (!rigid) {
+        const std::int32_t* h = &part.connectivity[8 * e];
+        const double V = hex_volume(x0, h);
+        double A = 0.0;
+        for (const auto& f : kHexFaces) {
+          const std::int32_t q[4] = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+          A += segment_area(x0, q) / 6.0;
+        }
+        const double k = solid_face_stiffness(c.penalty_scale, K, A, V);
+        for (int a = 0; a < 8; ++a)
+          k_node[static_cast<std::size_t>(h[a])] =
+              std::max(k_node[static_cast<std::size_t>(h[a])], k);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) m_eff[i] = mass ? mass[i] : 0.0;
+  for (const auto& rb : m.rigid_bodies) {
+    std::vector<std::int32_t> nodes;
+    for (int p : rb.parts) {
+      const auto& conn = m.parts[static_cast<std::size_t>(p)].connectivity;
+      nodes.insert(nodes.end(), conn.begin(), conn.end());
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    double body = rb.mass_kg;
+    if (!(body > 0.0)) {
+      body = 0.0;
+      for (auto i : nodes) body += mass ? mass[static_cast<std::size_t>(i)] : 0.0;
+    }
+    for (auto i : nodes) m_eff[static_cast<std::size_t>(i)] = body;
+  }
+  if (!m.fixed.empty())
+    for (std::size_t i = 0; i < n; ++i)
+      if ((m.fixed[i] & 7u) == 7u) m_eff[i] = kInf;
+
+  const std::size_t ns = s.slave.size();
+  s.slave_offset_m.resize(ns);
+  s.slave_k_N_m.resize(ns);
+  s.slave_mass_kg.resize(ns);
+  double max_slave_offset = 0.0;
+  for (std::size_t k = 0; k < ns; ++k) {
+    const auto i = static_cast<std::size_t>(s.slave[k]);
+    s.slave_offset_m[k] = half_t[i];
+    s.slave_k_N_m[k] = k_node[i];
+    s.slave_mass_kg[k] = m_eff[i];
+    max_slave_offset = std::max(max_slave_offset, half_t[i]);
+  }
+  const std::size_t nseg = s.seg.size();
+  s.seg_mass_kg.resize(nseg);
+  double size_sum = 0.0;
+  for (std::size_t i = 0; i < nseg; ++i) {
+    const std::int32_t* q = &s.seg.nodes[4 * i];
+    const int nn = s.seg.triangle(i) ? 3 : 4;
+    double ms = 0.0;
+    for (int a = 0; a < nn; ++a) ms += m_eff[static_cast<std::size_t>(q[a])];
+    s.seg_mass_kg[i] = ms / nn;
+    size_sum += segment_max_diagonal(x0, q);
+  }
+  // Margin: a quarter of the mean segment size (a sort every ~margin / (2 |v|max dt) cycles).
+  s.margin_m = 0.25 * size_sum / static_cast<double>(nseg);
+  s.reach_m.resize(nseg);
+  s.contact_reach_m.resize(nseg);
+  for (std::size_t i = 0; i < nseg; ++i) {
+    const double h = s.seg.offset_m[i] + max_slave_offset;
+    // shells: |d| < h (and a kept side allows d down to -h); solids: down to depth below.
+    s.contact_reach_m[i] = s.seg.two_sided[i] ? h : h + s.seg.depth_m[i];
+    s.reach_m[i] = s.contact_reach_m[i] + s.margin_m;
+  }
+  std::vector<std::uint8_t> mark(n, 0);
+  for (auto i : s.slave) mark[static_cast<std::size_t>(i)] = 1;
+  for (auto i : s.seg.nodes) mark[static_cast<std::size_t>(i)] = 1;
+  for (std::size_t i = 0; i < n; ++i)
+    if (mark[i]) s.moving.push_back(static_cast<std::int32_t>(i));
+  s.ft_N.assign(3 * ns, 0.0);
+  s.side.assign(ns, 0);
+  s.last.assign(ns, -1);
+  s.seg_size_m.resize(nseg);
+  for (std::size_t i = 0; i < nseg; ++i)
+    s.seg_size_m[i] = std::sqrt(segment_area(x0, &s.seg.nodes[4 * i]));
+}
+
+ContactInterface::~ContactInterface() = default;
+ContactInterface::ContactInterface(ContactInterface&&) noexcept = default;
+ContactInterface& ContactInterface::operator=(ContactInterface&&) noexcept = default;
+
+const std::string& ContactInterface::name() const {
+  return impl_->name;
+}
+std::int64_t ContactInterface::sort_count() const {
+  return impl_->sorts;
+}
+std::size_t ContactInterface::candidate_pairs() const {
+  return impl_->cand.pairs();
+}
+std::size_t ContactInterface::segment_count() const {
+  return impl_->seg.size();
+}
+
+ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
+  Impl& s = *impl_;
+  ContactStep out;
+  if (dt > 0.0) {
+    s.dt_last_s = dt;
+    double v2 = 0.0;
+    for (auto i : s.moving) {
+      const double* vi = v + 3 * static_cast<std::size_t>(i);
+      v2 = std::max(v2, vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
+    }
+    s.travelled_m += dt * std::sqrt(v2);
+    if (2.0 * s.travelled_m > s.margin_m) s.need_sort = true;
+  }
+  if (s.need_sort) {
+    const SearchInput in{
+        x, s.slave.data(), s.slave.size(), s.seg.nodes.data(), s.reach_m.data(), s.seg.size()};
+    bucket_search(in, s.cand, s.work);
+    s.travelled_m = 0.0;
+    s.need_sort = false;
+    ++s.sorts;
+  }
+
+  double min_ratio = kInf;  // min m_eff / k over candidate pairs
+  double res[3] = {0.0, 0.0, 0.0};
+  const std::size_t ns = s.slave.size();
+  for (std::size_t k = 0; k < ns; ++k) {
+    const auto b0 = static_cast<std::size_t>(s.cand.offset[k]);
+    const auto b1 = static_cast<std::size_t>(s.cand.offset[k + 1]);
+    double* ft = &s.ft_N[3 * k];
+    if (b0 == b1) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      s.side[k] = 0;
+      s.last[k] = -1;
+      continue;
+    }
+    const std::int32_t sn = s.slave[k];
+    const double* p = x + 3 * static_cast<std::size_t>(sn);
+    // best candidate so far
+    double best_dist = kInf, best_g = 0.0, best_k = 0.0;
+    double best_dir[3] = {0.0, 0.0, 0.0};
+    Projection best_pr;
+    std::size_t best_i = 0;
+    int best_side = 0;
+    bool found = false;
+    for (std::size_t c = b0; c < b1; ++c) {
+      const auto i = static_cast<std::size_t>(s.cand.segment[c]);
+      const std::int32_t* q = &s.seg.nodes[4 * i];
+      if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
+      const double meff = reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[i]);
+      const double kp = s.pair_stiffness(k, i, meff);
+      if (kp > 0.0 && meff > 0.0) min_ratio = std::min(min_ratio, meff / kp);
+      // Quick reject: outside the node box inflated by the contact reach.
+      const double reach = s.contact_reach_m[i];
+      bool out_box = false;
+      double xa[12];
+      for (int a = 0; a < 4; ++a)
+        for (int d = 0; d < 3; ++d)
+          xa[3 * a + d] = x[3 * static_cast<std::size_t>(q[a]) + static_cast<std::size_t>(d)];
+      for (int d = 0; d < 3 && !out_box; ++d) {
+        const double lo = std::min(std::min(xa[d], xa[3 + d]), std::min(xa[6 + d], xa[9 + d]));
+        const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
+        out_box = p[d] < lo - reach || p[d] > hi + reach;
+      }
+      if (out_box) continue;
+      const Projection pr = s.seg.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
+      const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
+      const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
+      const double rl = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      const double h = s.slave_offset_m[k] + s.seg.offset_m[i];
+      const bool two = s.seg.two_sided[i] != 0;
+      double d = 0.0, dist = 0.0;
+      double dir[3];
+      int sgn = 1;
+      // On the surface within round-off, or inside: the segment normal; off an edge: x_s - x_c.
+      const bool use_normal = pr.interior || rl <= 1e-12 * (h + std::sqrt(segment_area(x, q)));
+      if (use_normal) {
+        if (two) {
+          sgn = s.side[k] != 0 ? s.side[k] : (dn >= 0.0 ? 1 : -1);
+          if (sgn * dn < -h) sgn = -sgn;  // crossed by more than h: take the nearer side
+        } else if (dn < -s.seg.depth_m[i]) {
+          continue;  // deeper than half the element: not this face
+        }
+        d = sgn * dn;
+        dist = std::fabs(dn);
+        for (int a = 0; a < 3; ++a) dir[a] = sgn * pr.normal[a];
+      } else {
+        if (!two && dn <= 0.0) continue;  // behind a one-sided face, off its edge
+        sgn = dn >= 0.0 ? 1 : -1;
+        d = rl;
+        dist = rl;
+        for (int a = 0; a < 3; ++a) dir[a] = r[a] / rl;
+      }
+      const double g = h - d;
+      // Penetrations of the order of round-off are no contact (flush surfaces sliding on each
+      // other's edges must not pick a side face by the sign of a round-off error).
+      if (!(g > 1e-10 * s.seg_size_m[i])) continue;
+      // The segment in contact last cycle keeps the node while its projection stays inside it
+      // (the face a node came in through is the one that pushes it out); otherwise the nearest.
+      const bool keep = use_normal && s.last[k] == static_cast<std::int32_t>(i);
+      if (!keep && !(dist < best_dist)) continue;
+      if (found && s.last[k] == static_cast<std::int32_t>(best_i) && !keep) continue;
+      found = true;
+      best_dist = dist;
+      best_g = g;
+      best_k = kp;
+      best_i = i;
+      best_pr = pr;
+      best_side = two ? sgn : 0;
+      for (int a = 0; a < 3; ++a) best_dir[a] = dir[a];
+    }
+    if (!found) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      s.side[k] = 0;
+      s.last[k] = -1;
+      continue;
+    }
+    ++out.active_pairs;
+    s.side[k] = static_cast<std::int8_t>(best_side);
+    s.last[k] = static_cast<std::int32_t>(best_i);
+    const std::int32_t* q = &s.seg.nodes[4 * best_i];
+    const double fn = best_k * best_g;
+    double F[3];
+    for (int a = 0; a < 3; ++a) F[a] = fn * best_dir[a];
+    if (s.friction.active()) {
+      double vrel[3];
+      const double* vs = v + 3 * static_cast<std::size_t>(sn);
+      for (int a = 0; a < 3; ++a) {
+        double vm = 0.0;
+        for (int b = 0; b < 4; ++b)
+          vm += best_pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
+        vrel[a] = vs[a] - vm;
+      }
+      friction_update(s.friction, best_dir, vrel, best_k, dt, fn, ft);
+      for (int a = 0; a < 3; ++a) F[a] += ft[a];
+    } else {
+      ft[0] = ft[1] = ft[2] = 0.0;
+    }
+    double* fs = f + 3 * static_cast<std::size_t>(sn);
+    for (int a = 0; a < 3; ++a) {
+      fs[a] += F[a];
+      res[a] += F[a];
+    }
+    for (int b = 0; b < 4; ++b) {
+      if (best_pr.N[b] == 0.0) continue;
+      double* fm = f + 3 * static_cast<std::size_t>(q[b]);
+      for (int a = 0; a < 3; ++a) fm[a] -= best_pr.N[b] * F[a];
+    }
+  }
+  for (int a = 0; a < 3; ++a) out.resultant_N[a] = res[a];
+  out.dt_stable_s = std::isfinite(min_ratio) ? std::sqrt(2.0 * min_ratio) : kInf;
+  return out;
+}
+
+}  // namespace crashlink::contact

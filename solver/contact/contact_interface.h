@@ -1,0 +1,46 @@
+#pragma once
+// One contact interface (model::Contact) as the integrator sees it: built once, then called every
+// cycle at t^{n+1} after the element forces. Node-to-segment penalty with Coulomb friction;
+// search in linear time with buckets, re-sorted when nodes may have travelled far enough.
+//
+// Layouts: x, v, f are interleaved xyz [3n] over all nodes of the domain.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "solver/model/model.h"
+
+namespace crashlink::contact {
+
+struct ContactStep {
+  double dt_stable_s = 0.0;  ///< bound from the penalty springs (no safety factor); inf if none
+  double resultant_N[3] = {0.0, 0.0, 0.0};  ///< sum of the forces on the slave side [N]
+  std::int64_t active_pairs = 0;            ///< slave nodes in contact this cycle
+};
+
+class ContactInterface {
+ public:
+  /// `mass` [n] lumped nodal masses (for the soft stiffness and the step bound); the model and
+  /// the mass array must outlive the interface. Throws ModelError on an empty/invalid definition.
+  ContactInterface(const model::Model& m, const model::Contact& c, const double* mass);
+  ~ContactInterface();
+  ContactInterface(ContactInterface&&) noexcept;
+  ContactInterface& operator=(ContactInterface&&) noexcept;
+
+  /// Adds the contact forces at configuration x (t^{n+1}) with mid-step velocities v into f
+  /// (f is an external-force accumulator: positive pushes the node). dt = dt^n, the step just
+  /// taken (friction's elastic predictor uses v * dt).
+  ContactStep compute(const double* x, const double* v, double dt, double* f);
+
+  const std::string& name() const;
+  /// Diagnostics: bucket sorts done so far, candidate pairs of the last sort, master segments.
+  std::int64_t sort_count() const;
+  std::size_t candidate_pairs() const;
+  std::size_t segment_count() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crashlink::contact

@@ -1,0 +1,240 @@
+#include "solver/io/result_reader.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <optional>
+
+#include "solver/io/hdf5_handles.h"
+
+namespace crashlink::io {
+
+namespace {
+
+// H5S_ALL expands to a C-style cast; -Wold-style-cast is silenced for this definition only.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+constexpr hid_t kAll = H5S_ALL;
+#pragma GCC diagnostic pop
+
+[[noreturn]] void fail(const Location& at, const std::string& object, const std::string& what) {
+  throw ResultFileError(at.file, object, what);
+}
+
+/// A whole double dataset `name` under `at`: rank 1 ([k], cols = 0) or rank 2 ([k, cols]).
+/// Returns the values row-major; *rows receives k.
+std::vector<double> read_doubles(const Location& at, const std::string& name, hsize_t cols,
+                                 std::size_t* rows) {
+  const std::string object = at.child(name);
+  if (!link_exists(at, name)) {
+    fail(at, object, "dataset missing (the file does not follow docs/result-format.md)");
+  }
+  DatasetHandle ds(H5Dopen2(at.id, name.c_str(), H5P_DEFAULT));
+  if (!ds) fail(at, object, "H5Dopen2 (open dataset)");
+  DataspaceHandle space(H5Dget_space(ds.get()));
+  if (!space) fail(at, object, "H5Dget_space");
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  const int want_rank = cols == 0 ? 1 : 2;
+  std::array<hsize_t, 2> dims{0, 0};
+  if (rank != want_rank || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0 ||
+      (cols != 0 && dims[1] != cols)) {
+    fail(at, object,
+         fmt::format("shape is rank {} [{}, {}]; expected {} (docs/result-format.md)", rank,
+                     dims[0], dims[1], cols == 0 ? "[k]" : fmt::format("[k, {}]", cols)));
+  }
+  std::vector<double> out(dims[0] * (cols == 0 ? 1 : cols));
+  if (!out.empty() &&
+      H5Dread(ds.get(), H5T_NATIVE_DOUBLE, kAll, kAll, H5P_DEFAULT, out.data()) < 0) {
+    fail(at, object, "H5Dread");
+  }
+  *rows = static_cast<std::size_t>(dims[0]);
+  return out;
+}
+
+/// A scalar string attribute (variable or fixed length); nullopt if absent.
+std::optional<std::string> read_string_attribute(const Location& at, const std::string& name) {
+  const std::string object = at.path + "@" + name;
+  const htri_t exists = H5Aexists(at.id, name.c_str());
+  if (exists < 0) fail(at, object, "H5Aexists");
+  if (exists == 0) return std::nullopt;
+  AttributeHandle a(H5Aopen(at.id, name.c_str(), H5P_DEFAULT));
+  if (!a) fail(at, object, "H5Aopen");
+  DatatypeHandle file_type(H5Aget_type(a.get()));
+  if (!file_type || H5Tget_class(file_type.get()) != H5T_STRING) return std::nullopt;
+  const htri_t variable = H5Tis_variable_str(file_type.get());
+  if (variable < 0) fail(at, object, "H5Tis_variable_str");
+  DatatypeHandle memory_type(H5Tcopy(file_type.get()));
+  if (!memory_type) fail(at, object, "H5Tcopy");
+  if (variable > 0) {
+    char* value = nullptr;
+    if (H5Aread(a.get(), memory_type.get(), &value) < 0) fail(at, object, "H5Aread");
+    std::string s = value ? value : "";
+    H5free_memory(value);
+    return s;
+  }
+  const std::size_t size = H5Tget_size(file_type.get());
+  std::string s(size, '\0');
+  if (H5Aread(a.get(), memory_type.get(), s.data()) < 0) fail(at, object, "H5Aread");
+  s.resize(std::min(s.size(), s.find('\0')));
+  return s;
+}
+
+/// The link names directly under a group, in name order.
+std::vector<std::string> child_names(const Location& at) {
+  H5G_info_t info;
+  if (H5Gget_info(at.id, &info) < 0) fail(at, at.path, "H5Gget_info");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len =
+        H5Lget_name_by_idx(at.id, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (len < 0) fail(at, at.path, "H5Lget_name_by_idx");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    if (H5Lget_name_by_idx(at.id, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                           H5P_DEFAULT) < 0) {
+      fail(at, at.path, "H5Lget_name_by_idx");
+    }
+    name.resize(static_cast<std::size_t>(len));
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
+/// The /history/glstat columns in GlstatSample order; `required` per DESIGN.md §4.
+struct GlstatColumn {
+  const char* name;
+  double GlstatSample::*value;
+  bool required;
+};
+constexpr std::array<GlstatColumn, 8> kGlstat{{
+    {"time", &GlstatSample::time_s, true},
+    {"kinetic_energy", &GlstatSample::kinetic_energy_J, true},
+    {"internal_energy", &GlstatSample::internal_energy_J, true},
+    {"hourglass_energy", &GlstatSample::hourglass_energy_J, true},
+    {"contact_energy", &GlstatSample::contact_energy_J, true},
+    {"external_work", &GlstatSample::external_work_J, true},
+    {"total_energy", &GlstatSample::total_energy_J, true},
+    {"energy_balance_error", &GlstatSample::energy_balance_error, false},
+}};
+
+}  // namespace
+
+struct ResultReader::Impl {
+  FileHandle file;
+  std::string h5_path;
+  struct ProbeEntry {
+    std::string name, link;
+  };
+  std::vector<ProbeEntry> probes;  // in link order
+
+  Location root() const { return Location{file.get(), h5_path, "/"}; }
+  std::string probe_path(const std::string& link) const { return "/history/probes/" + link; }
+};
+
+ResultReader::ResultReader(const std::string& h5_path) : path_(h5_path) {
+  auto impl = std::make_unique<Impl>();
+  impl->h5_path = h5_path;
+  impl->file = open_file_read(h5_path);
+  const Location root = impl->root();
+  const auto format = read_string_attribute(root, "format");
+  if (format != std::optional<std::string>("crashlink-result")) {
+    fail(root, "/",
+         fmt::format("not a crashlink result file (root attribute format = '{}', expected "
+                     "'crashlink-result'); give the result.h5 that `crashlink run` wrote",
+                     format.value_or("<absent>")));
+  }
+  if (link_exists(root, "history")) {
+    GroupHandle history = open_group(root, "history");
+    const Location hat{history.get(), h5_path, "/history"};
+    if (link_exists(hat, "probes")) {
+      GroupHandle probes = open_group(hat, "probes");
+      const Location pat{probes.get(), h5_path, "/history/probes"};
+      for (const std::string& link : child_names(pat)) {
+        GroupHandle g = open_group(pat, link);
+        const Location at{g.get(), h5_path, pat.child(link)};
+        impl->probes.push_back(
+            Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
+      }
+    }
+  }
+  impl_ = std::move(impl);
+}
+
+ResultReader::ResultReader(ResultReader&&) noexcept = default;
+ResultReader& ResultReader::operator=(ResultReader&&) noexcept = default;
+ResultReader::~ResultReader() = default;
+
+std::string ResultReader::model_name() const {
+  return read_string_attribute(impl_->root(), "model").value_or("");
+}
+
+std::vector<std::string> ResultReader::probe_names() const {
+  std::vector<std::string> names;
+  for (const auto& p : impl_->probes) names.push_back(p.name);
+  return names;
+}
+
+bool ResultReader::has_probe(const std::string& name) const {
+  return std::any_of(impl_->probes.begin(), impl_->probes.end(),
+                     [&](const Impl::ProbeEntry& p) { return p.name == name || p.link == name; });
+}
+
+ProbeHistory ResultReader::probe(const std::string& name) const {
+  auto it = std::find_if(impl_->probes.begin(), impl_->probes.end(),
+                         [&](const Impl::ProbeEntry& p) { return p.name == name; });
+  if (it == impl_->probes.end()) {
+    it = std::find_if(impl_->probes.begin(), impl_->probes.end(),
+                      [&](const Impl::ProbeEntry& p) { return p.link == name; });
+  }
+  if (it == impl_->probes.end()) {
+    const std::vector<std::string> names = probe_names();
+    throw InputError(fmt::format(
+        "{}: no probe named '{}'; the file has {}{}", path_, name,
+        names.empty() ? std::string("no probes (the scenario named none)")
+                      : fmt::format("{} probe(s): {}", names.size(), fmt::join(names, ", ")),
+        names.empty() ? "" : " (pass one of them to --probe)"));
+  }
+  const std::string object = impl_->probe_path(it->link);
+  GroupHandle g(H5Gopen2(impl_->file.get(), object.c_str(), H5P_DEFAULT));
+  if (!g) fail(impl_->root(), object, "H5Gopen2 (open group)");
+  const Location at{g.get(), impl_->h5_path, object};
+  ProbeHistory h;
+  h.name = it->name;
+  h.link = it->link;
+  h.kind = read_string_attribute(at, "kind").value_or("");
+  std::array<std::size_t, 4> rows{};
+  h.time_s = read_doubles(at, "time", 0, &rows[0]);
+  h.displacement_m = read_doubles(at, "displacement", 3, &rows[1]);
+  h.velocity_m_s = read_doubles(at, "velocity", 3, &rows[2]);
+  h.acceleration_m_s2 = read_doubles(at, "acceleration", 3, &rows[3]);
+  const std::size_t k = *std::min_element(rows.begin(), rows.end());  // common prefix
+  h.time_s.resize(k);
+  h.displacement_m.resize(3 * k);
+  h.velocity_m_s.resize(3 * k);
+  h.acceleration_m_s2.resize(3 * k);
+  return h;
+}
+
+std::vector<GlstatSample> ResultReader::glstat() const {
+  const std::string object = "/history/glstat";
+  GroupHandle g(H5Gopen2(impl_->file.get(), object.c_str(), H5P_DEFAULT));
+  if (!g) fail(impl_->root(), object, "H5Gopen2 (open group; the file has no glstat history)");
+  const Location at{g.get(), impl_->h5_path, object};
+  std::array<std::vector<double>, kGlstat.size()> columns;
+  std::size_t k = static_cast<std::size_t>(-1);
+  for (std::size_t c = 0; c < kGlstat.size(); ++c) {
+    if (!kGlstat[c].required && !link_exists(at, kGlstat[c].name)) continue;
+    std::size_t rows = 0;
+    columns[c] = read_doubles(at, kGlstat[c].name, 0, &rows);
+    k = std::min(k, rows);
+  }
+  std::vector<GlstatSample> out(k);
+  for (std::size_t c = 0; c < kGlstat.size(); ++c) {
+    if (columns[c].empty()) continue;
+    for (std::size_t i = 0; i < k; ++i) out[i].*kGlstat[c].value = columns[c][i];
+  }
+  return out;
+}
+
+}  // namespace crashlink::io
