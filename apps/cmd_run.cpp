@@ -1,0 +1,57 @@
+#include "apps/cmd_run.h"
+
+#include <cstdio>
+
+#include "apps/cmd_hic.h"
+#include "solver/core/errors.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/run/run_single.h"
+
+namespace crashlink::apps {
+
+CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
+  auto* run = app.add_subcommand("run", "run a scenario locally and write DIR/result.h5");
+  run->add_option("scenario", o.scenario, "scenario YAML file")->required()->check(CLI::ExistingFile);
+  run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)");
+  run->add_option("--mode", o.mode, "mono | split | multi")
+      ->check(CLI::IsMember({"mono", "split", "multi"}));
+  run->add_option("--coupling", o.coupling, "layer | paper")->check(CLI::IsMember({"layer", "paper"}));
+  run->add_option("--transport", o.transport, "ipc | tcp | inproc")
+      ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
+  run->add_flag("--quiet", o.quiet, "no progress display");
+  return run;
+}
+
+int run_run(const RunCommandOptions& o) {
+  if (o.mode != "mono")
+    throw InputError(fmt::format(
+        "--mode {}: only 'mono' (one domain) runs in this build; 'split' and 'multi' need the "
+        "coordinator and the solver daemons, which are not built yet",
+        o.mode));
+  const auto model = io::read_scenario(o.scenario);
+  std::printf("crashlink run: %s (%zu nodes, %zu elements, end time %.4g s) -> %s\n",
+              model.name.c_str(), model.nodes.count(), model.element_count(),
+              model.controls.end_time_s, o.out.c_str());
+  std::fflush(stdout);
+  run::RunOptions opt;
+  opt.out_dir = o.out;
+  opt.progress = !o.quiet;
+  const auto summary = run::run_single_domain(model, opt);
+  run::print_summary(stdout, summary);
+  if (summary.failed) {
+    std::fprintf(stderr, "crashlink: error: %s\n", summary.failure.c_str());
+    return 3;
+  }
+  for (const auto& p : model.probes) {
+    if (p.kind != model::Probe::Kind::RigidBody) continue;
+    std::printf("\n");
+    HicOptions h;
+    h.file = summary.result_h5;
+    h.probe = p.name;
+    h.cfc = "1000";
+    run_hic(h);
+  }
+  return 0;
+}
+
+}  // namespace crashlink::apps
