@@ -21,17 +21,22 @@ struct EnergyAccount {
   double hourglass_J = 0.0;
   double contact_J = 0.0;
   double external_work_J = 0.0;  ///< loads, gravity, prescribed motions
+  double coupling_work_J = 0.0;  ///< work done on this domain by the coupling (link forces,
+                                 ///< drift corrections, ghost-node motion); 0 for one domain
   double initial_total_J = 0.0;
   double reference_J = 0.0;      ///< largest |energy| seen: denominator of the balance error
 
   double total_J() const { return kinetic_J + internal_J + hourglass_J + contact_J; }
   /// Energy created (> 0) or lost (< 0) by the numerics, J.
-  double balance_J() const { return total_J() - initial_total_J - external_work_J; }
+  double balance_J() const {
+    return total_J() - initial_total_J - external_work_J - coupling_work_J;
+  }
   /// balance_J / reference_J (0 while nothing has energy yet).
   double balance_error() const { return reference_J > 0.0 ? balance_J() / reference_J : 0.0; }
   void update_reference() {
     reference_J = std::max({reference_J, std::abs(kinetic_J), std::abs(internal_J),
-                            std::abs(initial_total_J + external_work_J), std::abs(external_work_J)});
+                            std::abs(initial_total_J + external_work_J), std::abs(external_work_J),
+                            std::abs(coupling_work_J)});
   }
 };
 

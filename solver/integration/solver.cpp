@@ -141,10 +141,24 @@ void Solver::apply_initial_velocities() {
 void Solver::initialize() {
   const std::size_t n3 = 3 * n_;
   for (auto* vec : {&x_, &u_, &v_, &v_prev_, &a_, &omega_, &omega_prev_, &alpha_, &f_int_, &f_ext_,
-                    &m_int_, &du_, &f_cont_, &f_load_})
+                    &m_int_, &du_, &f_cont_, &f_load_, &f_coup_})
     vec->assign(n3, 0.0);
   x_ = model_.nodes.x0;
   assemble_masses();
+  if (!mass_override_.empty()) {
+    if (mass_override_.size() != n_)
+      throw ModelError(fmt::format("{}: {} mass overrides for {} nodes", domain_,
+                                   mass_override_.size(), n_));
+    for (std::size_t i = 0; i < n_; ++i)
+      if (mass_override_[i] > 0.0) mass_[i] = mass_override_[i];
+  }
+  ghost_.assign(n_, 0);
+  for (auto g : ghost_list_) {
+    if (g < 0 || static_cast<std::size_t>(g) >= n_)
+      throw ModelError(fmt::format("{}: ghost node index {} out of range", domain_, g));
+    ghost_[static_cast<std::size_t>(g)] = 1;
+  }
+  ghost_target_.assign(3 * ghost_list_.size(), 0.0);
   parts_.clear();
   for (const auto& p : model_.parts) {
     PartRuntime r;
@@ -160,7 +174,7 @@ void Solver::initialize() {
   inv_mass_.assign(n_, 0.0);
   inv_inertia_.assign(n_, 0.0);
   for (std::size_t i = 0; i < n_; ++i) {
-    if (rigid_node_[i]) continue;
+    if (rigid_node_[i] || ghost_[i]) continue;
     if (mass_[i] > 0.0) inv_mass_[i] = 1.0 / mass_[i];
     if (inertia_[i] > 0.0) inv_inertia_[i] = 1.0 / inertia_[i];
   }
@@ -241,11 +255,8 @@ void Solver::compute_external_forces(double t) {
 }
 
 void Solver::compute_accelerations() {
-  const double* f_drive = f_ext_.data();
-  if (!contacts_.empty()) {
-    for (std::size_t i = 0; i < f_load_.size(); ++i) f_load_[i] = f_ext_[i] + f_cont_[i];
-    f_drive = f_load_.data();
-  }
+  for (std::size_t i = 0; i < f_load_.size(); ++i) f_load_[i] = f_ext_[i] + f_cont_[i] + f_coup_[i];
+  const double* f_drive = f_load_.data();
   compute_acceleration(a_.data(), f_drive, f_int_.data(), inv_mass_.data(), n_);
   for (std::size_t i = 0; i < 3 * n_; ++i) alpha_[i] = -m_int_[i] * inv_inertia_[i / 3];
   for (auto& b : bodies_)
@@ -294,7 +305,7 @@ double Solver::kinetic_energy() const {
   // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h)
   double ke = 0.0;
   for (std::size_t i = 0; i < n_; ++i) {
-    if (rigid_node_[i]) continue;
+    if (rigid_node_[i] || ghost_[i]) continue;
     const double tr = v_prev_[3 * i] * v_[3 * i] + v_prev_[3 * i + 1] * v_[3 * i + 1] +
                       v_prev_[3 * i + 2] * v_[3 * i + 2];
     const double rot = omega_prev_[3 * i] * omega_[3 * i] + omega_prev_[3 * i + 1] * omega_[3 * i + 1] +
@@ -347,7 +358,8 @@ void Solver::begin_cycle() {
     const std::size_t node = p.index / 3;
     const double m = p.rotational ? inertia_[node] : mass_[node];
     const double f_net =
-        p.rotational ? -m_int_[p.index] : f_ext_[p.index] + f_cont_[p.index] - f_int_[p.index];
+        p.rotational ? -m_int_[p.index]
+                     : f_ext_[p.index] + f_cont_[p.index] + f_coup_[p.index] - f_int_[p.index];
     // M (v^{n+1/2} - v^{n-1/2}) = dt (F + R), with dt the step that pairs the two velocities:
     // dt^{n-1/2}, or the full dt^0 at the first cycle (see above).
     const double dt_pair = cycle_ == 0 ? dt_ : dt_mid;
@@ -366,10 +378,44 @@ void Solver::begin_cycle() {
 }
 
 void Solver::end_cycle() {
+  end_cycle_forces();
+  end_cycle_accelerations();
+}
+
+double Solver::ghost_reaction_work(double weight) const {
+  // Reaction of a massless prescribed node: R = f_int - f_ext - f_cont - f_coup.
+  double w = 0.0;
+  for (auto g : ghost_list_)
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * static_cast<std::size_t>(g) + d;
+      w += (f_int_[k] - f_ext_[k] - f_cont_[k] - f_coup_[k]) * du_[k];
+    }
+  return weight * w;
+}
+
+void Solver::end_cycle_forces() {
   CRASHLINK_ASSERT(begun_);
   const double dt = dt_;
+  if (!ghost_list_.empty()) {
+    if (!ghost_target_set_)
+      throw ModelError(fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
+                                   "given (set_ghost_displacement before end_cycle_forces)",
+                                   domain_, cycle_));
+    for (std::size_t k = 0; k < ghost_list_.size(); ++k)
+      for (std::size_t d = 0; d < 3; ++d) {
+        const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
+        v_[i] = (ghost_target_[3 * k + d] - u_[i]) / dt;  // the motion the coupling prescribes
+      }
+  }
   for (std::size_t i = 0; i < du_.size(); ++i) du_[i] = dt * v_[i];
   update_displacement(u_.data(), v_.data(), dt, u_.size());  // [2]
+  for (std::size_t k = 0; k < ghost_list_.size(); ++k)
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
+      du_[i] = ghost_target_[3 * k + d] - (u_[i] - du_[i]);
+      u_[i] = ghost_target_[3 * k + d];  // exactly, not up to the round-off of u + dt v
+    }
+  ghost_target_set_ = false;
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
   for (auto& b : bodies_) {
@@ -383,22 +429,70 @@ void Solver::end_cycle() {
   }
   for (std::size_t i = 0; i < x_.size(); ++i) x_[i] = model_.nodes.x0[i] + u_[i];
   time_s_ += dt;
-  // External work, trapezoid: 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n)
+  // Every work term by the trapezoid rule 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) (energy.h):
+  // first the F^n halves, then the forces at t^{n+1}, then their halves.
   energy_.external_work_J += 0.5 * dot3n(f_ext_, du_) + rigid_gravity_work;
   // Contact energy = minus the work of the contact forces (penalty spring energy + friction
-  // dissipation), trapezoid rule like every other work term.
+  // dissipation).
   if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
+  energy_.coupling_work_J += 0.5 * dot3n(f_coup_, du_) + ghost_reaction_work(0.5);
+  std::fill(f_coup_.begin(), f_coup_.end(), 0.0);
   compute_forces(dt);
   compute_contact_forces(dt);
   compute_external_forces(time_s_);
   energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
   if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
+  energy_.coupling_work_J += ghost_reaction_work(0.5);
+}
+
+void Solver::end_cycle_accelerations() {
   compute_accelerations();
-  dt_prev_ = dt;
+  dt_prev_ = dt_;
   ++cycle_;
   propose_step();
   dt_min_ = std::min(dt_min_, dt_);
   begun_ = false;
+}
+
+void Solver::set_mass_override(std::vector<double> mass_kg) { mass_override_ = std::move(mass_kg); }
+
+void Solver::set_ghost_nodes(std::vector<std::int32_t> nodes) { ghost_list_ = std::move(nodes); }
+
+void Solver::set_ghost_displacement(const double* u_next) {
+  std::copy(u_next, u_next + ghost_target_.size(), ghost_target_.begin());
+  ghost_target_set_ = true;
+}
+
+Vec3 Solver::net_force(std::size_t i) const {
+  return {f_ext_[3 * i] + f_cont_[3 * i] - f_int_[3 * i],
+          f_ext_[3 * i + 1] + f_cont_[3 * i + 1] - f_int_[3 * i + 1],
+          f_ext_[3 * i + 2] + f_cont_[3 * i + 2] - f_int_[3 * i + 2]};
+}
+
+void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
+  for (std::size_t d = 0; d < 3; ++d) {
+    f_coup_[3 * i + d] += f[d];
+    energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
+  }
+}
+
+void Solver::set_acceleration(std::size_t i, const Vec3& a) {
+  for (std::size_t d = 0; d < 3; ++d) {
+    const double f = mass_[i] * (a[d] - a_[3 * i + d]);  // the link force that makes a
+    f_coup_[3 * i + d] += f;
+    energy_.coupling_work_J += 0.5 * f * du_[3 * i + d];
+    a_[3 * i + d] = a[d];
+  }
+}
+
+void Solver::impose_step(double dt) {
+  if (!(dt > 0.0) || dt > dt_ * (1.0 + 1e-9))
+    throw NumericalError(fmt::format(
+        "{}: cycle {}: the coordinator imposed dt = {:.6e} s, but this domain's stable step is "
+        "{:.6e} s (set by {}); a coupled step may never exceed a domain's own",
+        domain_, cycle_, dt, dt_, critical_element()));
+  dt_ = dt;
+  dt_min_ = std::min(dt_min_, dt_);
 }
 
 Vec3 Solver::node_velocity(std::size_t i) const {
@@ -439,7 +533,7 @@ void Solver::element_output(std::size_t p, const elements::ElementOutput& out) c
 double Solver::total_mass_kg() const {
   double m = 0.0;
   for (std::size_t i = 0; i < n_; ++i)
-    if (!rigid_node_[i]) m += mass_[i];
+    if (!rigid_node_[i] && !ghost_[i]) m += mass_[i];
   for (const auto& b : bodies_) m += b.mass_kg;
   return m;
 }

@@ -47,7 +47,37 @@ class Solver {
   /// t = 0: masses, rigid bodies, initial velocities, f^0, a^0 and the first stable step.
   void initialize();
   void begin_cycle();
+  /// end_cycle() = end_cycle_forces() + end_cycle_accelerations(). A coupled daemon calls the two
+  /// halves itself and exchanges interface forces between them (docs/coupling-hooks.md).
   void end_cycle();
+  /// u^{n+1} = u^n + dt^n v^{n+1/2} (ghost nodes: their prescribed displacement), t^{n+1}, and
+  /// the forces at t^{n+1}: element, contact, external.
+  void end_cycle_forces();
+  /// a^{n+1} = M^{-1}(f_ext + f_cont + f_coupling - f_int) ([1]) and the next step proposal.
+  void end_cycle_accelerations();
+
+  // ---- coupling hooks (solver daemons; single-domain runs use none of them) ----
+  /// Before initialize(): [n] summed interface masses in kg (0 keeps the local lumped mass):
+  /// the link nodes' M = sum_k m^k of DESIGN.md §2.2, or the natural mass of the layer's J nodes.
+  void set_mass_override(std::vector<double> mass_kg);
+  /// Before initialize(): read-only ghost nodes whose motion the coupling prescribes (the `layer`
+  /// scheme's J nodes on the fine side). Their mass and kinetic energy belong to another domain.
+  void set_ghost_nodes(std::vector<std::int32_t> nodes);
+  const std::vector<std::int32_t>& ghost_nodes() const { return ghost_list_; }
+  /// Before end_cycle_forces(): ghost displacements at t^{n+1}, [3 * ghost count] [m].
+  void set_ghost_displacement(const double* u_next);
+  /// Between the two halves: f_ext + f_cont - f_int of node i at t^{n+1} (its own domain's
+  /// contribution, what the coupling exchanges) [N].
+  Vec3 net_force(std::size_t i) const;
+  /// Between the two halves: adds a coupling force on node i at t^{n+1} [N] (its work is
+  /// counted as coupling work).
+  void add_coupling_force(std::size_t i, const Vec3& f);
+  /// After end_cycle_accelerations(): replaces a^{n+1} of node i (the `paper` scheme's corrected
+  /// acceleration [8]-[11]); the implied force M (a - a_free) is counted as coupling work.
+  void set_acceleration(std::size_t i, const Vec3& a);
+  /// After end_cycle(): imposes dt^{n+1} (the coordinator's choice). It may not exceed this
+  /// domain's own proposal (NumericalError otherwise).
+  void impose_step(double dt);
   /// True when t^n has reached the end time (checked after begin_cycle()).
   bool finished() const { return time_s_ >= model_.controls.end_time_s * (1.0 - 1e-12); }
 
@@ -58,6 +88,8 @@ class Solver {
   /// Smallest element step (before the safety factor) and where it is.
   double dt_stable_s() const { return dt_stable_; }
   std::string critical_element() const;
+  /// Energies at t^n: consistent after begin_cycle() (between end_cycle() and the next
+  /// begin_cycle() the work terms are already at t^{n+1} while the kinetic energy is not).
   const EnergyAccount& energy() const { return energy_; }
   const model::Model& model() const { return model_; }
   const std::string& domain_name() const { return domain_; }
@@ -89,6 +121,7 @@ class Solver {
   void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
   double kinetic_energy() const;
+  double ghost_reaction_work(double weight) const;  // weight * sum_g R_g . du_g
   void propose_step();
   GuardContext guard_context() const;
 
@@ -103,7 +136,13 @@ class Solver {
   std::vector<double> omega_, omega_prev_, alpha_;  // [3n] rotational dofs
   std::vector<double> f_int_, f_ext_, m_int_;    // [3n]
   std::vector<double> f_cont_;                   // [3n] contact forces (push on the node)
-  std::vector<double> f_load_;                   // [3n] f_ext + f_cont: what drives the nodes
+  std::vector<double> f_load_;                   // [3n] f_ext + f_cont + f_coup: what drives
+  std::vector<double> f_coup_;                   // [3n] coupling forces at t^n
+  std::vector<double> mass_override_;            // [n] or empty
+  std::vector<std::uint8_t> ghost_;              // [n] 1: ghost node
+  std::vector<std::int32_t> ghost_list_;
+  std::vector<double> ghost_target_;             // [3 * ghosts] u^{n+1} of the ghosts
+  bool ghost_target_set_ = false;
   std::vector<double> du_;                       // [3n] u^n - u^{n-1}
   std::vector<std::uint8_t> rigid_node_;         // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
