@@ -6,6 +6,8 @@
 
 #include "solver/core/errors.h"
 #include "solver/elements/hex8_geometry.h"
+#include "solver/elements/hex8_modes.h"
+#include "solver/elements/hex8_simd.h"
 #include "solver/materials/solid_update.h"
 
 // Stable step bound (see hex8.h). For nodal displacements u (24-vector) of one element the
@@ -19,32 +21,20 @@
 // lmax(K1) + lmax(K_hg). With the lumped mass M = rho V0 / 8 I, omega_max^2 = lmax(K) 8/(rho V0).
 // This replaces FB eq. 31, omega^2 <= 8 (lambda + 2 mu) B_iI B_iI / rho, which is safe but for a
 // cube with nu = 0.3 gives a step 0.45 times the true one (2.2x more cycles).
+//
+// Evaluation: W elements at a time, one per SIMD lane (W = 4 for AVX2), every quantity a lane
+// vector; the per-node sums are done in the mode form of hex8_modes.h (M1-M8), so the only
+// per-node work is the transform of x and v after the gather and the synthesis of f before the
+// scatter-add.
 
 namespace crashlink::elements {
 
 namespace {
 
-constexpr int W = 8;  // lanes per batch: two AVX2 vectors of doubles
-
-/// Local scratch of one batch, [component][node][lane] (see hex8_geometry.h).
-struct Batch {
-  double x[3][8][W], v[3][8][W], xm[3][8][W];
-  double bm[3][8][W], b[3][8][W];  // dV/dx at x^{n+1/2} and at x^{n+1}
-  double gxm[4][3][W], gx[4][3][W];
-  double gamma[4][8][W];
-  double f[3][8][W];
-  double volm[W], vol[W], vol0[W];
-  double L[3][3][W];                         // velocity gradient at x^{n+1/2}
-  double R[3][3][W];                         // incremental rotation
-  double sig_rot[6][W], sig[6][W], d[6][W];  // R sigma^n R^T, sigma^{n+1}, D
-  double q_hg[4][3][W], qdot[4][3][W];       // generalised hourglass forces / rates
-  double eps_p[W], dt_e[W], e_int[W], e_hg[W];
-  double k1[W], k_hg[W], xi[W];
-  double sumb2[W], lm2[W], len[W],
-      lg2[W];  // b.b, lmax(b b^T)^2 then lmax, L, lmax(G)^2  // lmax(K1) bound, hourglass stiffness
-               // [N/m], damping ratio
-  std::int64_t e[W];
-};
+namespace stdx = std::experimental;
+using hex8::madd;
+using hex8::vd;  // one element per lane
+constexpr int W = hex8::kLanes;
 
 [[noreturn]] void throw_bad_volume(const model::Part& part, std::size_t e, double vol,
                                    const char* where) {
@@ -55,14 +45,71 @@ struct Batch {
 }
 
 /// Square of a bound on the largest eigenvalue of a symmetric positive semi-definite 3x3 matrix:
-/// min(Gershgorin, Frobenius)^2 (square roots are taken outside the vectorised loops).
-inline double lmax_sym3_squared(double m00, double m11, double m22, double m01, double m12,
-                                double m02) {
-  const double g = std::max({std::abs(m00) + std::abs(m01) + std::abs(m02),
-                             std::abs(m11) + std::abs(m01) + std::abs(m12),
-                             std::abs(m22) + std::abs(m02) + std::abs(m12)});
-  const double fr2 = m00 * m00 + m11 * m11 + m22 * m22 + 2.0 * (m01 * m01 + m12 * m12 + m02 * m02);
-  return std::min(g * g, fr2);
+/// min(Gershgorin, Frobenius)^2 (the square root is taken by the caller).
+inline vd lmax_sym3_squared(const vd& m00, const vd& m11, const vd& m22, const vd& m01,
+                            const vd& m12, const vd& m02) {
+  const vd a01 = abs(m01), a12 = abs(m12), a02 = abs(m02);
+  const vd g = max(max(abs(m00) + a01 + a02, abs(m11) + a01 + a12), abs(m22) + a02 + a12);
+  const vd off = madd(m01, m01, madd(m12, m12, m02 * m02));
+  const vd fr2 = madd(m00, m00, madd(m11, m11, madd(m22, m22, vd(2.0) * off)));
+  return min(g * g, fr2);
+}
+
+/// Software prefetch (the kernel streams 19 history arrays, the connectivity and three nodal
+/// arrays, more streams than the hardware prefetchers follow): the history and connectivity
+/// kPrefetchHistory elements ahead (one cache line of each array per 8 elements), the nodes of
+/// one element kPrefetchNodes elements ahead. A macro, not a function: GCC finds a function
+/// made of prefetches free of side effects and deletes its calls.
+constexpr std::size_t kPrefetchHistory = 128, kPrefetchNodes = 16;
+#if defined(__GNUC__)
+#define CRASHLINK_HEX8_PREFETCH(p, write) __builtin_prefetch((p), (write))
+#else
+#define CRASHLINK_HEX8_PREFETCH(p, write) static_cast<void>(p)
+#endif
+
+/// J2 return of the trial stresses sn of the lanes (Simo & Hughes 1998, Box 3.1): a trial von
+/// Mises stress below the lowest yield stress of the curve is elastic without a look-up; lanes
+/// whose return ends on the segment where it starts take the closed form d_ep = (q_tr -
+/// sigma_y) / (3 mu + H) lane-wise (solid_update.h, j2_segment), the others the scalar segment
+/// walk (j2_radial_return). y_low = j2_yield_lower_bound(h); ep: effective plastic strain, in:
+/// t^n, out: t^{n+1}; nl: real lanes.
+void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int nl, vd (&sn)[6],
+               vd& ep) {
+  const vd p = (sn[0] + sn[1] + sn[2]) * vd(1.0 / 3.0);
+  vd s[6] = {sn[0] - p, sn[1] - p, sn[2] - p, sn[3], sn[4], sn[5]};
+  const vd ss = madd(s[0], s[0], madd(s[1], s[1], s[2] * s[2])) +
+                vd(2.0) * madd(s[3], s[3], madd(s[4], s[4], s[5] * s[5]));
+  const vd q_tr = sqrt(vd(1.5) * ss);
+  if (none_of(q_tr > vd(y_low))) return;
+  alignas(64) double y[W], H[W], end[W];
+  for (int l = 0; l < W; ++l) {
+    const auto seg = materials::j2_segment(h, ep[l]);
+    y[l] = seg.yield_Pa;
+    H[l] = seg.slope_Pa;
+    end[l] = seg.end;
+  }
+  const vd yv(y, stdx::vector_aligned), Hv(H, stdx::vector_aligned);
+  const vd endv(end, stdx::vector_aligned);
+  const auto plastic = q_tr > yv;  // (false for q_tr = NaN: no return, as j2_radial_return)
+  if (none_of(plastic)) return;
+  const vd three_mu(3.0 * mu);
+  const vd d = (q_tr - yv) / (three_mu + Hv);
+  const auto closed = plastic && (three_mu + Hv > vd(0.0)) && (ep + d <= endv);
+  const vd scale = vd(1.0) - three_mu * d / q_tr;  // Simo-Hughes Box 3.1 step 4
+  for (int k = 0; k < 6; ++k) {
+    vd r = k < 3 ? madd(scale, s[k], p) : scale * s[k];
+    where(closed, sn[k]) = r;
+  }
+  where(closed, ep) = ep + d;
+  const auto walk = plastic && !closed;
+  if (none_of(walk)) return;
+  for (int l = 0; l < nl; ++l) {
+    if (!walk[l]) continue;
+    materials::Voigt6 sl{sn[0][l], sn[1][l], sn[2][l], sn[3][l], sn[4][l], sn[5][l]};
+    const auto r = materials::j2_radial_return(h, mu, ep[l], sl);
+    for (int k = 0; k < 6; ++k) sn[k][l] = sl[k];
+    ep[l] += r.delta_eps_p;
+  }
 }
 
 }  // namespace
@@ -107,245 +154,362 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
   const double rho = mat.density_kg_m3;
   const double mu = mat.shear_modulus_Pa();
   const double lambda = mat.lame_lambda_Pa();
-  const double lambda_pos = std::max(lambda, 0.0);
   const double m_mod = lambda + 2.0 * mu;  // P-wave modulus [Pa]
   const double c = std::sqrt(m_mod / rho);
   const double kappa = part.hourglass_coefficient;
   const double dt = step.dt_s;
-  const double bulk = step.bulk_viscosity ? 1.0 : 0.0;
-  const double q1 = step.q_linear, q2 = step.q_quadratic;
   const bool j2 = mat.kind == materials::MaterialKind::J2Plastic;
+  const bool update = dt > 0.0;  // at the initial call nothing is updated (hex8.h)
   const bool record_reference = !st.reference_recorded;
-  const std::int32_t* conn = part.connectivity.data();
+  const std::int32_t* const conn = part.connectivity.data();
   double* const s_all = st.stress.data();
   double* const q_all = st.hourglass_force.data();
+  double* const ep_all = st.eps_p.data();
+  double* const v0_all = st.volume0.data();
+  const double y_low = j2 ? materials::j2_yield_lower_bound(mat.hardening) : 0.0;
 
-  Batch bt;
-  double e_int = 0.0, e_hg = 0.0;
+  // lane-uniform constants
+  const vd dt_v(dt), zero(0.0), one(1.0), half(0.5), eighth(0.125);
+  const vd lambda_v(lambda), two_mu(2.0 * mu), lambda_pos(std::max(lambda, 0.0));
+  const vd rho_v(rho), c_v(c), inv_c(1.0 / c), bulk_v(step.bulk_viscosity ? 1.0 : 0.0);
+  const vd q1_v(step.q_linear), q2_v(step.q_quadratic);
+  const vd k_hg_coef(kappa * m_mod / 8.0);  // k = kappa (lambda + 2 mu) b.b / (8 V)
+  const vd lane([](auto l) { return static_cast<double>(l); });
+
+  vd e_int_sum = zero, e_hg_sum = zero;
+  std::size_t eid[W];              // element of lane l (padding lanes repeat the last element)
+  std::size_t node[8][W];          // 3 * node index of node I of lane l
+  alignas(64) double fl[3][8][W];  // forces for the scatter-add [N]
+  alignas(64) double dt_e[W];      // stable step per lane [s]
   for (std::size_t e0 = 0; e0 < ne; e0 += W) {
     const int nl = static_cast<int>(std::min<std::size_t>(W, ne - e0));
-    // ---- gather (padding lanes repeat the last element and are never written back)
-    for (int l = 0; l < W; ++l) {
-      const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, nl - 1));
-      bt.e[l] = static_cast<std::int64_t>(e);
-      const std::int32_t* nodes = conn + 8 * e;
+    const bool full = nl == W;
+    const auto padding = lane >= vd(static_cast<double>(nl));
+    if (e0 % 8 < static_cast<std::size_t>(W) && e0 + kPrefetchHistory < ne) {
+      const std::size_t e = e0 + kPrefetchHistory;
+      for (std::size_t k = 0; k < 6; ++k) CRASHLINK_HEX8_PREFETCH(s_all + k * ne + e, 1);
+      for (std::size_t k = 0; k < 12; ++k) CRASHLINK_HEX8_PREFETCH(q_all + k * ne + e, 1);
+      CRASHLINK_HEX8_PREFETCH(v0_all + e, 0);
+      for (std::size_t k = 0; k < 4; ++k) CRASHLINK_HEX8_PREFETCH(conn + 8 * e + 16 * k, 0);
+    }
+    if (e0 + kPrefetchNodes < ne) {
+      const std::int32_t* nodes = conn + 8 * (e0 + kPrefetchNodes);
       for (int I = 0; I < 8; ++I) {
-        const double* xp = nv.x + 3 * static_cast<std::size_t>(nodes[I]);
-        const double* vp = nv.v + 3 * static_cast<std::size_t>(nodes[I]);
-        for (int i = 0; i < 3; ++i) {
-          bt.x[i][I][l] = xp[i];
-          bt.v[i][I][l] = vp[i];
-        }
+        const std::size_t n3 = 3 * static_cast<std::size_t>(nodes[I]);
+        CRASHLINK_HEX8_PREFETCH(nv.x + n3, 0);
+        CRASHLINK_HEX8_PREFETCH(nv.v + n3, 0);
+        CRASHLINK_HEX8_PREFETCH(nv.f + n3, 1);
       }
-      for (int k = 0; k < 6; ++k) bt.sig_rot[k][l] = s_all[static_cast<std::size_t>(k) * ne + e];
-      for (int k = 0; k < 12; ++k)
-        bt.q_hg[k / 3][k % 3][l] = q_all[static_cast<std::size_t>(k) * ne + e];
-      bt.eps_p[l] = st.eps_p[e];
-      bt.vol0[l] = st.volume0[e];
     }
-    // ---- geometry at x^{n+1/2} (for D) and x^{n+1} (for the forces)
-    for (int i = 0; i < 3; ++i)
-      for (int I = 0; I < 8; ++I)
-        for (int l = 0; l < W; ++l) bt.xm[i][I][l] = bt.x[i][I][l] - 0.5 * dt * bt.v[i][I][l];
-    hex8::volume_gradient<W>(bt.xm, bt.bm, bt.gxm, bt.volm);
-    hex8::volume_gradient<W>(bt.x, bt.b, bt.gx, bt.vol);
-    for (int l = 0; l < nl; ++l) {
-      const auto e = static_cast<std::size_t>(bt.e[l]);
-      if (!(bt.vol[l] > 0.0)) throw_bad_volume(part, e, bt.vol[l], "t^{n+1}");
-      if (!(bt.volm[l] > 0.0)) throw_bad_volume(part, e, bt.volm[l], "t^{n+1/2}");
-    }
-    if (record_reference) {
-      for (int l = 0; l < nl; ++l) st.volume0[static_cast<std::size_t>(bt.e[l])] = bt.vol[l];
-      for (int l = 0; l < W; ++l) bt.vol0[l] = bt.vol[l];
-    }
-    // ---- velocity gradient L_ij = v_iI B_jI at x^{n+1/2} (FB eq. 13)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        for (int l = 0; l < W; ++l) bt.L[i][j][l] = 0.0;
-        for (int I = 0; I < 8; ++I)
-          for (int l = 0; l < W; ++l) bt.L[i][j][l] += bt.v[i][I][l] * bt.bm[j][I][l];
-        for (int l = 0; l < W; ++l) bt.L[i][j][l] /= bt.volm[l];
-      }
-    // ---- D, Hughes-Winget rotation, rotated history, trial (elastic) stress
     for (int l = 0; l < W; ++l) {
-      materials::Voigt6 d{bt.L[0][0][l],
-                          bt.L[1][1][l],
-                          bt.L[2][2][l],
-                          0.5 * (bt.L[0][1][l] + bt.L[1][0][l]),
-                          0.5 * (bt.L[1][2][l] + bt.L[2][1][l]),
-                          0.5 * (bt.L[2][0][l] + bt.L[0][2][l])};
-      // a = dt/2 axial(W), W = skew L; R = I + 2/(1+a.a) (A + A^2) = (I - A)^{-1}(I + A)
-      const double a0 = 0.25 * dt * (bt.L[2][1][l] - bt.L[1][2][l]);
-      const double a1 = 0.25 * dt * (bt.L[0][2][l] - bt.L[2][0][l]);
-      const double a2 = 0.25 * dt * (bt.L[1][0][l] - bt.L[0][1][l]);
-      const double aa = a0 * a0 + a1 * a1 + a2 * a2;
-      const double s = 2.0 / (1.0 + aa);
-      const double R[3][3] = {{1.0 + s * (a0 * a0 - aa), s * (a0 * a1 - a2), s * (a0 * a2 + a1)},
-                              {s * (a1 * a0 + a2), 1.0 + s * (a1 * a1 - aa), s * (a1 * a2 - a0)},
-                              {s * (a2 * a0 - a1), s * (a2 * a1 + a0), 1.0 + s * (a2 * a2 - aa)}};
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) bt.R[i][j][l] = R[i][j];
-      const double S[3][3] = {{bt.sig_rot[0][l], bt.sig_rot[3][l], bt.sig_rot[5][l]},
-                              {bt.sig_rot[3][l], bt.sig_rot[1][l], bt.sig_rot[4][l]},
-                              {bt.sig_rot[5][l], bt.sig_rot[4][l], bt.sig_rot[2][l]}};
-      double T[3][3];  // R S
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          T[i][j] = R[i][0] * S[0][j] + R[i][1] * S[1][j] + R[i][2] * S[2][j];
-      auto rsr = [&](int i, int j) {
-        return T[i][0] * R[j][0] + T[i][1] * R[j][1] + T[i][2] * R[j][2];
-      };
-      materials::Voigt6 sr{rsr(0, 0), rsr(1, 1), rsr(2, 2), rsr(0, 1), rsr(1, 2), rsr(2, 0)};
-      materials::Voigt6 sn = sr;
-      materials::hypoelastic_increment(lambda, mu, d, dt, sn);
+      eid[l] = e0 + static_cast<std::size_t>(std::min(l, nl - 1));
+      const std::int32_t* nodes = conn + 8 * eid[l];
+      CRASHLINK_HEX8_UNROLL
+      for (int I = 0; I < 8; ++I) node[I][l] = 3 * static_cast<std::size_t>(nodes[I]);
+    }
+    // one history array (SoA): a vector load, or a gather for the tail batch
+    auto load = [&](const double* p) {
+      return full ? vd(p + e0, stdx::element_aligned) : vd([&](auto l) { return p[eid[l]]; });
+    };
+    auto store = [&](const vd& x, double* p) {
+      if (full)
+        x.copy_to(p + e0, stdx::element_aligned);
+      else
+        for (int l = 0; l < nl; ++l) p[eid[l]] = x[l];
+    };
+
+    // ---- gather x^{n+1} and v^{n+1/2}; their modes X_k, V_k (M1)
+    vd X[7][3], Vw[7][3];
+    CRASHLINK_HEX8_UNROLL
+    for (int i = 0; i < 3; ++i) {
+      vd xn[8], vn[8], m[7];
+      CRASHLINK_HEX8_UNROLL
+      for (int I = 0; I < 8; ++I) {
+        xn[I] = vd([&](auto l) { return nv.x[node[I][l] + i]; });
+        vn[I] = vd([&](auto l) { return nv.v[node[I][l] + i]; });
+      }
+      hex8::analyse(xn, m);
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 7; ++k) X[k][i] = m[k];
+      hex8::analyse(vn, m);
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 7; ++k) Vw[k][i] = m[k];
+    }
+    // ---- volume gradients at x^{n+1/2} = x - dt/2 v (for D) and at x^{n+1} (for the forces)
+    vd gm[6][3], g[6][3];
+    vd Vm;
+    {
+      const vd mhdt(-0.5 * dt);
+      vd Xm[6][3];
+      CRASHLINK_HEX8_UNROLL
       for (int k = 0; k < 6; ++k) {
-        bt.sig_rot[k][l] = sr[k];
-        bt.sig[k][l] = sn[k];
-        bt.d[k][l] = d[k];
+        CRASHLINK_HEX8_UNROLL
+        for (int i = 0; i < 3; ++i) Xm[k][i] = madd(mhdt, Vw[k][i], X[k][i]);
       }
+      Vm = hex8::mode_volume_gradient(Xm, gm);
     }
-    // ---- J2 return (scalar: branches, segment walk); no update at the initial call
-    if (j2 && dt > 0.0) {
+    const vd V = hex8::mode_volume_gradient(X, g);
+    if (any_of(!(V > zero)) || any_of(!(Vm > zero)))
       for (int l = 0; l < nl; ++l) {
-        materials::Voigt6 s{bt.sig[0][l], bt.sig[1][l], bt.sig[2][l],
-                            bt.sig[3][l], bt.sig[4][l], bt.sig[5][l]};
-        const auto r = materials::j2_radial_return(mat.hardening, mu, bt.eps_p[l], s);
-        if (r.delta_eps_p > 0.0) {
-          for (int k = 0; k < 6; ++k) bt.sig[k][l] = s[k];
-          bt.eps_p[l] += r.delta_eps_p;
+        if (!(V[l] > 0.0)) throw_bad_volume(part, eid[l], V[l], "t^{n+1}");
+        if (!(Vm[l] > 0.0)) throw_bad_volume(part, eid[l], Vm[l], "t^{n+1/2}");
+      }
+    vd V0;
+    if (record_reference) {
+      V0 = V;
+      store(V, v0_all);
+    } else {
+      V0 = load(v0_all);
+    }
+    const vd inv_v = one / V;
+
+    // ---- velocity gradient at x^{n+1/2} (M3), D = sym L
+    vd L[3][3];
+    {
+      const vd s = eighth / Vm;
+      CRASHLINK_HEX8_UNROLL
+      for (int i = 0; i < 3; ++i) {
+        CRASHLINK_HEX8_UNROLL
+        for (int j = 0; j < 3; ++j) {
+          vd sum = Vw[0][i] * gm[0][j];
+          CRASHLINK_HEX8_UNROLL
+          for (int k = 1; k < 6; ++k) sum = madd(Vw[k][i], gm[k][j], sum);
+          L[i][j] = sum * s;
         }
       }
     }
-    // ---- sum b.b and lmax(B B^T)^2 bound (no square roots here: with math-errno a sqrt is a
-    // branch and would stop the vectoriser; the few square roots are taken per lane below)
-    for (int l = 0; l < W; ++l) {
-      double m[6] = {0, 0, 0, 0, 0, 0};  // sum_I b_iI b_jI: 00 11 22 01 12 02
-      for (int I = 0; I < 8; ++I) {
-        const double bx = bt.b[0][I][l], by = bt.b[1][I][l], bz = bt.b[2][I][l];
-        m[0] += bx * bx;
-        m[1] += by * by;
-        m[2] += bz * bz;
-        m[3] += bx * by;
-        m[4] += by * bz;
-        m[5] += bx * bz;
-      }
-      bt.sumb2[l] = m[0] + m[1] + m[2];
-      bt.lm2[l] = lmax_sym3_squared(m[0], m[1], m[2], m[3], m[4], m[5]);
+    const vd d[6] = {L[0][0],
+                     L[1][1],
+                     L[2][2],
+                     half * (L[0][1] + L[1][0]),
+                     half * (L[1][2] + L[2][1]),
+                     half * (L[2][0] + L[0][2])};
+    // ---- Hughes-Winget rotation: r = dt/2 axial(W), W = skew L;
+    // R = I + 2/(1+r.r) (A + A^2) = (I - A)^{-1}(I + A), A the skew matrix of r
+    vd R[3][3];
+    {
+      const vd qdt(0.25 * dt);
+      const vd r0 = qdt * (L[2][1] - L[1][2]), r1 = qdt * (L[0][2] - L[2][0]),
+               r2 = qdt * (L[1][0] - L[0][1]);
+      const vd rr = madd(r0, r0, madd(r1, r1, r2 * r2));
+      const vd s = vd(2.0) / (one + rr);
+      R[0][0] = madd(s, r0 * r0 - rr, one);
+      R[1][1] = madd(s, r1 * r1 - rr, one);
+      R[2][2] = madd(s, r2 * r2 - rr, one);
+      R[0][1] = s * (r0 * r1 - r2);
+      R[1][0] = s * (r1 * r0 + r2);
+      R[0][2] = s * (r0 * r2 + r1);
+      R[2][0] = s * (r2 * r0 - r1);
+      R[1][2] = s * (r1 * r2 - r0);
+      R[2][1] = s * (r2 * r1 + r0);
     }
-    for (int l = 0; l < W; ++l) {
-      bt.len[l] = bt.vol[l] * std::sqrt(1.5 / bt.sumb2[l]);  // L = sqrt(3 / (2 B_iI B_iI))
-      bt.lm2[l] = std::sqrt(bt.lm2[l]);                      // lmax(b b^T) [m^4]
-    }
-    // ---- stress work, bulk viscosity, stress part of the force f_iI = b_iI (sigma_ij - q d_ij)
-    for (int l = 0; l < W; ++l) {
-      double sd = 0.0;  // 1/2 (sigma_rot + sigma^{n+1}) : D
-      for (int k = 0; k < 3; ++k) sd += 0.5 * (bt.sig_rot[k][l] + bt.sig[k][l]) * bt.d[k][l];
-      for (int k = 3; k < 6; ++k) sd += (bt.sig_rot[k][l] + bt.sig[k][l]) * bt.d[k][l];
-      const double trd = bt.d[0][l] + bt.d[1][l] + bt.d[2][l];
-      const double em = std::min(trd, 0.0);
-      const double V = bt.vol[l], len = bt.len[l], sumb2 = bt.sumb2[l];
-      const double rho_cur = rho * bt.vol0[l] / V;
-      const double q = bulk * rho_cur * len * (q2 * len * em * em - q1 * c * em);
-      bt.e_int[l] = (sd - q * em) * bt.volm[l] * dt;
-      const double sxx = bt.sig[0][l] - q, syy = bt.sig[1][l] - q, szz = bt.sig[2][l] - q;
-      const double sxy = bt.sig[3][l], syz = bt.sig[4][l], szx = bt.sig[5][l];
-      for (int I = 0; I < 8; ++I) {
-        const double bx = bt.b[0][I][l], by = bt.b[1][I][l], bz = bt.b[2][I][l];
-        bt.f[0][I][l] = sxx * bx + sxy * by + szx * bz;
-        bt.f[1][I][l] = sxy * bx + syy * by + syz * bz;
-        bt.f[2][I][l] = szx * bx + syz * by + szz * bz;
-      }
-      const double inv_v = 1.0 / V;
-      // lmax(K1) bound [N/m]; the hourglass part is added below
-      bt.k1[l] = inv_v * (lambda_pos * sumb2 + 2.0 * mu * bt.lm2[l]);
-      // damping ratio of the bulk viscosity (0 in expansion)
-      const double on = em < 0.0 ? bulk : 0.0;
-      bt.xi[l] = on * (q1 - q2 * len * em / c);
-      // hourglass stiffness k = kappa (lambda + 2 mu) b_iI b_iI / (8 V) [N/m]
-      bt.k_hg[l] = kappa * m_mod * sumb2 * inv_v / 8.0;
-    }
-    // ---- hourglass control (FB eq. 22-30, stiffness form)
-    hex8::hourglass_vectors<W>(bt.b, bt.gx, bt.vol, bt.gamma);
-    for (int al = 0; al < 4; ++al)
+    // ---- rotated history sigma_r = R sigma^n R^T and trial stress (BLM eq. 5.4.1, Box 5.1)
+    vd sr[6], sn[6];
+    {
+      vd s6[6];
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k) s6[k] = load(s_all + static_cast<std::size_t>(k) * ne);
+      const vd S[3][3] = {{s6[0], s6[3], s6[5]}, {s6[3], s6[1], s6[4]}, {s6[5], s6[4], s6[2]}};
+      vd T[3][3];  // R S
+      CRASHLINK_HEX8_UNROLL
       for (int i = 0; i < 3; ++i) {
-        for (int l = 0; l < W; ++l) bt.qdot[al][i][l] = 0.0;
-        for (int I = 0; I < 8; ++I)
-          for (int l = 0; l < W; ++l) bt.qdot[al][i][l] += bt.v[i][I][l] * bt.gamma[al][I][l];
+        CRASHLINK_HEX8_UNROLL
+        for (int j = 0; j < 3; ++j)
+          T[i][j] = madd(R[i][0], S[0][j], madd(R[i][1], S[1][j], R[i][2] * S[2][j]));
       }
-    for (int l = 0; l < W; ++l) bt.e_hg[l] = 0.0;
-    for (int al = 0; al < 4; ++al)
-      for (int l = 0; l < W; ++l) {
-        const double k = bt.k_hg[l];
-        const double q0 = bt.q_hg[al][0][l], qa1 = bt.q_hg[al][1][l], qa2 = bt.q_hg[al][2][l];
-        const double qd0 = bt.qdot[al][0][l], qd1 = bt.qdot[al][1][l], qd2 = bt.qdot[al][2][l];
-        const double qr0 = bt.R[0][0][l] * q0 + bt.R[0][1][l] * qa1 + bt.R[0][2][l] * qa2;
-        const double qr1 = bt.R[1][0][l] * q0 + bt.R[1][1][l] * qa1 + bt.R[1][2][l] * qa2;
-        const double qr2 = bt.R[2][0][l] * q0 + bt.R[2][1][l] * qa1 + bt.R[2][2][l] * qa2;
-        const double qn0 = qr0 + k * dt * qd0, qn1 = qr1 + k * dt * qd1, qn2 = qr2 + k * dt * qd2;
-        bt.e_hg[l] += 0.5 * dt * ((qr0 + qn0) * qd0 + (qr1 + qn1) * qd1 + (qr2 + qn2) * qd2);
-        bt.q_hg[al][0][l] = qn0;
-        bt.q_hg[al][1][l] = qn1;
-        bt.q_hg[al][2][l] = qn2;
-      }
-    for (int i = 0; i < 3; ++i)
-      for (int I = 0; I < 8; ++I)
-        for (int l = 0; l < W; ++l)
-          bt.f[i][I][l] +=
-              bt.q_hg[0][i][l] * bt.gamma[0][I][l] + bt.q_hg[1][i][l] * bt.gamma[1][I][l] +
-              bt.q_hg[2][i][l] * bt.gamma[2][I][l] + bt.q_hg[3][i][l] * bt.gamma[3][I][l];
-    // ---- Gram matrix of gamma, lmax bound squared (Gershgorin^2, Frobenius^2)
-    double g[4][4][W];
-    for (int a = 0; a < 4; ++a)
-      for (int bb = a; bb < 4; ++bb) {
-        for (int l = 0; l < W; ++l) g[a][bb][l] = 0.0;
-        for (int I = 0; I < 8; ++I)
-          for (int l = 0; l < W; ++l) g[a][bb][l] += bt.gamma[a][I][l] * bt.gamma[bb][I][l];
-        for (int l = 0; l < W; ++l) g[bb][a][l] = g[a][bb][l];
-      }
-    for (int l = 0; l < W; ++l) {
-      double gersh = 0.0, fro = 0.0;
-      for (int a = 0; a < 4; ++a) {
-        const double row = std::abs(g[a][0][l]) + std::abs(g[a][1][l]) + std::abs(g[a][2][l]) +
-                           std::abs(g[a][3][l]);
-        fro += g[a][0][l] * g[a][0][l] + g[a][1][l] * g[a][1][l] + g[a][2][l] * g[a][2][l] +
-               g[a][3][l] * g[a][3][l];
-        gersh = std::max(gersh, row);
-      }
-      bt.lg2[l] = std::min(gersh * gersh, fro);
+      auto rsr = [&](int i, int j) {
+        return madd(T[i][0], R[j][0], madd(T[i][1], R[j][1], T[i][2] * R[j][2]));
+      };
+      sr[0] = rsr(0, 0);
+      sr[1] = rsr(1, 1);
+      sr[2] = rsr(2, 2);
+      sr[3] = rsr(0, 1);
+      sr[4] = rsr(1, 2);
+      sr[5] = rsr(2, 0);
+      const vd ltr = lambda_v * (d[0] + d[1] + d[2]);
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 3; ++k) sn[k] = madd(dt_v, madd(two_mu, d[k], ltr), sr[k]);
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 3; k < 6; ++k) sn[k] = madd(dt_v, two_mu * d[k], sr[k]);
     }
-    for (int l = 0; l < W; ++l) {  // square roots per lane (see above)
-      const double lg = std::sqrt(bt.lg2[l]);
-      const double omega = std::sqrt(8.0 * (bt.k1[l] + bt.k_hg[l] * lg) / (rho * bt.vol0[l]));
-      const double xi = bt.xi[l];
-      bt.dt_e[l] = 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
+    // ---- J2 return (Simo-Hughes Box 3.1): not at the initial call
+    vd ep;
+    if (j2 && update) {
+      ep = load(ep_all);
+      j2_return(mat.hardening, y_low, mu, nl, sn, ep);
     }
-    // ---- write back the history and scatter-add the forces (real lanes only)
+
+    // ---- b b^T (M4), its trace b.b and the lmax bound; length for the bulk viscosity
+    vd M[6];  // 00 11 22 01 12 02
+    {
+      constexpr int mi[6] = {0, 1, 2, 0, 1, 0}, mj[6] = {0, 1, 2, 1, 2, 2};
+      CRASHLINK_HEX8_UNROLL
+      for (int r = 0; r < 6; ++r) {
+        vd s = g[0][mi[r]] * g[0][mj[r]];
+        CRASHLINK_HEX8_UNROLL
+        for (int k = 1; k < 6; ++k) s = madd(g[k][mi[r]], g[k][mj[r]], s);
+        M[r] = eighth * s;
+      }
+    }
+    const vd sumb2 = M[0] + M[1] + M[2];
+    const vd lm = sqrt(lmax_sym3_squared(M[0], M[1], M[2], M[3], M[4], M[5]));  // [m^4]
+    const vd len = V * sqrt(vd(1.5) / sumb2);  // L = sqrt(3 / (2 B_iI B_iI))
+
+    // ---- stress work and bulk viscosity (hex8.h)
+    const vd em = min(d[0] + d[1] + d[2], zero);  // eps_v_dot in compression, else 0
+    vd q;
+    {
+      vd sd = zero;  // 1/2 (sigma_r + sigma^{n+1}) : D
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 3; ++k) sd = madd(half * (sr[k] + sn[k]), d[k], sd);
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 3; k < 6; ++k) sd = madd(sr[k] + sn[k], d[k], sd);
+      const vd rho_cur = rho_v * V0 * inv_v;
+      q = bulk_v * rho_cur * len * (q2_v * len * em * em - q1_v * c_v * em);
+      vd e = (sd - q * em) * Vm * dt_v;
+      where(padding, e) = zero;
+      e_int_sum += e;
+    }
+
+    // ---- hourglass control (FB eq. 22-30, stiffness form): c (M5), rates (M6), update
+    vd t[4][3];  // X_{3+alpha} / (8 V)
+    {
+      const vd s = eighth * inv_v;
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        CRASHLINK_HEX8_UNROLL
+        for (int i = 0; i < 3; ++i) t[al][i] = s * X[3 + al][i];
+      }
+    }
+    vd cc[4][6];
+    CRASHLINK_HEX8_UNROLL
+    for (int al = 0; al < 4; ++al) {
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k)
+        cc[al][k] = madd(t[al][0], g[k][0], madd(t[al][1], g[k][1], t[al][2] * g[k][2]));
+    }
+    const vd k_hg = k_hg_coef * sumb2 * inv_v;  // [N/m]
+    vd qn[4][3];
+    {
+      vd e = zero;
+      const vd kdt = k_hg * dt_v;
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        vd qd[3], q0[3];
+        CRASHLINK_HEX8_UNROLL
+        for (int i = 0; i < 3; ++i) {
+          vd s = Vw[3 + al][i];
+          CRASHLINK_HEX8_UNROLL
+          for (int k = 0; k < 6; ++k) s = madd(-cc[al][k], Vw[k][i], s);
+          qd[i] = s;
+          q0[i] = load(q_all + static_cast<std::size_t>(3 * al + i) * ne);
+        }
+        CRASHLINK_HEX8_UNROLL
+        for (int i = 0; i < 3; ++i) {
+          const vd qr = madd(R[i][0], q0[0], madd(R[i][1], q0[1], R[i][2] * q0[2]));  // R Q^n
+          qn[al][i] = madd(kdt, qd[i], qr);
+          e = madd(qr + qn[al][i], qd[i], e);
+        }
+      }
+      e *= half * dt_v;
+      where(padding, e) = zero;
+      e_hg_sum += e;
+    }
+
+    // ---- forces f_iI = sum_k phi_k(I) F_k,i (M8), s = sigma^{n+1} - q I
+    {
+      const vd S[3][3] = {
+          {sn[0] - q, sn[3], sn[5]}, {sn[3], sn[1] - q, sn[4]}, {sn[5], sn[4], sn[2] - q}};
+      vd P[3][3];
+      CRASHLINK_HEX8_UNROLL
+      for (int i = 0; i < 3; ++i) {
+        CRASHLINK_HEX8_UNROLL
+        for (int j = 0; j < 3; ++j) {
+          vd p = eighth * S[i][j];
+          CRASHLINK_HEX8_UNROLL
+          for (int al = 0; al < 4; ++al) p = madd(-qn[al][i], t[al][j], p);
+          P[i][j] = p;
+        }
+      }
+      CRASHLINK_HEX8_UNROLL
+      for (int i = 0; i < 3; ++i) {
+        vd F[7], f[8];
+        CRASHLINK_HEX8_UNROLL
+        for (int k = 0; k < 6; ++k)
+          F[k] = madd(P[i][0], g[k][0], madd(P[i][1], g[k][1], P[i][2] * g[k][2]));
+        F[6] = qn[3][i];
+        CRASHLINK_HEX8_UNROLL
+        for (int al = 0; al < 3; ++al) F[3 + al] += qn[al][i];
+        hex8::synthesise(F, f);
+        CRASHLINK_HEX8_UNROLL
+        for (int I = 0; I < 8; ++I) f[I].copy_to(fl[i][I], stdx::vector_aligned);
+      }
+    }
+
+    // ---- stable step: lmax(G) bound from the Gram matrix (M7), then omega and damping
+    {
+      vd G[4][4];  // G / 8
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        CRASHLINK_HEX8_UNROLL
+        for (int be = al; be < 4; ++be) {
+          vd s = cc[al][0] * cc[be][0];
+          CRASHLINK_HEX8_UNROLL
+          for (int k = 1; k < 6; ++k) s = madd(cc[al][k], cc[be][k], s);
+          if (al < 3) s -= cc[be][3 + al];
+          if (be < 3) s -= cc[al][3 + be];
+          if (al == be) s += one;
+          G[al][be] = s;
+          G[be][al] = s;
+        }
+      }
+      vd gersh = zero, fro = zero;
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        gersh = max(gersh, abs(G[al][0]) + abs(G[al][1]) + abs(G[al][2]) + abs(G[al][3]));
+        CRASHLINK_HEX8_UNROLL
+        for (int be = 0; be < 4; ++be) fro = madd(G[al][be], G[al][be], fro);
+      }
+      const vd lg = vd(8.0) * sqrt(min(gersh * gersh, fro));       // lmax(G) bound
+      const vd k1 = inv_v * madd(lambda_pos, sumb2, two_mu * lm);  // lmax(K1) bound [N/m]
+      // 2 / omega with omega^2 = 8 (k1 + k_hg lmax(G)) / (rho V0)
+      const vd two_over_omega = sqrt(rho_v * V0 / (vd(2.0) * madd(k_hg, lg, k1)));
+      vd xi = q1_v - q2_v * len * em * inv_c;  // damping ratio of the bulk viscosity
+      where(!(em < zero), xi) = zero;
+      xi *= bulk_v;
+      const vd dte = two_over_omega * (sqrt(madd(xi, xi, one)) - xi);
+      dte.copy_to(dt_e, stdx::vector_aligned);
+    }
+
+    // ---- write back the history (not at the initial call) and scatter-add the forces
+    if (update) {
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k) store(sn[k], s_all + static_cast<std::size_t>(k) * ne);
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        CRASHLINK_HEX8_UNROLL
+        for (int i = 0; i < 3; ++i)
+          store(qn[al][i], q_all + static_cast<std::size_t>(3 * al + i) * ne);
+      }
+      if (j2) store(ep, ep_all);
+    }
     for (int l = 0; l < nl; ++l) {
-      const auto e = static_cast<std::size_t>(bt.e[l]);
-      if (dt > 0.0) {
-        for (int k = 0; k < 6; ++k) s_all[static_cast<std::size_t>(k) * ne + e] = bt.sig[k][l];
-        for (int k = 0; k < 12; ++k)
-          q_all[static_cast<std::size_t>(k) * ne + e] = bt.q_hg[k / 3][k % 3][l];
-        st.eps_p[e] = bt.eps_p[l];
+      if (dt_e[l] < res.dt_stable_s) {
+        res.dt_stable_s = dt_e[l];
+        res.critical_element = static_cast<std::int64_t>(eid[l]);
       }
-      e_int += bt.e_int[l];
-      e_hg += bt.e_hg[l];
-      if (bt.dt_e[l] < res.dt_stable_s) {
-        res.dt_stable_s = bt.dt_e[l];
-        res.critical_element = static_cast<std::int64_t>(e);
-      }
-      const std::int32_t* nodes = conn + 8 * e;
+      CRASHLINK_HEX8_UNROLL
       for (int I = 0; I < 8; ++I) {
-        double* fp = nv.f + 3 * static_cast<std::size_t>(nodes[I]);
-        fp[0] += bt.f[0][I][l];
-        fp[1] += bt.f[1][I][l];
-        fp[2] += bt.f[2][I][l];
+        double* fp = nv.f + node[I][l];
+        fp[0] += fl[0][I][l];
+        fp[1] += fl[1][I][l];
+        fp[2] += fl[2][I][l];
       }
     }
   }
   if (record_reference) st.reference_recorded = true;
-  res.internal_energy_increment_J = e_int;
-  res.hourglass_energy_increment_J = e_hg;
+  res.internal_energy_increment_J = reduce(e_int_sum);
+  res.hourglass_energy_increment_J = reduce(e_hg_sum);
   return res;
 }
 

@@ -43,8 +43,13 @@
 //    work; hourglass = 1/2 (R Q^n + Q^{n+1}) . qdot dt.
 //  * At the initial call (dt = 0) nothing is updated: forces from the current history, dt_stable.
 //
-// Performance: elements are processed in batches of kBatch lanes (gather to local
-// [component][node][lane] arrays, lane-innermost loops, scatter-add); no allocation per call.
+// Performance: one element per SIMD lane (hex8_simd.h: 4 lanes with AVX2), every intermediate a
+// lane vector in one fused pass per batch: gather x and v, take their Walsh-Hadamard modes,
+// do every sum over the nodes in the mode form (hex8_modes.h, M1-M8: no per-node gradient or
+// hourglass vectors), synthesise the forces and scatter-add them; J2 returns that stay on one
+// segment of the curve are lane-wise closed forms. Software prefetch for the history streams. No
+// allocation per call. bench/bench_hex8.cpp measures it; tests/unit/elements/hex8_reference_test
+// checks it against a naive per-node implementation of the formulas above.
 #include "solver/elements/hex8_state.h"
 #include "solver/elements/kernel_io.h"
 #include "solver/materials/material.h"

@@ -27,6 +27,9 @@
 //
 // Hourglass base vectors orthogonal to the linear field (FB eq. 22):
 //   gamma_alpha = Gamma_alpha - (Gamma_alpha . x_i) B_i,  so gamma.1 = 0 and gamma.x_j = 0.
+//
+// These per-node forms serve hex8_lumped_mass and the tests (the reference of the force kernel);
+// the force kernel evaluates the same quantities in the mode form of hex8_modes.h.
 
 namespace crashlink::elements::hex8 {
 

@@ -16,15 +16,34 @@
 // (LS-DYNA's N3 = N4 convention, 0-based here); its membrane response is then the exact
 // constant-strain triangle.
 //
-// Data layout of ShellState (ne elements, np = through-thickness points, ns = stride = ne rounded
-// up to kShellLanes so a batch of lanes may read and write past the last element harmlessly):
-//   sigma_Pa       [5][np][ns]  component c (0 xx, 1 yy, 2 xy, 3 yz, 4 zx) at point k of element e
-//                               at (c*np + k)*ns + e; local corotational frame [Pa]
-//   eps_p          [np][ns]     equivalent plastic strain at point k of element e at k*ns + e [-]
-//   thickness_m    [ns]         current thickness (updated from the thickness strain) [m]
-//   hourglass      [5][ns]      generalized hourglass forces in the local frame, component c at
-//                               c*ns + e: Q_x, Q_y, Q_z [N], Q_thx, Q_thy [N m]
-// Bytes per element of history: 8 (6 np + 6): 288 B for np = 5.
+// Data layout of ShellState (ne elements, np = through-thickness points, L = kShellLanes, ns =
+// stride = ne rounded up to L so a batch of lanes may read and write past the last element
+// harmlessly). Every per-element array is blocked by batches of L elements ("AoSoA"): an array of
+// R rows per element is [ns/L][R][L], row r of element e at (e/L * R + r) * L + e % L
+// (ShellState::block_index), so that a batch reads and writes one contiguous block per array (one
+// memory stream each, whatever np).
+// Two forms, chosen by the first shell_internal_forces call from the material (make_shell_state
+// does not know it and returns the point form with zero stress):
+//   point form (J2 plasticity): the in-plane stress at every Gauss point
+//     sigma_Pa     R = 3 np, row 3k + c: component c (0 xx, 1 yy, 2 xy) at point k; local
+//                               corotational frame [Pa]
+//     eps_p        R = np, row k: equivalent plastic strain at point k [-]
+//   resultant form (elastic): the stress is linear through the thickness, sigma(zeta) = a + zeta b
+//     (every increment C (d + zeta h/2 k) dt is), so two stresses per component hold it exactly:
+//     resultant_Pa R = 6, rows a_xx, a_yy, a_xy, b_xx, b_yy, b_xy [Pa]; the resultants are N = h a
+//                               and M = h^2 b / 6 (Gauss quadrature with np >= 2 points integrates
+//                               the linear profile exactly, so both forms give the same forces,
+//                               energies and point stresses)
+//     sigma_Pa and eps_p are empty.
+//   both forms:
+//     shear_Pa     R = 2, rows tau_yz, tau_zx: transverse shear (elastic, so constant through the
+//                               thickness: every point receives the same increment kG gamma dt)
+//                               [Pa]
+//     thickness_m  R = 1: current thickness (updated from the thickness strain) [m]
+//     hourglass    R = 5: generalized hourglass forces in the local frame Q_x, Q_y, Q_z [N],
+//                               Q_thx, Q_thy [N m]
+// Bytes per element of history: point form 8 (4 np + 8): 224 B for np = 5; resultant form
+// 8 * 14 = 112 B for any np.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -45,26 +64,56 @@ inline constexpr double kShellShearFactor = 5.0 / 6.0;
 /// Integration-point and hourglass history of one shell part (layout in the header comment).
 struct ShellState {
   std::size_t element_count = 0;
-  std::size_t stride = 0;           ///< element_count rounded up to kShellLanes
-  int points = 0;                   ///< Gauss points through the thickness
-  std::vector<double> zeta;         ///< [np] Gauss-Legendre abscissae in [-1, 1]
-  std::vector<double> weight;       ///< [np] Gauss-Legendre weights (sum 2)
-  std::vector<double> sigma_Pa;     ///< [5][np][ns]
-  std::vector<double> eps_p;        ///< [np][ns]
-  std::vector<double> thickness_m;  ///< [ns]
-  std::vector<double> hourglass;    ///< [5][ns]
+  std::size_t stride = 0;            ///< element_count rounded up to kShellLanes
+  int points = 0;                    ///< Gauss points through the thickness
+  std::vector<double> zeta;          ///< [np] Gauss-Legendre abscissae in [-1, 1]
+  std::vector<double> weight;        ///< [np] Gauss-Legendre weights (sum 2)
+  std::vector<double> sigma_Pa;      ///< point form: [ns/L][np][3][L]; empty in the resultant form
+  std::vector<double> eps_p;         ///< point form: [ns/L][np][L]; empty in the resultant form
+  std::vector<double> resultant_Pa;  ///< resultant form: [ns/L][6][L]; empty in the point form
+  std::vector<double> shear_Pa;      ///< [ns/L][2][L]
+  std::vector<double> thickness_m;   ///< [ns]
+  std::vector<double> hourglass;     ///< [ns/L][5][L]
 
-  double& sigma(int c, int k, std::size_t e) {
-    return sigma_Pa[(static_cast<std::size_t>(c * points + k)) * stride + e];
+  /// Index of row r of element e in a blocked array of R rows per element (layout comment).
+  static std::size_t block_index(std::size_t R, std::size_t r, std::size_t e) {
+    return (e / kShellLanes * R + r) * kShellLanes + e % kShellLanes;
   }
+  /// True once an elastic material has put the history into the resultant form.
+  bool resultant_form() const { return !resultant_Pa.empty(); }
+
+  /// Stress component c (0 xx, 1 yy, 2 xy, 3 yz, 4 zx) at Gauss point k of element e, local frame
+  /// [Pa], in either form.
   double sigma(int c, int k, std::size_t e) const {
-    return sigma_Pa[(static_cast<std::size_t>(c * points + k)) * stride + e];
+    const auto uc = static_cast<std::size_t>(c), uk = static_cast<std::size_t>(k);
+    if (c >= 3) return shear_Pa[block_index(2, uc - 3, e)];
+    if (resultant_form())
+      return resultant_Pa[block_index(6, uc, e)] +
+             zeta[uk] * resultant_Pa[block_index(6, uc + 3, e)];
+    return sigma_Pa[block_index(3 * static_cast<std::size_t>(points), 3 * uk + uc, e)];
+  }
+  /// Hourglass force component c (0..4) of element e.
+  double hourglass_force(int c, std::size_t e) const {
+    return hourglass[block_index(5, static_cast<std::size_t>(c), e)];
+  }
+  /// Equivalent plastic strain at Gauss point k of element e (0 in the resultant form).
+  double plastic_strain(int k, std::size_t e) const {
+    return eps_p.empty() ? 0.0
+                         : eps_p[block_index(static_cast<std::size_t>(points),
+                                             static_cast<std::size_t>(k), e)];
   }
 };
 
 /// Zero history for `part` (Shell4): thickness = part.thickness_m, through_thickness_points Gauss
 /// points. Throws ModelError unless 3 <= points <= kShellMaxPoints and thickness > 0.
 ShellState make_shell_state(const model::Part& part);
+
+/// Converts st to the resultant form (least-squares projection on a + zeta b with the Gauss
+/// weights: exact for stresses linear through the thickness, and it keeps N and M of any profile)
+/// or to the point form (eps_p = 0). No-ops when st is in that form already; shell_internal_forces
+/// calls them on its first call with a part's material.
+void shell_state_to_resultant_form(ShellState& st);
+void shell_state_to_point_form(ShellState& st);
 
 /// Gauss-Legendre abscissae and weights on [-1, 1] (n <= kShellMaxPoints).
 void gauss_legendre(int n, double* zeta, double* weight);
@@ -83,7 +132,12 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
 /// Internal forces and moments of the part at t^{n+1} ADDED into nv.f, nv.m (global frame); stress
 /// update over dt^n = step.dt_s (none when 0); stable step and energy increments returned.
 /// Throws NumericalError for an element of zero (or non-finite) area, naming it.
-/// Artificial bulk viscosity is not applied to shells (LS-DYNA's default for shells).
+/// An elastic material puts st into the resultant form, a J2 material into the point form (the
+/// conversion is exact for stresses linear through the thickness; see the layout comment).
+/// Artificial bulk viscosity (step.bulk_viscosity; the integrator sets it from
+/// Controls::shell_bulk_viscosity) acts on the membrane: for an in-plane area rate
+/// tr D_m = d_xx + d_yy < 0, q = rho L_e (Q2 L_e tr^2 - Q1 c tr) is an in-plane pressure (formula
+/// and sources in shell_bt_forces.cpp).
 KernelResult shell_internal_forces(const model::Part& part, const materials::Material& mat,
                                    ShellState& st, const NodalView& nv, const StepInfo& step);
 

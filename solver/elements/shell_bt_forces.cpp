@@ -1,8 +1,18 @@
 // Internal forces of the Belytschko-Tsay shell ([BLT84], [LSTM] chapter 7; sources in shell_bt.h).
 //
 // Per batch of kShellLanes elements: gather nodal x, v, omega into local arrays [node][xyz][lane];
-// every step below is a loop over lanes (vectorised by the compiler), except the plastic return,
-// which runs per plastic point; then scatter-add forces and moments.
+// every step below is a loop over lanes, vectorised by the compiler (square roots through
+// materials::sqrt_lanes: a std::sqrt loop is not vectorised under -fmath-errno); then scatter-add
+// forces and moments. Performance notes (bench/bench_shell.cpp):
+//   * the history is blocked per batch (shell_bt.h): one contiguous block per array and batch,
+//     copied into local [rows][lane] arrays and back (memcpy), so the lane loops touch locals only
+//     and vectorise without alias checks, and the memory streams stay few whatever np;
+//   * elastic parts keep 8 stresses per element (resultant form) instead of 5 np;
+//   * J2 parts: elastic trial stresses of all np points of the batch first, then one call of
+//     materials::plane_stress_j2_return_lanes for all np * kShellLanes points (the division and
+//     square-root latencies of the points overlap), or, when only some trial stresses exceed the
+//     initial yield, for those only, packed; none: no call. Then the sums through the thickness
+//     and the write-back.
 //
 // Kinematics at the single in-plane point, in the corotational frame (e1, e2, e3) built from the
 // CURRENT geometry x^{n+1} ([LSTM] BT shell: e3 = r31 x r42 / |.|, e1 = normalised projection of
@@ -27,6 +37,27 @@
 //   in-plane K_m = r E h A BB / 8,  rotations K_th = r E h^3 A BB / 192,
 //   out-of-plane K_w = r kappa G h^3 BB / 12 (the manual writes A BB; we drop A so that K_w is a
 //   force per length; it is then of the size of the twist stiffness D / L^2 of the element).
+// Elastic parts (resultant form of ShellState, see shell_bt.h): sigma(zeta) = a + zeta b with
+//   a += C d dt,  b += C k (h/2) dt,  tau += kappa G gamma dt,
+//   N = h a, M = h^2 b / 6, Q = h tau; stress work per unit area (Gauss sums with sum w = 2,
+//   sum w zeta = 0, sum w zeta^2 = 2/3, exact for these quadratic integrands):
+//   (h_mid/2) [ (a^n + a) . d dt + (b^n + b) . k (h/2) dt / 3 + (tau^n + tau) . gamma dt ],
+//   thickness strain -nu/E (da_xx + da_yy): identical to the point-wise update to round-off.
+// J2 parts keep the in-plane stress per point and update it point by point as above; the
+// transverse shear stays elastic and constant through the thickness, as in the resultant form.
+// Membrane bulk viscosity (step.bulk_viscosity, from Controls::shell_bulk_viscosity): the hex's
+// form (hex8.h; Hallquist, LS-DYNA Theory Manual, "Artificial bulk viscosity": von Neumann-
+// Richtmyer quadratic + Landshoff linear term) with the in-plane area rate and the shell's length
+// and wave speed: for tr = d_xx + d_yy < 0,
+//   q = rho L_e (Q2 L_e tr^2 - Q1 c tr),
+// L_e and c of the stable step below, rho the material density (the reference density: the kernel
+// keeps no reference area for the current density rho A0 h0 / (A h); they differ by the membrane
+// and thickness strains, a few percent in the compressions q is meant to damp); q acts as an
+// in-plane pressure on the membrane forces only (N_xx, N_yy -= q h, not stored in the stress), its
+// work -q tr A h_mid dt is part of the internal energy, and it reduces the step as in the hex:
+//   dt_e = (L_e / c) (sqrt(1 + xi^2) - xi),  xi = Q1 - Q2 L_e tr / c
+// (Belytschko, Liu, Moran 2000, section 6.3, critical step with damping; = LS-DYNA's
+// L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|).
 // Stable step ([LSTM] "Time step control"; LS-DYNA *CONTROL_TIMESTEP ISDO = 1):
 //   dt_e = L_e / c, L_e = (1 + beta) A / max(L_1..L_4, D_1, D_2), c = sqrt(E / (rho (1 - nu^2))),
 //   L_k sides, D_k diagonals, beta = 0 for quads and 1/2 for triangles. Deviations from LS-DYNA's
@@ -38,6 +69,7 @@
 //   included (checked by the eigenvalue test).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "solver/core/errors.h"
@@ -49,6 +81,9 @@ namespace crashlink::elements {
 namespace {
 
 constexpr std::size_t L = kShellLanes;
+static_assert(L % 4 == 0, "sqrt_lanes and the J2 lane return work on groups of 4 lanes");
+
+using materials::sqrt_lanes;
 
 /// Per-part constants of the kernel.
 struct ShellConstants {
@@ -60,6 +95,29 @@ struct ShellConstants {
   double c_plate = 0.0;
   double r_hg = 0.0;
 };
+
+/// Gather of three components of four nodes per lane from an interleaved xyz array.
+inline void gather(const double* a, const std::int32_t (&nd)[4][L], double (&out)[4][3][L]) {
+  for (std::size_t l = 0; l < L; ++l)
+    for (int I = 0; I < 4; ++I) {
+      const double* p = a + 3 * static_cast<std::size_t>(nd[I][l]);
+      out[I][0][l] = p[0];
+      out[I][1][l] = p[1];
+      out[I][2][l] = p[2];
+    }
+}
+
+/// One batch's block of a blocked state array (shell_bt.h: [ns/L][R][L], contiguous) into / out
+/// of a local [R][L] array: the lane loops then work on locals only and vectorise without alias
+/// checks.
+template <int R>
+inline void load_block(const double* a, double (&out)[R][L]) {
+  std::memcpy(out, a, sizeof out);
+}
+template <int R>
+inline void store_block(double* a, const double (&in)[R][L]) {
+  std::memcpy(a, in, sizeof in);
+}
 
 }  // namespace
 
@@ -80,6 +138,9 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
     K.hv = materials::HardeningView::from(mat.hardening);
     const double sy0 = K.hv.initial_yield_Pa();
     K.sy0_sq = K.hv.non_decreasing ? sy0 * sy0 : 0.0;
+    shell_state_to_point_form(st);
+  } else {
+    shell_state_to_resultant_form(st);
   }
   K.kG = kShellShearFactor * K.el.G_Pa;
   K.c_plate = mat.plate_wave_speed_m_s();
@@ -87,11 +148,22 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
 
   const double dt = step.dt_s;
   const bool update = dt > 0.0;
+  const bool resultant = st.resultant_form();
   const int np = st.points;
-  const std::size_t ns = st.stride;
   const double c11 = K.el.c11_Pa, c12 = K.el.c12_Pa, G = K.el.G_Pa, kG = K.kG;
   const double nu_over_E = K.el.nu / K.el.E_Pa;
   const double E = K.el.E_Pa;
+  const double inv_c = 1.0 / K.c_plate;
+  // Bulk viscosity (header comment): on only with a step to take.
+  const bool bulk = step.bulk_viscosity && update;
+  const double bulk_on = bulk ? 1.0 : 0.0;
+  const double q1 = step.q_linear, q2 = step.q_quadratic, rho = mat.density_kg_m3;
+  // Hourglass stiffness factors [LSTM]/[BT83] (header comment): k = factor * h (h^3) A BB.
+  const double km_f = K.r_hg * E / 8.0, kw_f = K.r_hg * kG / 12.0, kt_f = K.r_hg * E / 192.0;
+  const std::int32_t* conn = part.connectivity.data();
+  double* const thick = st.thickness_m.data();
+  double* const shear = st.shear_Pa.data();
+  double* const hgs = st.hourglass.data();
 
   double e_int = 0.0, e_hg = 0.0;
   double dt_min = std::numeric_limits<double>::infinity();
@@ -101,26 +173,17 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
     const std::size_t nl = std::min(L, ne - b0);
     // ---- gather ------------------------------------------------------------------------------
     std::int32_t nd[4][L];
-    double tri[L];
     for (std::size_t l = 0; l < L; ++l) {
-      const std::size_t e = b0 + std::min(l, nl - 1);  // padding lanes repeat the last element
-      for (int I = 0; I < 4; ++I) nd[I][l] = part.connectivity[4 * e + static_cast<std::size_t>(I)];
-      tri[l] = nd[3][l] == nd[2][l] ? 1.0 : 0.0;
+      const std::int32_t* c = conn + 4 * (b0 + std::min(l, nl - 1));  // padding: last element
+      for (int I = 0; I < 4; ++I) nd[I][l] = c[I];
     }
-    double X[4][3][L], V[4][3][L], W[4][3][L];
-    for (int I = 0; I < 4; ++I)
-      for (std::size_t l = 0; l < L; ++l) {
-        const std::size_t n3 = 3 * static_cast<std::size_t>(nd[I][l]);
-        for (int c = 0; c < 3; ++c) X[I][c][l] = nv.x[n3 + static_cast<std::size_t>(c)];
-      }
+    double X[4][3][L];
+    gather(nv.x, nd, X);
 
     // ---- corotational frame, local coordinates, B, gamma ([LSTM] BT shell) -------------------
     double e1[3][L], e2[3][L], e3[3][L];
-    double xl[4][L], yl[4][L];
-    double A[L], twoA[L], B1[4][L], B2[4][L], Gm[4][L], BB[L], lmax2[L];
-    // The two square roots run in separate scalar loops: GCC keeps an errno branch around
-    // sqrt (-fmath-errno default), which would stop the vectorisation of the long loops.
-    double s3[3][L], nsq[L], inv[L];
+    double A[L], B1[4][L], B2[4][L], Gm[4][L], BB[L], lmax2[L], lmax[L], Le[L];
+    double s3[3][L], nsq[L], len[L];
     for (std::size_t l = 0; l < L; ++l) {
       double r31[3], r42[3];
       for (int c = 0; c < 3; ++c) {
@@ -132,36 +195,40 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       s3[2][l] = r31[0] * r42[1] - r31[1] * r42[0];
       nsq[l] = s3[0][l] * s3[0][l] + s3[1][l] * s3[1][l] + s3[2][l] * s3[2][l];
     }
-    for (std::size_t l = 0; l < L; ++l) inv[l] = 1.0 / std::sqrt(nsq[l]);
+    sqrt_lanes(nsq, len, L);
     for (std::size_t l = 0; l < L; ++l) {
+      const double inv = 1.0 / len[l];
       double r21[3];
       for (int c = 0; c < 3; ++c) {
         r21[c] = X[1][c][l] - X[0][c][l];
-        e3[c][l] = s3[c][l] * inv[l];
+        e3[c][l] = s3[c][l] * inv;
       }
       const double d = r21[0] * e3[0][l] + r21[1] * e3[1][l] + r21[2] * e3[2][l];
       for (int c = 0; c < 3; ++c) e1[c][l] = r21[c] - d * e3[c][l];
       nsq[l] = e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l];
     }
-    for (std::size_t l = 0; l < L; ++l) inv[l] = 1.0 / std::sqrt(nsq[l]);
+    sqrt_lanes(nsq, len, L);
+    double tri[L], bad[L];
     for (std::size_t l = 0; l < L; ++l) {
-      for (int c = 0; c < 3; ++c) e1[c][l] *= inv[l];
+      const double inv = 1.0 / len[l];
+      for (int c = 0; c < 3; ++c) e1[c][l] *= inv;
       e2[0][l] = e3[1][l] * e1[2][l] - e3[2][l] * e1[1][l];
       e2[1][l] = e3[2][l] * e1[0][l] - e3[0][l] * e1[2][l];
       e2[2][l] = e3[0][l] * e1[1][l] - e3[1][l] * e1[0][l];
-      xl[0][l] = 0.0;
-      yl[0][l] = 0.0;
+      double xl[4], yl[4];
+      xl[0] = 0.0;
+      yl[0] = 0.0;
       for (int I = 1; I < 4; ++I) {
         const double dx = X[I][0][l] - X[0][0][l], dy = X[I][1][l] - X[0][1][l],
                      dz = X[I][2][l] - X[0][2][l];
-        xl[I][l] = e1[0][l] * dx + e1[1][l] * dy + e1[2][l] * dz;
-        yl[I][l] = e2[0][l] * dx + e2[1][l] * dy + e2[2][l] * dz;
+        xl[I] = e1[0][l] * dx + e1[1][l] * dy + e1[2][l] * dz;
+        yl[I] = e2[0][l] * dx + e2[1][l] * dy + e2[2][l] * dz;
       }
-      const double x0 = xl[0][l], x1 = xl[1][l], x2 = xl[2][l], x3 = xl[3][l];
-      const double y0 = yl[0][l], y1 = yl[1][l], y2 = yl[2][l], y3 = yl[3][l];
-      twoA[l] = (x2 - x0) * (y3 - y1) - (x3 - x1) * (y2 - y0);
-      A[l] = 0.5 * twoA[l];
-      const double ia = 1.0 / twoA[l];
+      const double x0 = xl[0], x1 = xl[1], x2 = xl[2], x3 = xl[3];
+      const double y0 = yl[0], y1 = yl[1], y2 = yl[2], y3 = yl[3];
+      const double twoA = (x2 - x0) * (y3 - y1) - (x3 - x1) * (y2 - y0);
+      A[l] = 0.5 * twoA;
+      const double ia = 1.0 / twoA;
       B1[0][l] = (y1 - y3) * ia;
       B1[1][l] = (y2 - y0) * ia;
       B1[2][l] = (y3 - y1) * ia;
@@ -170,14 +237,15 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       B2[1][l] = (x0 - x2) * ia;
       B2[2][l] = (x1 - x3) * ia;
       B2[3][l] = (x2 - x0) * ia;
-      // Hourglass shape vector gamma = h - (h.x) B1 - (h.y) B2 ([FB81], [BT83]).
+      // Hourglass shape vector gamma = h - (h.x) B1 - (h.y) B2, h = (1, -1, 1, -1) ([FB81],
+      // [BT83]).
       const double hx = x0 - x1 + x2 - x3, hy = y0 - y1 + y2 - y3;
-      const double hI[4] = {1.0, -1.0, 1.0, -1.0};
+      Gm[0][l] = 1.0 - hx * B1[0][l] - hy * B2[0][l];
+      Gm[1][l] = -1.0 - hx * B1[1][l] - hy * B2[1][l];
+      Gm[2][l] = 1.0 - hx * B1[2][l] - hy * B2[2][l];
+      Gm[3][l] = -1.0 - hx * B1[3][l] - hy * B2[3][l];
       double bb = 0.0;
-      for (int I = 0; I < 4; ++I) {
-        Gm[I][l] = hI[I] - hx * B1[I][l] - hy * B2[I][l];
-        bb += B1[I][l] * B1[I][l] + B2[I][l] * B2[I][l];
-      }
+      for (int I = 0; I < 4; ++I) bb += B1[I][l] * B1[I][l] + B2[I][l] * B2[I][l];
       BB[l] = bb;
       const double s01 = (x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0);
       const double s12 = (x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1);
@@ -186,47 +254,47 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       const double d02 = (x2 - x0) * (x2 - x0) + (y2 - y0) * (y2 - y0);
       const double d13 = (x3 - x1) * (x3 - x1) + (y3 - y1) * (y3 - y1);
       lmax2[l] = std::max(std::max(std::max(s01, s12), std::max(s23, s30)), std::max(d02, d13));
+      tri[l] = nd[3][l] == nd[2][l] ? 1.0 : 0.0;
+      // zero, negative or non-finite area (a collapsed or folded element); NaN fails the test
+      bad[l] =
+          (twoA > 1e-12 * lmax2[l] && twoA < std::numeric_limits<double>::infinity()) ? 0.0 : 1.0;
     }
-    // Always-on check: zero, negative or non-finite area (a collapsed or folded element).
-    for (std::size_t l = 0; l < nl; ++l) {
-      if (!(twoA[l] > 1e-12 * lmax2[l]) || !std::isfinite(twoA[l])) {
+    sqrt_lanes(lmax2, lmax, L);
+    double any_bad = 0.0;
+    for (std::size_t l = 0; l < nl; ++l) any_bad += bad[l];
+    if (any_bad != 0.0) {
+      for (std::size_t l = 0; l < nl; ++l) {
+        if (bad[l] == 0.0) continue;
         const std::size_t e = b0 + l;
         throw NumericalError(fmt::format(
             "part '{}', shell element {}: area {} m^2 (longest side or diagonal {} m) is zero, "
-            "negative or not "
-            "finite: the element has collapsed or folded; reduce the time step scale or refine the "
-            "mesh where it is crushed",
-            part.name, part.element_id[e], A[l], std::sqrt(lmax2[l])));
+            "negative or not finite: the element has collapsed or folded; reduce the time step "
+            "scale or refine the mesh where it is crushed",
+            part.name, part.element_id[e], A[l], lmax[l]));
       }
     }
-    // Stable step (header comment): L_e = (1 + beta) A / max(side, diagonal).
-    for (std::size_t l = 0; l < nl; ++l) {
-      const double dte = (1.0 + 0.5 * tri[l]) * A[l] / std::sqrt(lmax2[l]) / K.c_plate;
-      if (dte < dt_min) {
-        dt_min = dte;
-        crit = static_cast<std::int64_t>(b0 + l);
-      }
-    }
+    // Characteristic length (header comment): L_e = (1 + beta) A / max(side, diagonal).
+    for (std::size_t l = 0; l < L; ++l) Le[l] = (1.0 + 0.5 * tri[l]) * A[l] / lmax[l];
 
     // ---- velocity strains at the centre ------------------------------------------------------
-    double dxx[L], dyy[L], gxy[L], kxx[L], kyy[L], kxy[L], gxz[L], gyz[L];
-    double qd[5][L] = {};  // hourglass rates gamma.(vx, vy, vz, thx, thy); 0 without update
+    double dm[3][L], kap[3][L],
+        gs[2][L];     // (d_xx, d_yy, 2d_xy), (k_xx, k_yy, 2k_xy), (2d_yz, 2d_xz)
+    double qd[5][L];  // hourglass rates gamma.(vx, vy, vz, thx, thy)
     if (update) {
-      for (int I = 0; I < 4; ++I)
-        for (std::size_t l = 0; l < L; ++l) {
-          const std::size_t n3 = 3 * static_cast<std::size_t>(nd[I][l]);
-          for (int c = 0; c < 3; ++c) V[I][c][l] = nv.v[n3 + static_cast<std::size_t>(c)];
-          for (int c = 0; c < 3; ++c) W[I][c][l] = nv.omega[n3 + static_cast<std::size_t>(c)];
-        }
+      double V[4][3][L], Wn[4][3][L];
+      gather(nv.v, nd, V);
+      gather(nv.omega, nd, Wn);
       for (std::size_t l = 0; l < L; ++l) {
         double sdxx = 0, sdyy = 0, sgxy = 0, skxx = 0, skyy = 0, skxy = 0, sgxz = 0, sgyz = 0;
-        double q0 = 0, q1 = 0, q2 = 0, q3 = 0, q4 = 0;
+        double h0 = 0, h1 = 0, h2 = 0, h3 = 0, h4 = 0;
         for (int I = 0; I < 4; ++I) {
           const double vx = e1[0][l] * V[I][0][l] + e1[1][l] * V[I][1][l] + e1[2][l] * V[I][2][l];
           const double vy = e2[0][l] * V[I][0][l] + e2[1][l] * V[I][1][l] + e2[2][l] * V[I][2][l];
           const double vz = e3[0][l] * V[I][0][l] + e3[1][l] * V[I][1][l] + e3[2][l] * V[I][2][l];
-          const double tx = e1[0][l] * W[I][0][l] + e1[1][l] * W[I][1][l] + e1[2][l] * W[I][2][l];
-          const double ty = e2[0][l] * W[I][0][l] + e2[1][l] * W[I][1][l] + e2[2][l] * W[I][2][l];
+          const double tx =
+              e1[0][l] * Wn[I][0][l] + e1[1][l] * Wn[I][1][l] + e1[2][l] * Wn[I][2][l];
+          const double ty =
+              e2[0][l] * Wn[I][0][l] + e2[1][l] * Wn[I][1][l] + e2[2][l] * Wn[I][2][l];
           const double b1 = B1[I][l], b2 = B2[I][l], g = Gm[I][l];
           sdxx += b1 * vx;
           sdyy += b2 * vy;
@@ -236,153 +304,269 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
           skxy += b2 * ty - b1 * tx;
           sgxz += b1 * vz + 0.25 * ty;
           sgyz += b2 * vz - 0.25 * tx;
-          q0 += g * vx;
-          q1 += g * vy;
-          q2 += g * vz;
-          q3 += g * tx;
-          q4 += g * ty;
+          h0 += g * vx;
+          h1 += g * vy;
+          h2 += g * vz;
+          h3 += g * tx;
+          h4 += g * ty;
         }
-        dxx[l] = sdxx;
-        dyy[l] = sdyy;
-        gxy[l] = sgxy;
-        kxx[l] = skxx;
-        kyy[l] = skyy;
-        kxy[l] = skxy;
-        gxz[l] = sgxz;
-        gyz[l] = sgyz;
-        qd[0][l] = q0;
-        qd[1][l] = q1;
-        qd[2][l] = q2;
-        qd[3][l] = q3;
-        qd[4][l] = q4;
+        dm[0][l] = sdxx;
+        dm[1][l] = sdyy;
+        dm[2][l] = sgxy;
+        kap[0][l] = skxx;
+        kap[1][l] = skyy;
+        kap[2][l] = skxy;
+        gs[0][l] = sgyz;
+        gs[1][l] = sgxz;
+        qd[0][l] = h0;
+        qd[1][l] = h1;
+        qd[2][l] = h2;
+        qd[3][l] = h3;
+        qd[4][l] = h4;
+      }
+    } else {
+      for (std::size_t l = 0; l < L; ++l) {
+        for (int c = 0; c < 3; ++c) dm[c][l] = kap[c][l] = 0.0;
+        for (int c = 0; c < 5; ++c) qd[c][l] = 0.0;
+        gs[0][l] = gs[1][l] = 0.0;
       }
     }
 
-    // ---- stress update through the thickness, resultants -------------------------------------
-    double h[L], sN[3][L], sM[3][L], sQ[2][L], ework[L], dezz[L];
+    // ---- stress update, resultants (header comment) ------------------------------------------
+    // Per lane: N/h1 (Nn), 6 M / h1^2 (Mn), Q / h1 (Qn) as stresses; work per unit area / (h_mid/2)
+    // (ework); thickness strain increment (dezz).
+    double Nn[3][L], Mn[3][L], Qn[2][L], ework[L], dezz[L], h[1][L], tau[2][L];
+    load_block(thick + b0, h);
+    load_block(shear + 2 * b0, tau);
     for (std::size_t l = 0; l < L; ++l) {
-      h[l] = st.thickness_m[b0 + l];
-      for (int c = 0; c < 3; ++c) sN[c][l] = sM[c][l] = 0.0;
-      sQ[0][l] = sQ[1][l] = 0.0;
-      ework[l] = 0.0;
+      // transverse shear (both forms): tau += kappa G gamma dt
+      const double t0 = tau[0][l], t1 = tau[1][l];
+      const double dg0 = gs[0][l] * dt, dg1 = gs[1][l] * dt;
+      const double u0 = t0 + kG * dg0, u1 = t1 + kG * dg1;
+      tau[0][l] = u0;
+      tau[1][l] = u1;
+      Qn[0][l] = u1;  // tau_zx -> Q_x
+      Qn[1][l] = u0;  // tau_yz -> Q_y
+      ework[l] = (t0 + u0) * dg0 + (t1 + u1) * dg1;
       dezz[l] = 0.0;
     }
-    for (int k = 0; k < np; ++k) {
-      const double zk = st.zeta[static_cast<std::size_t>(k)];
-      const double wk = st.weight[static_cast<std::size_t>(k)];
-      double* p[5];
-      for (int c = 0; c < 5; ++c)
-        p[c] = st.sigma_Pa.data() + static_cast<std::size_t>(c * np + k) * ns + b0;
+    if (update) store_block(shear + 2 * b0, tau);
+    if (resultant) {
+      double R[6][L];
+      load_block(st.resultant_Pa.data() + 6 * b0, R);
+      for (std::size_t l = 0; l < L; ++l) {
+        const double de0 = dm[0][l] * dt, de1 = dm[1][l] * dt, de2 = dm[2][l] * dt;
+        const double hk = 0.5 * h[0][l] * dt;
+        const double dk0 = kap[0][l] * hk, dk1 = kap[1][l] * hk, dk2 = kap[2][l] * hk;
+        const double a0 = R[0][l], a1 = R[1][l], a2 = R[2][l];
+        const double b0n = R[3][l], b1n = R[4][l], b2n = R[5][l];
+        const double da0 = c11 * de0 + c12 * de1, da1 = c12 * de0 + c11 * de1, da2 = G * de2;
+        const double n0 = a0 + da0, n1 = a1 + da1, n2 = a2 + da2;
+        const double m0 = b0n + c11 * dk0 + c12 * dk1, m1 = b1n + c12 * dk0 + c11 * dk1,
+                     m2 = b2n + G * dk2;
+        R[0][l] = n0;
+        R[1][l] = n1;
+        R[2][l] = n2;
+        R[3][l] = m0;
+        R[4][l] = m1;
+        R[5][l] = m2;
+        ework[l] += (a0 + n0) * de0 + (a1 + n1) * de1 + (a2 + n2) * de2 +
+                    (1.0 / 3.0) * ((b0n + m0) * dk0 + (b1n + m1) * dk1 + (b2n + m2) * dk2);
+        dezz[l] = -nu_over_E * (da0 + da1);
+        Nn[0][l] = n0;
+        Nn[1][l] = n1;
+        Nn[2][l] = n2;
+        Mn[0][l] = m0;
+        Mn[1][l] = m1;
+        Mn[2][l] = m2;
+      }
+      if (update) store_block(st.resultant_Pa.data() + 6 * b0, R);
+    } else {
+      // Gauss sums sN = sum w s, sM = sum w zeta s; then N/h = sN/2, 6M/h^2 = 1.5 sM.
+      // Three passes over the batch's points: elastic trial stresses of all points, one plastic
+      // return for all np * L of them (their latencies overlap), then the sums and the write-back.
+      constexpr int kMax = kShellMaxPoints;
+      const std::size_t nk = static_cast<std::size_t>(np);
+      double* const blk = st.sigma_Pa.data() + 3 * nk * b0;  // [np][3][L], shell_bt.h
+      double sp[kMax][3][L];                                 // sigma^n
+      double s[3][kMax * L];  // trial, then sigma^{n+1}: [c][k L + l] for the return
+      double de[kMax][3][L];  // strain increments
+      double dzp[kMax * L];   // plastic thickness strain increments [k L + l]
+      std::memcpy(sp, blk, 3 * nk * L * sizeof(double));
+      double sN[3][L] = {}, sM[3][L] = {}, wsum[L] = {};
       if (update) {
-        double s[5][L], sn[5][L], de[5][L], vm2[L];
-        for (std::size_t l = 0; l < L; ++l) {
-          const double z = 0.5 * zk * h[l];
-          de[0][l] = (dxx[l] + z * kxx[l]) * dt;
-          de[1][l] = (dyy[l] + z * kyy[l]) * dt;
-          de[2][l] = (gxy[l] + z * kxy[l]) * dt;
-          de[3][l] = gyz[l] * dt;
-          de[4][l] = gxz[l] * dt;
-          for (int c = 0; c < 5; ++c) sn[c][l] = p[c][l];
-          s[0][l] = sn[0][l] + c11 * de[0][l] + c12 * de[1][l];
-          s[1][l] = sn[1][l] + c12 * de[0][l] + c11 * de[1][l];
-          s[2][l] = sn[2][l] + G * de[2][l];
-          s[3][l] = sn[3][l] + kG * de[3][l];
-          s[4][l] = sn[4][l] + kG * de[4][l];
-          vm2[l] =
-              s[0][l] * s[0][l] + s[1][l] * s[1][l] - s[0][l] * s[1][l] + 3.0 * s[2][l] * s[2][l];
-        }
-        double dezz_p[L] = {};
-        if (K.j2) {
-          double* ep = st.eps_p.data() + static_cast<std::size_t>(k) * ns + b0;
+        double cand[kMax * L];  // 1: trial vm above the initial yield (a return candidate)
+        for (std::size_t k = 0; k < nk; ++k) {
+          const double zk = st.zeta[k];
           for (std::size_t l = 0; l < L; ++l) {
-            if (vm2[l] > K.sy0_sq) {
-              const auto r =
-                  materials::plane_stress_j2_return(K.el, K.hv, s[0][l], s[1][l], s[2][l], ep[l]);
-              dezz_p[l] = r.d_eps_zz_p;
+            const double z = 0.5 * zk * h[0][l];
+            de[k][0][l] = (dm[0][l] + z * kap[0][l]) * dt;
+            de[k][1][l] = (dm[1][l] + z * kap[1][l]) * dt;
+            de[k][2][l] = (dm[2][l] + z * kap[2][l]) * dt;
+            const double t0 = sp[k][0][l] + c11 * de[k][0][l] + c12 * de[k][1][l];
+            const double t1 = sp[k][1][l] + c12 * de[k][0][l] + c11 * de[k][1][l];
+            const double t2 = sp[k][2][l] + G * de[k][2][l];
+            s[0][k * L + l] = t0;
+            s[1][k * L + l] = t1;
+            s[2][k * L + l] = t2;
+            const double vm2 = t0 * t0 + t1 * t1 - t0 * t1 + 3.0 * t2 * t2;
+            cand[k * L + l] = vm2 > K.sy0_sq ? 1.0 : 0.0;
+            dzp[k * L + l] = 0.0;
+          }
+        }
+        // Cheap elastic check first: below the initial yield no lane needs the return. All
+        // candidates: one return over the batch's points in place; some: the return over the
+        // candidates only, packed (padded to a multiple of 4 with copies of the last one).
+        const std::size_t n_all = nk * L;
+        double n_cand = 0.0;
+        for (std::size_t i = 0; i < n_all; ++i) n_cand += cand[i];
+        double* const ep_blk = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
+        if (K.j2 && n_cand == static_cast<double>(n_all)) {
+          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, s[0], s[1], s[2],
+                                                            ep_blk, dzp);
+        } else if (K.j2 && n_cand != 0.0) {
+          std::size_t ci[kMax * L], m = 0;
+          for (std::size_t i = 0; i < n_all; ++i)
+            if (cand[i] != 0.0) ci[m++] = i;
+          const std::size_t m4 = (m + 3) / 4 * 4;
+          double px[kMax * L], py[kMax * L], pxy[kMax * L], pep[kMax * L], pdz[kMax * L];
+          for (std::size_t j = 0; j < m4; ++j) {
+            const std::size_t i = ci[std::min(j, m - 1)];
+            px[j] = s[0][i];
+            py[j] = s[1][i];
+            pxy[j] = s[2][i];
+            pep[j] = ep_blk[i];
+          }
+          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, m4, px, py, pxy, pep, pdz);
+          for (std::size_t j = 0; j < m; ++j) {
+            const std::size_t i = ci[j];
+            s[0][i] = px[j];
+            s[1][i] = py[j];
+            s[2][i] = pxy[j];
+            ep_blk[i] = pep[j];
+            dzp[i] = pdz[j];
+          }
+        }
+        for (std::size_t k = 0; k < nk; ++k) {
+          const double zk = st.zeta[k], wk = st.weight[k];
+          for (std::size_t l = 0; l < L; ++l) {
+            const std::size_t i = k * L + l;
+            dezz[l] +=
+                0.5 * wk * (-nu_over_E * (s[0][i] - sp[k][0][l] + s[1][i] - sp[k][1][l]) + dzp[i]);
+            double w = 0.0;
+            for (int c = 0; c < 3; ++c) {
+              w += 0.5 * (sp[k][c][l] + s[c][i]) * de[k][c][l];
+              sN[c][l] += wk * s[c][i];
+              sM[c][l] += wk * zk * s[c][i];
+              sp[k][c][l] = s[c][i];  // sigma^{n+1}, block layout for the write-back
             }
+            wsum[l] += wk * w;
           }
         }
-        for (std::size_t l = 0; l < L; ++l) {
-          double wrk = 0.0;
-          for (int c = 0; c < 5; ++c) wrk += 0.5 * (sn[c][l] + s[c][l]) * de[c][l];
-          ework[l] += wk * wrk;
-          dezz[l] +=
-              0.5 * wk * (-nu_over_E * (s[0][l] - sn[0][l] + s[1][l] - sn[1][l]) + dezz_p[l]);
-          for (int c = 0; c < 3; ++c) {
-            sN[c][l] += wk * s[c][l];
-            sM[c][l] += wk * zk * s[c][l];
-          }
-          sQ[0][l] += wk * s[4][l];  // tau_zx -> Q_x
-          sQ[1][l] += wk * s[3][l];  // tau_yz -> Q_y
-        }
-        for (int c = 0; c < 5; ++c)
-          for (std::size_t l = 0; l < L; ++l) p[c][l] = s[c][l];
+        std::memcpy(blk, sp, 3 * nk * L * sizeof(double));
       } else {
-        for (std::size_t l = 0; l < L; ++l) {
-          for (int c = 0; c < 3; ++c) {
-            sN[c][l] += wk * p[c][l];
-            sM[c][l] += wk * zk * p[c][l];
-          }
-          sQ[0][l] += wk * p[4][l];
-          sQ[1][l] += wk * p[3][l];
+        for (std::size_t k = 0; k < nk; ++k) {
+          const double zk = st.zeta[k], wk = st.weight[k];
+          for (std::size_t l = 0; l < L; ++l)
+            for (int c = 0; c < 3; ++c) {
+              sN[c][l] += wk * sp[k][c][l];
+              sM[c][l] += wk * zk * sp[k][c][l];
+            }
+        }
+      }
+      for (std::size_t l = 0; l < L; ++l) {
+        ework[l] += wsum[l];
+        for (int c = 0; c < 3; ++c) {
+          Nn[c][l] = 0.5 * sN[c][l];
+          Mn[c][l] = 1.5 * sM[c][l];
         }
       }
     }
 
-    // ---- thickness update, hourglass forces, nodal forces ------------------------------------
-    double Qh[5][L];
-    double* ph[5];
-    for (int c = 0; c < 5; ++c) ph[c] = st.hourglass.data() + static_cast<std::size_t>(c) * ns + b0;
-    double F[4][3][L], Mm[4][3][L], ehg[L];
+    // ---- thickness, bulk viscosity, hourglass, nodal forces ----------------------------------
+    double F[4][3][L], Mm[4][3][L], ehg[L], xi[L], h_new[1][L], Qh[5][L];
+    load_block(hgs + 5 * b0, Qh);
     for (std::size_t l = 0; l < L; ++l) {
-      const double h_n = h[l];
+      const double h_n = h[0][l];
       const double h1 = h_n * (1.0 + dezz[l]);  // dezz = 0 without update
-      st.thickness_m[b0 + l] = h1;
-      ework[l] *= 0.5 * (h_n + h1) * 0.5 * A[l];  // sum w_k (h/2) A: midpoint volume weights
-      const double hh = 0.5 * h1;
-      const double Nxx = hh * sN[0][l], Nyy = hh * sN[1][l], Nxy = hh * sN[2][l];
-      const double Mxx = hh * hh * sM[0][l], Myy = hh * hh * sM[1][l], Mxy = hh * hh * sM[2][l];
-      const double Qx = hh * sQ[0][l], Qy = hh * sQ[1][l];
-      // Hourglass stiffnesses [LSTM]/[BT83] (see the header comment) and the rate update.
-      const double km = K.r_hg * E * h1 * A[l] * BB[l] / 8.0;
-      const double kw = K.r_hg * kG * h1 * h1 * h1 * BB[l] / 12.0;
-      const double kt = K.r_hg * E * h1 * h1 * h1 * A[l] * BB[l] / 192.0;
+      h_new[0][l] = h1;
+      const double a = A[l];
+      const double vol_mid = 0.5 * (h_n + h1) * a;  // midpoint volume h_mid A
+      // Bulk viscosity q (header comment), 0 in expansion or when off.
+      const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
+      const double on = tr_m < 0.0 ? bulk_on : 0.0;
+      const double tr = on * tr_m;
+      const double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
+      xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c);
+      ework[l] = ework[l] * 0.5 * vol_mid - q * tr * vol_mid * dt;
+      // Resultants N, M, Q at t^{n+1} (q on the in-plane normal components).
+      Nn[0][l] = h1 * (Nn[0][l] - q);
+      Nn[1][l] = h1 * (Nn[1][l] - q);
+      Nn[2][l] = h1 * Nn[2][l];
+      const double h2_6 = h1 * h1 / 6.0;
+      for (int c = 0; c < 3; ++c) Mn[c][l] *= h2_6;
+      Qn[0][l] *= h1;
+      Qn[1][l] *= h1;
+      // Hourglass stiffnesses [LSTM]/[BT83] (header comment) and the rate update.
+      const double h3 = h1 * h1 * h1;
+      const double km = km_f * h1 * a * BB[l], kw = kw_f * h3 * BB[l], kt = kt_f * h3 * a * BB[l];
       const double kq[5] = {km, km, kw, kt, kt};
       double eh = 0.0;
       for (int c = 0; c < 5; ++c) {
-        const double qn = ph[c][l];
-        const double q1 = qn + kq[c] * qd[c][l] * dt;  // qd = 0 without update
-        eh += 0.5 * (qn + q1) * qd[c][l] * dt;
-        Qh[c][l] = q1;
-        ph[c][l] = q1;
+        const double r = qd[c][l] * dt;  // qd = 0 without update
+        const double Qc = Qh[c][l] + kq[c] * r;
+        eh += 0.5 * (Qh[c][l] + Qc) * r;
+        Qh[c][l] = Qc;
       }
       ehg[l] = eh;
-      const double a = A[l];
-      for (int I = 0; I < 4; ++I) {
-        const double b1 = B1[I][l], b2 = B2[I][l], g = Gm[I][l];
-        const double fx = a * (b1 * Nxx + b2 * Nxy) + g * Qh[0][l];
-        const double fy = a * (b2 * Nyy + b1 * Nxy) + g * Qh[1][l];
-        const double fz = a * (b1 * Qx + b2 * Qy) + g * Qh[2][l];
-        const double mx = -a * (b2 * Myy + b1 * Mxy + 0.25 * Qy) + g * Qh[3][l];
-        const double my = a * (b1 * Mxx + b2 * Mxy + 0.25 * Qx) + g * Qh[4][l];
+    }
+    // Nodal forces and moments, local frame -> global (header comment).
+    for (int I = 0; I < 4; ++I)
+      for (std::size_t l = 0; l < L; ++l) {
+        const double a = A[l], b1 = B1[I][l], b2 = B2[I][l], g = Gm[I][l];
+        const double fx = a * (b1 * Nn[0][l] + b2 * Nn[2][l]) + g * Qh[0][l];
+        const double fy = a * (b2 * Nn[1][l] + b1 * Nn[2][l]) + g * Qh[1][l];
+        const double fz = a * (b1 * Qn[0][l] + b2 * Qn[1][l]) + g * Qh[2][l];
+        const double mx = -a * (b2 * Mn[1][l] + b1 * Mn[2][l] + 0.25 * Qn[1][l]) + g * Qh[3][l];
+        const double my = a * (b1 * Mn[0][l] + b2 * Mn[2][l] + 0.25 * Qn[0][l]) + g * Qh[4][l];
         for (int c = 0; c < 3; ++c) {
           F[I][c][l] = e1[c][l] * fx + e2[c][l] * fy + e3[c][l] * fz;
           Mm[I][c][l] = e1[c][l] * mx + e2[c][l] * my;
         }
       }
+    if (update) {
+      store_block(thick + b0, h_new);
+      store_block(hgs + 5 * b0, Qh);
+    }
+    // Stable step (header comment), reduced by the bulk viscosity.
+    double dte[L];
+    if (bulk) {
+      double x2[L], rt[L];
+      for (std::size_t l = 0; l < L; ++l) x2[l] = 1.0 + xi[l] * xi[l];
+      sqrt_lanes(x2, rt, L);
+      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c * (rt[l] - xi[l]);
+    } else {
+      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c;
     }
 
-    // ---- scatter-add -------------------------------------------------------------------------
+    // ---- scatter-add, reductions (real lanes only) --------------------------------------------
     for (std::size_t l = 0; l < nl; ++l) {
       for (int I = 0; I < 4; ++I) {
-        const std::size_t n3 = 3 * static_cast<std::size_t>(nd[I][l]);
-        for (int c = 0; c < 3; ++c) {
-          nv.f[n3 + static_cast<std::size_t>(c)] += F[I][c][l];
-          nv.m[n3 + static_cast<std::size_t>(c)] += Mm[I][c][l];
-        }
+        double* f = nv.f + 3 * static_cast<std::size_t>(nd[I][l]);
+        double* m = nv.m + 3 * static_cast<std::size_t>(nd[I][l]);
+        f[0] += F[I][0][l];
+        f[1] += F[I][1][l];
+        f[2] += F[I][2][l];
+        m[0] += Mm[I][0][l];
+        m[1] += Mm[I][1][l];
+        m[2] += Mm[I][2][l];
       }
       e_int += ework[l];
       e_hg += ehg[l];
+      if (dte[l] < dt_min) {
+        dt_min = dte[l];
+        crit = static_cast<std::int64_t>(b0 + l);
+      }
     }
   }
   res.dt_stable_s = dt_min;

@@ -54,18 +54,51 @@ ShellState make_shell_state(const model::Part& part) {
   st.weight.resize(static_cast<std::size_t>(np));
   gauss_legendre(np, st.zeta.data(), st.weight.data());
   const std::size_t npts = static_cast<std::size_t>(np);
-  st.sigma_Pa.assign(5 * npts * st.stride, 0.0);
+  st.sigma_Pa.assign(3 * npts * st.stride, 0.0);
   st.eps_p.assign(npts * st.stride, 0.0);
+  st.shear_Pa.assign(2 * st.stride, 0.0);
   st.thickness_m.assign(st.stride, part.thickness_m);
   st.hourglass.assign(5 * st.stride, 0.0);
   return st;
+}
+
+void shell_state_to_resultant_form(ShellState& st) {
+  if (st.resultant_form()) return;
+  // Least-squares projection on sigma = a + zeta b with the Gauss weights: a = sum w s / 2,
+  // b = 3/2 sum w zeta s (sum w = 2, sum w zeta^2 = 2/3); exact for a linear profile and it keeps
+  // the resultants N and M of any profile.
+  const std::size_t ns = st.stride, np = static_cast<std::size_t>(st.points);
+  st.resultant_Pa.assign(6 * ns, 0.0);
+  for (std::size_t e = 0; e < ns; ++e)
+    for (std::size_t k = 0; k < np; ++k)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double s = st.sigma_Pa[ShellState::block_index(3 * np, 3 * k + c, e)];
+        st.resultant_Pa[ShellState::block_index(6, c, e)] += 0.5 * st.weight[k] * s;
+        st.resultant_Pa[ShellState::block_index(6, c + 3, e)] +=
+            1.5 * st.weight[k] * st.zeta[k] * s;
+      }
+  st.sigma_Pa = {};
+  st.eps_p = {};
+}
+
+void shell_state_to_point_form(ShellState& st) {
+  if (!st.resultant_form()) return;
+  const std::size_t ns = st.stride, np = static_cast<std::size_t>(st.points);
+  st.sigma_Pa.assign(3 * np * ns, 0.0);
+  st.eps_p.assign(np * ns, 0.0);
+  for (std::size_t e = 0; e < ns; ++e)
+    for (std::size_t k = 0; k < np; ++k)
+      for (std::size_t c = 0; c < 3; ++c)
+        st.sigma_Pa[ShellState::block_index(3 * np, 3 * k + c, e)] =
+            st.resultant_Pa[ShellState::block_index(6, c, e)] +
+            st.zeta[k] * st.resultant_Pa[ShellState::block_index(6, c + 3, e)];
+  st.resultant_Pa = {};
 }
 
 void shell_element_output(const model::Part& part, const ShellState& st, const ElementOutput& out) {
   (void)part;
   const std::size_t ne = st.element_count;
   const int np = st.points;
-  const std::size_t ns = st.stride;
   for (std::size_t e = 0; e < ne; ++e) {
     double vm_max = 0.0, ep_max = 0.0;
     for (int k = 0; k < np; ++k) {
@@ -73,7 +106,7 @@ void shell_element_output(const model::Part& part, const ShellState& st, const E
           materials::shell_von_mises(st.sigma(0, k, e), st.sigma(1, k, e), st.sigma(2, k, e),
                                      st.sigma(3, k, e), st.sigma(4, k, e));
       vm_max = std::max(vm_max, vm);
-      ep_max = std::max(ep_max, st.eps_p[static_cast<std::size_t>(k) * ns + e]);
+      ep_max = std::max(ep_max, st.plastic_strain(k, e));
     }
     if (out.von_mises_Pa) out.von_mises_Pa[e] = vm_max;
     if (out.eps_p) out.eps_p[e] = ep_max;

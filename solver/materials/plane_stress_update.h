@@ -21,8 +21,14 @@
 //   d_eps_bar = (2/3) dgamma vm_{n+1}.
 // The transverse shear stresses (tau_yz, tau_zx) stay elastic (as in LS-DYNA's shell plasticity
 // for the Belytschko-Tsay element); they enter the von Mises output only.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <limits>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 #include "solver/materials/material.h"
 
@@ -86,6 +92,24 @@ struct HardeningView {
     evaluate(ep, sy, H);
     return sy;
   }
+  /// The segment evaluate(ep) uses: sigma_y = sy0 + H (ep - ep0) for ep0 <= ep < ep1 (ep1 = inf on
+  /// the last, extrapolated segment). Binary search: O(log n) for long curves.
+  void segment(double ep, double& ep0, double& sy0, double& H, double& ep1) const {
+    if (n == 1) {
+      ep0 = 0.0;
+      sy0 = sigma_y_Pa[0];
+      H = 0.0;
+      ep1 = std::numeric_limits<double>::infinity();
+      return;
+    }
+    // First i in [1, n-1) with ep < eps_p[i], else n-1: the walk of evaluate().
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(eps_p + 1, eps_p + n - 1, ep) - eps_p);
+    ep0 = eps_p[i - 1];
+    sy0 = sigma_y_Pa[i - 1];
+    H = (sigma_y_Pa[i] - sigma_y_Pa[i - 1]) / (eps_p[i] - eps_p[i - 1]);
+    ep1 = i + 1 < n ? eps_p[i] : std::numeric_limits<double>::infinity();
+  }
 };
 
 /// What the plane-stress J2 return reports.
@@ -105,6 +129,184 @@ inline constexpr double kPlaneStressReturnTolerance = 1e-12;
 /// happen for a hardening curve whose slope stays above -E/3).
 PlaneStressReturn plane_stress_j2_return(const PlaneStressElastic& c, const HardeningView& h,
                                          double& s_xx, double& s_yy, double& s_xy, double& eps_p);
+
+/// y[i] = sqrt(x[i]) for i < n (n a multiple of 4), x >= 0: vsqrtpd where available. A plain loop
+/// of std::sqrt is not vectorised by GCC under -fmath-errno (the default): it keeps a branch to the
+/// library call for negative arguments.
+inline void sqrt_lanes(const double* x, double* y, std::size_t n) {
+#if defined(__AVX__)
+  for (std::size_t i = 0; i < n; i += 4)
+    _mm256_storeu_pd(y + i, _mm256_sqrt_pd(_mm256_loadu_pd(x + i)));
+#else
+  for (std::size_t i = 0; i < n; ++i) y[i] = std::sqrt(x[i]);
+#endif
+}
+
+/// Curves up to this many points use a branch-free segment search in the lane return, longer
+/// ones a binary search per lane.
+inline constexpr std::size_t kLaneSegmentSearchMax = 16;
+
+/// Plane-stress J2 return of n <= W points at once (n a multiple of 4), the same algorithm and
+/// tolerance as plane_stress_j2_return, arranged for SIMD lanes (the shell kernel passes all
+/// through-thickness points of a batch, np * kShellLanes, so that the division and square-root
+/// latencies of the lanes overlap):
+///   * per lane the hardening segment of eps_p^n (the one HardeningView::evaluate uses: a
+///     branch-free count of the breakpoints passed for curves of up to kLaneSegmentSearchMax
+///     points, HardeningView::segment otherwise; found anew each call, no per-point cache), and
+///     the elastic check vm_tr <= sigma_y(eps_p^n) (1 + tol); lanes that pass keep the trial
+///     stress exactly;
+///   * initial multiplier from a radial-return estimate: with one effective modulus
+///     kbar = (k1 a^2 + 3 k2 (b^2 + c^2)) / vm_tr^2 (the exact d vm / d dgamma at dgamma = 0),
+///     vm = vm_tr / (1 + kbar dgamma) and linear hardening on the segment give
+///     vm = (sigma_y^n + beta vm_tr) / (1 + beta), beta = 2 H / (3 kbar), in closed form; exact
+///     when the trial stress is a pure a or pure (b, c) state;
+///   * Newton on r(dgamma) = vm - sigma_y for all lanes together (one division for the two
+///     factors 1/(1 + k1 dgamma), 1/(1 + k2 dgamma), one for the step: with
+///     S = k1 f1 a^2 + 3 k2 f2 (b^2 + c^2), dr/ddgamma = -(S + 2/3 H (vm^2 - dgamma S)) / vm),
+///     until every plastic lane meets |r| <= tol sigma_y;
+///   * a lane that does not converge within the iterations, or ends beyond its segment (a kink of
+///     the curve crossed), is redone by the safeguarded scalar plane_stress_j2_return.
+/// On entry s_*[0, n) hold the trial stresses, eps_p[n] the plastic strains at t^n; on exit the
+/// stresses and plastic strains at t^{n+1}, and d_eps_zz_p[0, n) the plastic thickness strain
+/// increments (0 for elastic lanes).
+template <std::size_t W>
+inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const HardeningView& h,
+                                         std::size_t n, double (&s_xx)[W], double (&s_yy)[W],
+                                         double (&s_xy)[W], double* eps_p,
+                                         double (&d_eps_zz_p)[W]) {
+  static_assert(W % 4 == 0, "lanes come in groups of 4");
+  constexpr double tol = kPlaneStressReturnTolerance;
+  constexpr int kMaxIterations = 8;
+  // The arrays are the caller's (inlined: its locals, no alias checks in the loops); eps_p is
+  // only read (as ep_n) until the final copy.
+  const double* const ep_n = eps_p;
+  double ep0[W], sy0[W], H[W], ep1[W];
+  if (h.n > 1 && h.n <= kLaneSegmentSearchMax) {
+    // Segment i = 1 + #{j in [1, n-2] : ep >= eps_p[j]} (the walk of evaluate()), branch-free;
+    // the slopes once per call.
+    double slope[kLaneSegmentSearchMax];
+    for (std::size_t j = 1; j < h.n; ++j)
+      slope[j] = (h.sigma_y_Pa[j] - h.sigma_y_Pa[j - 1]) / (h.eps_p[j] - h.eps_p[j - 1]);
+    double idx[W];
+    for (std::size_t l = 0; l < n; ++l) idx[l] = 1.0;
+    for (std::size_t j = 1; j + 1 < h.n; ++j)
+      for (std::size_t l = 0; l < n; ++l) idx[l] += ep_n[l] >= h.eps_p[j] ? 1.0 : 0.0;
+    const double last = static_cast<double>(h.n - 1);
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t i = static_cast<std::size_t>(idx[l]);
+      ep0[l] = h.eps_p[i - 1];
+      sy0[l] = h.sigma_y_Pa[i - 1];
+      H[l] = slope[i];
+      ep1[l] = idx[l] < last ? h.eps_p[i] : std::numeric_limits<double>::infinity();
+    }
+  } else {
+    for (std::size_t l = 0; l < n; ++l) h.segment(ep_n[l], ep0[l], sy0[l], H[l], ep1[l]);
+  }
+  const double k1 = c.E_Pa / (3.0 * (1.0 - c.nu)), k2 = 2.0 * c.G_Pa;
+  // The lane loops below are branch-free (selects on 0/1 masks) so that they vectorise.
+  double a_tr[W], b_tr[W], c_tr[W], vm2[W], vm_tr[W], plastic[W], g[W];
+  for (std::size_t l = 0; l < n; ++l) {
+    a_tr[l] = 0.5 * (s_xx[l] + s_yy[l]);
+    b_tr[l] = 0.5 * (s_xx[l] - s_yy[l]);
+    c_tr[l] = s_xy[l];
+    vm2[l] = a_tr[l] * a_tr[l] + 3.0 * (b_tr[l] * b_tr[l] + c_tr[l] * c_tr[l]);
+  }
+  sqrt_lanes(vm2, vm_tr, n);
+  double n_plastic = 0.0;
+  for (std::size_t l = 0; l < n; ++l) {
+    const double sy_n = sy0[l] + H[l] * (ep_n[l] - ep0[l]);
+    const bool p = vm_tr[l] > sy_n * (1.0 + tol);
+    plastic[l] = p ? 1.0 : 0.0;
+    // Radial guess (comment above) with one division: kn = kbar vm^2, beta = 2 H vm^2 / (3 kn),
+    // vm_g = P / Q, P = 3 kn sy_n + 2 H vm^2 vm_tr, Q = 3 kn + 2 H vm^2, and
+    // dgamma_0 = (vm_tr / vm_g - 1) / kbar = (vm_tr Q - P) vm^2 / (P kn).
+    const double kn = k1 * a_tr[l] * a_tr[l] + 3.0 * k2 * (b_tr[l] * b_tr[l] + c_tr[l] * c_tr[l]);
+    const double h2 = 2.0 * H[l] * vm2[l];
+    const double P = 3.0 * kn * sy_n + h2 * vm_tr[l], Q = 3.0 * kn + h2;
+    const double g0 = (vm_tr[l] * Q - P) * vm2[l] / (P * kn);
+    g[l] = (p & (g0 > 0.0)) ? g0 : 0.0;  // NaN fails the test
+    d_eps_zz_p[l] = 0.0;
+  }
+  // Reductions in loops of their own: GCC turns a masked sum inside the loops above into a
+  // branch (an FP add that "could trap"), which stops their vectorisation.
+  for (std::size_t l = 0; l < n; ++l) n_plastic += plastic[l];
+  if (n_plastic == 0.0) return;
+  double a[W], bb[W], cc[W], f1[W], f2[W], vm[W], ebar[W];
+  double g_new[W], excess[W];
+  double conv[W];  // after the loop: 0 for a converged lane (or an elastic one)
+  for (int it = 0; it < kMaxIterations; ++it) {
+    for (std::size_t l = 0; l < n; ++l) {
+      const double d1 = 1.0 + k1 * g[l], d2 = 1.0 + k2 * g[l];
+      const double inv = 1.0 / (d1 * d2);
+      f1[l] = d2 * inv;  // 1 / (1 + k1 dgamma)
+      f2[l] = d1 * inv;  // 1 / (1 + k2 dgamma)
+      a[l] = a_tr[l] * f1[l];
+      bb[l] = b_tr[l] * f2[l];
+      cc[l] = c_tr[l] * f2[l];
+      vm2[l] = a[l] * a[l] + 3.0 * (bb[l] * bb[l] + cc[l] * cc[l]);
+    }
+    sqrt_lanes(vm2, vm, n);
+    double open = 0.0;  // plastic lanes not yet converged
+    for (std::size_t l = 0; l < n; ++l) {
+      ebar[l] = ep_n[l] + (2.0 / 3.0) * g[l] * vm[l];  // d_eps_bar = 2/3 dgamma vm
+      const double sy = sy0[l] + H[l] * (ebar[l] - ep0[l]);
+      const double r = vm[l] - sy;
+      excess[l] = std::abs(r) - tol * sy;  // > 0 (or NaN): not converged
+      const double q = bb[l] * bb[l] + cc[l] * cc[l];
+      const double S = k1 * f1[l] * a[l] * a[l] + 3.0 * k2 * f2[l] * q;
+      const double den = S + (2.0 / 3.0) * H[l] * (vm2[l] - g[l] * S);
+      g_new[l] = g[l] + r * vm[l] / den;
+    }
+    // The selects in a loop of their own (GCC would otherwise sink the arithmetic above into the
+    // select's arm, where under -ftrapping-math it blocks the if-conversion and the
+    // vectorisation), into g_new (a conditional store back into g would be a branch again), as
+    // nested selects on double compares (blends; a bool & bool costs mask conversions).
+    for (std::size_t l = 0; l < n; ++l) {
+      const double done = plastic[l] == 0.0 ? 1.0 : (excess[l] <= 0.0 ? 1.0 : 0.0);
+      g_new[l] = done != 0.0 ? g[l] : g_new[l];
+      conv[l] = 1.0 - done;  // 1 for a plastic lane still moving
+    }
+    std::memcpy(g, g_new, sizeof g);
+    for (std::size_t l = 0; l < n; ++l) open += conv[l];
+    if (open == 0.0) break;
+  }
+  // Accept the converged lanes that stayed on their segment (selects), redo the others with the
+  // safeguarded scalar return.
+  // (selects of constants or of stored values only, into fresh arrays: GCC turns anything else
+  // into branches here, see above)
+  double ep_out[W], fallback[W], n_fallback = 0.0;
+  for (std::size_t l = 0; l < n; ++l) {
+    a_tr[l] = a[l] + bb[l];  // the trial values are no longer needed: reuse as outputs
+    b_tr[l] = a[l] - bb[l];
+    // d_eps_p_xx + d_eps_p_yy = dgamma (s_xx + s_yy) / 3 (as in plane_stress_j2_return)
+    vm2[l] = -(2.0 / 3.0) * g[l] * a[l];
+  }
+  for (std::size_t l = 0; l < n; ++l) {
+    // ok: a plastic lane, converged, on its segment, dgamma >= 0 (nested selects, see above)
+    const double on_seg = ebar[l] < ep1[l] ? (g[l] >= 0.0 ? 1.0 : 0.0) : 0.0;
+    const double good = conv[l] == 0.0 ? on_seg : 0.0;
+    fallback[l] = plastic[l] != 0.0 ? (good != 0.0 ? 0.0 : 1.0) : 0.0;
+    const double ok = plastic[l] != 0.0 ? good : 0.0;
+    s_xx[l] = ok != 0.0 ? a_tr[l] : s_xx[l];
+    s_yy[l] = ok != 0.0 ? b_tr[l] : s_yy[l];
+    s_xy[l] = ok != 0.0 ? cc[l] : s_xy[l];
+    ep_out[l] = ok != 0.0 ? ebar[l] : ep_n[l];
+    d_eps_zz_p[l] = ok != 0.0 ? vm2[l] : 0.0;
+  }
+  for (std::size_t l = 0; l < n; ++l) n_fallback += fallback[l];
+  if (n_fallback != 0.0) {
+    for (std::size_t l = 0; l < n; ++l) {
+      if (fallback[l] == 0.0) continue;
+      double sx = s_xx[l], sy = s_yy[l], sxy = s_xy[l], ep = ep_n[l];
+      d_eps_zz_p[l] = plane_stress_j2_return(c, h, sx, sy, sxy, ep).d_eps_zz_p;
+      s_xx[l] = sx;
+      s_yy[l] = sy;
+      s_xy[l] = sxy;
+      ep_out[l] = ep;
+    }
+  }
+  std::memcpy(eps_p, ep_out, n * sizeof(double));
+}
 
 /// Von Mises stress of a shell point: plane stress plus the transverse shears [Pa].
 inline double shell_von_mises(double s_xx, double s_yy, double s_xy, double t_yz, double t_zx) {

@@ -1,5 +1,6 @@
 #include "solver/materials/solid_update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -45,6 +46,14 @@ J2Return j2_radial_return(const HardeningCurve& h, double mu_Pa, double eps_p_n,
   sigma = {p + scale * s[0], p + scale * s[1], p + scale * s[2],
            scale * s[3],     scale * s[4],     scale * s[5]};
   return {acc, h.yield(eps_p_n + acc)};
+}
+
+double j2_yield_lower_bound(const HardeningCurve& h) {
+  const std::size_t n = h.eps_p.size();
+  if (n > 1 && h.sigma_y_Pa[n - 1] < h.sigma_y_Pa[n - 2]) return 0.0;  // softens without bound
+  double y = h.sigma_y_Pa[0];
+  for (double s : h.sigma_y_Pa) y = std::min(y, s);
+  return y;
 }
 
 }  // namespace crashlink::materials

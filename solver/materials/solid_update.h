@@ -19,6 +19,8 @@
 // curve (no Newton tolerance).
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 
 #include "solver/materials/material.h"
 
@@ -55,6 +57,36 @@ struct J2Return {
   double delta_eps_p = 0.0;  ///< effective plastic strain increment [-] (0: elastic step)
   double yield_Pa = 0.0;     ///< sigma_y(ep_n + delta_eps_p) [Pa]
 };
+
+/// The segment of the hardening curve on which a return from eps_p_n starts: yield stress
+/// sigma_y(eps_p_n) [Pa], slope H [Pa] of the segment [eps_p_n, end) (right-hand slope at a kink)
+/// and its end (infinity on the last, extrapolated segment). If the return ends on this segment,
+/// it is the closed form d_ep = (q_tr - yield) / (3 mu + H) of the header comment: batched
+/// kernels evaluate that lane-wise and call j2_radial_return only for the rest.
+struct J2Segment {
+  double yield_Pa = 0.0;  ///< sigma_y(eps_p_n) [Pa]
+  double slope_Pa = 0.0;  ///< H on [eps_p_n, end) [Pa]
+  double end = 0.0;       ///< effective plastic strain where the segment ends [-]
+};
+inline J2Segment j2_segment(const HardeningCurve& h, double eps_p_n) {
+  const std::size_t n = h.eps_p.size();
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (n == 1) return {h.sigma_y_Pa[0], 0.0, inf};
+  auto slope = [&](std::size_t i) {
+    return (h.sigma_y_Pa[i] - h.sigma_y_Pa[i - 1]) / (h.eps_p[i] - h.eps_p[i - 1]);
+  };
+  std::size_t i = 1;  // segment [eps_p[i-1], eps_p[i]) holding eps_p_n (the last one is open)
+  while (i + 1 < n && eps_p_n >= h.eps_p[i]) ++i;
+  // HardeningCurve::yield takes the segment on the left of a kink: same value, same arithmetic
+  const std::size_t iy = (i > 1 && eps_p_n == h.eps_p[i - 1]) ? i - 1 : i;
+  const double yield = h.sigma_y_Pa[iy - 1] + slope(iy) * (eps_p_n - h.eps_p[iy - 1]);
+  // the end as in the segment walk of j2_radial_return (its first step)
+  return {yield, slope(i), eps_p_n < h.eps_p[i] ? h.eps_p[i] : inf};
+}
+
+/// Lower bound of sigma_y over all eps_p >= 0 [Pa] (0 if the curve ends with a softening slope):
+/// a trial stress with q_tr <= this bound is elastic without a look-up of the curve.
+double j2_yield_lower_bound(const HardeningCurve& h);
 
 /// J2 radial return of a trial stress (in: trial Cauchy stress, out: returned stress) with
 /// isotropic piecewise-linear hardening h, shear modulus mu_Pa, effective plastic strain eps_p_n

@@ -1,6 +1,7 @@
-// The batched kernel (8 lanes, padded tail) against the same kernel called one element at a time
-// (the naive reference for the lane layout): a random distorted mesh of 11 elements (one full
-// batch + a tail of 3) with random velocities, elastic and J2, several steps.
+// The batched kernel (SIMD lanes, padded tail) against the same kernel called one element at a
+// time (the reference for the lane layout): a random distorted mesh of 11 elements (full batches
+// and a tail of 3 for 4 or 8 lanes, of 1 for 2 lanes) with random velocities, elastic and J2,
+// several steps.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "solver/materials/plane_stress_update.h"
 
@@ -138,4 +139,59 @@ TEST(PlaneStressJ2, ElasticBelowYield) {
   EXPECT_NEAR(p.syy, E / (1 - nu * nu) * (2e-4 + nu * 5e-4), 1e-12 * E);
   EXPECT_NEAR(p.sxy, E / (2 * (1 + nu)) * 1e-4, 1e-12 * E);
   EXPECT_EQ(p.ep, 0.0);
+}
+
+// The lane return (plane_stress_j2_return_lanes, used by the shell kernel) against the scalar
+// return on mixed batches: elastic lanes (unchanged bit for bit), plastic lanes on every segment,
+// increments that cross kinks (these take the scalar fallback), for a short curve (branch-free
+// segment search), a long one (binary search, more points than kLaneSegmentSearchMax) and a
+// single-point (perfectly plastic) curve. Stresses to 1e-10 of the yield stress, eps_p to 1e-12
+// (both returns meet |vm - sigma_y| <= 1e-12 sigma_y).
+TEST(PlaneStressJ2, LaneReturnEqualsScalarReturn) {
+  const Material base = steel();
+  std::vector<HardeningCurve> curves = {base.hardening, HardeningCurve{{0.0}, {300e6}}};
+  HardeningCurve lng;
+  for (int i = 0; i < 40; ++i) {
+    lng.eps_p.push_back(0.01 * i);
+    lng.sigma_y_Pa.push_back(250e6 + 400e6 * std::sqrt(0.01 * i));
+  }
+  curves.push_back(lng);
+  ASSERT_GT(lng.eps_p.size(), crashlink::materials::kLaneSegmentSearchMax);
+  for (const auto& curve : curves) {
+    Material m = base;
+    m.hardening = curve;
+    const auto el = PlaneStressElastic::from(m);
+    const auto hv = HardeningView::from(m.hardening);
+    int plastic = 0;
+    for (int batch = 0; batch < 50; ++batch) {
+      constexpr std::size_t W = 8;
+      double sx[W], sy[W], sxy[W], ep[W], dz[W];
+      Point ref[W];
+      double dz_ref[W];
+      for (std::size_t l = 0; l < W; ++l) {
+        const double t = 0.37 * static_cast<double>(batch * 8 + static_cast<int>(l));
+        const double scale = 0.5 + 0.6 * (1.0 + std::sin(3.1 * t));  // 0.5 .. 1.7 x yield
+        sx[l] = scale * 300e6 * std::cos(t);
+        sy[l] = scale * 300e6 * std::sin(1.7 * t);
+        sxy[l] = scale * 150e6 * std::sin(0.6 * t + 1.0);
+        ep[l] = l % 3 == 0 ? 0.0 : 0.05 * (1.0 + std::cos(2.3 * t));  // 0 .. 0.1
+        ref[l] = Point{sx[l], sy[l], sxy[l], ep[l]};
+        dz_ref[l] = crashlink::materials::plane_stress_j2_return(el, hv, ref[l].sxx, ref[l].syy,
+                                                                 ref[l].sxy, ref[l].ep)
+                        .d_eps_zz_p;
+      }
+      crashlink::materials::plane_stress_j2_return_lanes<W>(el, hv, W, sx, sy, sxy, ep, dz);
+      for (std::size_t l = 0; l < W; ++l) {
+        const double s_y = m.hardening.yield(ref[l].ep);
+        EXPECT_NEAR(sx[l], ref[l].sxx, 1e-10 * s_y);
+        EXPECT_NEAR(sy[l], ref[l].syy, 1e-10 * s_y);
+        EXPECT_NEAR(sxy[l], ref[l].sxy, 1e-10 * s_y);
+        EXPECT_NEAR(ep[l], ref[l].ep, 1e-12);
+        EXPECT_NEAR(dz[l], dz_ref[l], 1e-12);
+        if (dz_ref[l] != 0.0) ++plastic;
+      }
+    }
+    EXPECT_GT(plastic, 100);  // most lanes yield
+    EXPECT_LT(plastic, 400);  // and some do not
+  }
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using crashlink::materials::HardeningCurve;
@@ -77,4 +78,42 @@ TEST(SolidJ2, ClosedFormOnOneSegmentAndPerfectPlasticity) {
   const auto rp = j2_radial_return(perfect, kMu, 0.3, t);
   EXPECT_NEAR(von_mises(t), 300e6, 1e-12 * 300e6);
   EXPECT_NEAR(rp.delta_eps_p, (400e6 * std::sqrt(3.0) - 300e6) / (3 * kMu), 1e-12);
+}
+
+// The closed form on the starting segment (j2_segment: d_ep = (q_tr - sigma_y) / (3 mu + H), used
+// lane-wise by the batched kernels) is the segment walk of j2_radial_return whenever it ends on
+// that segment (ep_n + d_ep <= end): round-off (1e-12 relative). The lower bound of the curve is
+// its smallest point, 0 when the last segment softens.
+TEST(SolidJ2, SegmentClosedFormEqualsWalkOnItsSegment) {
+  using crashlink::materials::j2_segment;
+  using crashlink::materials::j2_yield_lower_bound;
+  const HardeningCurve h{{0.0, 0.002, 0.05, 0.2}, {250e6, 300e6, 350e6, 400e6}};
+  std::mt19937 gen(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int closed = 0;
+  for (int t = 0; t < 2000; ++t) {
+    Voigt6 s;
+    const double amp = 4e8 * std::abs(u(gen)) + 1e6;
+    for (double& c : s) c = amp * u(gen);
+    const double ep_n = t % 4 == 0 ? 0.002 : 0.25 * std::abs(u(gen));  // a kink, or anywhere
+    const auto seg = j2_segment(h, ep_n);
+    EXPECT_DOUBLE_EQ(seg.yield_Pa, h.yield(ep_n));
+    EXPECT_DOUBLE_EQ(seg.slope_Pa, h.slope(ep_n));
+    const double q_tr = von_mises(s);
+    const Voigt6 tr = s;
+    const auto r = j2_radial_return(h, kMu, ep_n, s);
+    if (!(q_tr > seg.yield_Pa)) continue;
+    const double d = (q_tr - seg.yield_Pa) / (3 * kMu + seg.slope_Pa);
+    if (!(ep_n + d <= seg.end)) continue;
+    ++closed;
+    EXPECT_NEAR(r.delta_eps_p, d, 1e-12 * d);
+    const double scale = 1.0 - 3 * kMu * d / q_tr;
+    EXPECT_NEAR(s[3], scale * tr[3], 1e-12 * amp);
+  }
+  EXPECT_GT(closed, 500);
+  EXPECT_EQ(j2_segment(h, 1.0).end, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(j2_segment(h, 0.01).end, 0.05);
+  EXPECT_EQ(j2_yield_lower_bound(h), 250e6);
+  EXPECT_EQ(j2_yield_lower_bound(HardeningCurve{{0.0, 0.1}, {300e6, 200e6}}), 0.0);
+  EXPECT_EQ(j2_yield_lower_bound(HardeningCurve{{0.0}, {300e6}}), 300e6);
 }
