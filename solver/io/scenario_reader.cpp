@@ -82,7 +82,7 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
     root.fail("a scenario is a mapping of sections (name, controls, materials, parts, ...)");
   root.expect_keys({"name", "description", "controls", "materials", "parts", "node_sets",
                     "boundary", "prescribed_velocity", "loads", "initial_velocity", "rigid_bodies",
-                    "contacts", "probes"});
+                    "contacts", "probes", "domains"});
 
   detail::ScenarioBuild b;
   b.file = name_for_messages;
@@ -104,6 +104,7 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
   detail::read_rigid_bodies(root.optional("rigid_bodies"), b);
   if (auto s = root.optional("contacts")) detail::read_contacts(*s, b);
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
+  if (auto s = root.optional("domains")) detail::read_domains(*s, b);
 
   try {
     model::validate(b.model);

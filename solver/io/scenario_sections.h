@@ -42,6 +42,7 @@ void read_initial_velocities(const YamlNode& list, ScenarioBuild& b);
 void read_rigid_bodies(const std::optional<YamlNode>& bodies, ScenarioBuild& b);
 void read_contacts(const YamlNode& contacts, ScenarioBuild& b);
 void read_probes(const YamlNode& probes, ScenarioBuild& b);
+void read_domains(const YamlNode& domains, ScenarioBuild& b);
 
 /// A node selection: a mapping {part, box: {min, max}} or {nodes: [ids]} (see node_sets in
 /// docs/scenario-format.md). Fails if it selects no node.

@@ -120,6 +120,13 @@ struct Controls {
   Vec3 gravity_m_s2{};                   ///< body acceleration
 };
 
+/// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds
+/// (indices into Model::parts; every part in exactly one domain).
+struct Domain {
+  std::string name;
+  std::vector<int> parts;
+};
+
 struct Model {
   std::string name;
   Nodes nodes;
@@ -133,6 +140,7 @@ struct Model {
   std::vector<Contact> contacts;
   std::vector<Probe> probes;
   Controls controls;
+  std::vector<Domain> domains;           ///< scenario order; empty: a single-domain run
 
   /// Index of the node with user id `id`, or -1.
   int node_index(std::int64_t id) const;

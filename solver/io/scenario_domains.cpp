@@ -1,0 +1,68 @@
+// The `domains` section (docs/scenario-format.md, docs/decomposition.md): the decomposition of
+// the model into subdomains, one model::Domain per entry in file order. Every part in exactly one
+// domain; a rigid body's parts in one domain (a rigid body is one set of dofs).
+#include <map>
+
+#include "solver/core/errors.h"
+#include "solver/io/scenario_sections.h"
+
+namespace crashlink::io::detail {
+
+void read_domains(const YamlNode& section, ScenarioBuild& b) {
+  auto& m = b.model;
+  struct Where {
+    std::string domain;
+    int line = 0;
+  };
+  std::map<int, Where> placed;  // part index -> domain and line
+  const auto entries = section.entries("domains (name: {parts: [part names]})");
+  if (entries.empty())
+    section.fail(
+        "lists no domain; give `name: {parts: [...]}` per domain, or remove the section "
+        "for a single-domain run");
+  for (const auto& [name, entry] : entries) {
+    entry.expect_keys({"parts"});
+    model::Domain d;
+    d.name = name;
+    const auto parts = entry.required("parts", "the parts of this domain, e.g. [plate, frame]");
+    const std::vector<YamlNode> items =
+        parts.is_sequence() ? parts.items("part names") : std::vector<YamlNode>{parts};
+    for (const auto& pn : items) {
+      const int p = read_part_reference(pn, b);
+      if (auto it = placed.find(p); it != placed.end())
+        pn.fail(
+            fmt::format("part '{}' is already in domain '{}' (line {}); a part belongs to "
+                        "exactly one domain: remove it from one of them",
+                        pn.text(), it->second.domain, it->second.line));
+      placed[p] = {name, pn.line()};
+      d.parts.push_back(p);
+    }
+    if (d.parts.empty())
+      parts.fail("lists no part; give at least one part name or remove the domain");
+    m.domains.push_back(std::move(d));
+  }
+  std::vector<std::string> orphans;
+  for (std::size_t p = 0; p < m.parts.size(); ++p)
+    if (!placed.count(static_cast<int>(p))) orphans.push_back(m.parts[p].name);
+  if (!orphans.empty())
+    section.fail(fmt::format(
+        "part{} {} {} in no domain; add each to exactly one domain (every "
+        "part must be in one)",
+        orphans.size() > 1 ? "s" : "", quoted_list(orphans), orphans.size() > 1 ? "are" : "is"));
+  for (const auto& rb : m.rigid_bodies) {
+    const auto& first = placed.at(rb.parts.front());
+    for (int p : rb.parts) {
+      const auto& w = placed.at(p);
+      if (w.domain != first.domain)
+        throw InputError(
+            b.file, w.line, section.path() + "." + w.domain + ".parts",
+            fmt::format("rigid body '{}' has part '{}' in domain '{}' and part '{}' "
+                        "in domain '{}'; a rigid body is one set of dofs: put all "
+                        "its parts in one domain",
+                        rb.name, m.parts[static_cast<std::size_t>(rb.parts.front())].name,
+                        first.domain, m.parts[static_cast<std::size_t>(p)].name, w.domain));
+    }
+  }
+}
+
+}  // namespace crashlink::io::detail

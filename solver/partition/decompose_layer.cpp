@@ -1,0 +1,184 @@
+// The `layer` decomposition (DESIGN.md §2.7, "How to distribute layer"; docs/decomposition.md).
+//
+// 1. Link claims: every node used by elements of several domains is a permanent-link node; every
+//    element touching it is claimed by the finest of those domains (the coarse side's first
+//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade.
+// 2. Contact claims: all surface elements of a contact (master parts' elements, the elements
+//    holding slave nodes) go to the finest domain holding one of them, so the contact lies in one
+//    domain (for a cross-domain contact: the coarse body's contact-surface layer moves into F).
+// 3. Rigid bodies move whole (a rigid body is one set of dofs: it cannot be integrated by two
+//    daemons). 2 and 3 are repeated to a fixed point; claims only ever go finer, so it ends.
+// 4. Nodes: a node used by one domain is owned by it. A node used by several domains is owned by
+//    the coarsest of them (the far nodes J of a moved layer: integrated at the coarse step with
+//    their natural summed mass, the link sum [8]) and is a read-only ghost in the others.
+//    Check: no element of an originally finer domain touches a node owned by a coarser one (it
+//    would be integrated above its stable step).
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "solver/core/errors.h"
+#include "solver/partition/partition_detail.h"
+
+namespace crashlink::partition::detail {
+
+Decomposition decompose_layer(const Analysis& a) {
+  const model::Model& g = *a.global;
+  const std::size_t ne = a.element_count(), n = a.node_count(), nd = a.domain_count();
+  auto finest = [&](int x, int y) { return a.finer(x, y) ? x : y; };
+
+  Placement pl;
+  pl.elem_domain = a.orig_domain;
+  // Reasons an element moved: bit 0 link, contact c -> entry in contact_moved.
+  std::vector<std::uint8_t> link_moved(ne, 0);
+
+  // 1. Link claims on the original assignment.
+  for (std::size_t i = 0; i < n; ++i) {
+    int f = -1;
+    bool shared = false;
+    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+      const int d = a.orig_domain[static_cast<std::size_t>(a.node_elems[k])];
+      if (f >= 0 && d != f) shared = true;
+      f = f < 0 ? d : finest(f, d);
+    }
+    if (!shared) continue;
+    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+      const auto e = static_cast<std::size_t>(a.node_elems[k]);
+      if (a.orig_domain[e] == f) continue;
+      pl.elem_domain[e] = finest(pl.elem_domain[e], f);
+      link_moved[e] = 1;
+    }
+  }
+
+  // 2.-3. Contact surfaces and rigid bodies, to a fixed point.
+  std::vector<ContactSides> sides;
+  for (std::size_t c = 0; c < g.contacts.size(); ++c) sides.push_back(contact_sides(a, c));
+  std::vector<std::vector<std::int32_t>> body_elems(g.rigid_bodies.size());
+  for (std::size_t b = 0; b < g.rigid_bodies.size(); ++b)
+    for (int p : g.rigid_bodies[b].parts)
+      for (std::size_t e = a.offset[static_cast<std::size_t>(p)];
+           e < a.offset[static_cast<std::size_t>(p) + 1]; ++e)
+        body_elems[b].push_back(static_cast<std::int32_t>(e));
+  auto gather = [&](const std::vector<std::int32_t>& elems) {
+    int f = -1;
+    for (auto e : elems) {
+      const int d = pl.elem_domain[static_cast<std::size_t>(e)];
+      f = f < 0 ? d : finest(f, d);
+    }
+    for (auto e : elems) pl.elem_domain[static_cast<std::size_t>(e)] = f;
+    return f;
+  };
+  pl.contact_domain.assign(g.contacts.size(), -1);
+  // The last pass changes nothing, so every contact's surface is in contact_domain.
+  for (bool changed = true; changed;) {
+    const auto before = pl.elem_domain;
+    for (std::size_t c = 0; c < sides.size(); ++c) pl.contact_domain[c] = gather(sides[c].surface);
+    for (const auto& be : body_elems) (void)gather(be);
+    changed = before != pl.elem_domain;
+  }
+
+  // 4. Node roles.
+  pl.role.assign(nd, std::vector<std::uint8_t>(n, kAbsent));
+  pl.primary.assign(n, -1);
+  pl.summed.assign(n, 0);
+  std::map<std::pair<int, int>, std::vector<std::int32_t>> j_of_pair;  // (fine, coarse) -> J
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<int> used;
+    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+      const int d = pl.elem_domain[static_cast<std::size_t>(a.node_elems[k])];
+      if (std::find(used.begin(), used.end(), d) == used.end()) used.push_back(d);
+    }
+    if (used.empty()) {
+      // A node of no element: the first domain owns it, so that every node has one owner.
+      pl.role[0][i] = kOwned;
+      pl.primary[i] = 0;
+      continue;
+    }
+    int owner = used.front();
+    for (int d : used)
+      if (a.finer(owner, d)) owner = d;  // the coarsest
+    pl.primary[i] = owner;
+    pl.role[static_cast<std::size_t>(owner)][i] = kOwned;
+    if (used.size() == 1) continue;
+    pl.summed[i] = 1;
+    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+      const auto e = static_cast<std::size_t>(a.node_elems[k]);
+      if (a.finer(a.orig_domain[e], owner))
+        throw ModelError(fmt::format(
+            "layer decomposition: node {} would be integrated by domain '{}' at {:.3e} s although "
+            "element {} of domain '{}' (step {:.3e} s) touches it; this happens when a contact "
+            "surface or rigid body moved into a domain is also linked to a finer one: put part "
+            "'{}' in the same domain as the parts it is linked to",
+            a.node_id(i), a.domain_name[static_cast<std::size_t>(owner)],
+            a.orig_dt_s[static_cast<std::size_t>(owner)], a.element_id(e),
+            a.domain_name[static_cast<std::size_t>(a.orig_domain[e])],
+            a.orig_dt_s[static_cast<std::size_t>(a.orig_domain[e])],
+            g.parts[static_cast<std::size_t>(a.elem_part[e])].name));
+      const int fd = pl.elem_domain[e];
+      if (fd != owner && a.body_of_part[static_cast<std::size_t>(a.elem_part[e])] >= 0)
+        throw ModelError(fmt::format(
+            "layer decomposition: node {} of rigid body '{}' (domain '{}') is also used by domain "
+            "'{}', which would integrate it; a rigid body is one set of dofs: put the parts "
+            "sharing its nodes in the body's domain",
+            a.node_id(i),
+            g.rigid_bodies[static_cast<std::size_t>(
+                               a.body_of_part[static_cast<std::size_t>(a.elem_part[e])])]
+                .name,
+            a.domain_name[static_cast<std::size_t>(fd)],
+            a.domain_name[static_cast<std::size_t>(owner)]));
+    }
+    for (int d : used)
+      if (d != owner) {
+        pl.role[static_cast<std::size_t>(d)][i] = kGhost;
+        j_of_pair[{d, owner}].push_back(static_cast<std::int32_t>(i));
+      }
+  }
+
+  // Interfaces: one per (fine, coarse) pair with J nodes or moved elements.
+  std::map<std::pair<int, int>, std::vector<std::int64_t>> moved;
+  std::map<std::pair<int, int>, std::set<std::size_t>> contact_reason;
+  std::map<std::pair<int, int>, bool> link_reason;
+  for (std::size_t e = 0; e < ne; ++e) {
+    const int o = a.orig_domain[e], f = pl.elem_domain[e];
+    if (o == f) continue;
+    moved[{f, o}].push_back(a.element_id(e));
+    if (link_moved[e]) link_reason[{f, o}] = true;
+  }
+  for (std::size_t c = 0; c < sides.size(); ++c) {
+    const int f = pl.contact_domain[c];
+    for (auto e : sides[c].surface) {
+      const int o = a.orig_domain[static_cast<std::size_t>(e)];
+      if (o != f) contact_reason[{f, o}].insert(c);
+    }
+  }
+  std::set<std::pair<int, int>> pairs;
+  for (const auto& kv : j_of_pair) pairs.insert(kv.first);
+  for (const auto& kv : moved) pairs.insert(kv.first);
+  Decomposition out;
+  out.scheme = Scheme::Layer;
+  for (const auto& pr : pairs) {
+    Interface itf;
+    itf.fine = pr.first;
+    itf.coarse = pr.second;
+    itf.reference = pr.second;
+    if (auto it = j_of_pair.find(pr); it != j_of_pair.end()) itf.j_nodes_global = it->second;
+    for (auto j : itf.j_nodes_global)
+      itf.j_mass_kg.push_back(a.mass_kg[static_cast<std::size_t>(j)]);
+    if (auto it = moved.find(pr); it != moved.end()) itf.moved_elements = it->second;
+    std::sort(itf.moved_elements.begin(), itf.moved_elements.end());
+    std::vector<std::string> why;
+    const bool has_contact = contact_reason.count(pr) > 0;
+    if (link_reason.count(pr) || !has_contact) why.push_back("link");
+    if (has_contact)
+      for (auto c : contact_reason[pr]) why.push_back("contact:" + g.contacts[c].name);
+    for (std::size_t k = 0; k < why.size(); ++k) itf.kind += (k ? "+" : "") + why[k];
+    out.interfaces.push_back(std::move(itf));
+  }
+  for (std::size_t d = 0; d < nd; ++d) {
+    out.domains.push_back(build_domain(a, pl, static_cast<int>(d)));
+    out.domain_dt_s.push_back(initial_step_s(out.domains.back().model));
+  }
+  return out;
+}
+
+}  // namespace crashlink::partition::detail
