@@ -122,6 +122,7 @@ Hex8State make_hex8_state(const model::Part& part) {
   st.eps_p.assign(ne, 0.0);
   st.hourglass_force.assign(12 * ne, 0.0);
   st.volume0.assign(ne, 0.0);
+  st.bulk_q_Pa.assign(ne, 0.0);
   return st;
 }
 
@@ -166,6 +167,8 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
   double* const q_all = st.hourglass_force.data();
   double* const ep_all = st.eps_p.data();
   double* const v0_all = st.volume0.data();
+  double* const bq_all = st.bulk_q_Pa.data();
+  const bool viscous = step.bulk_viscosity;
   const double y_low = j2 ? materials::j2_yield_lower_bound(mat.hardening) : 0.0;
 
   // lane-uniform constants
@@ -190,6 +193,7 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
       for (std::size_t k = 0; k < 6; ++k) CRASHLINK_HEX8_PREFETCH(s_all + k * ne + e, 1);
       for (std::size_t k = 0; k < 12; ++k) CRASHLINK_HEX8_PREFETCH(q_all + k * ne + e, 1);
       CRASHLINK_HEX8_PREFETCH(v0_all + e, 0);
+      if (viscous) CRASHLINK_HEX8_PREFETCH(bq_all + e, 1);
       for (std::size_t k = 0; k < 4; ++k) CRASHLINK_HEX8_PREFETCH(conn + 8 * e + 16 * k, 0);
     }
     if (e0 + kPrefetchNodes < ne) {
@@ -366,7 +370,12 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
       for (int k = 3; k < 6; ++k) sd = madd(sr[k] + sn[k], d[k], sd);
       const vd rho_cur = rho_v * V0 * inv_v;
       q = bulk_v * rho_cur * len * (q2_v * len * em * em - q1_v * c_v * em);
-      vd e = (sd - q * em) * Vm * dt_v;
+      // The viscous pressure acts in the force at t^n (q^n) and at t^{n+1} (q): its work over
+      // the step is 1/2 (q^n + q) (-tr D) V dt, the trapezoid rule every work term uses
+      // (docs/energy-balance.md). Counting q alone leaves a 1 % imbalance under a shock.
+      // (with the full tr D: q^n still acts while an element that was compressing expands).
+      const vd q_old = viscous ? load(bq_all) : zero;
+      vd e = (sd - half * (q_old + q) * (d[0] + d[1] + d[2])) * Vm * dt_v;
       where(padding, e) = zero;
       e_int_sum += e;
     }
@@ -492,6 +501,7 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
           store(qn[al][i], q_all + static_cast<std::size_t>(3 * al + i) * ne);
       }
       if (j2) store(ep, ep_all);
+      if (viscous) store(q, bq_all);
     }
     for (int l = 0; l < nl; ++l) {
       if (dt_e[l] < res.dt_stable_s) {

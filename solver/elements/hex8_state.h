@@ -2,6 +2,7 @@
 // Per-element history of a part of one-point hexahedra (Hex8), structure of arrays.
 //
 // Layouts (ne = element count, e = local element index, SI units):
+//   bulk_q_Pa       [ne]     bulk-viscosity pressure applied in the force at t^n [Pa]
 //   stress          [6*ne]   Cauchy stress, component c (Voigt xx,yy,zz,xy,yz,zx) at c*ne+e,
 //                            global frame [Pa]
 //   eps_p           [ne]     effective plastic strain [-] (0 for elastic parts)
@@ -22,10 +23,11 @@ struct Hex8State {
   std::vector<double> eps_p;
   std::vector<double> hourglass_force;
   std::vector<double> volume0;
+  std::vector<double> bulk_q_Pa;  ///< [ne] bulk-viscosity pressure in the force at t^n [Pa]
   bool reference_recorded = false;  ///< volume0 filled (by the first hex8_internal_forces call)
 
   /// Bytes of history per element (for the performance report).
-  static constexpr std::size_t bytes_per_element() { return (6 + 1 + 12 + 1) * sizeof(double); }
+  static constexpr std::size_t bytes_per_element() { return (6 + 1 + 12 + 1 + 1) * sizeof(double); }
 };
 
 /// Zero stress, zero plastic strain, zero hourglass forces for every element of the part.

@@ -73,6 +73,7 @@ struct ShellState {
   std::vector<double> resultant_Pa;  ///< resultant form: [ns/L][6][L]; empty in the point form
   std::vector<double> shear_Pa;      ///< [ns/L][2][L]
   std::vector<double> thickness_m;   ///< [ns]
+  std::vector<double> bulk_q_Pa;     ///< [ns] membrane bulk-viscosity pressure at t^n [Pa]
   std::vector<double> hourglass;     ///< [ns/L][5][L]
 
   /// Index of row r of element e in a blocked array of R rows per element (layout comment).

@@ -162,6 +162,7 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
   const double km_f = K.r_hg * E / 8.0, kw_f = K.r_hg * kG / 12.0, kt_f = K.r_hg * E / 192.0;
   const std::int32_t* conn = part.connectivity.data();
   double* const thick = st.thickness_m.data();
+  double* const bulk_q = st.bulk_q_Pa.data();
   double* const shear = st.shear_Pa.data();
   double* const hgs = st.hourglass.data();
 
@@ -485,7 +486,9 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
 
     // ---- thickness, bulk viscosity, hourglass, nodal forces ----------------------------------
     double F[4][3][L], Mm[4][3][L], ehg[L], xi[L], h_new[1][L], Qh[5][L];
+    double q_old[1][L] = {}, q_new[1][L] = {};
     load_block(hgs + 5 * b0, Qh);
+    if (bulk) load_block(bulk_q + b0, q_old);
     for (std::size_t l = 0; l < L; ++l) {
       const double h_n = h[0][l];
       const double h1 = h_n * (1.0 + dezz[l]);  // dezz = 0 without update
@@ -498,7 +501,10 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       const double tr = on * tr_m;
       const double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
       xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c);
-      ework[l] = ework[l] * 0.5 * vol_mid - q * tr * vol_mid * dt;
+      q_new[0][l] = q;
+      // The pressure acts in the forces at t^n (q^n) and t^{n+1} (q): trapezoid work with the full
+      // area rate (q^n still acts when a compressed element expands), as in the hex kernel.
+      ework[l] = ework[l] * 0.5 * vol_mid - 0.5 * (q_old[0][l] + q) * tr_m * vol_mid * dt;
       // Resultants N, M, Q at t^{n+1} (q on the in-plane normal components).
       Nn[0][l] = h1 * (Nn[0][l] - q);
       Nn[1][l] = h1 * (Nn[1][l] - q);
@@ -536,6 +542,7 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       }
     if (update) {
       store_block(thick + b0, h_new);
+      if (bulk) store_block(bulk_q + b0, q_new);
       store_block(hgs + 5 * b0, Qh);
     }
     // Stable step (header comment), reduced by the bulk viscosity.

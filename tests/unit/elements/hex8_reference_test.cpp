@@ -27,6 +27,7 @@ struct RefState {
   Voigt6 sigma{};
   double q[4][3] = {};
   double eps_p = 0.0, vol0 = 0.0;
+  double q_bulk = 0.0;  // bulk-viscosity pressure in the force at t^n
 };
 
 struct RefResult {
@@ -125,7 +126,8 @@ RefResult reference(const double (&x)[8][3], const double (&v)[8][3], const Mate
   double sd = 0.0;
   for (int k = 0; k < 6; ++k) sd += (k < 3 ? 0.5 : 1.0) * (sr[k] + sn[k]) * d[k];
   RefResult r;
-  r.e_int = (sd - q * em) * Vm * dt;
+  // trapezoid rule on the viscous pressure, full tr D (docs/energy-balance.md)
+  r.e_int = (sd - 0.5 * (h.q_bulk + q) * trd) * Vm * dt;
 
   const double k_hg = kappa * (lambda + 2 * mu) * sumb2 / (8 * V);
   double qn[4][3];
@@ -159,6 +161,7 @@ RefResult reference(const double (&x)[8][3], const double (&v)[8][3], const Mate
 
   if (dt > 0.0) {
     h.sigma = sn;
+    if (step.bulk_viscosity) h.q_bulk = q;
     for (int al = 0; al < 4; ++al)
       for (int i = 0; i < 3; ++i) h.q[al][i] = qn[al][i];
   }

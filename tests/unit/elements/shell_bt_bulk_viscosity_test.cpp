@@ -96,8 +96,9 @@ TEST(ShellBtBulkViscosity, CompressionAddsTheInPlanePressure) {
         EXPECT_NEAR(on.m[3 * n + k], off.m[3 * n + k], 1e-12 * fscale * kA);
       }
     }
-    // Energy: + (-q tr) A h_mid dt.
-    const double dW = -q * tr * kA * kB * 0.5 * (kH + h1) * 1e-7;
+    // Energy: trapezoid on the pressure, 1/2 (q^n + q) (-tr) A h_mid dt, with q^n = 0 on this
+    // first step from rest.
+    const double dW = -0.5 * q * tr * kA * kB * 0.5 * (kH + h1) * 1e-7;
     EXPECT_NEAR(on.res.internal_energy_increment_J - off.res.internal_energy_increment_J, dW,
                 1e-10 * dW);
     // Step: (L_e / c) (sqrt(1 + xi^2) - xi).

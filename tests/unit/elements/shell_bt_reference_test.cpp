@@ -35,6 +35,7 @@ struct RefState {
   std::vector<double> ep;  // [ne][np]
   std::vector<double> h;   // [ne]
   std::vector<double> q;   // [ne][5] hourglass
+  std::vector<double> qb;  // [ne] bulk-viscosity pressure in the force at t^n
 };
 
 RefState make_ref(const model::Part& part) {
@@ -47,6 +48,7 @@ RefState make_ref(const model::Part& part) {
   r.s.assign(ne * n * 5, 0.0);
   r.ep.assign(ne * n, 0.0);
   r.h.assign(ne, part.thickness_m);
+  r.qb.assign(ne, 0.0);
   r.q.assign(ne * 5, 0.0);
   return r;
 }
@@ -168,7 +170,10 @@ el::KernelResult reference(const model::Part& part, const materials::Material& m
     const double q1 = step.q_linear, q2 = step.q_quadratic;
     const double qv = on ? rho * Le * (q2 * Le * tr * tr - q1 * c * tr) : 0.0;
     const double xi = on ? q1 - q2 * Le * tr / c : 0.0;
-    res.internal_energy_increment_J += work * 0.5 * vol_mid - qv * tr * vol_mid * dt;
+    // trapezoid rule on the viscous pressure, full area rate (docs/energy-balance.md)
+    const double q_old = step.bulk_viscosity ? st.qb[e] : 0.0;
+    res.internal_energy_increment_J += work * 0.5 * vol_mid - 0.5 * (q_old + qv) * tr * vol_mid * dt;
+    if (step.bulk_viscosity && dt > 0.0) st.qb[e] = qv;
     const double hh = 0.5 * h1;
     const double Nxx = hh * sN[0] - qv * h1, Nyy = hh * sN[1] - qv * h1, Nxy = hh * sN[2];
     const double Mxx = hh * hh * sM[0], Myy = hh * hh * sM[1], Mxy = hh * hh * sM[2];
