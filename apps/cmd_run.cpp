@@ -11,11 +11,14 @@ namespace crashlink::apps {
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   auto* run = app.add_subcommand("run", "run a scenario locally and write DIR/result.h5");
-  run->add_option("scenario", o.scenario, "scenario YAML file")->required()->check(CLI::ExistingFile);
+  run->add_option("scenario", o.scenario, "scenario YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
   run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)");
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
-  run->add_option("--coupling", o.coupling, "layer | paper")->check(CLI::IsMember({"layer", "paper"}));
+  run->add_option("--coupling", o.coupling, "layer | paper")
+      ->check(CLI::IsMember({"layer", "paper"}));
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");

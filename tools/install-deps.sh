@@ -4,7 +4,7 @@ set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
       libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler libeigen3-dev libhdf5-dev
       libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
-      libgtest-dev libgmock-dev libbenchmark-dev
+      libgtest-dev libgmock-dev libbenchmark-dev clang-format
       python3 python3-numpy python3-matplotlib python3-h5py)
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi

@@ -1,11 +1,11 @@
 #pragma once
 // Typed errors (DESIGN.md §7 rule 6). Always-on checks throw one of these; the message carries
 // the offending values and the fix. Internal invariants use CRASHLINK_ASSERT (debug only).
+#include <fmt/format.h>
+
 #include <cassert>
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace crashlink {
 

@@ -23,7 +23,7 @@ struct Hex8State {
   std::vector<double> eps_p;
   std::vector<double> hourglass_force;
   std::vector<double> volume0;
-  std::vector<double> bulk_q_Pa;  ///< [ne] bulk-viscosity pressure in the force at t^n [Pa]
+  std::vector<double> bulk_q_Pa;    ///< [ne] bulk-viscosity pressure in the force at t^n [Pa]
   bool reference_recorded = false;  ///< volume0 filled (by the first hex8_internal_forces call)
 
   /// Bytes of history per element (for the performance report).

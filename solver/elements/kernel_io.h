@@ -22,26 +22,27 @@ struct NodalView {
 
 /// The step just taken and the options that shape the element response.
 struct StepInfo {
-  double dt_s = 0.0;              ///< dt^n = t^{n+1} - t^n [s]; 0 at the initial call (t = 0)
-  bool bulk_viscosity = true;     ///< artificial bulk viscosity on (linear + quadratic)
-  double q_linear = 0.06;         ///< Q1 [-]
-  double q_quadratic = 1.5;       ///< Q2 [-]
+  double dt_s = 0.0;           ///< dt^n = t^{n+1} - t^n [s]; 0 at the initial call (t = 0)
+  bool bulk_viscosity = true;  ///< artificial bulk viscosity on (linear + quadratic)
+  double q_linear = 0.06;      ///< Q1 [-]
+  double q_quadratic = 1.5;    ///< Q2 [-]
 };
 
 /// What a kernel call reports. Energies are increments over [t^n, t^{n+1}] by the midpoint rule.
 struct KernelResult {
-  double dt_stable_s = std::numeric_limits<double>::infinity();  ///< min over the part, no safety factor
-  std::int64_t critical_element = -1;    ///< local index of the element giving dt_stable_s
-  double internal_energy_increment_J = 0.0;   ///< stress work incl. bulk viscosity
-  double hourglass_energy_increment_J = 0.0;  ///< work of the hourglass forces
+  double dt_stable_s =
+      std::numeric_limits<double>::infinity();  ///< min over the part, no safety factor
+  std::int64_t critical_element = -1;           ///< local index of the element giving dt_stable_s
+  double internal_energy_increment_J = 0.0;     ///< stress work incl. bulk viscosity
+  double hourglass_energy_increment_J = 0.0;    ///< work of the hourglass forces
 };
 
 /// Per-element output for field states and summaries.
 struct ElementOutput {
   double* von_mises_Pa = nullptr;  ///< [ne] von Mises stress (max over integration points)
   double* eps_p = nullptr;         ///< [ne] effective plastic strain (max over integration points)
-  double* stress_Pa = nullptr;     ///< [6*ne] Voigt xx,yy,zz,xy,yz,zx, global frame, element e at 6e
-                                   ///< (shells: mid-surface point); may be null
+  double* stress_Pa = nullptr;  ///< [6*ne] Voigt xx,yy,zz,xy,yz,zx, global frame, element e at 6e
+                                ///< (shells: mid-surface point); may be null
 };
 
 }  // namespace crashlink::elements

@@ -9,7 +9,9 @@ namespace crashlink::integration {
 
 /// dt^{n-1/2} = (dt^{n-1} + dt^n)/2 ([2]); at the first cycle dt^{-1} = 0, so dt^{-1/2} = dt^0/2
 /// (the half-step start v^{1/2} = v^0 + dt^0/2 a^0).
-inline double mid_step(double dt_prev, double dt) { return 0.5 * (dt_prev + dt); }
+inline double mid_step(double dt_prev, double dt) {
+  return 0.5 * (dt_prev + dt);
+}
 
 /// v[i] += dt_mid * a[i] for i < len. [2]
 void update_velocity(double* v, const double* a, double dt_mid, std::size_t len);

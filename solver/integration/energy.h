@@ -17,14 +17,14 @@ namespace crashlink::integration {
 
 struct EnergyAccount {
   double kinetic_J = 0.0;
-  double internal_J = 0.0;   ///< stress work incl. plastic dissipation and bulk viscosity
+  double internal_J = 0.0;  ///< stress work incl. plastic dissipation and bulk viscosity
   double hourglass_J = 0.0;
   double contact_J = 0.0;
   double external_work_J = 0.0;  ///< loads, gravity, prescribed motions
   double coupling_work_J = 0.0;  ///< work done on this domain by the coupling (link forces,
                                  ///< drift corrections, ghost-node motion); 0 for one domain
   double initial_total_J = 0.0;
-  double reference_J = 0.0;      ///< largest |energy| seen: denominator of the balance error
+  double reference_J = 0.0;  ///< largest |energy| seen: denominator of the balance error
 
   double total_J() const { return kinetic_J + internal_J + hourglass_J + contact_J; }
   /// Energy created (> 0) or lost (< 0) by the numerics, J.

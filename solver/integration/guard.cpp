@@ -12,7 +12,8 @@ std::size_t fastest_node(const double* v, std::size_t n) {
   std::size_t best = 0;
   double best_s2 = -1.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double s2 = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+    const double s2 =
+        v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
     if (s2 > best_s2 || !std::isfinite(s2)) {
       best = i;
       best_s2 = s2;
@@ -42,8 +43,8 @@ void check_energy_balance(const model::Model& m, const EnergyAccount& e, double 
   const double err = e.balance_error();
   if (std::isfinite(err) && std::abs(err) <= tolerance) return;
   const std::size_t i = fastest_node(v, m.nodes.count());
-  const double speed = std::sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] +
-                                 v[3 * i + 2] * v[3 * i + 2]);
+  const double speed =
+      std::sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
   throw NumericalError(fmt::format(
       "{}: energy balance error {:.3g} % exceeds the bound {:.3g} % at cycle {}, t = {:.6e} s "
       "(dt = {:.3e} s): kinetic {:.6e} J, internal {:.6e} J, hourglass {:.6e} J, external work "
@@ -51,8 +52,8 @@ void check_energy_balance(const model::Model& m, const EnergyAccount& e, double 
       "above the stable limit (controls.dt_scale), a too stiff penalty, or an unstable coupling.",
       c.domain, 100.0 * err, 100.0 * tolerance, c.cycle, c.time_s, c.dt_s, e.kinetic_J,
       e.internal_J, e.hourglass_J, e.external_work_J, e.initial_total_J,
-      err > 0 ? "Energy was created: the run went unstable." : "Energy was lost.",
-      m.nodes.id[i], speed));
+      err > 0 ? "Energy was created: the run went unstable." : "Energy was lost.", m.nodes.id[i],
+      speed));
 }
 
 }  // namespace crashlink::integration

@@ -16,18 +16,18 @@ struct RigidBodyState {
   std::vector<std::int32_t> nodes;  ///< node indices that follow the body
   std::vector<double> offsets;      ///< [3k] X_i = x0_i - c0, body frame [m]
   double mass_kg = 0.0;
-  Mat3 inertia_body{};              ///< J about the centre, body frame (= spatial at t0) [kg m^2]
+  Mat3 inertia_body{};  ///< J about the centre, body frame (= spatial at t0) [kg m^2]
   Mat3 inertia_body_inv{};
-  Vec3 centre0{};                   ///< c at t0 [m]
-  Vec3 centre{};                    ///< c^n [m]
-  Vec3 velocity{};                  ///< v_c^{n+1/2} (after the velocity update) [m/s]
-  Vec3 velocity_prev{};             ///< v_c^{n-1/2} [m/s]
-  Vec3 angular_momentum{};          ///< L^{n+1/2}, spatial [kg m^2/s]
-  Vec3 omega{};                     ///< omega^{n+1/2}, spatial [rad/s]
-  Vec3 omega_prev{};                ///< omega^{n-1/2} [rad/s]
-  Mat3 rotation = identity3();      ///< R^n body -> spatial
-  Vec3 force{};                     ///< F^n total force on the body [N]
-  Vec3 torque{};                    ///< T^n about c^n [N m]
+  Vec3 centre0{};               ///< c at t0 [m]
+  Vec3 centre{};                ///< c^n [m]
+  Vec3 velocity{};              ///< v_c^{n+1/2} (after the velocity update) [m/s]
+  Vec3 velocity_prev{};         ///< v_c^{n-1/2} [m/s]
+  Vec3 angular_momentum{};      ///< L^{n+1/2}, spatial [kg m^2/s]
+  Vec3 omega{};                 ///< omega^{n+1/2}, spatial [rad/s]
+  Vec3 omega_prev{};            ///< omega^{n-1/2} [rad/s]
+  Mat3 rotation = identity3();  ///< R^n body -> spatial
+  Vec3 force{};                 ///< F^n total force on the body [N]
+  Vec3 torque{};                ///< T^n about c^n [N m]
 };
 
 /// Sums the nodal forces f_ext - f_int ([3n] each) of the body's nodes and the body force

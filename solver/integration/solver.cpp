@@ -11,8 +11,8 @@ namespace crashlink::integration {
 
 namespace {
 
-using model::ElementKind;
 using materials::MaterialKind;
+using model::ElementKind;
 
 bool is_rigid(const model::Model& m, const model::Part& p) {
   return m.materials[static_cast<std::size_t>(p.material)].kind == MaterialKind::Rigid;
@@ -62,19 +62,23 @@ void Solver::build_rigid_bodies() {
     for (std::size_t other = 0; other < b; ++other)
       for (auto c : bodies_[other].nodes)
         if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end())
-          throw ModelError(fmt::format(
-              "node {} belongs to rigid bodies '{}' and '{}'; merge them into one body",
-              model_.nodes.id[static_cast<std::size_t>(c)], model_.rigid_bodies[other].name, rb.name));
+          throw ModelError(
+              fmt::format("node {} belongs to rigid bodies '{}' and '{}'; merge them into one body",
+                          model_.nodes.id[static_cast<std::size_t>(c)],
+                          model_.rigid_bodies[other].name, rb.name));
     double m_sum = 0.0;
     Vec3 mx{};
     for (auto c : s.nodes) {
       const auto i = static_cast<std::size_t>(c);
       m_sum += mass_[i];
-      mx = mx + mass_[i] * Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1], model_.nodes.x0[3 * i + 2]};
+      mx = mx + mass_[i] * Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1],
+                                model_.nodes.x0[3 * i + 2]};
     }
     if (!(m_sum > 0.0) && !(rb.mass_kg > 0.0))
-      throw ModelError(fmt::format("rigid body '{}' has no mass: give its parts a density or set "
-                                   "its mass", rb.name));
+      throw ModelError(
+          fmt::format("rigid body '{}' has no mass: give its parts a density or set "
+                      "its mass",
+                      rb.name));
     s.mass_kg = rb.mass_kg > 0.0 ? rb.mass_kg : m_sum;
     const double scale = m_sum > 0.0 ? s.mass_kg / m_sum : 0.0;  // given mass: scale the nodes
     s.centre0 = rb.centre_given ? rb.centre_m : (1.0 / m_sum) * mx;
@@ -83,7 +87,9 @@ void Solver::build_rigid_bodies() {
     s.offsets.resize(3 * s.nodes.size());
     for (std::size_t k = 0; k < s.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(s.nodes[k]);
-      const Vec3 r = Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1], model_.nodes.x0[3 * i + 2]} - s.centre0;
+      const Vec3 r =
+          Vec3{model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1], model_.nodes.x0[3 * i + 2]} -
+          s.centre0;
       for (std::size_t d = 0; d < 3; ++d) s.offsets[3 * k + d] = r[d];
       const double mi = scale * mass_[i];
       for (std::size_t a = 0; a < 3; ++a)
@@ -91,12 +97,17 @@ void Solver::build_rigid_bodies() {
           j[a][c] += mi * ((a == c ? dot(r, r) : 0.0) - r[a] * r[c]);
     }
     s.inertia_body = rb.inertia_given ? rb.inertia_kg_m2 : j;
-    const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] - s.inertia_body[1][2] * s.inertia_body[2][1]) -
-                       s.inertia_body[0][1] * (s.inertia_body[1][0] * s.inertia_body[2][2] - s.inertia_body[1][2] * s.inertia_body[2][0]) +
-                       s.inertia_body[0][2] * (s.inertia_body[1][0] * s.inertia_body[2][1] - s.inertia_body[1][1] * s.inertia_body[2][0]);
+    const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] -
+                                               s.inertia_body[1][2] * s.inertia_body[2][1]) -
+                       s.inertia_body[0][1] * (s.inertia_body[1][0] * s.inertia_body[2][2] -
+                                               s.inertia_body[1][2] * s.inertia_body[2][0]) +
+                       s.inertia_body[0][2] * (s.inertia_body[1][0] * s.inertia_body[2][1] -
+                                               s.inertia_body[1][1] * s.inertia_body[2][0]);
     if (!(det > 0.0))
-      throw ModelError(fmt::format("rigid body '{}': inertia tensor is singular (det {:.3e}); give "
-                                   "its inertia explicitly", rb.name, det));
+      throw ModelError(
+          fmt::format("rigid body '{}': inertia tensor is singular (det {:.3e}); give "
+                      "its inertia explicitly",
+                      rb.name, det));
     s.inertia_body_inv = inverse(s.inertia_body);
     s.velocity = rb.velocity_m_s;
     s.velocity_prev = rb.velocity_m_s;
@@ -107,14 +118,17 @@ void Solver::build_rigid_bodies() {
   }
   for (std::size_t p = 0; p < model_.parts.size(); ++p)
     if (is_rigid(model_, model_.parts[p]) && part_body[p] < 0)
-      throw ModelError(fmt::format("part '{}' is rigid but belongs to no rigid body; list it under "
-                                   "rigid_bodies", model_.parts[p].name));
+      throw ModelError(
+          fmt::format("part '{}' is rigid but belongs to no rigid body; list it under "
+                      "rigid_bodies",
+                      model_.parts[p].name));
 }
 
 void Solver::apply_initial_velocities() {
   for (const auto& iv : model_.initial_velocities)
     for (auto c : iv.nodes)
-      for (std::size_t d = 0; d < 3; ++d) v_[3 * static_cast<std::size_t>(c) + d] = iv.velocity_m_s[d];
+      for (std::size_t d = 0; d < 3; ++d)
+        v_[3 * static_cast<std::size_t>(c) + d] = iv.velocity_m_s[d];
   for (auto& b : bodies_)
     for (std::size_t k = 0; k < b.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(b.nodes[k]);
@@ -125,11 +139,13 @@ void Solver::apply_initial_velocities() {
   for (const auto& pv : model_.prescribed_velocities) {
     const bool rot = pv.dof >= 3;
     for (auto c : pv.nodes) {
-      const std::size_t idx = 3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(pv.dof % 3);
+      const std::size_t idx =
+          3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(pv.dof % 3);
       if (rigid_node_[static_cast<std::size_t>(c)])
-        throw ModelError(fmt::format("prescribed velocity '{}': node {} follows a rigid body; "
-                                     "prescribe the body's motion instead",
-                                     pv.name, model_.nodes.id[static_cast<std::size_t>(c)]));
+        throw ModelError(
+            fmt::format("prescribed velocity '{}': node {} follows a rigid body; "
+                        "prescribe the body's motion instead",
+                        pv.name, model_.nodes.id[static_cast<std::size_t>(c)]));
       prescribed_.push_back({idx, rot, &pv.velocity});
       (rot ? omega_ : v_)[idx] = pv.velocity.at(0.0);
     }
@@ -141,16 +157,23 @@ void Solver::apply_initial_velocities() {
 void Solver::initialize() {
   const std::size_t n3 = 3 * n_;
   for (auto* vec : {&x_, &u_, &v_, &v_prev_, &a_, &omega_, &omega_prev_, &alpha_, &f_int_, &f_ext_,
-                    &m_int_, &du_, &f_cont_, &f_load_, &f_coup_})
+                    &m_int_, &du_, &f_cont_, &f_load_, &f_coup_, &m_coup_, &dtheta_})
     vec->assign(n3, 0.0);
   x_ = model_.nodes.x0;
   assemble_masses();
   if (!mass_override_.empty()) {
     if (mass_override_.size() != n_)
-      throw ModelError(fmt::format("{}: {} mass overrides for {} nodes", domain_,
-                                   mass_override_.size(), n_));
+      throw ModelError(
+          fmt::format("{}: {} mass overrides for {} nodes", domain_, mass_override_.size(), n_));
     for (std::size_t i = 0; i < n_; ++i)
       if (mass_override_[i] > 0.0) mass_[i] = mass_override_[i];
+  }
+  if (!inertia_override_.empty()) {
+    if (inertia_override_.size() != n_)
+      throw ModelError(fmt::format("{}: {} inertia overrides for {} nodes", domain_,
+                                   inertia_override_.size(), n_));
+    for (std::size_t i = 0; i < n_; ++i)
+      if (inertia_override_[i] > 0.0) inertia_[i] = inertia_override_[i];
   }
   ghost_.assign(n_, 0);
   for (auto g : ghost_list_) {
@@ -159,6 +182,7 @@ void Solver::initialize() {
     ghost_[static_cast<std::size_t>(g)] = 1;
   }
   ghost_target_.assign(3 * ghost_list_.size(), 0.0);
+  ghost_omega_.assign(3 * ghost_list_.size(), 0.0);
   parts_.clear();
   for (const auto& p : model_.parts) {
     PartRuntime r;
@@ -245,12 +269,15 @@ void Solver::compute_external_forces(double t) {
   const Vec3& g = model_.controls.gravity_m_s2;
   if (g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0)
     for (std::size_t i = 0; i < n_; ++i) {
-      if (rigid_node_[i]) continue;  // the body's weight is M g, added in gather_rigid_load
+      // a rigid body's weight is M g, added in gather_rigid_load; a ghost's mass (and weight)
+      // belongs to its owner domain
+      if (rigid_node_[i] || ghost_[i]) continue;
       for (std::size_t d = 0; d < 3; ++d) f_ext_[3 * i + d] += mass_[i] * g[d];
     }
   for (const auto& load : model_.loads) {
     const double f = load.force.at(t);
-    for (auto c : load.nodes) f_ext_[3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(load.dof)] += f;
+    for (auto c : load.nodes)
+      f_ext_[3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(load.dof)] += f;
   }
 }
 
@@ -258,7 +285,8 @@ void Solver::compute_accelerations() {
   for (std::size_t i = 0; i < f_load_.size(); ++i) f_load_[i] = f_ext_[i] + f_cont_[i] + f_coup_[i];
   const double* f_drive = f_load_.data();
   compute_acceleration(a_.data(), f_drive, f_int_.data(), inv_mass_.data(), n_);
-  for (std::size_t i = 0; i < 3 * n_; ++i) alpha_[i] = -m_int_[i] * inv_inertia_[i / 3];
+  for (std::size_t i = 0; i < 3 * n_; ++i)
+    alpha_[i] = (m_coup_[i] - m_int_[i]) * inv_inertia_[i / 3];
   for (auto& b : bodies_)
     gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
   if (!model_.fixed.empty())
@@ -277,15 +305,19 @@ void Solver::propose_step() {
   double dt = c.dt_scale * dt_stable_;
   if (c.dt_max_s > 0.0) dt = std::min(dt, c.dt_max_s);
   if (!std::isfinite(dt))
-    throw ModelError(fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
-                                 "set controls.dt_max", domain_));
+    throw ModelError(
+        fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
+                    "set controls.dt_max",
+                    domain_));
   if (!(dt > 0.0))
-    throw NumericalError(fmt::format("{}: stable step {:.3e} s at cycle {}, t = {:.6e} s, set by {}: "
-                                     "the element collapsed",
-                                     domain_, dt, cycle_, time_s_, critical_element()));
+    throw NumericalError(
+        fmt::format("{}: stable step {:.3e} s at cycle {}, t = {:.6e} s, set by {}: "
+                    "the element collapsed",
+                    domain_, dt, cycle_, time_s_, critical_element()));
   if (cycle_ > 0 && dt < 1e-4 * dt_min_)
     throw NumericalError(fmt::format(
-        "{}: the stable step fell to {:.3e} s (1e-4 of the smallest step so far, {:.3e} s) at cycle "
+        "{}: the stable step fell to {:.3e} s (1e-4 of the smallest step so far, {:.3e} s) at "
+        "cycle "
         "{}, t = {:.6e} s, set by {}: an element is collapsing; check its mesh and material",
         domain_, dt, dt_min_, cycle_, time_s_, critical_element()));
   dt_ = dt;
@@ -298,7 +330,8 @@ std::string Solver::critical_element() const {
   }
   if (critical_local_ < 0 || critical_part_ >= model_.parts.size()) return "no element";
   const auto& p = model_.parts[critical_part_];
-  return fmt::format("part '{}' element {}", p.name, p.element_id[static_cast<std::size_t>(critical_local_)]);
+  return fmt::format("part '{}' element {}", p.name,
+                     p.element_id[static_cast<std::size_t>(critical_local_)]);
 }
 
 double Solver::kinetic_energy() const {
@@ -308,7 +341,8 @@ double Solver::kinetic_energy() const {
     if (rigid_node_[i] || ghost_[i]) continue;
     const double tr = v_prev_[3 * i] * v_[3 * i] + v_prev_[3 * i + 1] * v_[3 * i + 1] +
                       v_prev_[3 * i + 2] * v_[3 * i + 2];
-    const double rot = omega_prev_[3 * i] * omega_[3 * i] + omega_prev_[3 * i + 1] * omega_[3 * i + 1] +
+    const double rot = omega_prev_[3 * i] * omega_[3 * i] +
+                       omega_prev_[3 * i + 1] * omega_[3 * i + 1] +
                        omega_prev_[3 * i + 2] * omega_[3 * i + 2];
     ke += mass_[i] * tr + inertia_[i] * rot;
   }
@@ -317,13 +351,15 @@ double Solver::kinetic_energy() const {
   return ke;
 }
 
-GuardContext Solver::guard_context() const { return {cycle_, time_s_, dt_, domain_}; }
+GuardContext Solver::guard_context() const {
+  return {cycle_, time_s_, dt_, domain_};
+}
 
 void Solver::begin_cycle() {
   const double dt_mid = mid_step(dt_prev_, dt_);  // dt^{n-1/2}, [2]
   v_prev_ = v_;
   omega_prev_ = omega_;
-  update_velocity(v_.data(), a_.data(), dt_mid, v_.size());          // [2]
+  update_velocity(v_.data(), a_.data(), dt_mid, v_.size());  // [2]
   update_velocity(omega_.data(), alpha_.data(), dt_mid, omega_.size());
   for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
   if (cycle_ == 0) {
@@ -358,7 +394,7 @@ void Solver::begin_cycle() {
     const std::size_t node = p.index / 3;
     const double m = p.rotational ? inertia_[node] : mass_[node];
     const double f_net =
-        p.rotational ? -m_int_[p.index]
+        p.rotational ? m_coup_[p.index] - m_int_[p.index]
                      : f_ext_[p.index] + f_cont_[p.index] + f_coup_[p.index] - f_int_[p.index];
     // M (v^{n+1/2} - v^{n-1/2}) = dt (F + R), with dt the step that pairs the two velocities:
     // dt^{n-1/2}, or the full dt^0 at the first cycle (see above).
@@ -388,7 +424,8 @@ double Solver::ghost_reaction_work(double weight) const {
   for (auto g : ghost_list_)
     for (std::size_t d = 0; d < 3; ++d) {
       const std::size_t k = 3 * static_cast<std::size_t>(g) + d;
-      w += (f_int_[k] - f_ext_[k] - f_cont_[k] - f_coup_[k]) * du_[k];
+      w += (f_int_[k] - f_ext_[k] - f_cont_[k] - f_coup_[k]) * du_[k] +
+           (m_int_[k] - m_coup_[k]) * dtheta_[k];
     }
   return weight * w;
 }
@@ -398,16 +435,23 @@ void Solver::end_cycle_forces() {
   const double dt = dt_;
   if (!ghost_list_.empty()) {
     if (!ghost_target_set_)
-      throw ModelError(fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
-                                   "given (set_ghost_displacement before end_cycle_forces)",
-                                   domain_, cycle_));
+      throw ModelError(
+          fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
+                      "given (set_ghost_displacement before end_cycle_forces)",
+                      domain_, cycle_));
     for (std::size_t k = 0; k < ghost_list_.size(); ++k)
       for (std::size_t d = 0; d < 3; ++d) {
         const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
         v_[i] = (ghost_target_[3 * k + d] - u_[i]) / dt;  // the motion the coupling prescribes
       }
   }
+  if (ghost_omega_set_)
+    for (std::size_t k = 0; k < ghost_list_.size(); ++k)
+      for (std::size_t d = 0; d < 3; ++d)
+        omega_[3 * static_cast<std::size_t>(ghost_list_[k]) + d] = ghost_omega_[3 * k + d];
+  ghost_omega_set_ = false;
   for (std::size_t i = 0; i < du_.size(); ++i) du_[i] = dt * v_[i];
+  for (std::size_t i = 0; i < dtheta_.size(); ++i) dtheta_[i] = dt * omega_[i];
   update_displacement(u_.data(), v_.data(), dt, u_.size());  // [2]
   for (std::size_t k = 0; k < ghost_list_.size(); ++k)
     for (std::size_t d = 0; d < 3; ++d) {
@@ -435,8 +479,10 @@ void Solver::end_cycle_forces() {
   // Contact energy = minus the work of the contact forces (penalty spring energy + friction
   // dissipation).
   if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
-  energy_.coupling_work_J += 0.5 * dot3n(f_coup_, du_) + ghost_reaction_work(0.5);
+  energy_.coupling_work_J +=
+      0.5 * dot3n(f_coup_, du_) + 0.5 * dot3n(m_coup_, dtheta_) + ghost_reaction_work(0.5);
   std::fill(f_coup_.begin(), f_coup_.end(), 0.0);
+  std::fill(m_coup_.begin(), m_coup_.end(), 0.0);
   compute_forces(dt);
   compute_contact_forces(dt);
   compute_external_forces(time_s_);
@@ -454,13 +500,37 @@ void Solver::end_cycle_accelerations() {
   begun_ = false;
 }
 
-void Solver::set_mass_override(std::vector<double> mass_kg) { mass_override_ = std::move(mass_kg); }
+void Solver::set_mass_override(std::vector<double> mass_kg) {
+  mass_override_ = std::move(mass_kg);
+}
 
-void Solver::set_ghost_nodes(std::vector<std::int32_t> nodes) { ghost_list_ = std::move(nodes); }
+void Solver::set_ghost_nodes(std::vector<std::int32_t> nodes) {
+  ghost_list_ = std::move(nodes);
+}
 
 void Solver::set_ghost_displacement(const double* u_next) {
   std::copy(u_next, u_next + ghost_target_.size(), ghost_target_.begin());
   ghost_target_set_ = true;
+}
+
+void Solver::set_inertia_override(std::vector<double> inertia_kgm2) {
+  inertia_override_ = std::move(inertia_kgm2);
+}
+
+void Solver::set_ghost_angular_velocity(const double* omega_mid) {
+  std::copy(omega_mid, omega_mid + ghost_omega_.size(), ghost_omega_.begin());
+  ghost_omega_set_ = true;
+}
+
+Vec3 Solver::net_moment(std::size_t i) const {
+  return {-m_int_[3 * i], -m_int_[3 * i + 1], -m_int_[3 * i + 2]};
+}
+
+void Solver::add_coupling_moment(std::size_t i, const Vec3& m) {
+  for (std::size_t d = 0; d < 3; ++d) {
+    m_coup_[3 * i + d] += m[d];
+    energy_.coupling_work_J += 0.5 * m[d] * dtheta_[3 * i + d];
+  }
 }
 
 Vec3 Solver::net_force(std::size_t i) const {

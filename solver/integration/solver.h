@@ -26,8 +26,9 @@ namespace crashlink::integration {
 
 /// Per-part runtime data: element history and energy totals.
 struct PartRuntime {
-  std::variant<std::monostate, elements::Hex8State, elements::ShellState> state;  // monostate: rigid
-  elements::KernelResult last;     ///< last kernel call (stable step of the part)
+  std::variant<std::monostate, elements::Hex8State, elements::ShellState>
+      state;                    // monostate: rigid
+  elements::KernelResult last;  ///< last kernel call (stable step of the part)
   double internal_energy_J = 0.0;
   double hourglass_energy_J = 0.0;
 };
@@ -66,6 +67,16 @@ class Solver {
   const std::vector<std::int32_t>& ghost_nodes() const { return ghost_list_; }
   /// Before end_cycle_forces(): ghost displacements at t^{n+1}, [3 * ghost count] [m].
   void set_ghost_displacement(const double* u_next);
+  /// Before initialize(): [n] summed rotational inertias [kg m^2] (0 keeps the local one): a shell
+  /// J node's natural inertia summed over every element of the global model.
+  void set_inertia_override(std::vector<double> inertia_kgm2);
+  /// Before end_cycle_forces(): ghost angular velocities omega^{n+1/2} [3 * ghost count] [rad/s]
+  /// (shell J nodes; optional: without it a ghost keeps its angular velocity).
+  void set_ghost_angular_velocity(const double* omega_mid);
+  /// Between the two halves: -m_int of node i at t^{n+1} (its own domain's moment) [N m].
+  Vec3 net_moment(std::size_t i) const;
+  /// Between the two halves: adds a coupling moment on node i at t^{n+1} [N m].
+  void add_coupling_moment(std::size_t i, const Vec3& m);
   /// Between the two halves: f_ext + f_cont - f_int of node i at t^{n+1} (its own domain's
   /// contribution, what the coupling exchanges) [N].
   Vec3 net_force(std::size_t i) const;
@@ -83,8 +94,8 @@ class Solver {
 
   double time_s() const { return time_s_; }
   std::int64_t cycle() const { return cycle_; }
-  double dt_s() const { return dt_; }            ///< dt^n, the step about to be taken
-  double dt_min_s() const { return dt_min_; }    ///< smallest step taken so far
+  double dt_s() const { return dt_; }          ///< dt^n, the step about to be taken
+  double dt_min_s() const { return dt_min_; }  ///< smallest step taken so far
   /// Smallest element step (before the safety factor) and where it is.
   double dt_stable_s() const { return dt_stable_; }
   std::string critical_element() const;
@@ -99,6 +110,9 @@ class Solver {
   const std::vector<double>& velocity_mid() const { return v_; }
   const std::vector<double>& acceleration() const { return a_; }
   const std::vector<double>& mass() const { return mass_; }
+  const std::vector<double>& inertia() const { return inertia_; }
+  /// omega^{n+1/2} after begin_cycle() [3n] [rad/s].
+  const std::vector<double>& angular_velocity_mid() const { return omega_; }
   /// v^n = (v^{n-1/2} + v^{n+1/2}) / 2 of node i (after begin_cycle()).
   Vec3 node_velocity(std::size_t i) const;
   ProbeValue probe(const model::Probe& p) const;
@@ -116,7 +130,7 @@ class Solver {
   void assemble_masses();
   void build_rigid_bodies();
   void apply_initial_velocities();
-  void compute_forces(double dt);       // f_int, m_int at the current configuration
+  void compute_forces(double dt);  // f_int, m_int at the current configuration
   void compute_external_forces(double t);
   void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
@@ -129,22 +143,27 @@ class Solver {
   std::string domain_;
   std::size_t n_ = 0;
 
-  std::vector<double> mass_, inv_mass_;          // [n] kg, 1/kg (0: rigid or massless)
-  std::vector<double> inertia_, inv_inertia_;    // [n] kg m^2 (shell nodes)
-  std::vector<double> x_;                        // [3n] current coordinates
-  std::vector<double> u_, v_, v_prev_, a_;       // [3n] u^n, v^{n+1/2}, v^{n-1/2}, a^n
+  std::vector<double> mass_, inv_mass_;             // [n] kg, 1/kg (0: rigid or massless)
+  std::vector<double> inertia_, inv_inertia_;       // [n] kg m^2 (shell nodes)
+  std::vector<double> x_;                           // [3n] current coordinates
+  std::vector<double> u_, v_, v_prev_, a_;          // [3n] u^n, v^{n+1/2}, v^{n-1/2}, a^n
   std::vector<double> omega_, omega_prev_, alpha_;  // [3n] rotational dofs
-  std::vector<double> f_int_, f_ext_, m_int_;    // [3n]
-  std::vector<double> f_cont_;                   // [3n] contact forces (push on the node)
-  std::vector<double> f_load_;                   // [3n] f_ext + f_cont + f_coup: what drives
-  std::vector<double> f_coup_;                   // [3n] coupling forces at t^n
-  std::vector<double> mass_override_;            // [n] or empty
-  std::vector<std::uint8_t> ghost_;              // [n] 1: ghost node
+  std::vector<double> f_int_, f_ext_, m_int_;       // [3n]
+  std::vector<double> f_cont_;                      // [3n] contact forces (push on the node)
+  std::vector<double> f_load_;                      // [3n] f_ext + f_cont + f_coup: what drives
+  std::vector<double> f_coup_;                      // [3n] coupling forces at t^n
+  std::vector<double> mass_override_;               // [n] or empty
+  std::vector<double> inertia_override_;            // [n] or empty
+  std::vector<double> m_coup_;                      // [3n] coupling moments
+  std::vector<double> dtheta_;                      // [3n] dt^n omega^{n+1/2}
+  std::vector<double> ghost_omega_;                 // [3 * ghosts]
+  bool ghost_omega_set_ = false;
+  std::vector<std::uint8_t> ghost_;  // [n] 1: ghost node
   std::vector<std::int32_t> ghost_list_;
-  std::vector<double> ghost_target_;             // [3 * ghosts] u^{n+1} of the ghosts
+  std::vector<double> ghost_target_;  // [3 * ghosts] u^{n+1} of the ghosts
   bool ghost_target_set_ = false;
-  std::vector<double> du_;                       // [3n] u^n - u^{n-1}
-  std::vector<std::uint8_t> rigid_node_;         // [n] 1 if the node follows a rigid body
+  std::vector<double> du_;                // [3n] u^n - u^{n-1}
+  std::vector<std::uint8_t> rigid_node_;  // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
   std::vector<RigidBodyState> bodies_;
   std::vector<contact::ContactInterface> contacts_;

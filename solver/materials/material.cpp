@@ -45,9 +45,11 @@ void validate(const Material& m) {
   if (m.kind != MaterialKind::J2Plastic) return;
   const auto& h = m.hardening;
   if (h.eps_p.empty() || h.eps_p.size() != h.sigma_y_Pa.size())
-    fail(fmt::format("hardening curve needs as many eps_p ({}) as sigma_y ({}) values, at least one",
-                     h.eps_p.size(), h.sigma_y_Pa.size()));
-  if (h.eps_p[0] != 0.0) fail(fmt::format("hardening curve must start at eps_p = 0, not {}", h.eps_p[0]));
+    fail(
+        fmt::format("hardening curve needs as many eps_p ({}) as sigma_y ({}) values, at least one",
+                    h.eps_p.size(), h.sigma_y_Pa.size()));
+  if (h.eps_p[0] != 0.0)
+    fail(fmt::format("hardening curve must start at eps_p = 0, not {}", h.eps_p[0]));
   for (std::size_t i = 0; i < h.eps_p.size(); ++i) {
     if (!(h.sigma_y_Pa[i] > 0.0))
       fail(fmt::format("yield stress {} Pa at point {} must be > 0", h.sigma_y_Pa[i], i));

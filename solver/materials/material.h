@@ -16,8 +16,8 @@ enum class MaterialKind : std::uint8_t {
 /// Piecewise-linear yield curve sigma_y(eps_p): points (eps_p[i], sigma_y[i]), eps_p[0] = 0,
 /// strictly increasing eps_p; extrapolated beyond the last point with the last slope.
 struct HardeningCurve {
-  std::vector<double> eps_p;        ///< effective plastic strain [-]
-  std::vector<double> sigma_y_Pa;   ///< yield stress [Pa]
+  std::vector<double> eps_p;       ///< effective plastic strain [-]
+  std::vector<double> sigma_y_Pa;  ///< yield stress [Pa]
 
   /// Yield stress at effective plastic strain ep [Pa].
   double yield(double ep) const;
@@ -36,9 +36,11 @@ struct Material {
   double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus_Pa() const { return youngs_modulus_Pa / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
   double lame_lambda_Pa() const {
-    return youngs_modulus_Pa * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
+    return youngs_modulus_Pa * poisson_ratio /
+           ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
   }
-  /// Dilatational (P-wave) speed sqrt((lambda + 2 mu)/rho) [m/s]: the solid elements' Courant speed.
+  /// Dilatational (P-wave) speed sqrt((lambda + 2 mu)/rho) [m/s]: the solid elements' Courant
+  /// speed.
   double dilatational_wave_speed_m_s() const;
   /// Plate speed sqrt(E / (rho (1 - nu^2))) [m/s]: the shells' Courant speed.
   double plate_wave_speed_m_s() const;

@@ -19,7 +19,9 @@ namespace crashlink::model {
 
 enum class ElementKind : std::uint8_t { Hex8, Shell4 };
 
-inline int nodes_per_element(ElementKind k) { return k == ElementKind::Hex8 ? 8 : 4; }
+inline int nodes_per_element(ElementKind k) {
+  return k == ElementKind::Hex8 ? 8 : 4;
+}
 
 struct Nodes {
   std::vector<std::int64_t> id;  ///< [n] user ids (for messages and output)
@@ -32,12 +34,12 @@ struct Nodes {
 struct Part {
   std::string name;
   ElementKind kind = ElementKind::Hex8;
-  int material = -1;                         ///< index into Model::materials
-  std::vector<std::int32_t> connectivity;    ///< [k*ne], see the header comment
-  std::vector<std::int64_t> element_id;      ///< [ne] user ids
-  double thickness_m = 0.0;                  ///< Shell4 only
-  int through_thickness_points = 5;          ///< Shell4 only: Gauss points through the thickness (>= 3)
-  double hourglass_coefficient = 0.1;        ///< Flanagan–Belytschko / BT stiffness coefficient [-]
+  int material = -1;                       ///< index into Model::materials
+  std::vector<std::int32_t> connectivity;  ///< [k*ne], see the header comment
+  std::vector<std::int64_t> element_id;    ///< [ne] user ids
+  double thickness_m = 0.0;                ///< Shell4 only
+  int through_thickness_points = 5;    ///< Shell4 only: Gauss points through the thickness (>= 3)
+  double hourglass_coefficient = 0.1;  ///< Flanagan–Belytschko / BT stiffness coefficient [-]
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
@@ -51,16 +53,16 @@ enum DofBits : std::uint8_t { kUx = 1, kUy = 2, kUz = 4, kRx = 8, kRy = 16, kRz 
 struct PrescribedVelocity {
   std::string name;
   std::vector<std::int32_t> nodes;
-  int dof = 0;    ///< 0..2 translation x,y,z [m/s]; 3..5 rotation [rad/s]
-  Curve velocity; ///< [m/s] or [rad/s] against time [s]
+  int dof = 0;     ///< 0..2 translation x,y,z [m/s]; 3..5 rotation [rad/s]
+  Curve velocity;  ///< [m/s] or [rad/s] against time [s]
 };
 
 /// Force on one translational dof of each node of a set, as a function of time.
 struct NodalLoad {
   std::string name;
   std::vector<std::int32_t> nodes;
-  int dof = 0;   ///< 0..2
-  Curve force;   ///< [N] per node against time [s]
+  int dof = 0;  ///< 0..2
+  Curve force;  ///< [N] per node against time [s]
 };
 
 struct InitialVelocity {
@@ -72,14 +74,14 @@ struct InitialVelocity {
 /// Mass and inertia come from the elements unless given (then they override).
 struct RigidBody {
   std::string name;
-  std::vector<int> parts;                ///< indices of rigid parts forming the body
-  Vec3 velocity_m_s{};                   ///< initial velocity of the centre of mass
-  Vec3 angular_velocity_rad_s{};         ///< initial angular velocity (spatial)
-  double mass_kg = 0.0;                  ///< > 0: overrides the elements' mass
+  std::vector<int> parts;         ///< indices of rigid parts forming the body
+  Vec3 velocity_m_s{};            ///< initial velocity of the centre of mass
+  Vec3 angular_velocity_rad_s{};  ///< initial angular velocity (spatial)
+  double mass_kg = 0.0;           ///< > 0: overrides the elements' mass
   bool inertia_given = false;
-  Mat3 inertia_kg_m2{};                  ///< about the centre of mass, spatial frame at t = 0
+  Mat3 inertia_kg_m2{};  ///< about the centre of mass, spatial frame at t = 0
   bool centre_given = false;
-  Vec3 centre_m{};                       ///< centre of mass if given
+  Vec3 centre_m{};  ///< centre of mass if given
 };
 
 /// Penalty node-to-segment contact (master/slave), [1] and §2.1 of Bourel 2005: slave nodes
@@ -108,16 +110,16 @@ struct Probe {
 /// Run controls.
 struct Controls {
   double end_time_s = 0.0;
-  double dt_scale = 0.9;                 ///< safety factor on the stable step [-]
-  double dt_max_s = 0.0;                 ///< > 0: upper bound on the step
-  double history_interval_s = 0.0;       ///< glstat/probe sampling; 0: every cycle
-  double field_interval_s = 0.0;         ///< field states; 0: first and last only
-  bool bulk_viscosity = true;            ///< linear + quadratic artificial bulk viscosity
-  double bulk_q_linear = 0.06;           ///< Q1 [-] (crash-code default)
-  double bulk_q_quadratic = 1.5;         ///< Q2 [-] (crash-code default)
-  bool shell_bulk_viscosity = false;     ///< apply it to shells too (membrane)
-  double energy_tolerance = 0.05;        ///< guard: |balance error| / reference energy
-  Vec3 gravity_m_s2{};                   ///< body acceleration
+  double dt_scale = 0.9;              ///< safety factor on the stable step [-]
+  double dt_max_s = 0.0;              ///< > 0: upper bound on the step
+  double history_interval_s = 0.0;    ///< glstat/probe sampling; 0: every cycle
+  double field_interval_s = 0.0;      ///< field states; 0: first and last only
+  bool bulk_viscosity = true;         ///< linear + quadratic artificial bulk viscosity
+  double bulk_q_linear = 0.06;        ///< Q1 [-] (crash-code default)
+  double bulk_q_quadratic = 1.5;      ///< Q2 [-] (crash-code default)
+  bool shell_bulk_viscosity = false;  ///< apply it to shells too (membrane)
+  double energy_tolerance = 0.05;     ///< guard: |balance error| / reference energy
+  Vec3 gravity_m_s2{};                ///< body acceleration
 };
 
 /// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds
@@ -132,7 +134,7 @@ struct Model {
   Nodes nodes;
   std::vector<materials::Material> materials;
   std::vector<Part> parts;
-  std::vector<std::uint8_t> fixed;       ///< [n] DofBits mask per node
+  std::vector<std::uint8_t> fixed;  ///< [n] DofBits mask per node
   std::vector<PrescribedVelocity> prescribed_velocities;
   std::vector<NodalLoad> loads;
   std::vector<InitialVelocity> initial_velocities;
@@ -140,7 +142,7 @@ struct Model {
   std::vector<Contact> contacts;
   std::vector<Probe> probes;
   Controls controls;
-  std::vector<Domain> domains;           ///< scenario order; empty: a single-domain run
+  std::vector<Domain> domains;  ///< scenario order; empty: a single-domain run
 
   /// Index of the node with user id `id`, or -1.
   int node_index(std::int64_t id) const;

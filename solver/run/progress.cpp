@@ -31,7 +31,8 @@ void Progress::update(double time_s, std::int64_t cycle, double dt_s) {
     std::fflush(stream_);
   } else if (frac * 10.0 >= next_decile_) {
     next_decile_ = static_cast<int>(frac * 10.0) + 1;
-    std::fprintf(stream_, "progress %3.0f %%  t = %.4e s  cycle %lld  dt = %.3e s  elapsed %.1f s\n",
+    std::fprintf(stream_,
+                 "progress %3.0f %%  t = %.4e s  cycle %lld  dt = %.3e s  elapsed %.1f s\n",
                  100.0 * frac, time_s, static_cast<long long>(cycle), dt_s, elapsed);
     std::fflush(stream_);
   }

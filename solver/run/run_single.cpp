@@ -104,7 +104,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   Progress progress(stderr, model.controls.end_time_s, options.progress);
   const auto& c = model.controls;
   double next_history = 0.0;
-  double next_field = 0.0;       // field states at 0, interval, 2 interval, ... and at the end
+  double next_field = 0.0;  // field states at 0, interval, 2 interval, ... and at the end
   double last_field_time = -1.0;
   auto write_fields = [&] {
     fields.write(writer, solver);
@@ -117,11 +117,13 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
       const double t = solver.time_s();
       if (t >= next_history) {
         writer.append_history(glstat(solver), probes(solver), contact_samples(solver));
-        do next_history += c.history_interval_s; while (c.history_interval_s > 0.0 && next_history <= t);
+        do next_history += c.history_interval_s;
+        while (c.history_interval_s > 0.0 && next_history <= t);
       }
       if (t >= next_field) {
         write_fields();
-        next_field = c.field_interval_s > 0.0 ? next_field + c.field_interval_s : c.end_time_s * 2.0;
+        next_field =
+            c.field_interval_s > 0.0 ? next_field + c.field_interval_s : c.end_time_s * 2.0;
         while (next_field <= t) next_field += c.field_interval_s;
       }
       if (solver.finished()) break;
@@ -141,8 +143,9 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   sum.energy = solver.energy();
   sum.cpu_seconds = process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
-  writer.write_timing(sum.wall_seconds, 0.0,
-                      {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s, sum.elements}});
+  writer.write_timing(
+      sum.wall_seconds, 0.0,
+      {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s, sum.elements}});
   writer.close();
   return sum;
 }
@@ -161,8 +164,9 @@ void print_summary(std::FILE* out, const RunSummary& s) {
                e.initial_total_J, e.kinetic_J, e.internal_J, e.hourglass_J, e.external_work_J,
                e.total_J());
   const double hg_share = e.internal_J != 0.0 ? 100.0 * e.hourglass_J / e.internal_J : 0.0;
-  std::fprintf(out, "energy balance error %.4f %% of the largest energy; hourglass %.2f %% of internal\n",
-               100.0 * e.balance_error(), hg_share);
+  std::fprintf(
+      out, "energy balance error %.4f %% of the largest energy; hourglass %.2f %% of internal\n",
+      100.0 * e.balance_error(), hg_share);
   std::fprintf(out, "result: %s\n        %s\n", s.result_h5.c_str(), s.result_xdmf.c_str());
   if (s.failed) std::fprintf(out, "RUN FAILED: %s\n", s.failure.c_str());
 }

@@ -11,7 +11,7 @@ namespace crashlink::run {
 
 struct RunOptions {
   std::string out_dir = "out";
-  bool progress = true;            ///< progress line on stderr
+  bool progress = true;  ///< progress line on stderr
   std::string domain_name = "model";
 };
 
@@ -26,8 +26,8 @@ struct RunSummary {
   integration::EnergyAccount energy;
   std::string result_h5;
   std::string result_xdmf;
-  bool failed = false;             ///< the guard stopped the run
-  std::string failure;             ///< its message
+  bool failed = false;  ///< the guard stopped the run
+  std::string failure;  ///< its message
 
   /// CPU nanoseconds per element per cycle (0 without elements or cycles).
   double ns_per_element_cycle() const;

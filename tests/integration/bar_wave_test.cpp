@@ -64,8 +64,9 @@ TEST(BarWave, ArrivalTimeAndAmplitudeMatchDAlembert) {
       }
     ASSERT_GT(count, 10);
     EXPECT_NEAR(sum / count / b.v_expected, 1.0, 0.02) << "bulk viscosity " << q;
-    std::printf("[measured] bar wave (bulk viscosity %d): arrival %.4f, amplitude %.4f of d'Alembert\n",
-                q ? 1 : 0, t_half / t_arrival, sum / count / b.v_expected);
+    std::printf(
+        "[measured] bar wave (bulk viscosity %d): arrival %.4f, amplitude %.4f of d'Alembert\n",
+        q ? 1 : 0, t_half / t_arrival, sum / count / b.v_expected);
     // The work of the load equals kinetic + internal energy (the balance the guard watches):
     // bound 1 % of the input work.
     const auto& last = h.back();

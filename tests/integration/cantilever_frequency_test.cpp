@@ -34,9 +34,11 @@ double measured_f1(model::Model& m, double length, double thickness, double peri
   const double amplitude = 0.05;  // tip speed, m/s: deflection ~ 1e-4 L, linear regime
   for (std::size_t i = 0; i < m.nodes.count(); ++i) {
     const double xi = m.nodes.x0[3 * i] / length;
-    m.initial_velocities.push_back({{static_cast<std::int32_t>(i)}, {0.0, 0.0, amplitude * mode1(xi) / mode1(1.0)}});
+    m.initial_velocities.push_back(
+        {{static_cast<std::int32_t>(i)}, {0.0, 0.0, amplitude * mode1(xi) / mode1(1.0)}});
   }
-  const auto tip = nodes_where(m, [&](const Vec3& x) { return std::abs(x[0] - length) < 1e-9 && x[1] < 1e-9; });
+  const auto tip =
+      nodes_where(m, [&](const Vec3& x) { return std::abs(x[0] - length) < 1e-9 && x[1] < 1e-9; });
   add_probe(m, "tip", tip.at(0));
   m.controls.end_time_s = periods / analytic_f1(length, thickness);
   m.controls.bulk_viscosity = false;

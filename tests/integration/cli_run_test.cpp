@@ -27,8 +27,8 @@ TEST(CliRun, HeadformOnPlatePrintsSummaryAndHic) {
   const auto dir = std::filesystem::temp_directory_path() / "crashlink_cli_run";
   std::filesystem::remove_all(dir);
   const std::string cmd = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
-                          CRASHLINK_SOURCE_DIR + "/scenarios/plate_impact_small.yaml --quiet --out " +
-                          dir.string();
+                          CRASHLINK_SOURCE_DIR +
+                          "/scenarios/plate_impact_small.yaml --quiet --out " + dir.string();
   int status = -1;
   const std::string out = run_command(cmd, status);
   ASSERT_EQ(status, 0) << out;
@@ -44,10 +44,10 @@ TEST(CliRun, HeadformOnPlatePrintsSummaryAndHic) {
 
 TEST(CliRun, UnknownModeIsRefusedWithExitCode2) {
   int status = -1;
-  const std::string out = run_command(std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
-                                          CRASHLINK_SOURCE_DIR +
-                                          "/scenarios/plate_impact_small.yaml --mode multi",
-                                      status);
+  const std::string out =
+      run_command(std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
+                      CRASHLINK_SOURCE_DIR + "/scenarios/plate_impact_small.yaml --mode multi",
+                  status);
   EXPECT_EQ(WEXITSTATUS(status), 2) << out;
   EXPECT_NE(out.find("--mode multi"), std::string::npos) << out;
 }

@@ -93,7 +93,8 @@ TEST(CouplingHooks, LayerSplitAtCommonStepReproducesMono) {
     a.set_ghost_displacement(u_j.data());
     a.end_cycle_forces();
     for (std::size_t k = 0; k < 4; ++k)
-      c.add_coupling_force(static_cast<std::size_t>(j_c[k]), a.net_force(static_cast<std::size_t>(j_a[k])));
+      c.add_coupling_force(static_cast<std::size_t>(j_c[k]),
+                           a.net_force(static_cast<std::size_t>(j_a[k])));
     c.end_cycle_accelerations();
     a.end_cycle_accelerations();
     common_step();
@@ -111,8 +112,9 @@ TEST(CouplingHooks, LayerSplitAtCommonStepReproducesMono) {
       const auto same = nodes_where(mono_model, [&](const Vec3& y) { return norm(y - x) < 1e-9; });
       ASSERT_EQ(same.size(), 1u);
       for (std::size_t d = 0; d < 3; ++d)
-        worst = std::max(worst, std::abs(s.displacement()[3 * i + d] -
-                                         mono.displacement()[3 * static_cast<std::size_t>(same[0]) + d]));
+        worst = std::max(worst,
+                         std::abs(s.displacement()[3 * i + d] -
+                                  mono.displacement()[3 * static_cast<std::size_t>(same[0]) + d]));
     }
   };
   compare(a, a_model);
@@ -121,8 +123,8 @@ TEST(CouplingHooks, LayerSplitAtCommonStepReproducesMono) {
   EXPECT_LT(worst / scale, 1e-10);
   // Energy: the two domains' energies add up to mono's; the coupling work cancels between them.
   const auto &ea = a.energy(), &ec = c.energy(), &em = mono.energy();
-  const double e_split = ea.kinetic_J + ec.kinetic_J + ea.internal_J + ec.internal_J +
-                         ea.hourglass_J + ec.hourglass_J;
+  const double e_split =
+      ea.kinetic_J + ec.kinetic_J + ea.internal_J + ec.internal_J + ea.hourglass_J + ec.hourglass_J;
   const double e_mono = em.kinetic_J + em.internal_J + em.hourglass_J;
   EXPECT_NEAR(e_split, e_mono, 1e-9 * e_mono);
   EXPECT_NEAR(ea.coupling_work_J + ec.coupling_work_J, 0.0, 1e-6 * em.external_work_J);
@@ -131,8 +133,9 @@ TEST(CouplingHooks, LayerSplitAtCommonStepReproducesMono) {
   EXPECT_LT(std::abs(em.balance_error()), 1e-3);
   EXPECT_LT(std::abs(ea.balance_error()), 1e-3);
   EXPECT_LT(std::abs(ec.balance_error()), 1e-3);
-  std::printf("[measured] layer split vs mono, 1e4 steps: max |du|/max|u| = %.3e; coupling work "
-              "A %.6e J, C %.6e J (input %.6e J); balance mono %.2e A %.2e C %.2e\n",
-              worst / scale, ea.coupling_work_J, ec.coupling_work_J, em.external_work_J,
-              em.balance_error(), ea.balance_error(), ec.balance_error());
+  std::printf(
+      "[measured] layer split vs mono, 1e4 steps: max |du|/max|u| = %.3e; coupling work "
+      "A %.6e J, C %.6e J (input %.6e J); balance mono %.2e A %.2e C %.2e\n",
+      worst / scale, ea.coupling_work_J, ec.coupling_work_J, em.external_work_J, em.balance_error(),
+      ea.balance_error(), ec.balance_error());
 }

@@ -56,6 +56,8 @@ TEST(EnergyAccounting, ShellBulkViscosityWorkBalancesUnderAShock) {
   m.controls.shell_bulk_viscosity = true;
   const double worst = worst_balance(m, 10000);
   EXPECT_LT(worst, 2e-3);
-  std::printf("[measured] shell strip under an in-plane force step, bulk viscosity on: worst "
-              "balance error %.3e\n", worst);
+  std::printf(
+      "[measured] shell strip under an in-plane force step, bulk viscosity on: worst "
+      "balance error %.3e\n",
+      worst);
 }

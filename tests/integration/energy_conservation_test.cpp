@@ -19,7 +19,8 @@ namespace {
 double energy_drift(model::Model& m, double length, int cycles) {
   for (std::size_t i = 0; i < m.nodes.count(); ++i) {
     const double xi = m.nodes.x0[3 * i] / length;
-    m.initial_velocities.push_back({{static_cast<std::int32_t>(i)}, {0.01 * xi, 0.0, 0.1 * xi * xi}});
+    m.initial_velocities.push_back(
+        {{static_cast<std::int32_t>(i)}, {0.01 * xi, 0.0, 0.1 * xi * xi}});
   }
   m.controls.end_time_s = 1e3;  // the cycle count ends the run
   m.controls.bulk_viscosity = false;

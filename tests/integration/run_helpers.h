@@ -18,7 +18,8 @@ struct Sample {
 };
 
 /// Runs to the model's end time; calls `record` at every t^n (after begin_cycle).
-inline void run(integration::Solver& s, const std::function<void(const integration::Solver&)>& record) {
+inline void run(integration::Solver& s,
+                const std::function<void(const integration::Solver&)>& record) {
   s.initialize();
   for (;;) {
     s.begin_cycle();
@@ -40,7 +41,8 @@ inline std::vector<Sample> run_and_sample(integration::Solver& s, std::size_t k)
 }
 
 /// Times of upward zero crossings of f(t), linearly interpolated.
-inline std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& f) {
+inline std::vector<double> upward_crossings(const std::vector<double>& t,
+                                            const std::vector<double>& f) {
   std::vector<double> out;
   for (std::size_t i = 1; i < t.size(); ++i)
     if (f[i - 1] < 0.0 && f[i] >= 0.0)

@@ -15,8 +15,8 @@ inline materials::Material steel(double nu = 0.3) {
 
 /// J2 steel: yield 200 MPa, hardening to 300 MPa at eps_p 0.1, then 400 MPa at 0.5.
 inline materials::Material j2_steel() {
-  return {"j2", materials::MaterialKind::J2Plastic, 7850.0, 210e9, 0.3,
-          {{0.0, 0.1, 0.5}, {200e6, 300e6, 400e6}}};
+  return {"j2", materials::MaterialKind::J2Plastic,      7850.0, 210e9,
+          0.3,  {{0.0, 0.1, 0.5}, {200e6, 300e6, 400e6}}};
 }
 
 /// Indices of the nodes whose reference position satisfies `pred`.
@@ -63,7 +63,8 @@ inline model::Model shell_cantilever(double length, double width, double thickne
   p.material = 0;
   p.thickness_m = thickness;
   p.through_thickness_points = 5;
-  model::generate_plate(m, p, {{0.0, 0.0, 0.0}, {length, 0.0, 0.0}, {0.0, width, 0.0}, {nx, ny}, 0.0});
+  model::generate_plate(m, p,
+                        {{0.0, 0.0, 0.0}, {length, 0.0, 0.0}, {0.0, width, 0.0}, {nx, ny}, 0.0});
   fix(m, nodes_where(m, [](const Vec3& x) { return x[0] < 1e-9; }), 63);
   return m;
 }

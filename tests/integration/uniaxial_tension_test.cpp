@@ -17,8 +17,8 @@ using namespace crashlink::testing;
 namespace {
 
 struct Pull {
-  double strain;      // ln(L/L0)
-  double sigma_xx;    // Pa
+  double strain;    // ln(L/L0)
+  double sigma_xx;  // Pa
   double eps_p;
 };
 
@@ -50,8 +50,9 @@ void check(const std::vector<Pull>& h, const materials::Material& mat, const cha
   }
   EXPECT_GT(plastic, 100) << "the test never went plastic";
   EXPECT_GT(h.back().eps_p, 0.15);  // past the first kink of the curve (0.1)
-  std::printf("[measured] uniaxial tension (%s): max |sigma/sigma_y(eps_p) - 1| = %.3e up to eps_p %.3f\n",
-              what, worst, h.back().eps_p);
+  std::printf(
+      "[measured] uniaxial tension (%s): max |sigma/sigma_y(eps_p) - 1| = %.3e up to eps_p %.3f\n",
+      what, worst, h.back().eps_p);
 }
 
 }  // namespace
@@ -83,7 +84,8 @@ TEST(UniaxialTension, ShellFollowsHardeningCurve) {
   p.thickness_m = 0.001;
   p.through_thickness_points = 5;
   model::generate_plate(m, p, {{0, 0, 0}, {a, 0, 0}, {0, a, 0}, {1, 1}, 0.0});
-  fix(m, nodes_where(m, [](const Vec3&) { return true; }), model::kUz | model::kRx | model::kRy | model::kRz);
+  fix(m, nodes_where(m, [](const Vec3&) { return true; }),
+      model::kUz | model::kRx | model::kRy | model::kRz);
   fix(m, nodes_where(m, [](const Vec3& x) { return x[0] < 1e-9; }), model::kUx);
   fix(m, nodes_where(m, [](const Vec3& x) { return x[1] < 1e-9; }), model::kUy);
   const auto h = pull(m, a, 0.2, 0.01);

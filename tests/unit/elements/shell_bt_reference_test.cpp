@@ -172,7 +172,8 @@ el::KernelResult reference(const model::Part& part, const materials::Material& m
     const double xi = on ? q1 - q2 * Le * tr / c : 0.0;
     // trapezoid rule on the viscous pressure, full area rate (docs/energy-balance.md)
     const double q_old = step.bulk_viscosity ? st.qb[e] : 0.0;
-    res.internal_energy_increment_J += work * 0.5 * vol_mid - 0.5 * (q_old + qv) * tr * vol_mid * dt;
+    res.internal_energy_increment_J +=
+        work * 0.5 * vol_mid - 0.5 * (q_old + qv) * tr * vol_mid * dt;
     if (step.bulk_viscosity && dt > 0.0) st.qb[e] = qv;
     const double hh = 0.5 * h1;
     const double Nxx = hh * sN[0] - qv * h1, Nyy = hh * sN[1] - qv * h1, Nxy = hh * sN[2];

@@ -15,7 +15,7 @@ TEST(HardeningCurve, InterpolatesAndExtrapolatesWithLastSlope) {
   EXPECT_NEAR(c.yield(0.2), 320e6, 1e-3);
   EXPECT_NEAR(c.yield(0.5), 380e6, 1e-3);  // last slope 200 MPa per unit strain
   EXPECT_NEAR(c.slope(0.05), 1e9, 1e-3);
-  EXPECT_NEAR(c.slope(0.1), 2e8, 1e-3);    // right-hand slope at the kink
+  EXPECT_NEAR(c.slope(0.1), 2e8, 1e-3);  // right-hand slope at the kink
   EXPECT_NEAR(c.slope(1.0), 2e8, 1e-3);
 }
 
