@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "solver/cosim/layer_domains.h"
 #include "solver/integration/energy.h"
 #include "solver/integration/solver.h"
 #include "solver/model/model.h"
@@ -63,38 +64,22 @@ class SplitRunner {
   /// counted once (owner only); the coupling work of the domains cancels in the sum.
   const integration::EnergyAccount& energy() const { return energy_; }
 
-  const partition::Decomposition& decomposition() const { return dec_; }
+  const partition::Decomposition& decomposition() const { return d_.dec; }
   /// Solvers of the non-empty domains, in decomposition order; solver_domain(k) is the index of
   /// solver k's domain in decomposition().domains.
-  std::size_t solver_count() const { return solvers_.size(); }
-  const integration::Solver& solver(std::size_t k) const { return *solvers_[k]; }
-  int solver_domain(std::size_t k) const { return domain_of_[k]; }
+  std::size_t solver_count() const { return d_.solvers.size(); }
+  const integration::Solver& solver(std::size_t k) const { return *d_.solvers[k]; }
+  int solver_domain(std::size_t k) const { return d_.domain_of[k]; }
   /// The processing order (solver indices), coarse first: every ghost's owner precedes it.
   const std::vector<std::size_t>& order() const { return order_; }
 
  private:
-  /// A ghost node of one solver and where its owner integrates it.
-  struct GhostLink {
-    std::size_t local = 0;        ///< local index in the ghost's solver
-    std::size_t owner = 0;        ///< owner solver index
-    std::size_t owner_local = 0;  ///< local index in the owner
-  };
   void build_order();
-  const std::vector<double>& natural_inertia();
   void send_coupling_forces();
   void impose_common_step();
-  void sum_energies();
 
-  const model::Model& global_;
-  partition::Decomposition dec_;
-  std::vector<std::unique_ptr<integration::Solver>> solvers_;
-  std::vector<int> domain_of_;  // [solvers] domain index
-  std::vector<std::vector<GhostLink>>
-      ghosts_;                             // [solvers][ghost count], Solver::ghost_nodes() order
-  std::vector<std::size_t> owner_solver_;  // [n_global] solver owning the node
-  std::vector<std::size_t> owner_local_;   // [n_global] its local index there
+  LayerDomains d_;  // solvers, ghosts J and their owners (layer_domains.h)
   std::vector<std::size_t> order_;
-  std::vector<double> inertia_;  // [n_global] natural shell rotary inertia (lazy)
   std::vector<double> u_ghost_;  // scratch [3 * ghosts]
   integration::EnergyAccount energy_;
   double dt_ = 0.0;

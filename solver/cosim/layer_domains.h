@@ -1,0 +1,50 @@
+#pragma once
+// The pieces every in-process runner of the `layer` scheme (DESIGN.md §2.7, "How to distribute
+// layer") shares: one integration::Solver per non-empty domain of partition::decompose(global,
+// Layer), its ghost nodes J with their owners, J's natural summed mass and rotary inertia, the
+// t = 0 exchange on J and the summed energy account. Used by MultirateRunner (multirate_runner.h).
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "solver/integration/energy.h"
+#include "solver/integration/solver.h"
+#include "solver/model/model.h"
+#include "solver/partition/decomposition.h"
+
+namespace crashlink::cosim {
+
+/// A ghost node of one solver and where its owner integrates it.
+struct GhostLink {
+  std::size_t local = 0;        ///< local index in the ghost's solver
+  std::size_t owner = 0;        ///< owner solver index
+  std::size_t owner_local = 0;  ///< local index in the owner
+};
+
+struct LayerDomains {
+  partition::Decomposition dec;
+  std::vector<std::unique_ptr<integration::Solver>> solvers;
+  std::vector<int> domain_of;                  ///< [solvers] domain index
+  std::vector<std::vector<GhostLink>> ghosts;  ///< [solvers][ghosts], Solver::ghost_nodes() order
+  std::vector<std::size_t> owner_solver;       ///< [n_global] solver owning the node (or none)
+  std::vector<std::size_t> owner_local;        ///< [n_global] its local index there
+};
+
+inline constexpr std::size_t kNoSolver = static_cast<std::size_t>(-1);
+
+/// Cuts `global` with the layer scheme and builds the solvers (ghosts, J masses and inertias set,
+/// not initialised). `who` prefixes the ModelError messages.
+LayerDomains build_layer_domains(const model::Model& global, const char* who);
+
+/// After initialize() of every solver: adds the ghost holders' forces on J at t = 0 to the
+/// owners' a^0 through Solver::set_acceleration (counted as coupling work over the first step).
+void exchange_initial_forces(LayerDomains& d);
+
+/// Sum of the solvers' energy accounts; `reference` carries the running reference over.
+integration::EnergyAccount sum_energies(const LayerDomains& d, double reference);
+
+/// [3 n_global] displacement of every global node from its owner [m].
+std::vector<double> global_displacement(const LayerDomains& d);
+
+}  // namespace crashlink::cosim
