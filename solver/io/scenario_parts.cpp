@@ -131,10 +131,14 @@ void read_parts(const YamlNode& section, ScenarioBuild& b) {
     if (auto e = p.optional("element")) {
       part.kind = e->choice({"hex8", "shell4"}) == "hex8" ? ElementKind::Hex8 : ElementKind::Shell4;
       if (part.kind != natural)
-        e->fail(fmt::format("the '{}' generator builds {} elements; use element: {}{}", gen,
-                            natural == ElementKind::Hex8 ? "hex8" : "shell4",
-                            natural == ElementKind::Hex8 ? "hex8" : "shell4",
-                            gen == "sphere" ? " (a solid hex8 sphere is not implemented)" : ""));
+        e->fail(fmt::format(
+            "the '{}' generator builds {} elements; use element: {}{}", gen,
+            natural == ElementKind::Hex8 ? "hex8" : "shell4",
+            natural == ElementKind::Hex8 ? "hex8" : "shell4",
+            gen == "sphere"
+                ? " (the sphere generator meshes the surface only: a rigid headform needs no "
+                  "volume mesh)"
+                : ""));
     }
     const bool shell = part.kind == ElementKind::Shell4;
     if (shell) {
