@@ -114,7 +114,13 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     m.loads.push_back({ld.name, std::move(nodes), ld.dof, ld.force});
   }
   for (const auto& iv : g.initial_velocities) {
-    auto nodes = restrict_nodes(iv.nodes, false);
+    // Ghosts too: their motion is prescribed from t = 0 on, but the forces at t = 0 (bulk
+    // viscosity, rates) need their initial velocity; their kinetic energy is not counted here.
+    std::vector<Index> nodes;
+    for (Index gi : iv.nodes) {
+      const auto u = static_cast<std::size_t>(gi);
+      if (kinematic_here(role[u]) || role[u] == kGhost) nodes.push_back(g2l[u]);
+    }
     if (nodes.empty()) continue;
     m.initial_velocities.push_back({std::move(nodes), iv.velocity_m_s});
   }

@@ -78,9 +78,11 @@ TEST(MultirateBar, RatioOneReproducesMono) {
     m.fixed[static_cast<std::size_t>(i)] = 1;  // x fixed, free across
   m.loads.push_back({"pulse", where(m, [](double x, double, double) { return x < 1e-9; }), 0,
                      model::Curve{{0.0, 2e-5, 2.1e-5}, {1e3, 1e3, 0.0}}});
-  // No initial velocity field here: partition's sub-models drop the ghosts' initial velocities
-  // (sub_model.cpp restrict_nodes(..., false)), so F's f^0 sees J at rest while mono does not;
-  // a second pulse on the coarse end instead.
+  // A compressive initial velocity field over the whole bar (J included: the fine side's ghosts
+  // must start with it too, or its f^0 - bulk viscosity included - sees J at rest).
+  for (std::size_t i = 0; i < m.nodes.count(); ++i)
+    m.initial_velocities.push_back(
+        {{static_cast<std::int32_t>(i)}, {-0.5 * m.nodes.x0[3 * i] / bar_end(b), 0.0, 0.0}});
   m.loads.push_back({"pulse2",
                      where(m, [&](double x, double, double) { return x > bar_end(b) - 1e-9; }), 1,
                      model::Curve{{0.0, 3e-5, 3.1e-5}, {-5e2, -5e2, 0.0}}});
