@@ -91,10 +91,7 @@ Decomposition decompose_paper(const Analysis& a) {
       out.interfaces.push_back(std::move(itf));
     }
   }
-  for (std::size_t d = 0; d < nd; ++d) {
-    out.domains.push_back(build_domain(a, pl, static_cast<int>(d)));
-    out.domain_dt_s.push_back(initial_step_s(out.domains.back().model));
-  }
+  build_domains(a, pl, nd, out);
   return out;
 }
 

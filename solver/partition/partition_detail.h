@@ -75,6 +75,11 @@ struct Placement {
 /// Builds domain d's sub-model from the placement and validates it (model::validate).
 DomainModel build_domain(const Analysis& a, const Placement& p, int d);
 
+/// Builds every domain's sub-model (build_domain) into out.domains and its initial step into
+/// out.domain_dt_s: the last stage of both schemes.
+void build_domains(const Analysis& a, const Placement& p, std::size_t domain_count,
+                   Decomposition& out);
+
 /// Initial stable step x dt_scale of a (sub-)model's deformable parts (+inf if none): the
 /// minimum over parts of integration::Solver's per-part step at t = 0.
 double initial_step_s(const model::Model& m);

@@ -178,4 +178,12 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
   return out;
 }
 
+void build_domains(const Analysis& a, const Placement& p, std::size_t domain_count,
+                   Decomposition& out) {
+  for (std::size_t d = 0; d < domain_count; ++d) {
+    out.domains.push_back(build_domain(a, p, static_cast<int>(d)));
+    out.domain_dt_s.push_back(initial_step_s(out.domains.back().model));
+  }
+}
+
 }  // namespace crashlink::partition::detail
