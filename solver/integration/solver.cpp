@@ -431,7 +431,13 @@ double Solver::ghost_reaction_work(double weight) const {
 }
 
 void Solver::end_cycle_forces() {
+  end_cycle_positions();
+  end_cycle_compute();
+}
+
+void Solver::end_cycle_positions() {
   CRASHLINK_ASSERT(begun_);
+  CRASHLINK_ASSERT(!positions_done_);
   const double dt = dt_;
   if (!ghost_list_.empty()) {
     if (!ghost_target_set_)
@@ -483,6 +489,13 @@ void Solver::end_cycle_forces() {
       0.5 * dot3n(f_coup_, du_) + 0.5 * dot3n(m_coup_, dtheta_) + ghost_reaction_work(0.5);
   std::fill(f_coup_.begin(), f_coup_.end(), 0.0);
   std::fill(m_coup_.begin(), m_coup_.end(), 0.0);
+  positions_done_ = true;
+}
+
+void Solver::end_cycle_compute() {
+  CRASHLINK_ASSERT(positions_done_);
+  positions_done_ = false;
+  const double dt = dt_;
   compute_forces(dt);
   compute_contact_forces(dt);
   compute_external_forces(time_s_);

@@ -52,8 +52,15 @@ class Solver {
   /// halves itself and exchanges interface forces between them (docs/coupling-hooks.md).
   void end_cycle();
   /// u^{n+1} = u^n + dt^n v^{n+1/2} (ghost nodes: their prescribed displacement), t^{n+1}, and
-  /// the forces at t^{n+1}: element, contact, external.
+  /// the forces at t^{n+1}: element, contact, external. = end_cycle_positions() +
+  /// end_cycle_compute(); a daemon sends its interface displacements between the two halves so
+  /// that its force computation overlaps its partners' work (DESIGN.md §2.6 "Overlap").
   void end_cycle_forces();
+  /// First half of end_cycle_forces(): u^{n+1} ([2]), rigid bodies, t^{n+1}, the F^n halves of
+  /// the trapezoid work terms.
+  void end_cycle_positions();
+  /// Second half: the forces at t^{n+1} and the F^{n+1} halves of the work terms.
+  void end_cycle_compute();
   /// a^{n+1} = M^{-1}(f_ext + f_cont + f_coupling - f_int) ([1]) and the next step proposal.
   void end_cycle_accelerations();
 
@@ -185,6 +192,7 @@ class Solver {
   std::size_t critical_part_ = 0;
   std::int64_t critical_local_ = -1;
   bool begun_ = false;
+  bool positions_done_ = false;  // end_cycle_positions() done, end_cycle_compute() not yet
 };
 
 }  // namespace crashlink::integration

@@ -1,0 +1,87 @@
+// Fixed nested steps of a coupled run (nested_steps.h).
+#include "coordinator/nested_steps.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "solver/core/errors.h"
+
+namespace crashlink::coordinator {
+
+namespace {
+std::string name_of(const std::vector<std::string>& names, std::size_t k) {
+  std::string r(1, k < names.size() ? '\'' : '#');
+  r.append(k < names.size() ? names[k] : std::to_string(k));
+  if (k < names.size()) r.push_back('\'');
+  return r;
+}
+}  // namespace
+
+StepPlan nested_steps(const std::vector<Tick>& proposal,
+                      const std::vector<std::pair<int, int>>& links, bool common,
+                      const std::vector<std::string>& names) {
+  const std::size_t nd = proposal.size();
+  StepPlan plan;
+  Tick smallest = 0, largest = 0;
+  for (Tick p : proposal)
+    if (p > 0) {
+      smallest = smallest == 0 ? p : std::min(smallest, p);
+      largest = std::max(largest, p);
+    }
+  if (smallest == 0)
+    throw ModelError(
+        "steps: no domain limits the step (every domain holds rigid bodies only); give "
+        "controls.dt_max or a deformable part");
+  plan.n.assign(nd, 1);
+  plan.step.assign(nd, smallest);
+  if (common || nd == 0) {
+    plan.base = smallest;
+    return plan;
+  }
+  // Kahn's order over coarse -> fine links, the largest proposal first among the ready domains.
+  std::vector<std::vector<std::size_t>> fine_of(nd), coarse_of(nd);
+  std::vector<int> pending(nd, 0);
+  for (const auto& [c, f] : links) {
+    if (c < 0 || f < 0 || static_cast<std::size_t>(c) >= nd || static_cast<std::size_t>(f) >= nd)
+      throw ModelError("steps: link (" + std::to_string(c) + ", " + std::to_string(f) +
+                       ") names a domain outside 0.." + std::to_string(nd - 1));
+    fine_of[static_cast<std::size_t>(c)].push_back(static_cast<std::size_t>(f));
+    coarse_of[static_cast<std::size_t>(f)].push_back(static_cast<std::size_t>(c));
+    ++pending[static_cast<std::size_t>(f)];
+  }
+  const auto limit = [&](std::size_t k) { return proposal[k] > 0 ? proposal[k] : largest; };
+  std::vector<std::uint8_t> done(nd, 0);
+  for (std::size_t placed = 0; placed < nd; ++placed) {
+    std::size_t pick = nd;
+    for (std::size_t k = 0; k < nd; ++k)
+      if (!done[k] && pending[k] == 0 && (pick == nd || limit(k) > limit(pick))) pick = k;
+    if (pick == nd) {
+      std::string cycle;
+      for (std::size_t k = 0; k < nd; ++k)
+        if (!done[k]) {
+          if (!cycle.empty()) cycle.append(", ");
+          cycle.append(name_of(names, k));
+        }
+      throw ModelError("steps: the coarse -> fine links between " + cycle +
+                       " form a cycle; no nested steps exist. Fix: re-cut the domains");
+    }
+    std::int64_t L = 1;
+    for (auto c : coarse_of[pick]) L = std::lcm(L, plan.n[c]);
+    const std::int64_t per = limit(pick) * L;  // ceil(largest / (limit L)) in integers
+    plan.n[pick] = L * std::max<std::int64_t>(1, (largest + per - 1) / per);
+    done[pick] = 1;
+    for (auto f : fine_of[pick]) --pending[f];
+  }
+  std::int64_t all = 1;
+  for (auto n : plan.n) all = std::lcm(all, n);
+  if (all > largest / 1000)
+    throw ModelError("steps: the substep counts need a base period divisible by " +
+                     std::to_string(all) + " ticks, more than 0.1 % of the largest step (" +
+                     std::to_string(largest) + " ticks); fix: a larger ticks_per_second");
+  plan.base = (largest / all) * all;
+  // n >= largest / limit, so base / n <= largest / n <= limit: no step exceeds its proposal.
+  for (std::size_t k = 0; k < nd; ++k) plan.step[k] = plan.base / plan.n[k];
+  return plan;
+}
+
+}  // namespace crashlink::coordinator

@@ -1,0 +1,40 @@
+#pragma once
+// The fixed steps of a coupled run (DESIGN.md §2.6, §2.7): every domain steps at base / n_k ticks
+// with a whole n_k, and at every interface the fine side's n is a multiple of the coarse side's,
+// so the fine side lands on every coarse instant (the `layer` scheme needs its force on J there;
+// DESIGN §2.7: "do not shorten the last fine substep to land on T"). A non-integer ratio of stable
+// steps r = H/h therefore runs as ceil(r) equal fine substeps per coarse step (the study's
+// 'uniform' mode, coupling-study/layer-check/layer.py), the fine step H/ceil(r) <= h.
+//
+//   split: every domain at the global minimum proposal (n_k = 1).
+//   multi: base = the largest proposal; domains in decreasing order of proposal (each interface's
+//     coarse side before its fine side), n_k = the smallest multiple of L_k (the lcm of n over the
+//     domains it is fine side to) with base / n_k <= proposal_k; then base is rounded down to a
+//     multiple of lcm(n) ticks, so every step is a whole number of ticks and no step exceeds its
+//     proposal.
+// Proposals are in ticks; a proposal <= 0 means "no limit" (a domain of rigid bodies only).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coordinator/ticks.h"
+
+namespace crashlink::coordinator {
+
+struct StepPlan {
+  Tick base = 0;                ///< the common period: every domain lands on multiples of it
+  std::vector<std::int64_t> n;  ///< [domains] substeps per base period
+  std::vector<Tick> step;       ///< [domains] base / n
+};
+
+/// `links`: (coarse domain, fine domain) pairs. `common`: split mode (one step for all).
+/// A link whose fine side has the larger proposal runs that side at its coarse side's step.
+/// Throws ModelError when no domain has a limit, when the links form a cycle of coarse -> fine
+/// (names the domains), or when lcm(n) exceeds base / 1000 (steps would lose more than 0.1 % to
+/// rounding).
+StepPlan nested_steps(const std::vector<Tick>& proposal,
+                      const std::vector<std::pair<int, int>>& links, bool common,
+                      const std::vector<std::string>& names = {});
+
+}  // namespace crashlink::coordinator

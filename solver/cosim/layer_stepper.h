@@ -1,0 +1,139 @@
+#pragma once
+// One domain's side of the `layer` scheme (DESIGN.md §2.7 "How to distribute layer"), for any
+// number of interfaces and any nested steps, written as a state machine that never blocks: it
+// runs until it needs a message from a partner and says which. The same object drives a domain
+// in the in-process LayerNetwork (layer_network.h) and in a crashlink-solver daemon (the daemon
+// blocks on its socket when the stepper waits).
+//
+// Ports. Each interface is seen from one domain as a Port:
+//   coarse side (fine_side = false): this domain owns J and integrates it at its own step H with
+//     a_J = (g_B + g_A) / M_J ([8] of Bourel 2005, M_J the natural summed mass); it sends
+//     u_J(T+H) (and the rotation rate omega_J^{T+H/2} of shell nodes) as soon as its positions
+//     at T+H are known, computes its own forces at T+H, then needs the fine side's layer force
+//     g_A(T+H) (and moment) before its accelerations at T+H.
+//   fine side (fine_side = true): this domain holds J as read-only ghosts moving linearly in time
+//     between the owner's positions u_J(T) and u_J(T+H) (rotation rate constant over [T, T+H]);
+//     its step h divides H (nested_steps.h), so it lands on every T; at each owner instant it
+//     sends the layer's force and moment on J.
+// Time is an integer count of ticks (coordinator/ticks.h). t = 0: initialize() sends every fine
+// port's g_A(0); a coarse port needs it to complete a^0 (exchange_initial_forces' rule).
+//
+// Cycle t -> t + h of this domain (h = step()):
+//   begin_cycle()                                        (state at t sampled: on_sample)
+//   fine ports: need u_J(T') for the owner instant T' >= t + h      -> Wait::Displacement
+//   set_ghost_displacement / set_ghost_angular_velocity, end_cycle_positions()
+//   coarse ports: send u_J(t + h), omega_J(t + h/2)
+//   end_cycle_compute()                                  (overlaps the partners' work)
+//   fine ports at an owner instant (t + h = k H): send g_A(t + h)
+//   coarse ports: need g_A(t + h)                                   -> Wait::Force
+//   add_coupling_force/moment, end_cycle_accelerations(), impose_step(h)
+// The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
+//
+// Array shapes: Port::local [n_J] (local solver index of each J node, Interface::j_nodes_global
+// order); every vector in a LayerMessage [3 n_J], xyz interleaved, the same order.
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "coordinator/ticks.h"
+#include "solver/integration/solver.h"
+
+namespace crashlink::cosim {
+
+using coordinator::Tick;
+
+struct LayerPort {
+  std::uint32_t index = 0;         ///< interface index (Decomposition::interfaces)
+  bool fine_side = false;          ///< true: J are ghosts here; false: this domain owns J
+  std::string partner;             ///< the other domain's name (messages)
+  Tick partner_step = 0;           ///< the owner's step H (fine side only)
+  std::vector<std::size_t> local;  ///< [n_J] local solver index of each J node
+};
+
+/// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
+/// omega_J(time - H/2) [rad/s] (`second`, empty when no J node rotates). Force: ghost holder ->
+/// owner, g_A(time) [N] and the moment [N m] (`second`, empty when no J node rotates).
+struct LayerMessage {
+  enum class Kind : std::uint8_t { Displacement, Force };
+  Kind kind = Kind::Displacement;
+  std::uint32_t interface_index = 0;
+  Tick time = 0;
+  std::vector<double> first;
+  std::vector<double> second;
+};
+
+class LayerStepper {
+ public:
+  enum class Wait : std::uint8_t {
+    None,          ///< can advance
+    Displacement,  ///< a fine port needs the owner's next u_J
+    Force,         ///< a coarse port needs the holder's g_A at the current instant
+    Finished,      ///< end time reached
+  };
+
+  /// `solver` (ghosts, mass and inertia overrides set, not initialised) must outlive the stepper.
+  /// `step` is this domain's fixed step in ticks; every fine port's partner_step must be a whole
+  /// multiple of it (ModelError otherwise, with both values).
+  LayerStepper(integration::Solver& solver, std::vector<LayerPort> ports, Tick step,
+               std::int64_t ticks_per_second);
+
+  /// Solver::initialize(), imposes the step, queues g_A(0) of every fine port.
+  void initialize();
+
+  /// Delivers a partner's message (any order across interfaces; in time order per interface).
+  /// Throws ProtocolError-like ModelError for an unknown interface, a wrong kind for the port's
+  /// side, a wrong length, or a time that is not the next one expected.
+  void deliver(const LayerMessage& m);
+
+  /// Runs cycles until it must wait or the run is finished; calls on_sample after every
+  /// begin_cycle() (the state at time() complete). Returns why it stopped.
+  Wait advance(const std::function<void()>& on_sample = {});
+
+  /// Messages produced so far, to be sent in order; take_outbox() empties the queue.
+  std::deque<LayerMessage> take_outbox();
+  bool has_outbox() const { return !outbox_.empty(); }
+
+  Tick time() const { return t_; }  ///< this domain's current instant
+  Tick step() const { return h_; }
+  std::int64_t ticks_per_second() const { return ticks_per_second_; }
+  double seconds(Tick n) const;
+  Wait waiting() const { return wait_; }
+  /// The interface index this stepper waits on (valid when waiting() is Displacement or Force).
+  std::uint32_t waiting_interface() const { return wait_iface_; }
+  const integration::Solver& solver() const { return solver_; }
+  const std::vector<LayerPort>& ports() const { return ports_; }
+
+ private:
+  enum class Phase : std::uint8_t { Initial, Begin, Positions, Accelerations, Done };
+  struct PortState {
+    std::deque<LayerMessage> inbox;  ///< received, not consumed yet
+    Tick next_expected = 0;          ///< time of the next message from the partner
+    std::vector<double> u_T;         ///< fine side: u_J(T) of the current owner step
+    std::vector<double> u_1;         ///< fine side: u_J(T + H)
+    std::vector<double> omega;       ///< fine side: omega_J(T + H/2)
+    Tick T = 0;                      ///< fine side: the owner step [T, T + H] in use
+    bool rotates = false;            ///< J has rotational dofs (shell nodes)
+  };
+
+  bool ghost_targets_ready();
+  void send_displacements();
+  void send_forces();
+  bool forces_ready();
+  void apply_forces();
+
+  integration::Solver& solver_;
+  std::vector<LayerPort> ports_;
+  std::vector<PortState> state_;
+  Tick h_ = 0, t_ = 0;
+  std::int64_t ticks_per_second_ = 0;
+  Phase phase_ = Phase::Initial;
+  Wait wait_ = Wait::None;
+  std::uint32_t wait_iface_ = 0;
+  std::deque<LayerMessage> outbox_;
+  std::vector<double> ghost_u_, ghost_omega_;  ///< [3 n_ghost] Solver::ghost_nodes() order
+  std::vector<std::size_t> ghost_slot_;        ///< [n_local] position in the ghost list
+};
+
+}  // namespace crashlink::cosim
