@@ -20,6 +20,54 @@ std::vector<double> natural_inertia(const model::Model& global) {
 }
 }  // namespace
 
+namespace {
+/// One domain's solver: ghosts, J's natural summed mass and rotary inertia (§2.7).
+std::unique_ptr<integration::Solver> make_solver(const partition::DomainModel& dm,
+                                                 const model::Model& global,
+                                                 std::vector<double>& inertia_global) {
+  auto s = std::make_unique<integration::Solver>(dm.model, dm.name);
+  std::vector<std::int32_t> ghosts;
+  for (std::size_t l = 0; l < dm.global_node.size(); ++l)
+    if (dm.ghost[l]) ghosts.push_back(static_cast<std::int32_t>(l));
+  s->set_ghost_nodes(ghosts);
+  s->set_mass_override(dm.interface_mass_kg);  // J on its owner: the natural summed mass (§2.7)
+  std::vector<double> inertia(dm.global_node.size(), 0.0);  // and its natural rotary inertia
+  for (std::size_t l = 0; l < inertia.size(); ++l)
+    if (dm.interface_mass_kg[l] > 0.0) {
+      if (inertia_global.empty()) inertia_global = natural_inertia(global);
+      inertia[l] = inertia_global[static_cast<std::size_t>(dm.global_node[l])];
+    }
+  s->set_inertia_override(std::move(inertia));
+  return s;
+}
+
+std::size_t local_of(const partition::DomainModel& dm, std::int32_t g) {
+  const auto it = std::lower_bound(dm.global_node.begin(), dm.global_node.end(), g);
+  if (it == dm.global_node.end() || *it != g)
+    throw ModelError("layer: global node " + std::to_string(g) + " is not in domain '" + dm.name +
+                     "'");
+  return static_cast<std::size_t>(it - dm.global_node.begin());
+}
+
+/// Domain d's ports, from the decomposition alone (J in Interface::j_nodes_global order).
+std::vector<LayerPort> ports_of(const partition::Decomposition& dec, int d) {
+  std::vector<LayerPort> ports;
+  for (std::size_t i = 0; i < dec.interfaces.size(); ++i) {
+    const auto& itf = dec.interfaces[i];
+    if (itf.fine != d && itf.coarse != d) continue;
+    LayerPort p;
+    p.index = static_cast<std::uint32_t>(i);
+    p.fine_side = itf.fine == d;
+    const int other = p.fine_side ? itf.coarse : itf.fine;
+    p.partner = dec.domains[static_cast<std::size_t>(other)].name;
+    const auto& dm = dec.domains[static_cast<std::size_t>(d)];
+    for (auto g : itf.j_nodes_global) p.local.push_back(local_of(dm, g));
+    ports.push_back(std::move(p));
+  }
+  return ports;
+}
+}  // namespace
+
 LayerDomains build_layer_domains(const model::Model& global, const char* who) {
   LayerDomains r;
   r.dec = partition::decompose(global, partition::Scheme::Layer);
@@ -31,30 +79,16 @@ LayerDomains build_layer_domains(const model::Model& global, const char* who) {
     const auto& dm = r.dec.domains[d];
     if (dm.empty()) continue;
     const std::size_t k = r.solvers.size();
-    auto s = std::make_unique<integration::Solver>(dm.model, dm.name);
-    std::vector<std::int32_t> ghosts;
     for (std::size_t l = 0; l < dm.global_node.size(); ++l) {
       const auto g = static_cast<std::size_t>(dm.global_node[l]);
-      if (dm.ghost[l]) {
-        ghosts.push_back(static_cast<std::int32_t>(l));
-        continue;
-      }
+      if (dm.ghost[l]) continue;
       if (r.owner_solver[g] != kNoSolver)
         throw ModelError(std::string(who) + ": global node id " +
                          std::to_string(global.nodes.id[g]) + " is owned by two domains");
       r.owner_solver[g] = k;
       r.owner_local[g] = l;
     }
-    s->set_ghost_nodes(ghosts);
-    s->set_mass_override(dm.interface_mass_kg);  // J on its owner: the natural summed mass (§2.7)
-    std::vector<double> inertia(dm.global_node.size(), 0.0);  // and its natural rotary inertia
-    for (std::size_t l = 0; l < inertia.size(); ++l)
-      if (dm.interface_mass_kg[l] > 0.0) {
-        if (inertia_global.empty()) inertia_global = natural_inertia(global);
-        inertia[l] = inertia_global[static_cast<std::size_t>(dm.global_node[l])];
-      }
-    s->set_inertia_override(std::move(inertia));
-    r.solvers.push_back(std::move(s));
+    r.solvers.push_back(make_solver(dm, global, inertia_global));
     r.domain_of.push_back(static_cast<int>(d));
   }
   r.ghosts.resize(r.solvers.size());
@@ -70,6 +104,37 @@ LayerDomains build_layer_domains(const model::Model& global, const char* who) {
       r.ghosts[k].push_back({lu, r.owner_solver[g], r.owner_local[g]});
     }
   }
+  return r;
+}
+
+LayerDomain build_layer_domain(const partition::Decomposition& dec, const model::Model& global,
+                               const std::string& name) {
+  for (std::size_t d = 0; d < dec.domains.size(); ++d) {
+    const auto& dm = dec.domains[d];
+    if (dm.name != name) continue;
+    if (dm.empty())
+      throw ModelError("layer: domain '" + name +
+                       "' is empty after the cut (its elements moved into a finer domain); it "
+                       "needs no daemon");
+    LayerDomain r;
+    r.domain_index = static_cast<int>(d);
+    std::vector<double> inertia_global;
+    r.solver = make_solver(dm, global, inertia_global);
+    r.ports = ports_of(dec, r.domain_index);
+    return r;
+  }
+  std::string known;
+  for (const auto& dm : dec.domains) {
+    known.append(known.empty() ? "'" : ", '");
+    known.append(dm.name);
+    known.push_back('\'');
+  }
+  throw ModelError("layer: no domain named '" + name + "'; the scenario has " + known);
+}
+
+std::vector<std::vector<LayerPort>> layer_ports(const LayerDomains& d) {
+  std::vector<std::vector<LayerPort>> r;
+  for (auto dom : d.domain_of) r.push_back(ports_of(d.dec, dom));
   return r;
 }
 

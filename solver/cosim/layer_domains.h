@@ -6,8 +6,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "solver/cosim/layer_stepper.h"
 #include "solver/integration/energy.h"
 #include "solver/integration/solver.h"
 #include "solver/model/model.h"
@@ -36,6 +38,21 @@ inline constexpr std::size_t kNoSolver = static_cast<std::size_t>(-1);
 /// Cuts `global` with the layer scheme and builds the solvers (ghosts, J masses and inertias set,
 /// not initialised). `who` prefixes the ModelError messages.
 LayerDomains build_layer_domains(const model::Model& global, const char* who);
+
+/// One domain of a layer cut, for a daemon that runs only that domain: its solver (ghosts, J
+/// masses and inertias set as in build_layer_domains, not initialised) and its ports (one per
+/// interface it takes part in, LayerPort::partner_step left 0: the coordinator's Setup gives it).
+/// Throws ModelError naming the domain when `name` is not a non-empty domain of `dec`.
+struct LayerDomain {
+  int domain_index = -1;  ///< index into dec.domains
+  std::unique_ptr<integration::Solver> solver;
+  std::vector<LayerPort> ports;
+};
+LayerDomain build_layer_domain(const partition::Decomposition& dec, const model::Model& global,
+                               const std::string& name);
+
+/// The ports of every solver of `d` (LayerDomains::solvers order), partner_step left 0.
+std::vector<std::vector<LayerPort>> layer_ports(const LayerDomains& d);
 
 /// After initialize() of every solver: adds the ghost holders' forces on J at t = 0 to the
 /// owners' a^0 through Solver::set_acceleration (counted as coupling work over the first step).

@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -79,7 +80,9 @@ class LayerStepper {
   LayerStepper(integration::Solver& solver, std::vector<LayerPort> ports, Tick step,
                std::int64_t ticks_per_second);
 
-  /// Solver::initialize(), imposes the step, queues g_A(0) of every fine port.
+  /// After Solver::initialize() (the caller's: a daemon registers the initial stable step first):
+  /// imposes the step, queues g_A(0) of every fine port. Throws ModelError when the step exceeds
+  /// the solver's stable step (Solver::impose_step).
   void initialize();
 
   /// Delivers a partner's message (any order across interfaces; in time order per interface).
@@ -87,15 +90,19 @@ class LayerStepper {
   /// side, a wrong length, or a time that is not the next one expected.
   void deliver(const LayerMessage& m);
 
-  /// Runs cycles until it must wait or the run is finished; calls on_sample after every
-  /// begin_cycle() (the state at time() complete). Returns why it stopped.
-  Wait advance(const std::function<void()>& on_sample = {});
+  /// Runs cycles until it must wait, the run is finished, or time() >= until at the start of a
+  /// cycle (returns Wait::None, nothing begun: call again to go on); calls on_sample after every
+  /// begin_cycle() (the state at time() complete). Returns why it stopped. A domain finishes at its
+  /// first instant >= the end time that is also an instant of every owner it holds ghosts of.
+  Wait advance(const std::function<void()>& on_sample = {},
+               Tick until = std::numeric_limits<Tick>::max());
 
   /// Messages produced so far, to be sent in order; take_outbox() empties the queue.
   std::deque<LayerMessage> take_outbox();
   bool has_outbox() const { return !outbox_.empty(); }
 
-  Tick time() const { return t_; }  ///< this domain's current instant
+  Tick time() const { return t_; }        ///< this domain's current instant
+  Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
   Tick step() const { return h_; }
   std::int64_t ticks_per_second() const { return ticks_per_second_; }
   double seconds(Tick n) const;
@@ -107,6 +114,7 @@ class LayerStepper {
 
  private:
   enum class Phase : std::uint8_t { Initial, Begin, Positions, Accelerations, Done };
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct PortState {
     std::deque<LayerMessage> inbox;  ///< received, not consumed yet
     Tick next_expected = 0;          ///< time of the next message from the partner
@@ -114,9 +122,14 @@ class LayerStepper {
     std::vector<double> u_1;         ///< fine side: u_J(T + H)
     std::vector<double> omega;       ///< fine side: omega_J(T + H/2)
     Tick T = 0;                      ///< fine side: the owner step [T, T + H] in use
+    bool have_u1 = false;            ///< fine side: u_1 received for this owner step
     bool rotates = false;            ///< J has rotational dofs (shell nodes)
   };
 
+  Tick to_ticks_end(double t_s) const;
+  bool at_owner_instant(const LayerPort& port) const;
+  bool finished_here() const;
+  void apply_initial_forces();
   bool ghost_targets_ready();
   void send_displacements();
   void send_forces();
@@ -126,7 +139,8 @@ class LayerStepper {
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;
   std::vector<PortState> state_;
-  Tick h_ = 0, t_ = 0;
+  Tick h_ = 0, t_ = 0, end_ = 0;
+  bool initialized_ = false;
   std::int64_t ticks_per_second_ = 0;
   Phase phase_ = Phase::Initial;
   Wait wait_ = Wait::None;

@@ -1,0 +1,115 @@
+// LayerNetwork: every domain's LayerStepper in one thread (layer_network.h).
+#include "solver/cosim/layer_network.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "solver/core/errors.h"
+
+namespace crashlink::cosim {
+
+LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions options)
+    : options_(std::move(options)), d_(build_layer_domains(global, "layer network")) {
+  if (!(options_.step_safety > 0.0 && options_.step_safety <= 1.0))
+    throw ModelError("layer network: step_safety must be in (0, 1], got " +
+                     std::to_string(options_.step_safety));
+  if (options_.ticks_per_second < 1)
+    throw ModelError("layer network: ticks_per_second must be >= 1");
+  if (!options_.proposal_s.empty() && options_.proposal_s.size() != d_.solvers.size())
+    throw ModelError("layer network: " + std::to_string(options_.proposal_s.size()) +
+                     " step proposals for " + std::to_string(d_.solvers.size()) + " domains");
+  std::vector<std::size_t> solver_of(d_.dec.domains.size(), kNoSolver);
+  for (std::size_t k = 0; k < d_.domain_of.size(); ++k)
+    solver_of[static_cast<std::size_t>(d_.domain_of[k])] = k;
+  for (const auto& itf : d_.dec.interfaces) {
+    const auto f = solver_of[static_cast<std::size_t>(itf.fine)];
+    const auto c = solver_of[static_cast<std::size_t>(itf.coarse)];
+    if (f == kNoSolver || c == kNoSolver)
+      throw ModelError("layer network: an interface (" + itf.kind + ") joins an empty domain");
+    fine_of_.push_back(f);
+    coarse_of_.push_back(c);
+  }
+}
+
+void LayerNetwork::initialize() {
+  std::vector<Tick> proposal(d_.solvers.size());
+  const coordinator::TickClock clock(options_.ticks_per_second);
+  for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
+    auto& s = *d_.solvers[k];
+    s.initialize();
+    // A domain of rigid bodies only has no stable-step limit (proposal 0: follows its partners).
+    const double dt = options_.step_safety * s.dt_s();
+    const Tick own = std::isfinite(dt) && dt < 1e3 ? clock.step_to_ticks(dt) : 0;
+    proposal[k] = own;
+    if (!options_.proposal_s.empty() && options_.proposal_s[k] > 0.0)
+      proposal[k] = own > 0 ? std::min(own, clock.step_to_ticks(options_.proposal_s[k]))
+                            : clock.step_to_ticks(options_.proposal_s[k]);
+  }
+  std::vector<std::pair<int, int>> links;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < fine_of_.size(); ++i)
+    links.emplace_back(static_cast<int>(coarse_of_[i]), static_cast<int>(fine_of_[i]));
+  for (const auto& s : d_.solvers) names.push_back(s->domain_name());
+  plan_ = coordinator::nested_steps(proposal, links, options_.common_step, names);
+  auto ports = layer_ports(d_);
+  steppers_.clear();
+  for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
+    for (auto& p : ports[k])
+      if (p.fine_side) p.partner_step = plan_.step[coarse_of_[p.index]];
+    steppers_.push_back(std::make_unique<LayerStepper>(*d_.solvers[k], std::move(ports[k]),
+                                                       plan_.step[k], options_.ticks_per_second));
+  }
+  for (auto& st : steppers_) st->initialize();
+  for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);
+}
+
+void LayerNetwork::route(std::size_t from) {
+  for (auto& m : steppers_[from]->take_outbox()) {
+    const std::size_t to = m.kind == LayerMessage::Kind::Displacement
+                               ? fine_of_[m.interface_index]
+                               : coarse_of_[m.interface_index];
+    steppers_[to]->deliver(m);
+    ++messages_;
+  }
+}
+
+bool LayerNetwork::run(const std::function<void(std::size_t)>& on_sample, Tick until) {
+  using Wait = LayerStepper::Wait;
+  for (;;) {
+    // The earliest domain that can move goes first (DESIGN.md §2.6).
+    bool progressed = false, all_done = true, all_paused = true;
+    std::vector<std::size_t> order(steppers_.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return steppers_[a]->time() < steppers_[b]->time();
+    });
+    for (auto k : order) {
+      auto& st = *steppers_[k];
+      if (st.waiting() == Wait::Finished) continue;
+      const Tick t0 = st.time();
+      const auto w =
+          st.advance(on_sample ? std::function<void()>([&, k] { on_sample(k); }) : nullptr, until);
+      if (st.has_outbox()) {
+        route(k);
+        progressed = true;
+      }
+      if (st.time() != t0) progressed = true;
+      if (w != Wait::Finished) all_done = false;
+      if (w != Wait::None && w != Wait::Finished) all_paused = false;
+    }
+    if (all_done) return true;
+    if (all_paused) return false;  // every unfinished domain reached `until`
+    if (!progressed) {
+      std::string why;
+      for (const auto& st : steppers_)
+        why += " '" + st->solver().domain_name() + "' at " + std::to_string(st->time()) +
+               " ticks waits (" + std::to_string(static_cast<int>(st->waiting())) +
+               ") on interface " + std::to_string(st->waiting_interface()) + ";";
+      throw ModelError("layer network: no domain can move (internal error, please report):" + why);
+    }
+  }
+}
+
+}  // namespace crashlink::cosim

@@ -1,0 +1,78 @@
+#pragma once
+// Every domain of a `layer` cut in one process and one thread: one LayerStepper per non-empty
+// domain (layer_stepper.h), fixed nested steps (coordinator/nested_steps.h), messages routed in
+// memory, the earliest domain first (DESIGN.md §2.6: the earliest pending state is always
+// answerable, so this never deadlocks). It is the reference the daemons must reproduce to
+// round-off (they run the same steppers, only the messages travel over ZeroMQ), and the way
+// tests and sweeps run `split` and `multi` without processes.
+//
+//   LayerNetwork net(global, {.common_step = false});
+//   net.initialize();
+//   net.run([&](std::size_t k) { ... net.solver(k) sampled at its instant ... });
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "coordinator/nested_steps.h"
+#include "coordinator/ticks.h"
+#include "solver/cosim/layer_domains.h"
+#include "solver/cosim/layer_stepper.h"
+
+namespace crashlink::cosim {
+
+struct LayerNetworkOptions {
+  bool common_step = false;  ///< `split`: every domain at the smallest step; else `multi`
+  /// Margin on the initial stable steps (they shrink as the mesh deforms and bulk viscosity acts;
+  /// a fixed step above a later proposal makes Solver::impose_step throw).
+  double step_safety = 1.0;
+  /// [solvers] optional proposals in seconds replacing the solvers' own (each still capped by
+  /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
+  std::vector<double> proposal_s;
+  std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
+};
+
+class LayerNetwork {
+ public:
+  /// Cuts `global` (which must outlive the network) with the layer scheme.
+  explicit LayerNetwork(const model::Model& global, LayerNetworkOptions options = {});
+  LayerNetwork(const LayerNetwork&) = delete;
+  LayerNetwork& operator=(const LayerNetwork&) = delete;
+
+  /// Solvers initialised, steps planned, steppers initialised, the t = 0 forces exchanged.
+  void initialize();
+  /// Advances every domain until it has finished or reached `until` ticks (each stops at the
+  /// start of its first cycle at or after `until`). on_sample(k) after every begin_cycle() of
+  /// solver k. Returns true when every domain has finished.
+  bool run(const std::function<void(std::size_t)>& on_sample = {},
+           Tick until = std::numeric_limits<Tick>::max());
+
+  std::size_t size() const { return d_.solvers.size(); }
+  const integration::Solver& solver(std::size_t k) const { return *d_.solvers[k]; }
+  const LayerStepper& stepper(std::size_t k) const { return *steppers_[k]; }
+  const coordinator::StepPlan& plan() const { return plan_; }  ///< [solvers] order
+  const LayerDomains& domains() const { return d_; }
+  const partition::Decomposition& decomposition() const { return d_.dec; }
+  double seconds(Tick n) const {
+    return static_cast<double>(n) / static_cast<double>(options_.ticks_per_second);
+  }
+  /// Sum of the energy accounts (each at its domain's current instant).
+  integration::EnergyAccount energy() const { return sum_energies(d_, 0.0); }
+  /// [3 n_global] displacement of every global node from its owner [m].
+  std::vector<double> global_displacement() const { return cosim::global_displacement(d_); }
+  /// Messages routed so far (both kinds).
+  std::int64_t messages() const { return messages_; }
+
+ private:
+  void route(std::size_t from);
+
+  LayerNetworkOptions options_;
+  LayerDomains d_;
+  std::vector<std::unique_ptr<LayerStepper>> steppers_;
+  std::vector<std::size_t> fine_of_, coarse_of_;  ///< [interfaces] solver index of each side
+  coordinator::StepPlan plan_;
+  std::int64_t messages_ = 0;
+};
+
+}  // namespace crashlink::cosim

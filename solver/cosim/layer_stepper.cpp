@@ -1,0 +1,358 @@
+// LayerStepper: one domain's side of the `layer` scheme (layer_stepper.h; DESIGN.md §2.7).
+#include "solver/cosim/layer_stepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "solver/core/errors.h"
+
+namespace crashlink::cosim {
+
+namespace {
+const char* kind_name(LayerMessage::Kind k) {
+  return k == LayerMessage::Kind::Force ? "layer force" : "layer displacement";
+}
+}  // namespace
+
+LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> ports, Tick step,
+                           std::int64_t ticks_per_second)
+    : solver_(solver), ports_(std::move(ports)), h_(step), ticks_per_second_(ticks_per_second) {
+  const std::string& dom = solver_.domain_name();
+  if (h_ < 1 || ticks_per_second_ < 1)
+    throw ModelError("layer stepper '" + dom + "': step " + std::to_string(h_) +
+                     " ticks and ticks_per_second " + std::to_string(ticks_per_second_) +
+                     " must both be >= 1");
+  const std::size_t n = solver_.model().nodes.count();
+  const auto& gl = solver_.ghost_nodes();
+  ghost_slot_.assign(n, kNone);
+  for (std::size_t k = 0; k < gl.size(); ++k) ghost_slot_[static_cast<std::size_t>(gl[k])] = k;
+  std::vector<std::uint8_t> covered(gl.size(), 0);
+  state_.resize(ports_.size());
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    auto& ps = state_[p];
+    for (auto l : port.local) {
+      if (l >= n)
+        throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                         " names local node " + std::to_string(l) + " of " + std::to_string(n));
+      const bool ghost = ghost_slot_[l] != kNone;
+      if (ghost != port.fine_side)
+        throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                         ": node id " + std::to_string(solver_.model().nodes.id[l]) + " is " +
+                         (ghost ? "a ghost" : "not a ghost") + " but this domain is its " +
+                         (port.fine_side ? "fine (ghost) side" : "coarse (owner) side"));
+      if (ghost) {
+        if (covered[ghost_slot_[l]]++)
+          throw ModelError("layer stepper '" + dom + "': ghost node id " +
+                           std::to_string(solver_.model().nodes.id[l]) +
+                           " belongs to two interfaces");
+      }
+      ps.rotates = ps.rotates || solver_.inertia()[l] > 0.0;
+    }
+    if (port.fine_side) {
+      if (port.partner_step < h_ || port.partner_step % h_ != 0)
+        throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                         ": the owner's step " + std::to_string(port.partner_step) +
+                         " ticks is not a whole multiple of this domain's step " +
+                         std::to_string(h_) +
+                         " ticks; the fine side must land on every coarse instant (nested steps, "
+                         "coordinator/nested_steps.h)");
+    }
+  }
+  for (std::size_t k = 0; k < gl.size(); ++k)
+    if (!covered[k])
+      throw ModelError("layer stepper '" + dom + "': ghost node id " +
+                       std::to_string(solver_.model().nodes.id[static_cast<std::size_t>(gl[k])]) +
+                       " belongs to no interface");
+  ghost_u_.assign(3 * gl.size(), 0.0);
+  ghost_omega_.assign(3 * gl.size(), 0.0);
+  end_ = to_ticks_end(solver_.model().controls.end_time_s);
+}
+
+Tick LayerStepper::to_ticks_end(double t_s) const {
+  // The end instant, rounded to the nearest tick (a run ends at its first instant >= it).
+  const double x = t_s * static_cast<double>(ticks_per_second_);
+  if (!(x >= 0.0) || x > 4.0e18)
+    throw ModelError("layer stepper '" + solver_.domain_name() + "': end time " +
+                     std::to_string(t_s) + " s is not representable in ticks");
+  return static_cast<Tick>(std::nearbyint(x));
+}
+
+double LayerStepper::seconds(Tick n) const {
+  return static_cast<double>(n) / static_cast<double>(ticks_per_second_);
+}
+
+void LayerStepper::initialize() {
+  if (phase_ != Phase::Initial || initialized_)
+    throw ModelError("layer stepper '" + solver_.domain_name() + "': initialize() called twice");
+  initialized_ = true;
+  solver_.impose_step(seconds(h_));
+  t_ = 0;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    auto& ps = state_[p];
+    const std::size_t n3 = 3 * port.local.size();
+    if (port.fine_side) {
+      ps.T = 0;
+      ps.u_T.assign(n3, 0.0);
+      for (std::size_t j = 0; j < port.local.size(); ++j)
+        for (std::size_t d = 0; d < 3; ++d)
+          ps.u_T[3 * j + d] = solver_.displacement()[3 * port.local[j] + d];
+      ps.have_u1 = false;
+      ps.next_expected = port.partner_step;  // the owner's first message: u_J(H)
+    } else {
+      ps.next_expected = 0;  // the holder's g_A(0)
+    }
+  }
+  send_forces();  // g_A(0) of every fine port
+}
+
+bool LayerStepper::at_owner_instant(const LayerPort& port) const {
+  return t_ % port.partner_step == 0;
+}
+
+bool LayerStepper::finished_here() const {
+  if (t_ < end_) return false;
+  for (const auto& port : ports_)
+    if (port.fine_side && !at_owner_instant(port)) return false;  // land with the owner
+  return true;
+}
+
+void LayerStepper::deliver(const LayerMessage& m) {
+  const std::string& dom = solver_.domain_name();
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    if (ports_[p].index != m.interface_index) continue;
+    const auto& port = ports_[p];
+    auto& ps = state_[p];
+    const auto want = port.fine_side ? LayerMessage::Kind::Displacement : LayerMessage::Kind::Force;
+    if (m.kind != want)
+      throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                       ": got a " + kind_name(m.kind) + " from '" + port.partner +
+                       "', expected a " + kind_name(want));
+    if (m.time != ps.next_expected)
+      throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                       ": " + kind_name(m.kind) + " from '" + port.partner +
+                       "' for t = " + std::to_string(m.time) + " ticks, expected t = " +
+                       std::to_string(ps.next_expected) + " ticks (out of order or duplicated)");
+    const std::size_t n3 = 3 * port.local.size();
+    if (m.first.size() != n3 || !(m.second.empty() || m.second.size() == n3))
+      throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                       ": " + kind_name(m.kind) + " from '" + port.partner + "' carries " +
+                       std::to_string(m.first.size()) + " + " + std::to_string(m.second.size()) +
+                       " values; expected " + std::to_string(n3) + " (3 per J node)");
+    ps.next_expected += port.fine_side ? port.partner_step : h_;
+    ps.inbox.push_back(m);
+    return;
+  }
+  throw ModelError("layer stepper '" + dom + "': " + kind_name(m.kind) + " for interface " +
+                   std::to_string(m.interface_index) + ", which this domain is not part of");
+}
+
+std::deque<LayerMessage> LayerStepper::take_outbox() {
+  return std::exchange(outbox_, {});
+}
+
+bool LayerStepper::ghost_targets_ready() {
+  // Every fine port: J at t + h, linear in time between the owner's u_J(T) and u_J(T+H)
+  // (LRunner of coupling-study/layer-check: Unext = uJ_T + (t1 - T)/H (uJ_1 - uJ_T)).
+  const Tick t1 = t_ + h_;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (!port.fine_side) continue;
+    auto& ps = state_[p];
+    const Tick H = port.partner_step;
+    const Tick T = (t_ / H) * H;
+    if (T != ps.T) {  // moved on to the next owner step
+      CRASHLINK_ASSERT(T == ps.T + H && ps.have_u1);
+      ps.u_T.swap(ps.u_1);
+      ps.T = T;
+      ps.have_u1 = false;
+    }
+    if (!ps.have_u1) {
+      if (ps.inbox.empty()) {
+        wait_iface_ = port.index;
+        return false;
+      }
+      auto& m = ps.inbox.front();
+      CRASHLINK_ASSERT(m.time == T + H);
+      ps.u_1 = std::move(m.first);
+      ps.omega = std::move(m.second);
+      ps.inbox.pop_front();
+      ps.have_u1 = true;
+    }
+  }
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (!port.fine_side) continue;
+    const auto& ps = state_[p];
+    const Tick H = port.partner_step;
+    const bool lands = t1 == ps.T + H;
+    const double w = static_cast<double>(t1 - ps.T) / static_cast<double>(H);
+    for (std::size_t j = 0; j < port.local.size(); ++j) {
+      const std::size_t s = ghost_slot_[port.local[j]];
+      for (std::size_t d = 0; d < 3; ++d) {
+        const std::size_t i = 3 * j + d;
+        // exactly the owner's u(T+H) when landing: at H = h this is the split cycle to the bit
+        ghost_u_[3 * s + d] = lands ? ps.u_1[i] : ps.u_T[i] + w * (ps.u_1[i] - ps.u_T[i]);
+        ghost_omega_[3 * s + d] = ps.omega.empty() ? 0.0 : ps.omega[i];  // omega_J(T + H/2)
+      }
+    }
+  }
+  return true;
+}
+
+void LayerStepper::send_displacements() {
+  // Coarse ports: u_J(t + h) and omega_J(t + h/2), known once the positions are updated.
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (port.fine_side) continue;
+    LayerMessage m;
+    m.kind = LayerMessage::Kind::Displacement;
+    m.interface_index = port.index;
+    m.time = t_ + h_;
+    m.first.resize(3 * port.local.size());
+    if (state_[p].rotates) m.second.resize(3 * port.local.size());
+    for (std::size_t j = 0; j < port.local.size(); ++j)
+      for (std::size_t d = 0; d < 3; ++d) {
+        m.first[3 * j + d] = solver_.displacement()[3 * port.local[j] + d];
+        if (!m.second.empty())
+          m.second[3 * j + d] = solver_.angular_velocity_mid()[3 * port.local[j] + d];
+      }
+    outbox_.push_back(std::move(m));
+  }
+}
+
+void LayerStepper::send_forces() {
+  // Fine ports at an owner instant: the layer's force (and moment) on J, g_A(t) ([8]).
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (!port.fine_side || !at_owner_instant(port)) continue;
+    LayerMessage m;
+    m.kind = LayerMessage::Kind::Force;
+    m.interface_index = port.index;
+    m.time = t_;
+    m.first.resize(3 * port.local.size());
+    if (state_[p].rotates) m.second.resize(3 * port.local.size());
+    for (std::size_t j = 0; j < port.local.size(); ++j) {
+      const Vec3 f = solver_.net_force(port.local[j]);
+      const Vec3 mo = m.second.empty() ? Vec3{} : solver_.net_moment(port.local[j]);
+      for (std::size_t d = 0; d < 3; ++d) {
+        m.first[3 * j + d] = f[d];
+        if (!m.second.empty()) m.second[3 * j + d] = mo[d];
+      }
+    }
+    outbox_.push_back(std::move(m));
+  }
+}
+
+bool LayerStepper::forces_ready() {
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    if (ports_[p].fine_side) continue;
+    const auto& ps = state_[p];
+    if (ps.inbox.empty()) {
+      wait_iface_ = ports_[p].index;
+      return false;
+    }
+    CRASHLINK_ASSERT(ps.inbox.front().time == t_);
+  }
+  return true;
+}
+
+void LayerStepper::apply_initial_forces() {
+  // t = 0: Solver::initialize() computed a^0 with this domain's forces only; the holders' forces
+  // on J complete it (exchange_initial_forces' rule: a^0 += g_A(0) / M_J, the implied force is
+  // counted as coupling work over the first step).
+  const std::size_t n = solver_.model().nodes.count();
+  std::vector<double> df;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    if (ports_[p].fine_side) continue;
+    auto& ps = state_[p];
+    const auto m = std::move(ps.inbox.front());
+    ps.inbox.pop_front();
+    if (df.empty()) df.assign(3 * n, 0.0);
+    for (std::size_t j = 0; j < ports_[p].local.size(); ++j)
+      for (std::size_t d = 0; d < 3; ++d) df[3 * ports_[p].local[j] + d] += m.first[3 * j + d];
+  }
+  if (df.empty()) return;
+  const auto& fixed = solver_.model().fixed;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* f = &df[3 * i];
+    if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) continue;
+    Vec3 a{};
+    for (std::size_t d = 0; d < 3; ++d) {
+      a[d] = solver_.acceleration()[3 * i + d] + f[d] / solver_.mass()[i];
+      if (!fixed.empty() && (fixed[i] & (1u << d))) a[d] = 0.0;
+    }
+    solver_.set_acceleration(i, a);
+  }
+}
+
+void LayerStepper::apply_forces() {
+  // [8]: a_J = (g_B + g_A) / M_J, g_A added between the solver's two halves.
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    if (ports_[p].fine_side) continue;
+    auto& ps = state_[p];
+    const auto m = std::move(ps.inbox.front());
+    ps.inbox.pop_front();
+    for (std::size_t j = 0; j < ports_[p].local.size(); ++j) {
+      const double* f = &m.first[3 * j];
+      solver_.add_coupling_force(ports_[p].local[j], Vec3{f[0], f[1], f[2]});
+      if (!m.second.empty()) {
+        const double* mo = &m.second[3 * j];
+        solver_.add_coupling_moment(ports_[p].local[j], Vec3{mo[0], mo[1], mo[2]});
+      }
+    }
+  }
+}
+
+LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample, Tick until) {
+  if (!initialized_)
+    throw ModelError("layer stepper '" + solver_.domain_name() +
+                     "': advance() before initialize()");
+  for (;;) {
+    switch (phase_) {
+      case Phase::Initial:
+        if (!forces_ready()) return wait_ = Wait::Force;
+        apply_initial_forces();
+        phase_ = Phase::Begin;
+        break;
+      case Phase::Begin:
+        if (t_ >= until) return wait_ = Wait::None;
+        solver_.begin_cycle();  // state at t_ complete
+        if (on_sample) on_sample();
+        if (finished_here()) {
+          phase_ = Phase::Done;
+          return wait_ = Wait::Finished;
+        }
+        phase_ = Phase::Positions;
+        break;
+      case Phase::Positions:
+        if (!ghost_targets_ready()) return wait_ = Wait::Displacement;
+        if (!ghost_u_.empty()) {
+          solver_.set_ghost_displacement(ghost_u_.data());
+          solver_.set_ghost_angular_velocity(ghost_omega_.data());
+        }
+        solver_.end_cycle_positions();
+        send_displacements();
+        solver_.end_cycle_compute();  // overlaps the partners' work
+        t_ += h_;
+        send_forces();
+        phase_ = Phase::Accelerations;
+        break;
+      case Phase::Accelerations:
+        if (!forces_ready()) return wait_ = Wait::Force;
+        apply_forces();
+        solver_.end_cycle_accelerations();
+        solver_.impose_step(seconds(h_));
+        phase_ = Phase::Begin;
+        break;
+      case Phase::Done:
+        return wait_ = Wait::Finished;
+    }
+  }
+}
+
+}  // namespace crashlink::cosim
