@@ -9,6 +9,8 @@
 namespace crashlink::coordinator {
 
 namespace {
+constexpr double kShrink = 0.01;  ///< see the shrink rule in nested_steps()
+
 std::string name_of(const std::vector<std::string>& names, std::size_t k) {
   std::string r(1, k < names.size() ? '\'' : '#');
   r.append(k < names.size() ? names[k] : std::to_string(k));
@@ -51,6 +53,7 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
   }
   const auto limit = [&](std::size_t k) { return proposal[k] > 0 ? proposal[k] : largest; };
   std::vector<std::uint8_t> done(nd, 0);
+  Tick base = largest;
   for (std::size_t placed = 0; placed < nd; ++placed) {
     std::size_t pick = nd;
     for (std::size_t k = 0; k < nd; ++k)
@@ -67,19 +70,27 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
     }
     std::int64_t L = 1;
     for (auto c : coarse_of[pick]) L = std::lcm(L, plan.n[c]);
-    const std::int64_t per = limit(pick) * L;  // ceil(largest / (limit L)) in integers
-    plan.n[pick] = L * std::max<std::int64_t>(1, (largest + per - 1) / per);
+    const std::int64_t per = limit(pick) * L;  // ceil(base / (limit L)) in integers
+    std::int64_t need = std::max<std::int64_t>(1, (base + per - 1) / per);
+    // A ratio just above a whole number k (within kShrink) costs one substep more than it is
+    // worth: shrink the base period to k limit L instead (every step only gets smaller).
+    if (need > 1 && static_cast<double>(base) <= (1.0 + kShrink) * static_cast<double>(need - 1) *
+                                                     static_cast<double>(per)) {
+      --need;
+      base = need * per;
+    }
+    plan.n[pick] = L * need;
     done[pick] = 1;
     for (auto f : fine_of[pick]) --pending[f];
   }
   std::int64_t all = 1;
   for (auto n : plan.n) all = std::lcm(all, n);
-  if (all > largest / 1000)
+  if (all > base / 1000)
     throw ModelError("steps: the substep counts need a base period divisible by " +
                      std::to_string(all) + " ticks, more than 0.1 % of the largest step (" +
-                     std::to_string(largest) + " ticks); fix: a larger ticks_per_second");
-  plan.base = (largest / all) * all;
-  // n >= largest / limit, so base / n <= largest / n <= limit: no step exceeds its proposal.
+                     std::to_string(base) + " ticks); fix: a larger ticks_per_second");
+  plan.base = (base / all) * all;
+  // n >= base / limit, so base / n <= limit: no step exceeds its proposal.
   for (std::size_t k = 0; k < nd; ++k) plan.step[k] = plan.base / plan.n[k];
   return plan;
 }

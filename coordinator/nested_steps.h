@@ -9,9 +9,11 @@
 //   split: every domain at the global minimum proposal (n_k = 1).
 //   multi: base = the largest proposal; domains in decreasing order of proposal (each interface's
 //     coarse side before its fine side), n_k = the smallest multiple of L_k (the lcm of n over the
-//     domains it is fine side to) with base / n_k <= proposal_k; then base is rounded down to a
-//     multiple of lcm(n) ticks, so every step is a whole number of ticks and no step exceeds its
-//     proposal.
+//     domains it is fine side to) with base / n_k <= proposal_k, except that a ratio within 1 %
+//     above a whole number k shrinks base to k proposal_k L_k instead of taking one substep more
+//     (steps only ever get smaller; 2.0000001 must not cost three substeps); then base is rounded
+//     down to a multiple of lcm(n) ticks, so every step is a whole number of ticks and no step
+//     exceeds its proposal.
 // Proposals are in ticks; a proposal <= 0 means "no limit" (a domain of rigid bodies only).
 #include <cstdint>
 #include <string>

@@ -101,14 +101,25 @@ bool LayerNetwork::run(const std::function<void(std::size_t)>& on_sample, Tick u
     }
     if (all_done) return true;
     if (all_paused) return false;  // every unfinished domain reached `until`
-    if (!progressed) {
-      std::string why;
-      for (const auto& st : steppers_)
-        why += " '" + st->solver().domain_name() + "' at " + std::to_string(st->time()) +
-               " ticks waits (" + std::to_string(static_cast<int>(st->waiting())) +
-               ") on interface " + std::to_string(st->waiting_interface()) + ";";
-      throw ModelError("layer network: no domain can move (internal error, please report):" + why);
+    if (progressed) continue;
+    // A domain paused at `until` while a partner mid-step needs its next message (a coarse step
+    // that straddles `until`): the paused ones take one more cycle.
+    bool nudged = false;
+    for (std::size_t k = 0; k < steppers_.size(); ++k) {
+      auto& st = *steppers_[k];
+      if (st.waiting() != Wait::None) continue;
+      st.advance(on_sample ? std::function<void()>([&, k] { on_sample(k); }) : nullptr,
+                 st.time() + 1);
+      route(k);
+      nudged = true;
     }
+    if (nudged) continue;
+    std::string why;
+    for (const auto& st : steppers_)
+      why += " '" + st->solver().domain_name() + "' at " + std::to_string(st->time()) +
+             " ticks waits (" + std::to_string(static_cast<int>(st->waiting())) +
+             ") on interface " + std::to_string(st->waiting_interface()) + ";";
+    throw ModelError("layer network: no domain can move (internal error, please report):" + why);
   }
 }
 

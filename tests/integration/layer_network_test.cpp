@@ -91,3 +91,134 @@ TEST(LayerNetwork, IntegerRatioIsMultirateRunnerToTheBit) {
     EXPECT_EQ(d, 0.0) << "r = " << r;
   }
 }
+
+namespace {
+
+struct Accuracy {
+  double disp = 0.0, vel = 0.0, refl = 0.0, coupling = 0.0;
+  std::int64_t substeps = 0;
+};
+
+/// The study's 1-D bar (coupling-study/README.md "Measurements") in metres: fine [0, 1] m
+/// (dx = 10 mm), coarse [1, 3] m (elements r dx), nu = 0, far end fixed, Hann velocity pulse of
+/// 0.2 m / c on x = 0, bulk viscosity on. Coarse proposal r h: the fine side takes ceil(r) equal
+/// substeps (nested_steps.h). Reference: mono at the fine step actually used.
+Accuracy hann_vs_mono(double r) {
+  model::Model m;
+  m.name = "bar";
+  auto mat = elastic("steel");
+  mat.poisson_ratio = 0.0;
+  m.materials.push_back(mat);
+  const double dx = 0.01;
+  const int nc = static_cast<int>(std::lround(2.0 / (r * dx)));
+  add_box(m, part("fine", 0), {{0.0, 0.0, 0.0}, {1.0, 0.05, 0.05}, {100, 1, 1}});
+  add_box(m, part("coarse", 0), {{1.0, 0.0, 0.0}, {nc * r * dx, 0.05, 0.05}, {nc, 1, 1}});
+  finish(m);
+  const double xe = 1.0 + nc * r * dx;
+  for (auto i : where(m, [&](double x, double, double) { return x > xe - 1e-9; }))
+    m.fixed[static_cast<std::size_t>(i)] = 7;
+  m.controls.end_time_s = 10.0;
+  m.controls.bulk_viscosity = true;
+  m.domains = {{"fine", {0}}, {"coarse", {1}}};
+  const double c = std::sqrt(mat.youngs_modulus_Pa / mat.density_kg_m3);
+  const double unit = 1.0 / c, tp = 0.2 * unit, v0 = 1.0;
+  model::Curve hann;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = tp * k / 100.0;
+    hann.t_s.push_back(t);
+    hann.value.push_back(0.5 * v0 * (1.0 - std::cos(2.0 * M_PI * t / tp)));
+  }
+  hann.t_s.push_back(10.0);
+  hann.value.push_back(0.0);
+  m.prescribed_velocities.push_back(
+      {"hann", where(m, [](double x, double, double) { return x < 1e-9; }), 0, hann});
+
+  // proposals: the fine mesh's step with a margin, and r times it for the coarse side
+  double h0 = 0.0;
+  {
+    integration::Solver probe(m, "probe");
+    probe.initialize();
+    h0 = 0.8 * probe.dt_s();  // fixed steps: margin for bulk viscosity under the wave
+  }
+  cosim::LayerNetworkOptions o;
+  cosim::LayerNetwork net(m, o);
+  const auto& d = net.domains();
+  std::size_t kf = 0;
+  for (std::size_t k = 0; k < d.solvers.size(); ++k)
+    if (d.solvers[k]->domain_name() == "fine") kf = k;
+  o.proposal_s.assign(d.solvers.size(), 0.0);
+  o.proposal_s[kf] = h0;
+  o.proposal_s[1 - kf] = r * h0;
+  cosim::LayerNetwork mr(m, o);
+  mr.initialize();
+  const double h = mr.seconds(mr.plan().step[kf]);
+  integration::Solver mono(m, "mono");
+  mono.initialize();
+  mono.impose_step(h);
+  mono.begin_cycle();
+  std::size_t gi = 0;
+  std::vector<std::size_t> fine_nodes;
+  for (std::size_t g = 0; g < m.nodes.count(); ++g) {
+    const double x = m.nodes.x0[3 * g];
+    if (std::abs(x - 1.0) < 1e-9) gi = g;
+    if (x <= 0.9 + 1e-9) fine_nodes.push_back(g);
+  }
+  const auto& md = mr.domains();
+  EXPECT_EQ(md.owner_solver[gi], kf);
+  double du = 0.0, umax = 0.0, dv = 0.0, vmax = 0.0, refl = 0.0;
+  std::int64_t mono_steps = 0;
+  const auto& F = mr.solver(kf);
+  auto sample = [&](std::size_t k) {
+    if (k != kf) return;
+    const std::int64_t n = mr.stepper(kf).time() / mr.plan().step[kf];
+    while (mono_steps < n) {
+      mono.end_cycle();
+      mono.impose_step(h);
+      mono.begin_cycle();
+      ++mono_steps;
+    }
+    const double t = mr.seconds(mr.stepper(kf).time()) / unit;
+    const std::size_t li = md.owner_local[gi];
+    const double u = F.displacement()[3 * li], um = mono.displacement()[3 * gi];
+    const double v = F.node_velocity(li)[0], vm = mono.node_velocity(gi)[0];
+    if (t <= 4.8) {
+      du = std::max(du, std::abs(u - um));
+      umax = std::max(umax, std::abs(um));
+    }
+    if (t <= 2.9) {
+      dv = std::max(dv, std::abs(v - vm));
+      vmax = std::max(vmax, std::abs(vm));
+      for (auto g : fine_nodes)
+        refl = std::max(refl,
+                        std::abs(F.node_velocity(md.owner_local[g])[0] - mono.node_velocity(g)[0]));
+    }
+  };
+  const auto until = static_cast<coordinator::Tick>(4.8 * unit * 1e15);
+  mr.run(sample, until);
+  Accuracy a;
+  a.disp = du / umax;
+  a.vel = dv / vmax;
+  a.refl = refl / v0;
+  a.coupling = mr.energy().coupling_work_J / mr.energy().external_work_J;
+  a.substeps = mr.plan().n[kf] / mr.plan().n[1 - kf];
+  std::printf(
+      "[measured] layer multi, Hann pulse, stable-step ratio %.2f (%lld fine substeps of %.3e s "
+      "per coarse step) vs mono at that step: interface displacement error %.2f %%, interface "
+      "velocity error %.2f %%, reflection %.2f %% of v0; summed coupling work %.2e of the input\n",
+      r, static_cast<long long>(a.substeps), h, 100.0 * a.disp, 100.0 * a.vel, 100.0 * a.refl,
+      a.coupling);
+  return a;
+}
+
+}  // namespace
+
+// The bar bounds for ratios up to 4 (3 % / 7 % / 10 %), non-integer ratios included.
+TEST(LayerNetwork, HannPulseAccuracyVsMonoAllRatiosUpToFour) {
+  for (double r : {1.5, 2.0, 2.5, 3.0, 4.0}) {
+    const auto a = hann_vs_mono(r);
+    EXPECT_LE(a.disp, 0.03) << "r = " << r;
+    EXPECT_LE(a.vel, 0.07) << "r = " << r;
+    EXPECT_LE(a.refl, 0.10) << "r = " << r;
+    EXPECT_LE(std::abs(a.coupling), 0.01) << "r = " << r;
+  }
+}

@@ -93,3 +93,17 @@ TEST(NestedSteps, CycleAndNoLimitAreRefused) {
 
 }  // namespace
 }  // namespace crashlink::coordinator
+
+namespace crashlink::coordinator {
+namespace {
+TEST(NestedSteps, RatioJustAboveAWholeNumberShrinksTheBase) {
+  // 2 h + 1 tick: two substeps with a coarse step of exactly 2 h, not three
+  const auto p = nested_steps({2000001, 1000000}, {{0, 1}}, false);
+  EXPECT_EQ(p.n[1], 2);
+  EXPECT_EQ(p.step[1], 1000000);
+  EXPECT_EQ(p.step[0], 2000000);
+  // 2.05 h: a real excess, three substeps
+  EXPECT_EQ(nested_steps({2050000, 1000000}, {{0, 1}}, false).n[1], 3);
+}
+}  // namespace
+}  // namespace crashlink::coordinator
