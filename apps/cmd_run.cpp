@@ -22,15 +22,21 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");
+  run->add_option("--join-timeout-ms", o.join_timeout_ms,
+                  "split/multi: every daemon must have joined within this time, ms")
+      ->check(CLI::Range(1, 86400000))
+      ->capture_default_str();
+  run->add_option("--step-safety", o.step_safety,
+                  "split/multi: factor in (0, 1] on the domains' initial stable steps, which are "
+                  "then fixed for the run")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  add_session_flags(*run, o.session);
   return run;
 }
 
 int run_run(const RunCommandOptions& o) {
-  if (o.mode != "mono")
-    throw InputError(fmt::format(
-        "--mode {}: only 'mono' (one domain) runs in this build; 'split' and 'multi' need the "
-        "coordinator and the solver daemons, which are not built yet",
-        o.mode));
+  if (o.mode != "mono") return run_coupled(o);
   const auto model = io::read_scenario(o.scenario);
   std::printf("crashlink run: %s (%zu nodes, %zu elements, end time %.4g s) -> %s\n",
               model.name.c_str(), model.nodes.count(), model.element_count(),

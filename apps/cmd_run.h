@@ -1,10 +1,17 @@
 #pragma once
 // `crashlink run SCENARIO [--out DIR] [--mode mono|split|multi] [--coupling layer|paper]
-// [--transport ipc|tcp|inproc] [--quiet]` (DESIGN.md §4): runs the scenario, shows progress,
-// prints the summary and, for every probe on a rigid body (a headform), HIC15 and HIC36 after
-// CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
+// [--transport ipc|tcp|inproc] [--quiet] [--heartbeat-ms N] [--timeout-ms N]
+// [--join-timeout-ms N] [--step-safety F]` (DESIGN.md §4): runs the scenario, shows progress,
+// prints the summary and, for every probe on a rigid body (a headform), HIC15 and HIC36 after CFC
+// 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
+//   mono: the whole model in this process (run/run_single.h).
+//   split | multi: the coordinator and one daemon per domain (apps/launcher.h), then the results
+//     gathered into DIR/result.h5; the summary adds the coordinator's share of the CPU time and
+//     the wall time against the sum of the CPU times.
 #include <CLI/CLI.hpp>
 #include <string>
+
+#include "apps/session_flags.h"
 
 namespace crashlink::apps {
 
@@ -15,11 +22,20 @@ struct RunCommandOptions {
   std::string coupling = "layer";
   std::string transport = "ipc";
   bool quiet = false;
+  SessionFlags session;
+  int join_timeout_ms = 60000;
+  /// split/multi: factor on every domain's initial stable step before the steps are fixed for
+  /// the run (the stable step shrinks as the mesh deforms; a fixed step above it stops the run).
+  double step_safety = 0.9;
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);
 
-/// Returns the exit code: 0, or 3 when the guard stopped the run (output kept). Errors throw.
+/// Returns the exit code (solver/run/exit_codes.h): 0; 3 when the guard stopped the run (output
+/// kept); split/multi: 5 when a process failed (the message names it). Input errors throw.
 int run_run(const RunCommandOptions& options);
+
+/// split / multi (cmd_run_coupled.cpp).
+int run_coupled(const RunCommandOptions& options);
 
 }  // namespace crashlink::apps

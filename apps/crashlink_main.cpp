@@ -1,8 +1,9 @@
-// crashlink: the user's command. Subcommands: run, hic (more come with the co-simulation work).
+// crashlink: the user's command. Subcommands: run, hic, gather.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
+#include "apps/cmd_gather.h"
 #include "apps/cmd_hic.h"
 #include "apps/cmd_run.h"
 #include "solver/core/errors.h"
@@ -14,6 +15,8 @@ int main(int argc, char** argv) {
   auto* run = crashlink::apps::add_run_command(app, run_options);
   crashlink::apps::HicOptions hic_options;
   auto* hic = crashlink::apps::add_hic_command(app, hic_options);
+  crashlink::apps::GatherOptions gather_options;
+  auto* gather = crashlink::apps::add_gather_command(app, gather_options);
 
   try {
     app.parse(argc, argv);
@@ -23,6 +26,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return crashlink::apps::run_run(run_options);
     if (*hic) return crashlink::apps::run_hic(hic_options);
+    if (*gather) return crashlink::apps::run_gather(gather_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

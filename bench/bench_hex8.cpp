@@ -1,5 +1,7 @@
 // Hex8 kernel throughput: ns per element per cycle of hex8_internal_forces on a 100 x 100 x 10 box
-// of 100k hexahedra (edge 1 cm, steel), small random velocities, elastic and J2.
+// of 100k hexahedra (edge 1 cm, steel), small random velocities, elastic and J2, without and with
+// stiffness-proportional damping (Part::damping_ratio = 0.05; the undamped variants must not pay
+// for it).
 // Counters: ns_per_element, state_bytes_per_element (history + connectivity).
 #include <benchmark/benchmark.h>
 
@@ -47,8 +49,9 @@ Box make_box(int nx, int ny, int nz, double h) {
   return b;
 }
 
-void run(benchmark::State& state, const Material& mat) {
+void run(benchmark::State& state, const Material& mat, double damping_ratio = 0.0) {
   Box b = make_box(100, 100, 10, 0.01);
+  b.part.damping_ratio = damping_ratio;
   auto st = el::make_hex8_state(b.part);
   el::NodalView nv{b.x.data(), b.v.data(), nullptr, b.f.data(), nullptr};
   el::StepInfo step;
@@ -64,7 +67,8 @@ void run(benchmark::State& state, const Material& mat) {
       benchmark::Counter(ne * static_cast<double>(state.iterations()) * 1e-9,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["state_bytes_per_element"] =
-      static_cast<double>(el::Hex8State::bytes_per_element() + 8 * sizeof(std::int32_t));
+      static_cast<double>(el::Hex8State::bytes_per_element() + 8 * sizeof(std::int32_t) +
+                          (b.part.damped() ? el::Hex8State::damping_bytes_per_element() : 0));
   double ep = 0.0;
   for (double e : st.eps_p) ep = std::max(ep, e);
   state.counters["max_eps_p"] = ep;
@@ -73,15 +77,25 @@ void run(benchmark::State& state, const Material& mat) {
 void BM_Hex8Elastic(benchmark::State& state) {
   run(state, {"steel", MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
 }
+void BM_Hex8ElasticDamped(benchmark::State& state) {
+  run(state, {"steel", MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}}, 0.05);
+}
 // Low yield stress so that the elements go plastic within the first iterations (random
 // velocities 1 m/s over h = 1 cm: strain rate ~100/s, 1e-5 per cycle).
 void BM_Hex8J2(benchmark::State& state) {
   run(state,
       {"j2", MaterialKind::J2Plastic, 7850.0, 210e9, 0.3, {{0.0, 0.1, 1.0}, {2e6, 5e6, 6e6}}});
 }
+void BM_Hex8J2Damped(benchmark::State& state) {
+  run(state,
+      {"j2", MaterialKind::J2Plastic, 7850.0, 210e9, 0.3, {{0.0, 0.1, 1.0}, {2e6, 5e6, 6e6}}},
+      0.05);
+}
 
 }  // namespace
 
 BENCHMARK(BM_Hex8Elastic)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hex8J2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hex8ElasticDamped)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hex8J2Damped)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -1,6 +1,8 @@
 // Belytschko-Tsay shell kernel throughput: ns per element per cycle on a flat 316 x 316 plate
 // (99,856 elements) with small random velocities (elastic) or a uniform stretch that keeps every
-// point plastic (J2, 5 through-thickness points). One kernel call = one cycle of the part.
+// point plastic (J2, 5 through-thickness points), without and with stiffness-proportional damping
+// (Part::damping_ratio = 0.05; the undamped variants must not pay for it). One kernel call = one
+// cycle of the part.
 // Counters: ns_per_element (time per element and cycle), bytes_per_element (element history
 // ShellState + connectivity; the nodal arrays x, v, omega, f, m add 120 B per node, about one node
 // per element), plastic_fraction (elements with every through-thickness point yielded).
@@ -25,7 +27,7 @@ struct Plate {
   std::vector<double> x, v, w, f, m;
 };
 
-Plate make_plate(int points, bool stretch) {
+Plate make_plate(int points, bool stretch, double damping_ratio) {
   Plate p;
   const std::size_t nn = static_cast<std::size_t>(kN + 1) * (kN + 1);
   p.x.resize(3 * nn);
@@ -54,6 +56,7 @@ Plate make_plate(int points, bool stretch) {
   p.part.kind = model::ElementKind::Shell4;
   p.part.thickness_m = 0.001;
   p.part.through_thickness_points = points;
+  p.part.damping_ratio = damping_ratio;
   p.part.connectivity.reserve(4 * static_cast<std::size_t>(kN) * kN);
   for (int j = 0; j < kN; ++j)
     for (int i = 0; i < kN; ++i) {
@@ -64,8 +67,9 @@ Plate make_plate(int points, bool stretch) {
   return p;
 }
 
-void run(benchmark::State& state, const materials::Material& mat, int points, bool stretch) {
-  Plate p = make_plate(points, stretch);
+void run(benchmark::State& state, const materials::Material& mat, int points, bool stretch,
+         double damping_ratio = 0.0) {
+  Plate p = make_plate(points, stretch, damping_ratio);
   el::ShellState st = el::make_shell_state(p.part);
   const el::NodalView nv{p.x.data(), p.v.data(), p.w.data(), p.f.data(), p.m.data()};
   const el::StepInfo step{5e-7};  // strain increment 1e-4 per cycle for the stretch
@@ -81,7 +85,8 @@ void run(benchmark::State& state, const materials::Material& mat, int points, bo
   // History as the kernel leaves it: point form (J2) or resultant form (elastic), see shell_bt.h.
   const double bytes =
       static_cast<double>(8 * (st.sigma_Pa.size() + st.eps_p.size() + st.resultant_Pa.size() +
-                               st.shear_Pa.size() + st.thickness_m.size() + st.hourglass.size()) +
+                               st.shear_Pa.size() + st.thickness_m.size() + st.hourglass.size() +
+                               st.damping_beta_s.size() + st.damping_stress_Pa.size()) +
                           4 * p.part.connectivity.size());
   state.counters["bytes_per_element"] = bytes / ne;
   double plastic = 0.0;  // elements whose every point has yielded
@@ -111,10 +116,18 @@ void BM_ShellElastic5(benchmark::State& s) {
 void BM_ShellPlastic5(benchmark::State& s) {
   run(s, steel(true), 5, true);
 }
+void BM_ShellElastic5Damped(benchmark::State& s) {
+  run(s, steel(false), 5, false, 0.05);
+}
+void BM_ShellPlastic5Damped(benchmark::State& s) {
+  run(s, steel(true), 5, true, 0.05);
+}
 
 }  // namespace
 
 BENCHMARK(BM_ShellElastic3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellElastic5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellPlastic5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShellElastic5Damped)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShellPlastic5Damped)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

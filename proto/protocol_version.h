@@ -8,6 +8,9 @@
 
 namespace crashlink::wire {
 
-inline constexpr std::uint32_t kProtocolVersion = 1;
+// History: 1 first version; 2 `layer` processes: Setup.step_ticks,
+// LayerInterface.partner_step_ticks, Register.layer_interfaces, the rotational vectors of
+// LayerForce / LayerDisplacement, Bye.report.
+inline constexpr std::uint32_t kProtocolVersion = 2;
 
 }  // namespace crashlink::wire

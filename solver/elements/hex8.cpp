@@ -123,6 +123,10 @@ Hex8State make_hex8_state(const model::Part& part) {
   st.hourglass_force.assign(12 * ne, 0.0);
   st.volume0.assign(ne, 0.0);
   st.bulk_q_Pa.assign(ne, 0.0);
+  if (part.damped()) {
+    st.damping_beta_s.assign(ne, 0.0);
+    st.damping_stress_Pa.assign(6 * ne, 0.0);
+  }
   return st;
 }
 
@@ -141,16 +145,15 @@ void hex8_lumped_mass(const model::Part& part, const materials::Material& mat, c
   }
 }
 
-KernelResult hex8_internal_forces(const model::Part& part, const materials::Material& mat,
-                                  Hex8State& st, const NodalView& nv, const StepInfo& step) {
+namespace {
+
+/// The kernel (hex8.h); kDamped adds the stiffness-proportional damping stress. The undamped
+/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
+template <bool kDamped>
+KernelResult hex8_forces(const model::Part& part, const materials::Material& mat, Hex8State& st,
+                         const NodalView& nv, const StepInfo& step) {
   const std::size_t ne = part.element_count();
-  if (st.element_count != ne)
-    throw ModelError(
-        fmt::format("hex8 part '{}': state has {} elements, the part has {}; build "
-                    "the state with make_hex8_state(part)",
-                    part.name, st.element_count, ne));
   KernelResult res;
-  if (ne == 0) return res;
 
   const double rho = mat.density_kg_m3;
   const double mu = mat.shear_modulus_Pa();
@@ -168,6 +171,8 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
   double* const ep_all = st.eps_p.data();
   double* const v0_all = st.volume0.data();
   double* const bq_all = st.bulk_q_Pa.data();
+  [[maybe_unused]] double* const beta_all = st.damping_beta_s.data();   // damped parts only
+  [[maybe_unused]] double* const sd_all = st.damping_stress_Pa.data();  // damped parts only
   const bool viscous = step.bulk_viscosity;
   const double y_low = j2 ? materials::j2_yield_lower_bound(mat.hardening) : 0.0;
 
@@ -180,6 +185,7 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
   const vd lane([](auto l) { return static_cast<double>(l); });
 
   vd e_int_sum = zero, e_hg_sum = zero;
+  [[maybe_unused]] vd e_damp_sum = zero;
   std::size_t eid[W];              // element of lane l (padding lanes repeat the last element)
   std::size_t node[8][W];          // 3 * node index of node I of lane l
   alignas(64) double fl[3][8][W];  // forces for the scatter-add [N]
@@ -194,6 +200,10 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
       for (std::size_t k = 0; k < 12; ++k) CRASHLINK_HEX8_PREFETCH(q_all + k * ne + e, 1);
       CRASHLINK_HEX8_PREFETCH(v0_all + e, 0);
       if (viscous) CRASHLINK_HEX8_PREFETCH(bq_all + e, 1);
+      if constexpr (kDamped) {
+        CRASHLINK_HEX8_PREFETCH(beta_all + e, 0);
+        for (std::size_t k = 0; k < 6; ++k) CRASHLINK_HEX8_PREFETCH(sd_all + k * ne + e, 1);
+      }
       for (std::size_t k = 0; k < 4; ++k) CRASHLINK_HEX8_PREFETCH(conn + 8 * e + 16 * k, 0);
     }
     if (e0 + kPrefetchNodes < ne) {
@@ -425,10 +435,71 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
       e_hg_sum += e;
     }
 
-    // ---- forces f_iI = sum_k phi_k(I) F_k,i (M8), s = sigma^{n+1} - q I
+    // ---- 2 / omega_max (hex8.h): lmax(G) bound from the Gram matrix (M7)
+    auto stable_bound = [&]() {
+      vd G[4][4];  // G / 8
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        CRASHLINK_HEX8_UNROLL
+        for (int be = al; be < 4; ++be) {
+          vd s = cc[al][0] * cc[be][0];
+          CRASHLINK_HEX8_UNROLL
+          for (int k = 1; k < 6; ++k) s = madd(cc[al][k], cc[be][k], s);
+          if (al < 3) s -= cc[be][3 + al];
+          if (be < 3) s -= cc[al][3 + be];
+          if (al == be) s += one;
+          G[al][be] = s;
+          G[be][al] = s;
+        }
+      }
+      vd gersh = zero, fro = zero;
+      CRASHLINK_HEX8_UNROLL
+      for (int al = 0; al < 4; ++al) {
+        gersh = max(gersh, abs(G[al][0]) + abs(G[al][1]) + abs(G[al][2]) + abs(G[al][3]));
+        CRASHLINK_HEX8_UNROLL
+        for (int be = 0; be < 4; ++be) fro = madd(G[al][be], G[al][be], fro);
+      }
+      const vd lg = vd(8.0) * sqrt(min(gersh * gersh, fro));       // lmax(G) bound
+      const vd k1 = inv_v * madd(lambda_pos, sumb2, two_mu * lm);  // lmax(K1) bound [N/m]
+      // 2 / omega with omega^2 = 8 (k1 + k_hg lmax(G)) / (rho V0)
+      return sqrt(rho_v * V0 / (vd(2.0) * madd(k_hg, lg, k1)));
+    };
+
+    vd two_over_omega;
+    // ---- stiffness-proportional damping (hex8.h): sigma_d = beta (lambda tr D I + 2 mu D),
+    // beta = xi (2 / omega_max) recorded at the first call; trapezoid work like the bulk viscosity
+    vd sf[6] = {sn[0] - q, sn[1] - q, sn[2] - q, sn[3], sn[4], sn[5]};  // stress in the force
+    [[maybe_unused]] vd beta;
+    if constexpr (kDamped) {
+      two_over_omega = stable_bound();
+      if (record_reference) {
+        beta = vd([&](auto l) { return part.damping_ratio_of(eid[l]); }) * two_over_omega;
+        store(beta, beta_all);
+      } else {
+        beta = load(beta_all);
+      }
+      const vd bl = beta * lambda_v * (d[0] + d[1] + d[2]), b2mu = beta * two_mu;
+      vd sdn[6];
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k) sdn[k] = k < 3 ? madd(b2mu, d[k], bl) : b2mu * d[k];
+      vd w = zero;  // 1/2 (sigma_d^n + sigma_d^{n+1}) : D
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k) {
+        const vd sd0 = load(sd_all + static_cast<std::size_t>(k) * ne);
+        w = madd(k < 3 ? half * (sd0 + sdn[k]) : sd0 + sdn[k], d[k], w);
+        sf[k] += sdn[k];
+        // the force at t^n used sd0, the one at t^{n+1} uses sdn (also at the initial call)
+        store(sdn[k], sd_all + static_cast<std::size_t>(k) * ne);
+      }
+      vd e = w * Vm * dt_v;
+      where(padding, e) = zero;
+      e_int_sum += e;
+      e_damp_sum += e;
+    }
+
+    // ---- forces f_iI = sum_k phi_k(I) F_k,i (M8), s = sigma^{n+1} - q I (+ sigma_d)
     {
-      const vd S[3][3] = {
-          {sn[0] - q, sn[3], sn[5]}, {sn[3], sn[1] - q, sn[4]}, {sn[5], sn[4], sn[2] - q}};
+      const vd S[3][3] = {{sf[0], sf[3], sf[5]}, {sf[3], sf[1], sf[4]}, {sf[5], sf[4], sf[2]}};
       vd P[3][3];
       CRASHLINK_HEX8_UNROLL
       for (int i = 0; i < 3; ++i) {
@@ -455,37 +526,14 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
       }
     }
 
-    // ---- stable step: lmax(G) bound from the Gram matrix (M7), then omega and damping
+    // ---- stable step (no safety factor): 2 / omega_max, then the reduction by the damping
+    // (bulk viscosity and, for a damped part, beta omega_max / 2; BLM section 6.3)
+    if constexpr (!kDamped) two_over_omega = stable_bound();
     {
-      vd G[4][4];  // G / 8
-      CRASHLINK_HEX8_UNROLL
-      for (int al = 0; al < 4; ++al) {
-        CRASHLINK_HEX8_UNROLL
-        for (int be = al; be < 4; ++be) {
-          vd s = cc[al][0] * cc[be][0];
-          CRASHLINK_HEX8_UNROLL
-          for (int k = 1; k < 6; ++k) s = madd(cc[al][k], cc[be][k], s);
-          if (al < 3) s -= cc[be][3 + al];
-          if (be < 3) s -= cc[al][3 + be];
-          if (al == be) s += one;
-          G[al][be] = s;
-          G[be][al] = s;
-        }
-      }
-      vd gersh = zero, fro = zero;
-      CRASHLINK_HEX8_UNROLL
-      for (int al = 0; al < 4; ++al) {
-        gersh = max(gersh, abs(G[al][0]) + abs(G[al][1]) + abs(G[al][2]) + abs(G[al][3]));
-        CRASHLINK_HEX8_UNROLL
-        for (int be = 0; be < 4; ++be) fro = madd(G[al][be], G[al][be], fro);
-      }
-      const vd lg = vd(8.0) * sqrt(min(gersh * gersh, fro));       // lmax(G) bound
-      const vd k1 = inv_v * madd(lambda_pos, sumb2, two_mu * lm);  // lmax(K1) bound [N/m]
-      // 2 / omega with omega^2 = 8 (k1 + k_hg lmax(G)) / (rho V0)
-      const vd two_over_omega = sqrt(rho_v * V0 / (vd(2.0) * madd(k_hg, lg, k1)));
       vd xi = q1_v - q2_v * len * em * inv_c;  // damping ratio of the bulk viscosity
       where(!(em < zero), xi) = zero;
       xi *= bulk_v;
+      if constexpr (kDamped) xi += beta / two_over_omega;  // beta omega_max / 2
       const vd dte = two_over_omega * (sqrt(madd(xi, xi, one)) - xi);
       dte.copy_to(dt_e, stdx::vector_aligned);
     }
@@ -520,7 +568,29 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
   if (record_reference) st.reference_recorded = true;
   res.internal_energy_increment_J = reduce(e_int_sum);
   res.hourglass_energy_increment_J = reduce(e_hg_sum);
+  if constexpr (kDamped) res.damping_energy_increment_J = reduce(e_damp_sum);
   return res;
+}
+
+}  // namespace
+
+KernelResult hex8_internal_forces(const model::Part& part, const materials::Material& mat,
+                                  Hex8State& st, const NodalView& nv, const StepInfo& step) {
+  const std::size_t ne = part.element_count();
+  if (st.element_count != ne)
+    throw ModelError(
+        fmt::format("hex8 part '{}': state has {} elements, the part has {}; build "
+                    "the state with make_hex8_state(part)",
+                    part.name, st.element_count, ne));
+  const bool damped = part.damped();
+  if (damped != !st.damping_beta_s.empty())
+    throw ModelError(fmt::format(
+        "hex8 part '{}': the part is {}damped but its state was built {} damping arrays; build "
+        "the state with make_hex8_state(part) after setting the damping ratio",
+        part.name, damped ? "" : "not ", damped ? "without" : "with"));
+  if (ne == 0) return {};
+  return damped ? hex8_forces<true>(part, mat, st, nv, step)
+                : hex8_forces<false>(part, mat, st, nv, step);
 }
 
 void hex8_element_output(const model::Part& part, const Hex8State& st, const ElementOutput& out) {

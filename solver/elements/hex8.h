@@ -39,8 +39,21 @@
 //    it). Bulk viscosity reduces it as dt = (2/omega)(sqrt(1+xi^2) - xi) with xi = Q1 + Q2 L
 //    |eps_v_dot| / c (BLM section 6.3, critical step with damping), which is LS-DYNA's dt = L/(Q +
 //    sqrt(Q^2 + c^2)) with L = 2c/omega.
+//  * Stiffness-proportional (Rayleigh beta) damping, parts with Part::damping_ratio or
+//    element_damping_ratio > 0 (LS-DYNA *DAMPING_PART_STIFFNESS; damping matrix C = beta K gives
+//    mode k the ratio xi_k = beta omega_k / 2: Chopra, Dynamics of Structures, ch. 11, Rayleigh
+//    damping):
+//        sigma_d = beta_e (lambda tr D I + 2 mu D),   beta_e = xi_e (2 / omega_max,e),
+//    with 2 / omega_max,e the bound below at the first call (t = 0), kept for the run (so the
+//    damping stays linear). sigma_d is added to the stress in the force only, never to the
+//    material history; the force at t^n used sigma_d^n, so its work is the trapezoid
+//    1/2 (sigma_d^n + sigma_d^{n+1}) : D V^{n+1/2} dt (sigma_d^n kept in Hex8State), counted in
+//    the internal energy and reported as damping_energy_increment_J. Rigid motion: D = 0, no
+//    force. Its ratio at the current highest frequency, beta omega_max / 2, adds to the bulk
+//    viscosity's xi in the stable step below (both viscous in the same mode; BLM section 6.3).
+//    Undamped parts run a separate instance of the kernel without this code.
 //  * Energies: internal = 1/2 (R sigma^n R^T + sigma^{n+1}) : D V^{n+1/2} dt + bulk viscosity
-//    work; hourglass = 1/2 (R Q^n + Q^{n+1}) . qdot dt.
+//    work + damping work; hourglass = 1/2 (R Q^n + Q^{n+1}) . qdot dt.
 //  * At the initial call (dt = 0) nothing is updated: forces from the current history, dt_stable.
 //
 // Performance: one element per SIMD lane (hex8_simd.h: 4 lanes with AVX2), every intermediate a

@@ -35,6 +35,9 @@ struct KernelResult {
   std::int64_t critical_element = -1;           ///< local index of the element giving dt_stable_s
   double internal_energy_increment_J = 0.0;     ///< stress work incl. bulk viscosity
   double hourglass_energy_increment_J = 0.0;    ///< work of the hourglass forces
+  /// Work of the stiffness-proportional damping stress (Part::damping_ratio), already included
+  /// in internal_energy_increment_J; 0 for undamped parts.
+  double damping_energy_increment_J = 0.0;
 };
 
 /// Per-element output for field states and summaries.

@@ -42,8 +42,13 @@
 //     thickness_m  R = 1: current thickness (updated from the thickness strain) [m]
 //     hourglass    R = 5: generalized hourglass forces in the local frame Q_x, Q_y, Q_z [N],
 //                               Q_thx, Q_thy [N m]
+//   damped parts only (Part::damped(); empty otherwise), stiffness-proportional damping:
+//     damping_beta_s    R = 1: beta_e = xi_e L_e / c [s], recorded at the first call
+//     damping_stress_Pa R = 8: viscous stresses in the force at t^n (for the trapezoid work; not
+//                               part of the material state): membrane a_xx, a_yy, a_xy, bending
+//                               b_xx, b_yy, b_xy (sigma_d = a + zeta b), shear tau_yz, tau_zx [Pa]
 // Bytes per element of history: point form 8 (4 np + 8): 224 B for np = 5; resultant form
-// 8 * 14 = 112 B for any np.
+// 8 * 14 = 112 B for any np; damping adds 8 * 9 = 72 B.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -75,6 +80,9 @@ struct ShellState {
   std::vector<double> thickness_m;   ///< [ns]
   std::vector<double> bulk_q_Pa;     ///< [ns] membrane bulk-viscosity pressure at t^n [Pa]
   std::vector<double> hourglass;     ///< [ns/L][5][L]
+  std::vector<double> damping_beta_s;     ///< damped parts: [ns]; else empty
+  std::vector<double> damping_stress_Pa;  ///< damped parts: [ns/L][8][L]; else empty
+  bool damping_recorded = false;          ///< damping_beta_s filled (first kernel call)
 
   /// Index of row r of element e in a blocked array of R rows per element (layout comment).
   static std::size_t block_index(std::size_t R, std::size_t r, std::size_t e) {
@@ -139,6 +147,8 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
 /// Controls::shell_bulk_viscosity) acts on the membrane: for an in-plane area rate
 /// tr D_m = d_xx + d_yy < 0, q = rho L_e (Q2 L_e tr^2 - Q1 c tr) is an in-plane pressure (formula
 /// and sources in shell_bt_forces.cpp).
+/// A damped part (Part::damping_ratio) adds the stiffness-proportional viscous stress
+/// beta_e C (d + z k) at every point and beta_e kappa G gamma in shear (shell_bt_forces.cpp).
 KernelResult shell_internal_forces(const model::Part& part, const materials::Material& mat,
                                    ShellState& st, const NodalView& nv, const StepInfo& step);
 

@@ -58,6 +58,15 @@
 //   dt_e = (L_e / c) (sqrt(1 + xi^2) - xi),  xi = Q1 - Q2 L_e tr / c
 // (Belytschko, Liu, Moran 2000, section 6.3, critical step with damping; = LS-DYNA's
 // L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|).
+// Stiffness-proportional damping (parts with Part::damping_ratio; the hex's form, hex8.h): a
+// viscous stress beta_e C (d + z k) at every point through the thickness (C the plane-stress
+// moduli c11, c12, G) and beta_e kappa G gamma in transverse shear, i.e. a membrane stress
+// a_d = beta C d, a bending stress b_d = beta C k h/2 (sigma_d = a_d + zeta b_d, exact for the
+// linear profile in both history forms) and tau_d. beta_e = xi_e L_e / c (the undamped element
+// step, 2 / omega_max in the stable-step sense below) at the first call, fixed for the run.
+// Added to N, M, Q of the forces only (not to the material state, not to the thickness strain);
+// work by the trapezoid rule with the stresses of t^n kept in ShellState, counted in the internal
+// energy; in the stable step its current ratio beta c / L_e adds to the bulk viscosity's xi.
 // Stable step ([LSTM] "Time step control"; LS-DYNA *CONTROL_TIMESTEP ISDO = 1):
 //   dt_e = L_e / c, L_e = (1 + beta) A / max(L_1..L_4, D_1, D_2), c = sqrt(E / (rho (1 - nu^2))),
 //   L_k sides, D_k diagonals, beta = 0 for quads and 1/2 for triangles. Deviations from LS-DYNA's
@@ -119,18 +128,13 @@ inline void store_block(double* a, const double (&in)[R][L]) {
   std::memcpy(a, in, sizeof in);
 }
 
-}  // namespace
-
-KernelResult shell_internal_forces(const model::Part& part, const materials::Material& mat,
-                                   ShellState& st, const NodalView& nv, const StepInfo& step) {
+/// The kernel; kDamped adds the stiffness-proportional damping (header comment). The undamped
+/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
+template <bool kDamped>
+KernelResult shell_forces(const model::Part& part, const materials::Material& mat, ShellState& st,
+                          const NodalView& nv, const StepInfo& step) {
   KernelResult res;
   const std::size_t ne = part.element_count();
-  if (ne == 0) return res;
-  if (mat.kind == materials::MaterialKind::Rigid)
-    throw ModelError(fmt::format("part '{}': rigid material '{}' passed to the shell kernel",
-                                 part.name, mat.name));
-  CRASHLINK_ASSERT(st.element_count == ne && st.points >= 3);
-
   ShellConstants K;
   K.el = materials::PlaneStressElastic::from(mat);
   K.j2 = mat.kind == materials::MaterialKind::J2Plastic;
@@ -165,8 +169,12 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
   double* const bulk_q = st.bulk_q_Pa.data();
   double* const shear = st.shear_Pa.data();
   double* const hgs = st.hourglass.data();
+  [[maybe_unused]] double* const beta_all = st.damping_beta_s.data();   // damped parts only
+  [[maybe_unused]] double* const sd_all = st.damping_stress_Pa.data();  // damped parts only
+  [[maybe_unused]] const bool record_beta = !st.damping_recorded;
 
   double e_int = 0.0, e_hg = 0.0;
+  [[maybe_unused]] double e_damp = 0.0;
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t crit = -1;
 
@@ -484,6 +492,49 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       }
     }
 
+    // ---- stiffness-proportional damping (header comment): viscous stresses sigma_d = a + zeta b
+    // and tau_d, added to the stresses of the forces, trapezoid work as the stress work
+    [[maybe_unused]] double beta[1][L], edamp[L];
+    if constexpr (kDamped) {
+      if (record_beta) {
+        for (std::size_t l = 0; l < L; ++l)
+          beta[0][l] = part.damping_ratio_of(b0 + std::min(l, nl - 1)) * Le[l] * inv_c;
+        store_block(beta_all + b0, beta);
+      } else {
+        load_block(beta_all + b0, beta);
+      }
+      double sdo[8][L], sdn[8][L];
+      load_block(sd_all + 8 * b0, sdo);
+      for (std::size_t l = 0; l < L; ++l) {
+        const double bt = beta[0][l], hh = 0.5 * h[0][l];  // dm, kap, gs = 0 without update
+        const double k0 = kap[0][l] * hh, k1 = kap[1][l] * hh, k2 = kap[2][l] * hh;
+        sdn[0][l] = bt * (c11 * dm[0][l] + c12 * dm[1][l]);
+        sdn[1][l] = bt * (c12 * dm[0][l] + c11 * dm[1][l]);
+        sdn[2][l] = bt * G * dm[2][l];
+        sdn[3][l] = bt * (c11 * k0 + c12 * k1);
+        sdn[4][l] = bt * (c12 * k0 + c11 * k1);
+        sdn[5][l] = bt * G * k2;
+        sdn[6][l] = bt * kG * gs[0][l];  // tau_yz
+        sdn[7][l] = bt * kG * gs[1][l];  // tau_zx
+        // work per unit area / (h_mid / 2), the form of ework (stress-update comment above)
+        const double w =
+            (sdo[0][l] + sdn[0][l]) * dm[0][l] + (sdo[1][l] + sdn[1][l]) * dm[1][l] +
+            (sdo[2][l] + sdn[2][l]) * dm[2][l] +
+            (1.0 / 3.0) * ((sdo[3][l] + sdn[3][l]) * k0 + (sdo[4][l] + sdn[4][l]) * k1 +
+                           (sdo[5][l] + sdn[5][l]) * k2) +
+            (sdo[6][l] + sdn[6][l]) * gs[0][l] + (sdo[7][l] + sdn[7][l]) * gs[1][l];
+        edamp[l] = w * dt;
+        ework[l] += edamp[l];
+        for (int c = 0; c < 3; ++c) {
+          Nn[c][l] += sdn[c][l];
+          Mn[c][l] += sdn[3 + c][l];
+        }
+        Qn[0][l] += sdn[7][l];
+        Qn[1][l] += sdn[6][l];
+      }
+      store_block(sd_all + 8 * b0, sdn);
+    }
+
     // ---- thickness, bulk viscosity, hourglass, nodal forces ----------------------------------
     double F[4][3][L], Mm[4][3][L], ehg[L], xi[L], h_new[1][L], Qh[5][L];
     double q_old[1][L] = {}, q_new[1][L] = {};
@@ -545,9 +596,12 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       if (bulk) store_block(bulk_q + b0, q_new);
       store_block(hgs + 5 * b0, Qh);
     }
-    // Stable step (header comment), reduced by the bulk viscosity.
+    // Stable step (header comment), reduced by the bulk viscosity and the damping (its ratio at
+    // the current L_e / c: beta c / L_e; BLM section 6.3 with the two ratios added).
     double dte[L];
-    if (bulk) {
+    if constexpr (kDamped)
+      for (std::size_t l = 0; l < L; ++l) xi[l] += beta[0][l] * K.c_plate / Le[l];
+    if (bulk || kDamped) {
       double x2[L], rt[L];
       for (std::size_t l = 0; l < L; ++l) x2[l] = 1.0 + xi[l] * xi[l];
       sqrt_lanes(x2, rt, L);
@@ -570,6 +624,7 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
       }
       e_int += ework[l];
       e_hg += ehg[l];
+      if constexpr (kDamped) e_damp += edamp[l] * 0.25 * (h[0][l] + h_new[0][l]) * A[l];
       if (dte[l] < dt_min) {
         dt_min = dte[l];
         crit = static_cast<std::int64_t>(b0 + l);
@@ -580,7 +635,31 @@ KernelResult shell_internal_forces(const model::Part& part, const materials::Mat
   res.critical_element = crit;
   res.internal_energy_increment_J = update ? e_int : 0.0;
   res.hourglass_energy_increment_J = update ? e_hg : 0.0;
+  if constexpr (kDamped) {
+    st.damping_recorded = true;
+    res.damping_energy_increment_J = update ? e_damp : 0.0;
+  }
   return res;
+}
+
+}  // namespace
+
+KernelResult shell_internal_forces(const model::Part& part, const materials::Material& mat,
+                                   ShellState& st, const NodalView& nv, const StepInfo& step) {
+  const std::size_t ne = part.element_count();
+  if (ne == 0) return {};
+  if (mat.kind == materials::MaterialKind::Rigid)
+    throw ModelError(fmt::format("part '{}': rigid material '{}' passed to the shell kernel",
+                                 part.name, mat.name));
+  CRASHLINK_ASSERT(st.element_count == ne && st.points >= 3);
+  const bool damped = part.damped();
+  if (damped != !st.damping_beta_s.empty())
+    throw ModelError(fmt::format(
+        "shell part '{}': the part is {}damped but its state was built {} damping arrays; build "
+        "the state with make_shell_state(part) after setting the damping ratio",
+        part.name, damped ? "" : "not ", damped ? "without" : "with"));
+  return damped ? shell_forces<true>(part, mat, st, nv, step)
+                : shell_forces<false>(part, mat, st, nv, step);
 }
 
 }  // namespace crashlink::elements

@@ -60,6 +60,10 @@ ShellState make_shell_state(const model::Part& part) {
   st.thickness_m.assign(st.stride, part.thickness_m);
   st.bulk_q_Pa.assign(st.stride, 0.0);
   st.hourglass.assign(5 * st.stride, 0.0);
+  if (part.damped()) {
+    st.damping_beta_s.assign(st.stride, 0.0);
+    st.damping_stress_Pa.assign(8 * st.stride, 0.0);
+  }
   return st;
 }
 

@@ -240,6 +240,7 @@ void Solver::compute_forces(double dt) {
     }
     rt.internal_energy_J += rt.last.internal_energy_increment_J;
     rt.hourglass_energy_J += rt.last.hourglass_energy_increment_J;
+    rt.damping_energy_J += rt.last.damping_energy_increment_J;  // included in internal
     energy_.internal_J += rt.last.internal_energy_increment_J;
     energy_.hourglass_J += rt.last.hourglass_energy_increment_J;
     if (rt.last.dt_stable_s < dt_stable_) {

@@ -31,6 +31,7 @@ struct PartRuntime {
   elements::KernelResult last;  ///< last kernel call (stable step of the part)
   double internal_energy_J = 0.0;
   double hourglass_energy_J = 0.0;
+  double damping_energy_J = 0.0;  ///< stiffness-proportional damping work, part of internal
 };
 
 /// A kinematic sample of one probe at t^n.

@@ -53,6 +53,44 @@ std::vector<double> read_doubles(const Location& at, const std::string& name, hs
   return out;
 }
 
+/// A whole rank-1 int64 dataset `name` under `at`.
+std::vector<std::int64_t> read_int64s(const Location& at, const std::string& name) {
+  const std::string object = at.child(name);
+  if (!link_exists(at, name)) {
+    fail(at, object, "dataset missing (the file does not follow docs/result-format.md)");
+  }
+  DatasetHandle ds(H5Dopen2(at.id, name.c_str(), H5P_DEFAULT));
+  if (!ds) fail(at, object, "H5Dopen2 (open dataset)");
+  DataspaceHandle space(H5Dget_space(ds.get()));
+  if (!space) fail(at, object, "H5Dget_space");
+  hsize_t dims[1] = {0};
+  if (H5Sget_simple_extent_ndims(space.get()) != 1 ||
+      H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0) {
+    fail(at, object, "shape is not [k] (docs/result-format.md)");
+  }
+  std::vector<std::int64_t> out(dims[0]);
+  if (!out.empty() &&
+      H5Dread(ds.get(), H5T_NATIVE_INT64, kAll, kAll, H5P_DEFAULT, out.data()) < 0) {
+    fail(at, object, "H5Dread");
+  }
+  return out;
+}
+
+/// A scalar numeric attribute read as `memory_type`; nullopt if absent.
+template <class T>
+std::optional<T> read_number_attribute(const Location& at, const std::string& name,
+                                       hid_t memory_type) {
+  const std::string object = at.path + "@" + name;
+  const htri_t exists = H5Aexists(at.id, name.c_str());
+  if (exists < 0) fail(at, object, "H5Aexists");
+  if (exists == 0) return std::nullopt;
+  AttributeHandle a(H5Aopen(at.id, name.c_str(), H5P_DEFAULT));
+  if (!a) fail(at, object, "H5Aopen");
+  T value{};
+  if (H5Aread(a.get(), memory_type, &value) < 0) fail(at, object, "H5Aread");
+  return value;
+}
+
 /// A scalar string attribute (variable or fixed length); nullopt if absent.
 std::optional<std::string> read_string_attribute(const Location& at, const std::string& name) {
   const std::string object = at.path + "@" + name;
@@ -126,7 +164,15 @@ struct ResultReader::Impl {
   struct ProbeEntry {
     std::string name, link;
   };
-  std::vector<ProbeEntry> probes;  // in link order
+  std::vector<ProbeEntry> probes;    // in link order
+  std::vector<ProbeEntry> contacts;  // in link order
+
+  /// The group at absolute path `object`; throws ResultFileError saying what is missing.
+  GroupHandle group(const std::string& object, const char* what) const {
+    GroupHandle g(H5Gopen2(file.get(), object.c_str(), H5P_DEFAULT));
+    if (!g) fail(root(), object, fmt::format("H5Gopen2 (open group; {})", what));
+    return g;
+  }
 
   Location root() const { return Location{file.get(), h5_path, "/"}; }
   std::string probe_path(const std::string& link) const { return "/history/probes/" + link; }
@@ -154,6 +200,16 @@ ResultReader::ResultReader(const std::string& h5_path) : path_(h5_path) {
         GroupHandle g = open_group(pat, link);
         const Location at{g.get(), h5_path, pat.child(link)};
         impl->probes.push_back(
+            Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
+      }
+    }
+    if (link_exists(hat, "contacts")) {
+      GroupHandle contacts = open_group(hat, "contacts");
+      const Location cat{contacts.get(), h5_path, "/history/contacts"};
+      for (const std::string& link : child_names(cat)) {
+        GroupHandle g = open_group(cat, link);
+        const Location at{g.get(), h5_path, cat.child(link)};
+        impl->contacts.push_back(
             Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
       }
     }
@@ -235,6 +291,141 @@ std::vector<GlstatSample> ResultReader::glstat() const {
     for (std::size_t i = 0; i < k; ++i) out[i].*kGlstat[c].value = columns[c][i];
   }
   return out;
+}
+
+std::vector<std::string> ResultReader::contact_names() const {
+  std::vector<std::string> names;
+  for (const auto& c : impl_->contacts) names.push_back(c.name);
+  return names;
+}
+
+ContactHistory ResultReader::contact(const std::string& name) const {
+  auto it = std::find_if(impl_->contacts.begin(), impl_->contacts.end(),
+                         [&](const Impl::ProbeEntry& c) { return c.name == name; });
+  if (it == impl_->contacts.end()) {
+    it = std::find_if(impl_->contacts.begin(), impl_->contacts.end(),
+                      [&](const Impl::ProbeEntry& c) { return c.link == name; });
+  }
+  if (it == impl_->contacts.end()) {
+    const std::vector<std::string> names = contact_names();
+    throw InputError(fmt::format(
+        "{}: no contact named '{}'; the file has {}", path_, name,
+        names.empty() ? std::string("no contact histories")
+                      : fmt::format("{} contact(s): {}", names.size(), fmt::join(names, ", "))));
+  }
+  const std::string object = "/history/contacts/" + it->link;
+  GroupHandle g = impl_->group(object, "contact history");
+  const Location at{g.get(), impl_->h5_path, object};
+  ContactHistory h;
+  h.name = it->name;
+  h.link = it->link;
+  std::array<std::size_t, 2> rows{};
+  h.time_s = read_doubles(at, "time", 0, &rows[0]);
+  h.force_N = read_doubles(at, "force", 3, &rows[1]);
+  const std::size_t k = std::min(rows[0], rows[1]);  // common prefix
+  h.time_s.resize(k);
+  h.force_N.resize(3 * k);
+  return h;
+}
+
+std::vector<std::int64_t> ResultReader::node_ids() const {
+  GroupHandle g = impl_->group("/mesh", "the file has no mesh");
+  return read_int64s(Location{g.get(), impl_->h5_path, "/mesh"}, "node_ids");
+}
+
+std::vector<MeshPartInfo> ResultReader::mesh_parts() const {
+  GroupHandle g = impl_->group("/mesh/parts", "the file has no mesh parts");
+  const Location pat{g.get(), impl_->h5_path, "/mesh/parts"};
+  std::vector<MeshPartInfo> out;
+  for (const std::string& link : child_names(pat)) {
+    GroupHandle pg = open_group(pat, link);
+    const Location at{pg.get(), impl_->h5_path, pat.child(link)};
+    MeshPartInfo p;
+    p.link = link;
+    p.name = read_string_attribute(at, "name").value_or(link);
+    p.kind = read_string_attribute(at, "kind").value_or("");
+    p.index = read_number_attribute<std::int64_t>(at, "index", H5T_NATIVE_INT64)
+                  .value_or(static_cast<std::int64_t>(out.size()));
+    p.element_ids = read_int64s(at, "element_ids");
+    out.push_back(std::move(p));
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const MeshPartInfo& a, const MeshPartInfo& b) { return a.index < b.index; });
+  return out;
+}
+
+std::size_t ResultReader::state_count() const {
+  const Location root = impl_->root();
+  if (!link_exists(root, "states")) return 0;
+  GroupHandle g = open_group(root, "states");
+  const auto count = read_number_attribute<std::int64_t>(
+      Location{g.get(), impl_->h5_path, "/states"}, "count", H5T_NATIVE_INT64);
+  return count && *count > 0 ? static_cast<std::size_t>(*count) : 0;
+}
+
+double ResultReader::state_time(std::size_t k) const {
+  const std::string object = fmt::format("/states/{}", k);
+  GroupHandle g = impl_->group(object, "field state missing");
+  const auto t = read_number_attribute<double>(Location{g.get(), impl_->h5_path, object}, "time",
+                                               H5T_NATIVE_DOUBLE);
+  if (!t) fail(impl_->root(), object + "@time", "attribute missing (incomplete field state)");
+  return *t;
+}
+
+StateData ResultReader::state(std::size_t k) const {
+  const std::string object = fmt::format("/states/{}", k);
+  GroupHandle g = impl_->group(object, "field state missing");
+  const Location at{g.get(), impl_->h5_path, object};
+  StateData s;
+  s.time_s = state_time(k);
+  std::size_t rows = 0;
+  s.displacement_m = read_doubles(at, "displacement", 3, &rows);
+  if (link_exists(at, "velocity")) {
+    std::size_t vrows = 0;
+    s.velocity_m_s = read_doubles(at, "velocity", 3, &vrows);
+    if (vrows != rows) fail(at, at.child("velocity"), "row count differs from displacement");
+  }
+  if (link_exists(at, "parts")) {
+    GroupHandle parts = open_group(at, "parts");
+    const Location pat{parts.get(), impl_->h5_path, at.child("parts")};
+    for (const std::string& link : child_names(pat)) {
+      GroupHandle pg = open_group(pat, link);
+      const Location gat{pg.get(), impl_->h5_path, pat.child(link)};
+      PartStateData p;
+      p.link = link;
+      std::size_t ne = 0;
+      if (link_exists(gat, "eps_p")) p.eps_p = read_doubles(gat, "eps_p", 0, &ne);
+      if (link_exists(gat, "von_mises")) p.von_mises_Pa = read_doubles(gat, "von_mises", 0, &ne);
+      if (link_exists(gat, "stress")) p.stress_Pa = read_doubles(gat, "stress", 6, &ne);
+      s.parts.push_back(std::move(p));
+    }
+  }
+  return s;
+}
+
+TimingData ResultReader::timing() const {
+  TimingData t;
+  const Location root = impl_->root();
+  if (!link_exists(root, "timing")) return t;
+  GroupHandle g = open_group(root, "timing");
+  const Location at{g.get(), impl_->h5_path, "/timing"};
+  t.present = true;
+  t.wall_seconds = read_number_attribute<double>(at, "wall_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+  t.coordinator_cpu_seconds =
+      read_number_attribute<double>(at, "coordinator_cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+  for (const std::string& link : child_names(at)) {
+    GroupHandle dg = open_group(at, link);
+    const Location dat{dg.get(), impl_->h5_path, at.child(link)};
+    DomainTiming d;
+    d.name = read_string_attribute(dat, "name").value_or(link);
+    d.cpu_seconds =
+        read_number_attribute<double>(dat, "cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+    d.cycles = read_number_attribute<std::int64_t>(dat, "cycles", H5T_NATIVE_INT64).value_or(0);
+    d.dt_min_s = read_number_attribute<double>(dat, "dt_min", H5T_NATIVE_DOUBLE).value_or(0);
+    d.elements = read_number_attribute<std::int64_t>(dat, "elements", H5T_NATIVE_INT64).value_or(0);
+    t.domains.push_back(std::move(d));
+  }
+  return t;
 }
 
 }  // namespace crashlink::io

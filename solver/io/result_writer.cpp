@@ -14,6 +14,15 @@
 
 namespace crashlink::io {
 
+std::string result_link_name(const std::string& name, const char* fallback, std::size_t index) {
+  if (name.empty() || name == "." || name == "..") return fmt::format("{}_{}", fallback, index);
+  std::string s = name;
+  for (char& c : s) {
+    if (c == '/') c = '_';
+  }
+  return s;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -35,23 +44,13 @@ constexpr std::array<GlstatColumn, 8> kGlstat{{
     {"energy_balance_error", "1", &GlstatSample::energy_balance_error},
 }};
 
-/// An HDF5 link name for a user name: '/' would nest groups, so it becomes '_'; "" and "." too.
-std::string link_name(const std::string& name, const char* fallback, std::size_t index) {
-  if (name.empty() || name == "." || name == "..") return fmt::format("{}_{}", fallback, index);
-  std::string s = name;
-  for (char& c : s) {
-    if (c == '/') c = '_';
-  }
-  return s;
-}
-
 /// Link names for a list of user names; throws ModelError on a collision.
 template <class T, class NameOf>
 std::vector<std::string> link_names(const std::vector<T>& items, NameOf name_of, const char* what) {
   std::vector<std::string> out;
   std::set<std::string> seen;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    out.push_back(link_name(name_of(items[i]), what, i));
+    out.push_back(result_link_name(name_of(items[i]), what, i));
     if (!seen.insert(out.back()).second) {
       throw ModelError(fmt::format(
           "result writer: two {}s are named '{}' (after replacing '/' by '_'); give every {} a "
@@ -280,8 +279,9 @@ ResultWriter::ResultWriter(const std::string& dir, const model::Model& model,
     throw ResultFileError(dir, "/",
                           fmt::format("cannot create the output directory: {}", ec.message()));
   }
-  h5_path_ = (std::filesystem::path(dir) / "result.h5").string();
-  xdmf_path_ = (std::filesystem::path(dir) / "result.xdmf").string();
+  const std::string stem = options.file_stem.empty() ? std::string("result") : options.file_stem;
+  h5_path_ = (std::filesystem::path(dir) / (stem + ".h5")).string();
+  xdmf_path_ = (std::filesystem::path(dir) / (stem + ".xdmf")).string();
 
   auto impl = std::make_unique<Impl>();
   impl->h5_path = h5_path_;
@@ -289,6 +289,7 @@ ResultWriter::ResultWriter(const std::string& dir, const model::Model& model,
   impl->node_count = model.nodes.count();
   impl->x0 = model.nodes.x0;
   impl->part_links = part_links;
+  impl->xdmf.h5_file = stem + ".h5";
   impl->file = create_file(h5_path_);
   const Location root = impl->root();
   write_attribute(root, "format", std::string("crashlink-result"));
@@ -369,6 +370,63 @@ void ResultWriter::flush_history() {
 
 void ResultWriter::flush() {
   flush_history();
+}
+
+void ResultWriter::append_glstat_rows(std::span<const GlstatSample> rows) {
+  flush_history();
+  Impl& w = *impl_;
+  std::vector<double> column(rows.size());
+  for (std::size_t c = 0; c < kGlstat.size(); ++c) {
+    for (std::size_t i = 0; i < rows.size(); ++i) column[i] = rows[i].*kGlstat[c].value;
+    append_rows(
+        Location{w.glstat[c].get(), h5_path_, std::string("/history/glstat/") + kGlstat[c].name},
+        column, 0);
+  }
+  history_rows_ += rows.size();
+  w.flush_file();
+}
+
+void ResultWriter::append_probe_rows(std::size_t probe, std::span<const double> time_s,
+                                     std::span<const ProbeSample> rows) {
+  flush_history();
+  Impl& w = *impl_;
+  if (probe >= w.probes.size() || time_s.size() != rows.size()) {
+    throw ResultFileError(h5_path_, "/history/probes",
+                          fmt::format("append_probe_rows: probe {} of {} with {} times and {} rows "
+                                      "(internal error: one time per row, a model probe index)",
+                                      probe, w.probes.size(), time_s.size(), rows.size()));
+  }
+  ProbeOut& p = w.probes[probe];
+  std::vector<double> u, v, a;
+  for (const ProbeSample& r : rows) {
+    u.insert(u.end(), r.displacement_m, r.displacement_m + 3);
+    v.insert(v.end(), r.velocity_m_s, r.velocity_m_s + 3);
+    a.insert(a.end(), r.acceleration_m_s2, r.acceleration_m_s2 + 3);
+  }
+  append_rows(Location{p.time.get(), h5_path_, p.path + "/time"}, time_s, 0);
+  append_rows(Location{p.displacement.get(), h5_path_, p.path + "/displacement"}, u, 3);
+  append_rows(Location{p.velocity.get(), h5_path_, p.path + "/velocity"}, v, 3);
+  append_rows(Location{p.acceleration.get(), h5_path_, p.path + "/acceleration"}, a, 3);
+  w.flush_file();
+}
+
+void ResultWriter::append_contact_rows(std::size_t contact, std::span<const double> time_s,
+                                       std::span<const ContactSample> rows) {
+  flush_history();
+  Impl& w = *impl_;
+  if (contact >= w.contacts.size() || time_s.size() != rows.size()) {
+    throw ResultFileError(
+        h5_path_, "/history/contacts",
+        fmt::format("append_contact_rows: contact {} of {} with {} times and {} rows "
+                    "(internal error: one time per row, a model contact index)",
+                    contact, w.contacts.size(), time_s.size(), rows.size()));
+  }
+  ContactOut& c = w.contacts[contact];
+  std::vector<double> f;
+  for (const ContactSample& r : rows) f.insert(f.end(), r.force_N, r.force_N + 3);
+  append_rows(Location{c.time.get(), h5_path_, c.path + "/time"}, time_s, 0);
+  append_rows(Location{c.force.get(), h5_path_, c.path + "/force"}, f, 3);
+  w.flush_file();
 }
 
 void ResultWriter::write_field_state(const FieldState& s) {

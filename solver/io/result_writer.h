@@ -77,15 +77,22 @@ struct ResultWriterOptions {
   std::size_t history_flush_samples = 1000;  ///< flush history after this many buffered samples
   double history_flush_wall_s = 5.0;         ///< ... or when this much wall time has passed
   std::size_t history_chunk_rows = 1024;     ///< HDF5 chunk length of the history datasets
+  /// The files are DIR/<file_stem>.h5 and DIR/<file_stem>.xdmf: "result" for a run's result, the
+  /// domain name for a daemon's DIR/domains/<domain>.h5 (solver/gather reads those back).
+  std::string file_stem = "result";
 };
+
+/// The HDF5 link name of a user name (part, probe, contact, domain, interface): '/' would nest
+/// groups, so it becomes '_'; "", "." and ".." become "<fallback>_<index>".
+std::string result_link_name(const std::string& name, const char* fallback, std::size_t index);
 
 /// Not thread-safe (nor is the serial HDF5 library): one thread owns the writer.
 class ResultWriter {
  public:
   /// Creates `dir` if needed, DIR/result.h5 (truncated) with /mesh, empty /history datasets and
-  /// /states, and a mesh-only DIR/result.xdmf. Throws ResultFileError, or ModelError if the model's
-  /// arrays are inconsistent (x0 not 3n, connectivity not a multiple of the element's node count,
-  /// duplicate part or probe names).
+  /// /states, and a mesh-only DIR/result.xdmf (names: ResultWriterOptions::file_stem). Throws
+  /// ResultFileError, or ModelError if the model's arrays are inconsistent (x0 not 3n, connectivity
+  /// not a multiple of the element's node count, duplicate part or probe names).
   ResultWriter(const std::string& dir, const model::Model& model, ResultWriterOptions options = {});
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
@@ -98,6 +105,20 @@ class ResultWriter {
                       const std::vector<ContactSample>& contacts = {});
   /// Writes the buffered history rows and H5Fflush-es the file.
   void flush_history();
+
+  // Whole-column history appends, for a writer that holds the histories already (the gather of a
+  // coupled run, solver/gather/gather_results.h): glstat rows, and each probe and contact with its
+  // own sample times (the rows of the domain that holds it). Each call first writes the rows
+  // append_history() buffered, then appends directly (no buffering) and H5Fflush-es. Mixing them
+  // with append_history() is allowed but the caller then owns the "same length k" of the layout.
+  // `time_s` and `rows` have the same length; throws ResultFileError otherwise or for an index
+  // outside model.probes / model.contacts.
+  void append_glstat_rows(std::span<const GlstatSample> rows);
+  void append_probe_rows(std::size_t probe, std::span<const double> time_s,
+                         std::span<const ProbeSample> rows);
+  void append_contact_rows(std::size_t contact, std::span<const double> time_s,
+                           std::span<const ContactSample> rows);
+
   /// Writes /states/<k> (k = 0, 1, ...), flushes, and rewrites result.xdmf.
   void write_field_state(const FieldState& s);
   /// Writes (or replaces) /timing; flushes.

@@ -110,8 +110,8 @@ void read_parts(const YamlNode& section, ScenarioBuild& b) {
   const auto all = section.entries("parts (name: {material, mesh, ...})");
   if (all.empty()) section.fail("no part defined; add e.g. 'plate: {material: steel, mesh: ...}'");
   for (const auto& [name, p] : all) {
-    p.expect_keys({"material", "element", "thickness", "integration_points", "hourglass", "mesh",
-                   "merge_nodes", "merge_tolerance"});
+    p.expect_keys({"material", "element", "thickness", "integration_points", "hourglass",
+                   "damping_ratio", "mesh", "merge_nodes", "merge_tolerance"});
     model::Part part;
     part.name = name;
     const auto mat = p.required("material", "a name from 'materials'");
@@ -158,6 +158,19 @@ void read_parts(const YamlNode& section, ScenarioBuild& b) {
       if (part.hourglass_coefficient > 0.3)
         hg->fail(fmt::format("{} is above 0.3; use 0.05-0.15 (default 0.1)",
                              part.hourglass_coefficient));
+    }
+    if (auto xi = p.optional("damping_ratio")) {
+      part.damping_ratio = xi->non_negative();
+      if (part.damping_ratio > 0.5)
+        xi->fail(fmt::format(
+            "{} is above 0.5; give the fraction of critical damping at the element's highest "
+            "frequency, e.g. 0.05 (0: none)",
+            part.damping_ratio));
+      if (part.damping_ratio > 0.0 &&
+          b.model.materials[static_cast<std::size_t>(part.material)].kind ==
+              materials::MaterialKind::Rigid)
+        xi->fail(
+            fmt::format("has no effect on a part of rigid material '{}'; remove it", mat.text()));
     }
     const bool merge = p.boolean_or("merge_nodes", false);
     double tolerance_m = 1e-6;

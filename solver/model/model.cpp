@@ -61,6 +61,32 @@ void validate(const Model& m) {
     if (p.hourglass_coefficient < 0.0 || p.hourglass_coefficient > 0.3)
       throw ModelError(fmt::format("part '{}': hourglass coefficient {} outside [0, 0.3]", p.name,
                                    p.hourglass_coefficient));
+    // Stiffness-proportional damping (Part::damping_ratio): a fraction of critical at the highest
+    // frequency; above 0.5 the stable step falls below 0.62 of the undamped one and the low modes
+    // are barely damped anyway (xi_k = xi omega_k / omega_max).
+    const auto bad_ratio = [](double xi) { return !(xi >= 0.0 && xi <= 0.5); };
+    if (bad_ratio(p.damping_ratio))
+      throw ModelError(fmt::format(
+          "part '{}': damping ratio {} outside [0, 0.5]; give the fraction of critical damping at "
+          "the element's highest frequency, e.g. 0.05 (0: no damping)",
+          p.name, p.damping_ratio));
+    if (!p.element_damping_ratio.empty()) {
+      if (p.element_damping_ratio.size() != p.element_count())
+        throw ModelError(fmt::format(
+            "part '{}': {} per-element damping ratios for {} elements; give one per element or "
+            "none (then damping_ratio {} applies to all)",
+            p.name, p.element_damping_ratio.size(), p.element_count(), p.damping_ratio));
+      for (std::size_t e = 0; e < p.element_damping_ratio.size(); ++e)
+        if (bad_ratio(p.element_damping_ratio[e]))
+          throw ModelError(fmt::format(
+              "part '{}' element {}: damping ratio {} outside [0, 0.5]; use e.g. 0.05 (0: none)",
+              p.name, p.element_id[e], p.element_damping_ratio[e]));
+    }
+    if (p.damped() &&
+        m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid)
+      throw ModelError(
+          fmt::format("part '{}': damping ratio on rigid material '{}' has no effect; remove it",
+                      p.name, m.materials[static_cast<std::size_t>(p.material)].name));
   }
   for (const auto& rb : m.rigid_bodies)
     for (int pi : rb.parts) {

@@ -40,9 +40,26 @@ struct Part {
   double thickness_m = 0.0;                ///< Shell4 only
   int through_thickness_points = 5;    ///< Shell4 only: Gauss points through the thickness (>= 3)
   double hourglass_coefficient = 0.1;  ///< Flanagan–Belytschko / BT stiffness coefficient [-]
+  /// Stiffness-proportional (Rayleigh beta) damping, LS-DYNA *DAMPING_PART_STIFFNESS: xi, the
+  /// fraction of critical damping at each element's highest frequency, in [0, 0.5]; 0: none.
+  /// The kernels add sigma_d = beta_e C : D with beta_e = xi_e dt_e (solver/elements/hex8.h).
+  double damping_ratio = 0.0;
+  /// [ne] or empty: per-element xi overriding damping_ratio (same range).
+  std::vector<double> element_damping_ratio;
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
+  }
+  /// xi of element e (element_damping_ratio if given, else damping_ratio).
+  double damping_ratio_of(std::size_t e) const {
+    return element_damping_ratio.empty() ? damping_ratio : element_damping_ratio[e];
+  }
+  /// True if some element has a positive damping ratio (the kernels then take the damped path).
+  bool damped() const {
+    if (element_damping_ratio.empty()) return damping_ratio > 0.0;
+    for (double xi : element_damping_ratio)
+      if (xi > 0.0) return true;
+    return false;
   }
 };
 

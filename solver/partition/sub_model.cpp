@@ -66,12 +66,16 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     lp.thickness_m = gp.thickness_m;
     lp.through_thickness_points = gp.through_thickness_points;
     lp.hourglass_coefficient = gp.hourglass_coefficient;
+    lp.damping_ratio = gp.damping_ratio;
     const auto k = static_cast<std::size_t>(model::nodes_per_element(gp.kind));
     for (Index le : elems) {
       const auto ue = static_cast<std::size_t>(le);
       for (std::size_t j = 0; j < k; ++j)
         lp.connectivity.push_back(local(gp.connectivity[k * ue + j]));
       lp.element_id.push_back(gp.element_id[ue]);
+      // per-element damping ratios sliced with the element subset
+      if (!gp.element_damping_ratio.empty())
+        lp.element_damping_ratio.push_back(gp.element_damping_ratio[ue]);
     }
     g2l_part[p] = static_cast<int>(m.parts.size());
     m.parts.push_back(std::move(lp));

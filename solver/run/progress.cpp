@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace crashlink::run {
 
@@ -16,6 +17,18 @@ Progress::Progress(std::FILE* stream, double end_time_s, bool enabled)
 
 void Progress::update(double time_s, std::int64_t cycle, double dt_s) {
   if (!enabled_ || (++calls_ & 255) != 0) return;
+  char detail[96];
+  std::snprintf(detail, sizeof detail, "cycle %lld  dt = %.3e s", static_cast<long long>(cycle),
+                dt_s);
+  show(time_s, detail);
+}
+
+void Progress::update(double time_s, const std::string& detail) {
+  if (!enabled_ || (++calls_ & 15) != 0) return;
+  show(time_s, detail.c_str());
+}
+
+void Progress::show(double time_s, const char* detail) {
   const auto now = std::chrono::steady_clock::now();
   const double frac = std::clamp(time_s / end_time_s_, 0.0, 1.0);
   const double elapsed = std::chrono::duration<double>(now - start_).count();
@@ -25,15 +38,14 @@ void Progress::update(double time_s, std::int64_t cycle, double dt_s) {
     last_ = now;
     const int width = 30;
     const int filled = static_cast<int>(frac * width);
-    std::fprintf(stream_, "\r[%.*s%*s] %5.1f %%  t = %.4e s  cycle %lld  dt = %.3e s  ETA %.0f s ",
-                 filled, "##############################", width - filled, "", 100.0 * frac, time_s,
-                 static_cast<long long>(cycle), dt_s, eta);
+    std::fprintf(stream_, "\r[%.*s%*s] %5.1f %%  t = %.4e s  %s  ETA %.0f s ", filled,
+                 "##############################", width - filled, "", 100.0 * frac, time_s, detail,
+                 eta);
     std::fflush(stream_);
   } else if (frac * 10.0 >= next_decile_) {
     next_decile_ = static_cast<int>(frac * 10.0) + 1;
-    std::fprintf(stream_,
-                 "progress %3.0f %%  t = %.4e s  cycle %lld  dt = %.3e s  elapsed %.1f s\n",
-                 100.0 * frac, time_s, static_cast<long long>(cycle), dt_s, elapsed);
+    std::fprintf(stream_, "progress %3.0f %%  t = %.4e s  %s  elapsed %.1f s\n", 100.0 * frac,
+                 time_s, detail, elapsed);
     std::fflush(stream_);
   }
 }

@@ -13,10 +13,15 @@ class Progress {
   Progress(std::FILE* stream, double end_time_s, bool enabled = true);
   /// Cheap to call every cycle: it looks at the clock only every 256 calls.
   void update(double time_s, std::int64_t cycle, double dt_s);
+  /// As update(), with `detail` in place of the cycle and step (a coupled run: the slowest
+  /// domain's name).
+  void update(double time_s, const std::string& detail);
   /// Ends the line on a terminal.
   void finish();
 
  private:
+  void show(double time_s, const char* detail);
+
   std::FILE* stream_;
   double end_time_s_;
   bool enabled_;

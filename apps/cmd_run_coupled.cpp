@@ -1,0 +1,201 @@
+// `crashlink run --mode split|multi` (cmd_run.h): launch, gather, summarise.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "apps/cmd_hic.h"
+#include "apps/cmd_run.h"
+#include "apps/launcher.h"
+#include "apps/timing_reader.h"
+#include "solver/core/errors.h"
+#include "solver/gather/gather_results.h"
+#include "solver/io/result_reader.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/partition/decomposition.h"
+#include "solver/run/exit_codes.h"
+
+namespace crashlink::apps {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+transport::Scheme scheme_of(const std::string& name) {
+  if (name == "tcp") return transport::Scheme::tcp;
+  if (name == "inproc") return transport::Scheme::inproc;
+  return transport::Scheme::ipc;
+}
+
+/// What gathering DIR/domains/*.h5 and DIR/coordinator.h5 into DIR/result.h5 gave.
+struct Gathered {
+  bool written = false;  ///< DIR/result.h5 exists
+  std::string problem;   ///< "" when every domain's file was merged completely
+};
+
+Gathered gather(const model::Model& model, const partition::Decomposition& dec,
+                const std::string& out) {
+  Gathered g;
+  try {
+    const auto r = gather::gather_results(model, dec, out);
+    g.written = true;
+    if (!r.missing.empty()) {
+      g.problem =
+          fmt::format("domain file(s) missing or unusable: '{}'", fmt::join(r.missing, "', '"));
+    }
+  } catch (const std::exception& e) {
+    g.problem = e.what();
+  }
+  return g;
+}
+
+void print_timing(std::FILE* f, const TimingRecord& t, const LaunchResult& lr) {
+  std::fprintf(f, "\n%-12s %10s %10s %12s %10s %14s\n", "domain", "elements", "cycles",
+               "dt_min [s]", "CPU [s]", "ns/elem/cycle");
+  double sum_cpu = t.coordinator_cpu_seconds;
+  for (const auto& d : t.domains) {
+    const double ns = d.elements > 0 && d.cycles > 0
+                          ? 1e9 * d.cpu_seconds /
+                                (static_cast<double>(d.elements) * static_cast<double>(d.cycles))
+                          : 0.0;
+    std::fprintf(f, "%-12s %10lld %10lld %12.4e %10.3f %14.1f\n", d.name.c_str(),
+                 static_cast<long long>(d.elements), static_cast<long long>(d.cycles), d.dt_min_s,
+                 d.cpu_seconds, ns);
+    sum_cpu += d.cpu_seconds;
+  }
+  double coordinator_cpu = t.coordinator_cpu_seconds;
+  if (coordinator_cpu == 0.0 && !lr.pieces.empty()) {
+    coordinator_cpu = lr.pieces.front().cpu_seconds;  // from wait4 when the file has none
+    sum_cpu += coordinator_cpu;
+  }
+  std::fprintf(f, "coordinator: CPU %.3f s = %.2f %% of the total CPU %.3f s\n", coordinator_cpu,
+               sum_cpu > 0.0 ? 100.0 * coordinator_cpu / sum_cpu : 0.0, sum_cpu);
+  std::fprintf(f,
+               "wall %.3f s vs sum of CPU times %.3f s: overlap %.2f (1 = the pieces took turns, "
+               "%zu = all ran at once)\n",
+               lr.wall_seconds, sum_cpu, lr.wall_seconds > 0.0 ? sum_cpu / lr.wall_seconds : 0.0,
+               t.domains.size());
+}
+
+void print_energy(std::FILE* f, const std::string& h5, bool complete) {
+  try {
+    io::ResultReader reader(h5);
+    const auto g = reader.glstat();
+    if (g.empty()) return;
+    const auto& e = g.back();
+    std::fprintf(f,
+                 "energy [J] at t = %.4e s: kinetic %.6g  internal %.6g  hourglass %.6g  contact "
+                 "%.6g  external work %.6g  total %.6g\n",
+                 e.time_s, e.kinetic_energy_J, e.internal_energy_J, e.hourglass_energy_J,
+                 e.contact_energy_J, e.external_work_J, e.total_energy_J);
+    std::fprintf(f, "energy balance error %.4f %% of the largest energy%s\n",
+                 100.0 * e.energy_balance_error,
+                 complete ? "" : " (the run failed: some domains' histories are incomplete)");
+  } catch (const std::exception& x) {
+    std::fprintf(f, "energy: %s could not be read: %s\n", h5.c_str(), x.what());
+  }
+}
+
+}  // namespace
+
+int run_coupled(const RunCommandOptions& o) {
+  if (o.coupling != "layer") {
+    throw InputError(
+        fmt::format("--coupling {} --mode {}: the daemons and the coordinator run "
+                    "the `layer` scheme only; `paper` runs in one process (use "
+                    "--coupling layer)",
+                    o.coupling, o.mode));
+  }
+  const auto model = io::read_scenario(o.scenario);
+  const auto dec = partition::decompose(model, partition::Scheme::Layer);
+  std::vector<std::string> domains;
+  for (const auto& d : dec.domains) {
+    if (!d.empty()) domains.push_back(d.name);
+  }
+  if (domains.size() < 2) {
+    throw InputError(fmt::format(
+        "--mode {}: {} cuts into {} domain(s) ('{}'); split and multi couple two or more: give "
+        "the scenario a `domains:` section (docs/scenario-format.md) or use --mode mono",
+        o.mode, o.scenario, domains.size(), fmt::join(domains, "', '")));
+  }
+  std::printf(
+      "crashlink run: %s (%zu nodes, %zu elements, end time %.4g s), --mode %s over %s: "
+      "coordinator + %zu daemons ('%s') -> %s\n",
+      model.name.c_str(), model.nodes.count(), model.element_count(), model.controls.end_time_s,
+      o.mode.c_str(), o.transport.c_str(), domains.size(),
+      fmt::format("{}", fmt::join(domains, "', '")).c_str(), o.out.c_str());
+  std::fflush(stdout);
+
+  LaunchOptions lo;
+  lo.scenario = o.scenario;
+  lo.out_dir = o.out;
+  lo.common_step = o.mode == "split";
+  lo.scheme = scheme_of(o.transport);
+  lo.progress = !o.quiet;
+  lo.session = o.session;
+  lo.join_timeout_ms = o.join_timeout_ms;
+  lo.step_safety = o.step_safety;
+  const LaunchResult lr = launch_local(lo, domains);
+
+  const Gathered gathered = gather(model, dec, o.out);
+  const std::string result_h5 = (fs::path(o.out) / "result.h5").string();
+  std::optional<TimingRecord> timing;
+  if (gathered.written) timing = read_timing(result_h5);
+  if (!timing) {  // from the domains' own files
+    TimingRecord t;
+    for (const auto& d : domains) {
+      if (auto one = read_timing((fs::path(o.out) / "domains" / (d + ".h5")).string())) {
+        for (auto& x : one->domains) t.domains.push_back(std::move(x));
+      }
+    }
+    timing = std::move(t);
+  }
+  print_timing(stdout, *timing, lr);
+  if (gathered.written) {
+    print_energy(stdout, result_h5, lr.ok() && gathered.problem.empty());
+    std::printf("result: %s%s%s\n", result_h5.c_str(), gathered.problem.empty() ? "" : "; ",
+                gathered.problem.c_str());
+  } else {
+    std::printf("result: not gathered: %s\n        the domains' files: %s/domains/*.h5\n",
+                gathered.problem.c_str(), o.out.c_str());
+  }
+
+  if (lr.ok() && gathered.written && gathered.problem.empty()) {
+    for (const auto& p : model.probes) {
+      if (p.kind != model::Probe::Kind::RigidBody) continue;
+      std::printf("\n");
+      HicOptions h;
+      h.file = result_h5;
+      h.probe = p.name;
+      h.cfc = "1000";
+      run_hic(h);
+    }
+    return run::kExitOk;
+  }
+  std::fflush(stdout);
+  if (lr.ok()) {
+    std::fprintf(stderr, "crashlink: error: the run finished but gathering failed: %s\n",
+                 gathered.problem.c_str());
+    return run::kExitInternal;
+  }
+  // The first culprit: a piece that failed on its own (not stopped because of another one).
+  std::vector<std::string> what;
+  int code = run::kExitPeer;
+  for (const auto& p : lr.pieces) {
+    if (p.ok()) continue;
+    const std::string who = p.name == "coordinator" ? p.name : "domain '" + p.name + "'";
+    PieceOutcome q = p;
+    q.name = who;
+    what.push_back(q.describe());
+    if (p.exit_code == run::kExitNumerical) code = run::kExitNumerical;
+  }
+  std::fprintf(stderr, "crashlink: error: the %s run failed: %s\n", o.mode.c_str(),
+               fmt::format("{}", fmt::join(what, "; ")).c_str());
+  return code;
+}
+
+}  // namespace crashlink::apps

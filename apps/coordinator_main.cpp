@@ -1,0 +1,75 @@
+// crashlink-coordinator: the coordinator of a `layer` run (solver/coordination/coordinator_run.h,
+// docs/processes.md). Started by `crashlink run` or by hand:
+//   crashlink-coordinator --bind tcp://0.0.0.0:5555 --scenario FILE --out DIR [--mode multi]
+// It prints the bound endpoint (and writes it to --endpoint-file), waits for one daemon per
+// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/run/exit_codes.h.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
+
+#include "apps/session_flags.h"
+#include "apps/stop_signal.h"
+#include "solver/coordination/coordinator_run.h"
+#include "solver/run/exit_codes.h"
+#include "solver/run/progress.h"
+
+int main(int argc, char** argv) {
+  using namespace crashlink;
+  CLI::App app{"crashlink-coordinator: couples the domains of a crashlink run"};
+  coordination::CoordinatorOptions o;
+  apps::SessionFlags session;
+  std::string mode = "multi";
+  int join_timeout_ms = 60000;
+  bool progress = false;
+  app.add_option("--bind", o.bind,
+                 "endpoint to bind: tcp://HOST:PORT (PORT * or 0: any free port, printed), "
+                 "ipc://PATH, inproc://NAME")
+      ->required();
+  app.add_option("--scenario", o.scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  app.add_option("--out", o.out_dir, "output directory (writes DIR/coordinator.h5)")
+      ->capture_default_str();
+  app.add_option("--mode", mode, "split (one common step) | multi (each domain its own step)")
+      ->check(CLI::IsMember({"split", "multi"}))
+      ->capture_default_str();
+  app.add_option("--endpoint-file", o.endpoint_file,
+                 "write the bound endpoint (with the real port) to this file once listening");
+  app.add_option("--join-timeout-ms", join_timeout_ms,
+                 "every domain must have joined and registered within this time, ms")
+      ->check(CLI::Range(1, 86400000))
+      ->capture_default_str();
+  app.add_flag("--progress", progress, "progress line on stderr (the slowest domain's time)");
+  apps::add_session_flags(app, session);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : run::kExitInput;
+  }
+  o.common_step = mode == "split";
+  o.session = session.options();
+  o.join_timeout = std::chrono::milliseconds{join_timeout_ms};
+  apps::install_stop_handlers();
+  o.stop = &apps::stop_flag();
+  std::optional<run::Progress> bar;
+  if (progress) {
+    o.on_progress = [&](double t_s, double end_s, const std::string& slowest) {
+      if (!bar) bar.emplace(stderr, end_s, true);
+      bar->update(t_s, "slowest: " + slowest);
+    };
+  }
+  const auto r = coordination::run_coordinator(o);
+  if (bar) bar->finish();
+  for (const auto& d : r.domains) {
+    std::fprintf(stderr,
+                 "crashlink-coordinator: domain '%s': %s, %lld cycles, CPU %.3f s, waited %.3f s\n",
+                 d.name.c_str(), d.finished ? "finished" : "did not finish",
+                 static_cast<long long>(d.cycles), d.cpu_seconds, d.wait_seconds);
+  }
+  if (r.exit_code != 0) {
+    std::fprintf(stderr, "crashlink-coordinator: error: %s\n", r.message.c_str());
+  } else {
+    std::fprintf(stderr,
+                 "crashlink-coordinator: done: %lld messages routed, CPU %.3f s, wall %.3f s\n",
+                 static_cast<long long>(r.messages_forwarded), r.cpu_seconds, r.wall_seconds);
+  }
+  return r.exit_code;
+}

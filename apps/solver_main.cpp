@@ -1,0 +1,47 @@
+// crashlink-solver: one domain of a `layer` run as a daemon (solver/daemon/daemon.h,
+// docs/processes.md). Started by `crashlink run` or by hand on any host:
+//   crashlink-solver --connect tcp://host:port --domain NAME --scenario FILE --out DIR
+// Exit codes: solver/run/exit_codes.h (0 ok, 2 input or refused, 3 guard, 4 internal, 5 stopped
+// because of another process or a socket failure).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "apps/session_flags.h"
+#include "apps/stop_signal.h"
+#include "solver/daemon/daemon.h"
+#include "solver/run/exit_codes.h"
+
+int main(int argc, char** argv) {
+  using namespace crashlink;
+  CLI::App app{"crashlink-solver: one domain of a crashlink run, connected to the coordinator"};
+  daemon::DaemonOptions o;
+  apps::SessionFlags session;
+  app.add_option("--connect", o.endpoint,
+                 "the coordinator's endpoint: tcp://host:port, ipc://path or inproc://name")
+      ->required();
+  app.add_option("--domain", o.domain, "the domain to run (a name under the scenario's domains:)")
+      ->required();
+  app.add_option("--scenario", o.scenario, "scenario file (the same content as the coordinator's)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--out", o.out_dir, "output directory (writes DIR/domains/NAME.h5)")
+      ->capture_default_str();
+  app.add_option("--max-step", o.max_step_s,
+                 "cap on the step this domain proposes, s (0: its stable step); for studies")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  apps::add_session_flags(app, session);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : run::kExitInput;
+  }
+  o.session = session.options();
+  apps::install_stop_handlers();
+  o.stop = &apps::stop_flag();
+  const auto r = daemon::run_daemon(o);
+  if (r.exit_code != 0) std::fprintf(stderr, "crashlink-solver: error: %s\n", r.message.c_str());
+  return r.exit_code;
+}

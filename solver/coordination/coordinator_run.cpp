@@ -1,0 +1,441 @@
+#include "solver/coordination/coordinator_run.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <span>
+#include <utility>
+
+#include "coordinator/interface_match.h"
+#include "coordinator/layer_router.h"
+#include "coordinator/protocol_error.h"
+#include "solver/coordination/coupling_history.h"
+#include "solver/coordination/layer_cut.h"
+#include "solver/core/errors.h"
+#include "solver/io/scenario_hash.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/partition/decomposition.h"
+#include "solver/run/cpu_clock.h"
+#include "solver/run/exit_codes.h"
+#include "transport/coordinator_link.h"
+#include "transport/errors.h"
+
+namespace crashlink::coordination {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::span<const double> view(const google::protobuf::RepeatedField<double>& v) {
+  return {v.data(), static_cast<std::size_t>(v.size())};
+}
+
+std::string body_name(const wire::Envelope& e) {
+  const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(e.body_case());
+  return field != nullptr ? field->name() : "empty Envelope";
+}
+
+/// A failure that ends the run: who, how, what.
+struct Stop {
+  int exit_code = run::kExitPeer;
+  wire::ErrorCode code = wire::ERROR_CODE_INTERNAL;
+  std::vector<std::string> culprits;  ///< the domains to blame (the first is reported)
+  std::string text;
+};
+
+class StopRun : public std::exception {
+ public:
+  explicit StopRun(Stop s) : stop_(std::move(s)) {}
+  const Stop& stop() const { return stop_; }
+  const char* what() const noexcept override { return stop_.text.c_str(); }
+
+ private:
+  Stop stop_;
+};
+
+class Coordinator {
+ public:
+  explicit Coordinator(const CoordinatorOptions& o) : o_(o) {}
+
+  CoordinatorResult run() {
+    wall0_ = Clock::now();
+    cpu0_ = cpu_seconds();
+    std::optional<Stop> stop;
+    try {
+      prepare();
+      admit();
+      route();
+    } catch (const StopRun& s) {
+      stop = s.stop();
+    } catch (const transport::PeerTimeoutError& e) {
+      stop = Stop{run::kExitPeer, wire::ERROR_CODE_TIMEOUT,
+                  link_ ? link_->dead_peers() : std::vector<std::string>{},
+                  fmt::format("coordinator: {}", e.what())};
+    } catch (const transport::TransportError& e) {
+      stop = Stop{
+          run::kExitPeer, wire::ERROR_CODE_INTERNAL, {}, fmt::format("coordinator: {}", e.what())};
+    } catch (const InputError& e) {
+      stop = Stop{run::kExitInput,
+                  wire::ERROR_CODE_MODEL,
+                  {},
+                  fmt::format("coordinator: input error: {}", e.what())};
+    } catch (const ModelError& e) {
+      stop = Stop{run::kExitInput,
+                  wire::ERROR_CODE_MODEL,
+                  {},
+                  fmt::format("coordinator: model error: {}", e.what())};
+    } catch (const std::exception& e) {
+      stop = Stop{run::kExitInternal,
+                  wire::ERROR_CODE_INTERNAL,
+                  {},
+                  fmt::format("coordinator: internal error: {}", e.what())};
+    }
+    CoordinatorResult r;
+    if (stop) {
+      tell_everyone(*stop);
+      r.exit_code = stop->exit_code;
+      r.message = stop->text;
+      r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
+    }
+    r.cpu_seconds = cpu_seconds() - cpu0_;
+    r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
+    close_history(r);
+    r.endpoint = link_ ? link_->endpoint() : std::string();
+    r.messages_forwarded = router_ ? router_->forwarded() : 0;
+    r.notices = notices_;
+    r.domains = outcomes_;
+    return r;
+  }
+
+ private:
+  double cpu_seconds() const {
+    return o_.in_process ? thread_cpu_seconds() : run::process_cpu_seconds();
+  }
+
+  void prepare() {
+    const std::string hash = io::scenario_hash(o_.scenario);
+    model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
+    const auto dec = partition::decompose(*model_, partition::Scheme::Layer);
+    cut_ = layer_cut(*model_, dec);
+    outcomes_.resize(cut_.names.size());
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) outcomes_[k].name = cut_.names[k];
+    regs_.resize(cut_.names.size());
+    registered_.assign(cut_.names.size(), false);
+
+    std::filesystem::create_directories(o_.out_dir);
+    history_ = std::make_unique<CouplingHistory>(
+        (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut_);
+
+    transport::CoordinatorConfig config;
+    config.scenario_hash = hash;
+    config.domains = cut_.names;
+    config.ticks_per_second = o_.ticks_per_second;
+    config.options = o_.session;
+    link_ = std::make_unique<transport::CoordinatorLink>(o_.bind, config);
+    if (!o_.endpoint_file.empty())
+      write_file_atomically(o_.endpoint_file, link_->endpoint() + "\n");
+    if (o_.log != nullptr) {
+      std::fprintf(o_.log, "crashlink-coordinator: listening on %s for %zu domains ('%s')\n",
+                   link_->endpoint().c_str(), cut_.names.size(),
+                   fmt::format("{}", fmt::join(cut_.names, "', '")).c_str());
+      std::fflush(o_.log);
+    }
+    if (o_.on_bound) o_.on_bound(link_->endpoint());
+  }
+
+  int index_of(const std::string& domain) const {
+    const auto it = std::find(cut_.names.begin(), cut_.names.end(), domain);
+    return it == cut_.names.end() ? -1 : static_cast<int>(it - cut_.names.begin());
+  }
+
+  /// Every domain joins and registers; then the Setups.
+  void admit() {
+    const auto deadline = Clock::now() + o_.join_timeout;
+    std::size_t count = 0;
+    while (count < cut_.names.size()) {
+      check_stop_requested();
+      const auto now = Clock::now();
+      if (now >= deadline) {
+        std::vector<std::string> absent, silent;
+        for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+          if (registered_[k]) continue;
+          (link_->joined(cut_.names[k]) ? silent : absent).push_back(cut_.names[k]);
+        }
+        auto all = absent;
+        all.insert(all.end(), silent.begin(), silent.end());
+        throw StopRun(Stop{
+            run::kExitPeer, wire::ERROR_CODE_TIMEOUT, all,
+            fmt::format("coordinator: within the join timeout of {:.1f} s, {}{}{}; are their "
+                        "daemons started with this scenario and connected to {}?",
+                        std::chrono::duration<double>(o_.join_timeout).count(),
+                        absent.empty()
+                            ? std::string()
+                            : fmt::format("domain(s) '{}' did not join", fmt::join(absent, "', '")),
+                        absent.empty() || silent.empty() ? "" : " and ",
+                        silent.empty() ? std::string()
+                                       : fmt::format("domain(s) '{}' joined but did not register",
+                                                     fmt::join(silent, "', '")),
+                        link_->endpoint())});
+      }
+      auto in = link_->poll(std::min<std::chrono::milliseconds>(
+          100ms, std::chrono::ceil<std::chrono::milliseconds>(deadline - now)));
+      log_notices();
+      link_->check_alive();
+      if (!in) continue;
+      const int k = index_of(in->domain);
+      const auto& e = in->envelope;
+      if (e.has_error()) remote_error(*in);
+      if (!e.has_registration() || registered_[static_cast<std::size_t>(k)]) {
+        protocol_stop(in->domain, fmt::format("domain '{}' sent a {} before its Setup; expected "
+                                              "one Register",
+                                              in->domain, body_name(e)));
+      }
+      try {
+        check_register(cut_, k, e.registration());
+      } catch (const ModelError& x) {
+        throw StopRun(Stop{run::kExitInput,
+                           wire::ERROR_CODE_MODEL,
+                           {in->domain},
+                           fmt::format("coordinator: {}", x.what())});
+      }
+      regs_[static_cast<std::size_t>(k)] = e.registration();
+      registered_[static_cast<std::size_t>(k)] = true;
+      ++count;
+    }
+    try {
+      match_sides(cut_, regs_);
+    } catch (const coordinator::InterfaceError& x) {
+      throw StopRun(Stop{run::kExitInput, wire::ERROR_CODE_MODEL, x.domains(),
+                         fmt::format("coordinator: {}", x.what())});
+    }
+    const auto plan = plan_steps(cut_, regs_, o_.common_step);
+    wire::Options options;
+    options.set_heartbeat_interval_ms(
+        static_cast<std::uint32_t>(o_.session.heartbeat_interval.count()));
+    options.set_peer_timeout_ms(static_cast<std::uint32_t>(o_.session.peer_timeout.count()));
+    std::vector<coordinator::LayerRoute> routes;
+    for (const auto& c : cut_.interfaces) {
+      const auto H = plan.step[static_cast<std::size_t>(c.coarse)];
+      routes.push_back({c.fine, c.coarse, c.j_node_ids.size(), H,
+                        static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
+    }
+    router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+      outcomes_[k].step_ticks = plan.step[k];
+      link_->send(cut_.names[k], setup_message(cut_, plan, static_cast<int>(k), o_.common_step,
+                                               options, o_.ticks_per_second));
+    }
+    if (o_.log != nullptr) {
+      std::string steps;
+      for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+        steps += fmt::format(
+            "{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
+            static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
+      }
+      std::fprintf(o_.log, "crashlink-coordinator: %s run, steps: %s\n",
+                   o_.common_step ? "split" : "multi", steps.c_str());
+      std::fflush(o_.log);
+    }
+  }
+
+  void route() {
+    std::size_t done = 0;
+    const double end_s = cut_.end_time_s;
+    while (done < cut_.names.size()) {
+      check_stop_requested();
+      auto in = link_->poll(100ms);
+      log_notices();
+      if (in) {
+        const int k = index_of(in->domain);
+        auto& e = in->envelope;
+        try {
+          if (e.has_layer_force()) {
+            const auto& f = e.layer_force();
+            auto routed = router_->force(k, f.interface_index(), f.time_ticks(), view(f.forces_n()),
+                                         view(f.moments_n_m()));
+            forward(routed.to, e);
+            history_->append(f.interface_index(), routed.samples, o_.ticks_per_second);
+          } else if (e.has_layer_displacement()) {
+            const auto& d = e.layer_displacement();
+            auto routed = router_->displacement(k, d.interface_index(), d.time_ticks(),
+                                                view(d.displacements_m()),
+                                                view(d.angular_velocities_rad_s()));
+            forward(routed.to, e);
+            history_->append(d.interface_index(), routed.samples, o_.ticks_per_second);
+          } else if (e.has_bye()) {
+            bye(k, e.bye());
+            ++done;
+          } else if (e.has_error()) {
+            remote_error(*in);
+          } else {
+            protocol_stop(in->domain, fmt::format("domain '{}' sent a {} during the run",
+                                                  in->domain, body_name(e)));
+          }
+        } catch (const coordinator::ProtocolError& x) {
+          protocol_stop(in->domain, x.what());
+        }
+        if (o_.on_progress) {
+          const int slow = slowest();
+          const double t =
+              slow < 0
+                  ? end_s
+                  : static_cast<double>(std::max<coordinator::Tick>(router_->latest(slow), 0)) /
+                        static_cast<double>(o_.ticks_per_second);
+          o_.on_progress(t, end_s,
+                         slow < 0 ? std::string() : cut_.names[static_cast<std::size_t>(slow)]);
+        }
+      }
+      link_->check_alive();
+    }
+  }
+
+  /// The unfinished domain furthest behind (by its latest message), or -1.
+  int slowest() const {
+    int slow = -1;
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+      if (outcomes_[k].finished) continue;
+      const int ki = static_cast<int>(k);
+      if (slow < 0 || router_->latest(ki) < router_->latest(slow)) slow = ki;
+    }
+    return slow;
+  }
+
+  void forward(int to, const wire::Envelope& e) {
+    const auto& name = cut_.names[static_cast<std::size_t>(to)];
+    if (outcomes_[static_cast<std::size_t>(to)].finished) return;  // nothing left to use it for
+    link_->send(name, e);
+  }
+
+  void bye(int k, const wire::Bye& b) {
+    auto& out = outcomes_[static_cast<std::size_t>(k)];
+    out.finished = true;
+    const auto& r = b.report();
+    out.cpu_seconds = r.cpu_seconds();
+    out.wait_seconds = r.wait_seconds();
+    out.wall_seconds = r.wall_seconds();
+    out.cycles = r.cycles();
+    out.dt_min_s = r.dt_min_s();
+    out.elements = r.elements();
+  }
+
+  [[noreturn]] void remote_error(const transport::Incoming& in) {
+    const auto& err = in.envelope.error();
+    const std::string domain = err.domain().empty() ? in.domain : err.domain();
+    const int code = err.code() == wire::ERROR_CODE_NUMERICAL ? run::kExitNumerical
+                     : err.code() == wire::ERROR_CODE_MODEL   ? run::kExitInput
+                                                              : run::kExitPeer;
+    throw StopRun(Stop{code,
+                       err.code(),
+                       {in.domain},
+                       fmt::format("coordinator: domain '{}' failed ({}): {}", domain,
+                                   wire::ErrorCode_Name(err.code()), err.message())});
+  }
+
+  [[noreturn]] void protocol_stop(const std::string& domain, const std::string& what) {
+    throw StopRun(
+        Stop{run::kExitPeer,
+             wire::ERROR_CODE_PROTOCOL,
+             {domain},
+             fmt::format("coordinator: protocol error by domain '{}': {}", domain, what)});
+  }
+
+  void check_stop_requested() const {
+    if (o_.stop != nullptr && o_.stop->load()) {
+      throw StopRun(Stop{run::kExitPeer,
+                         wire::ERROR_CODE_INTERNAL,
+                         {},
+                         "coordinator: stopped on request (signal or launcher)"});
+    }
+  }
+
+  void log_notices() {
+    if (!link_) return;
+    for (const auto& n : link_->take_notices()) {
+      ++notices_;
+      // A dead peer makes every heartbeat fail until the timeout: say it once.
+      if (!logged_.insert(n.text).second) continue;
+      if (o_.log != nullptr) {
+        std::fprintf(o_.log, "crashlink-coordinator: notice: %s\n", n.text.c_str());
+        std::fflush(o_.log);
+      }
+    }
+  }
+
+  /// The Error naming the culprit, to every daemon still in session (a domain that reported the
+  /// Error itself has ended its session; a frozen one reads it when it wakes up).
+  void tell_everyone(const Stop& s) {
+    if (!link_) return;
+    const std::string culprit = s.culprits.empty() ? std::string() : s.culprits.front();
+    for (const auto& name : cut_.names) {
+      if (!link_->joined(name)) continue;
+      try {
+        link_->send(name, transport::make_error(s.code, s.text, culprit));
+      } catch (const std::exception&) {
+        // That daemon is gone too; its own timeout or exit tells.
+      }
+    }
+  }
+
+  void close_history(const CoordinatorResult& r) {
+    if (!history_) return;
+    try {
+      history_->finish(r.wall_seconds, r.cpu_seconds, outcomes_);
+    } catch (const std::exception& e) {
+      if (o_.log != nullptr) {
+        std::fprintf(o_.log, "crashlink-coordinator: writing %s failed: %s\n",
+                     history_->path().c_str(), e.what());
+      }
+    }
+  }
+
+  const CoordinatorOptions& o_;
+  Clock::time_point wall0_;
+  double cpu0_ = 0.0;
+  std::unique_ptr<model::Model> model_;
+  LayerCut cut_;
+  std::vector<wire::Register> regs_;
+  std::vector<bool> registered_;
+  std::vector<DomainOutcome> outcomes_;
+  std::unique_ptr<CouplingHistory> history_;
+  std::unique_ptr<coordinator::LayerRouter> router_;
+  std::unique_ptr<transport::CoordinatorLink> link_;
+  std::int64_t notices_ = 0;
+  std::set<std::string> logged_;
+};
+
+}  // namespace
+
+CoordinatorResult run_coordinator(const CoordinatorOptions& options) {
+  return Coordinator(options).run();
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) throw InputError(fmt::format("cannot write {}", tmp));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw InputError(fmt::format("cannot rename {} to {}: {}", tmp, path, ec.message()));
+}
+
+}  // namespace crashlink::coordination

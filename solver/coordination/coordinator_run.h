@@ -1,0 +1,84 @@
+#pragma once
+// crashlink-coordinator for the `layer` scheme (DESIGN.md §1, §2.6, §2.7, §3): binds a
+// CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario, checks
+// their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends the
+// Setups, then routes LayerDisplacement (coarse -> fine) and LayerForce (fine -> coarse) in
+// arrival order (coordinator/layer_router.h: per-interface time order checked, link work and
+// resultant force recorded) until every daemon has said Bye.
+//
+// Output: DIR/coordinator.h5 (io::CouplingHistoryWriter): /coupling/<interface>/ histories and
+// /timing (wall, the coordinator's CPU, each daemon's time spent waiting, from its Bye).
+//
+// Failures (exit codes: run/exit_codes.h): a daemon that reports an Error, dies or goes silent
+// for the peer timeout (CoordinatorLink::check_alive), breaks the protocol or registers an
+// interface that does not match; a domain that does not join within the join timeout. The
+// coordinator then sends an Error naming the culprit to every other daemon, writes its file and
+// returns non-zero with a message naming the culprit. Bytes that are not protocol messages and
+// refused Hellos (other protocol version, other scenario) are answered and logged; the run goes on.
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "coordinator/ticks.h"
+#include "transport/session.h"
+
+namespace crashlink::coordination {
+
+struct CoordinatorOptions {
+  std::string bind;  ///< endpoint to bind: tcp://127.0.0.1:* (port read back), ipc://, inproc://
+  std::string scenario;  ///< scenario file (daemons must run the same content: hash checked)
+  std::string out_dir = "out";
+  bool common_step = true;    ///< split (true) or multi (false)
+  std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
+  transport::SessionOptions session;
+  std::chrono::milliseconds join_timeout{60000};  ///< every domain joined and registered by then
+  std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
+  /// Called once bound, with the real endpoint (in-process launcher and tests).
+  std::function<void(const std::string&)> on_bound;
+  /// Called as the run goes: the time reached by the slowest domain, the end time [s] and that
+  /// domain's name.
+  std::function<void(double, double, const std::string&)> on_progress;
+  /// Set from outside (signal handler, launcher) to stop the run: every daemon gets an Error.
+  const std::atomic<bool>* stop = nullptr;
+  bool in_process = false;  ///< a thread of a bigger process: CPU time of this thread only
+  std::FILE* log = stderr;  ///< notices (refused peers, garbage), one line each; nullptr: none
+};
+
+/// What one daemon reported in its Bye (zeros if it did not say Bye).
+struct DomainOutcome {
+  std::string name;
+  bool finished = false;  ///< said Bye
+  double cpu_seconds = 0.0;
+  double wait_seconds = 0.0;
+  double wall_seconds = 0.0;
+  std::int64_t cycles = 0;
+  double dt_min_s = 0.0;
+  std::int64_t elements = 0;
+  std::int64_t step_ticks = 0;  ///< the fixed step it was given (0 before the Setup)
+};
+
+struct CoordinatorResult {
+  int exit_code = 0;    ///< run/exit_codes.h
+  std::string message;  ///< empty on success; else what happened, naming the culprit
+  std::string culprit;  ///< the domain that failed, if known
+  std::string endpoint;
+  std::string coordinator_h5;
+  double cpu_seconds = 0.0;
+  double wall_seconds = 0.0;
+  std::int64_t messages_forwarded = 0;
+  std::int64_t notices = 0;  ///< refused or dropped messages logged
+  std::vector<DomainOutcome> domains;
+};
+
+/// Runs the coordinator to the end of the run (or the first failure). Never throws.
+CoordinatorResult run_coordinator(const CoordinatorOptions& options);
+
+/// Writes `text` to `path` atomically (temporary file in the same folder, then rename). Throws
+/// InputError naming the path on failure.
+void write_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace crashlink::coordination

@@ -1,0 +1,52 @@
+#include "solver/coordination/coupling_history.h"
+
+#include <utility>
+
+#include "solver/io/coupling_history_writer.h"
+
+namespace crashlink::coordination {
+
+struct CouplingHistory::Impl {
+  explicit Impl(const std::string& path) : writer(path) {}
+  io::CouplingHistoryWriter writer;
+  std::vector<std::size_t> slot;  // [interfaces] the writer's index
+};
+
+CouplingHistory::CouplingHistory(std::string path, const LayerCut& cut)
+    : path_(std::move(path)), impl_(std::make_unique<Impl>(path_)) {
+  for (const auto& c : cut.interfaces) {
+    impl_->slot.push_back(
+        impl_->writer.add_interface(c.name, c.kind, cut.names[static_cast<std::size_t>(c.fine)],
+                                    cut.names[static_cast<std::size_t>(c.coarse)], "layer",
+                                    static_cast<std::int64_t>(c.j_node_ids.size())));
+  }
+}
+
+void CouplingHistory::append(std::uint32_t interface,
+                             const std::vector<coordinator::LayerSample>& rows,
+                             std::int64_t ticks_per_second) {
+  for (const auto& r : rows) {
+    io::CouplingSample s;
+    s.time_s = static_cast<double>(r.time) / static_cast<double>(ticks_per_second);
+    s.velocity_jump_m_s = 0.0;  // the ghosts follow the owner: no jump, no gap (DESIGN §2.7)
+    s.displacement_gap_m = 0.0;
+    s.link_work_J = r.link_work_J;
+    s.drift_work_J = 0.0;
+    for (std::size_t d = 0; d < 3; ++d) s.force_N[d] = r.force_N[d];
+    if (impl_) impl_->writer.append(impl_->slot[interface], s);
+  }
+}
+
+void CouplingHistory::finish(double wall_seconds, double cpu_seconds,
+                             const std::vector<DomainOutcome>& domains) {
+  if (!impl_) return;
+  std::vector<std::pair<std::string, double>> waits;
+  for (const auto& d : domains) waits.emplace_back(d.name, d.wait_seconds);
+  impl_->writer.write_timing(wall_seconds, cpu_seconds, waits);
+  impl_->writer.flush();
+  impl_.reset();  // closes the file
+}
+
+CouplingHistory::~CouplingHistory() = default;
+
+}  // namespace crashlink::coordination

@@ -1,0 +1,38 @@
+#pragma once
+// The coordinator's record of a `layer` run: per interface the rows coordinator::LayerRouter
+// completes (velocity jump and displacement gap 0 by construction, link work, drift work 0,
+// resultant layer force) and, at the end, /timing (wall, the coordinator's CPU, each daemon's
+// time spent waiting), written through io::CouplingHistoryWriter to DIR/coordinator.h5 (gathered
+// into result.h5 under /coupling/<interface>/ and /timing).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coordinator/layer_router.h"
+#include "solver/coordination/coordinator_run.h"
+#include "solver/coordination/layer_cut.h"
+
+namespace crashlink::coordination {
+
+class CouplingHistory {
+ public:
+  /// Creates the file and one group per interface of the cut. Throws io::ResultFileError.
+  CouplingHistory(std::string path, const LayerCut& cut);
+  ~CouplingHistory();
+  CouplingHistory(const CouplingHistory&) = delete;
+  CouplingHistory& operator=(const CouplingHistory&) = delete;
+
+  void append(std::uint32_t interface, const std::vector<coordinator::LayerSample>& rows,
+              std::int64_t ticks_per_second);
+  /// /timing, flush, close.
+  void finish(double wall_seconds, double cpu_seconds, const std::vector<DomainOutcome>& domains);
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Impl;
+  std::string path_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crashlink::coordination

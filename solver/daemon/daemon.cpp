@@ -1,0 +1,387 @@
+#include "solver/daemon/daemon.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "solver/core/errors.h"
+#include "solver/cosim/layer_domains.h"
+#include "solver/cosim/layer_stepper.h"
+#include "solver/daemon/layer_wire.h"
+#include "solver/io/result_writer.h"
+#include "solver/io/scenario_hash.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/partition/decomposition.h"
+#include "solver/run/cpu_clock.h"
+#include "solver/run/domain_recorder.h"
+#include "solver/run/exit_codes.h"
+#include "transport/daemon_link.h"
+#include "transport/errors.h"
+
+namespace crashlink::daemon {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Thrown from the sample hook when DaemonOptions::stop is set.
+struct Stopped {};
+
+/// How a failure ends the daemon.
+struct Failure {
+  int exit_code = run::kExitInternal;
+  wire::ErrorCode code = wire::ERROR_CODE_INTERNAL;
+  bool tell_coordinator = true;  ///< false when the coordinator is the one who stopped us
+  std::string text;
+};
+
+class Daemon {
+ public:
+  explicit Daemon(const DaemonOptions& o) : o_(o) {}
+
+  DaemonResult run() {
+    wall0_ = Clock::now();
+    cpu0_ = cpu_seconds();
+    std::optional<Failure> failure;
+    try {
+      prepare();
+      connect();
+      loop();
+      finish();
+    } catch (const Stopped&) {
+      failure = Failure{run::kExitPeer, wire::ERROR_CODE_INTERNAL, true,
+                        fmt::format("{}: stopped on request (signal)", where())};
+    } catch (const transport::RemoteError& e) {
+      const bool refused = e.code() == wire::ERROR_CODE_VERSION_MISMATCH ||
+                           e.code() == wire::ERROR_CODE_SCENARIO_MISMATCH;
+      failure = Failure{refused ? run::kExitInput : run::kExitPeer, e.code(), false,
+                        fmt::format("{}: {} by the coordinator: {}", where(),
+                                    refused ? "refused" : "stopped", e.what())};
+    } catch (const transport::PeerTimeoutError& e) {
+      failure = Failure{run::kExitPeer, wire::ERROR_CODE_TIMEOUT, true,
+                        fmt::format("{}: {}", where(), e.what())};
+    } catch (const transport::TransportError& e) {
+      failure = Failure{run::kExitPeer, wire::ERROR_CODE_INTERNAL, true,
+                        fmt::format("{}: {}", where(), e.what())};
+    } catch (const transport::ProtocolError& e) {
+      failure = Failure{run::kExitPeer, wire::ERROR_CODE_PROTOCOL, true,
+                        fmt::format("{}: protocol error: {}", where(), e.what())};
+    } catch (const NumericalError& e) {
+      failure = Failure{run::kExitNumerical, wire::ERROR_CODE_NUMERICAL, true,
+                        fmt::format("{}: {}", where(), e.what())};
+    } catch (const InputError& e) {
+      failure = Failure{run::kExitInput, wire::ERROR_CODE_MODEL, true,
+                        fmt::format("{}: input error: {}", where(), e.what())};
+    } catch (const ModelError& e) {
+      failure = Failure{run::kExitInput, wire::ERROR_CODE_MODEL, true,
+                        fmt::format("{}: model error: {}", where(), e.what())};
+    } catch (const std::exception& e) {
+      failure = Failure{run::kExitInternal, wire::ERROR_CODE_INTERNAL, true,
+                        fmt::format("{}: internal error: {}", where(), e.what())};
+    }
+    DaemonResult r;
+    if (failure) {
+      if (failure->tell_coordinator) tell(*failure);
+      close_output_after_failure();
+      r.exit_code = failure->exit_code;
+      r.message = failure->text;
+    }
+    r.result_h5 = h5_path_;
+    r.cycles = solver() ? solver()->cycle() : 0;
+    r.cpu_seconds = cpu_seconds() - cpu0_;
+    r.wait_seconds = wait_s_;
+    r.wall_seconds = seconds_since(wall0_);
+    return r;
+  }
+
+ private:
+  integration::Solver* solver() const { return dom_ ? dom_->solver.get() : nullptr; }
+
+  double cpu_seconds() const {
+    return o_.in_process ? thread_cpu_seconds() : run::process_cpu_seconds();
+  }
+
+  std::string where() const {
+    if (const auto* s = solver(); s != nullptr && initialized_) {
+      return fmt::format("domain '{}' at t = {:.6e} s (cycle {})", o_.domain, s->time_s(),
+                         s->cycle());
+    }
+    return fmt::format("domain '{}'", o_.domain);
+  }
+
+  /// Scenario, cut, this domain's solver, its result file.
+  void prepare() {
+    hash_ = io::scenario_hash(o_.scenario);
+    model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
+    dec_ = std::make_unique<partition::Decomposition>(
+        partition::decompose(*model_, partition::Scheme::Layer));
+    dom_ =
+        std::make_unique<cosim::LayerDomain>(cosim::build_layer_domain(*dec_, *model_, o_.domain));
+    const auto& sub = solver()->model();
+    elements_ = static_cast<std::int64_t>(sub.element_count());
+
+    io::ResultWriterOptions wo;
+    wo.file_stem = o_.domain;  // DIR/domains/<domain>.h5, what solver/gather reads back
+    // A daemon may be killed by a failure elsewhere: keep at most a second of history unwritten.
+    wo.history_flush_wall_s = 1.0;
+    writer_ = std::make_unique<io::ResultWriter>(
+        (std::filesystem::path(o_.out_dir) / "domains").string(), sub, wo);
+    h5_path_ = writer_->h5_path();
+    recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *solver());
+
+    solver()->initialize();
+    initialized_ = true;
+  }
+
+  void connect() {
+    link_ = std::make_unique<transport::DaemonLink>(
+        o_.endpoint, transport::daemon_hello(o_.domain, hash_), o_.session);
+    tps_ = link_->coordinator_hello().ticks_per_second();
+    if (tps_ < 1) {
+      throw transport::ProtocolError(
+          "coordinator", fmt::format("the coordinator's Hello announces {} ticks per second; "
+                                     "expected >= 1",
+                                     tps_));
+    }
+    link_->send(register_message());
+    const wire::Setup setup = await_setup();
+    apply_setup(setup);
+    stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
+                                                     setup.step_ticks(), tps_);
+    stepper_->initialize();
+    run_wall0_ = Clock::now();
+  }
+
+  wire::Envelope register_message() const {
+    const auto& s = *solver();
+    const auto& sub = s.model();
+    wire::Envelope e;
+    auto* r = e.mutable_registration();
+    double dt = s.dt_s();
+    if (o_.max_step_s > 0.0) dt = std::min(dt, o_.max_step_s);
+    std::int64_t proposal = 0;  // 0: no limit (no deformable element)
+    if (std::isfinite(dt)) {
+      // LayerNetworkOptions' rule (layer_network.cpp), so both plan the same steps.
+      const double x = std::floor(o_.step_safety * dt * static_cast<double>(tps_));
+      if (!(x >= 1.0) || x > 4.0e18) {
+        throw ModelError(
+            fmt::format("the initial stable step {:.6e} s is not a whole number of "
+                        "ticks of 1/{} s (at least one)",
+                        dt, tps_));
+      }
+      proposal = static_cast<std::int64_t>(x);
+    }
+    r->set_stable_step_ticks(proposal);
+    r->set_stable_step_s(s.dt_s());
+    r->set_end_time_s(sub.controls.end_time_s);
+    r->set_end_time_ticks(static_cast<std::int64_t>(
+        std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
+    r->set_elements(elements_);
+    for (const auto& port : dom_->ports) {
+      auto* li = r->add_layer_interfaces();
+      li->set_index(port.index);
+      li->set_fine_side(port.fine_side);
+      for (const auto l : port.local) {
+        li->add_j_node_ids(sub.nodes.id[l]);
+        li->add_masses_kg(port.fine_side ? 0.0 : s.mass()[l]);
+        for (std::size_t d = 0; d < 3; ++d) li->add_positions_m(sub.nodes.x0[3 * l + d]);
+      }
+    }
+    return e;
+  }
+
+  wire::Setup await_setup() {
+    for (;;) {
+      auto m = link_->receive(o_.session.peer_timeout);
+      if (!m) continue;  // receive() itself throws when the coordinator is silent
+      if (m->has_setup()) return m->setup();
+      throw transport::ProtocolError(
+          "coordinator", fmt::format("expected the Setup answering the Register of domain '{}', "
+                                     "got a {}",
+                                     o_.domain, body_name(*m)));
+    }
+  }
+
+  void apply_setup(const wire::Setup& setup) {
+    if (setup.ticks_per_second() != tps_ || setup.step_ticks() < 1) {
+      throw transport::ProtocolError(
+          "coordinator",
+          fmt::format("Setup for domain '{}' with step {} ticks at {} ticks per "
+                      "second (Hello: {}); expected a step >= 1 at the Hello's tick",
+                      o_.domain, setup.step_ticks(), setup.ticks_per_second(), tps_));
+    }
+    for (auto& port : dom_->ports) {
+      const wire::LayerInterface* found = nullptr;
+      for (const auto& li : setup.layer_interfaces()) {
+        if (li.index() == port.index) found = &li;
+      }
+      if (found == nullptr || found->fine_side() != port.fine_side ||
+          found->partner() != port.partner) {
+        throw transport::ProtocolError(
+            "coordinator",
+            fmt::format("Setup for domain '{}' does not describe interface {} as this domain's cut "
+                        "does ({} side, partner '{}'): do both read the same scenario?",
+                        o_.domain, port.index, port.fine_side ? "fine" : "coarse", port.partner));
+      }
+      // As LayerNetwork: the owner's step on the fine side; the coarse side needs none.
+      if (port.fine_side) port.partner_step = found->partner_step_ticks();
+    }
+  }
+
+  static std::string body_name(const wire::Envelope& e) {
+    const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(e.body_case());
+    return field != nullptr ? field->name() : "empty Envelope";
+  }
+
+  void loop() {
+    using Wait = cosim::LayerStepper::Wait;
+    const auto service_every = std::max(o_.session.heartbeat_interval / 4, 1ms);
+    auto next_service = Clock::now() + service_every;
+    auto on_sample = [&] {
+      if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
+      recorder_->sample();
+      link_->keep_alive();
+      // Between waits (a fine domain takes several steps per message), read what arrived: the
+      // coordinator's heartbeats keep it alive here; other messages are delivered after advance().
+      if (const auto now = Clock::now(); now >= next_service) {
+        next_service = now + service_every;
+        while (auto m = link_->receive(0ms)) pending_.push_back(std::move(*m));
+      }
+    };
+    for (;;) {
+      while (!pending_.empty()) {
+        auto m = std::move(pending_.front());
+        pending_.pop_front();
+        deliver(m);
+      }
+      const Wait w = stepper_->advance(on_sample);
+      for (const auto& m : stepper_->take_outbox()) link_->send(to_envelope(m));
+      if (w == Wait::Finished) return;
+      if (w == Wait::None) continue;
+      const auto t0 = Clock::now();
+      auto m = link_->receive(o_.session.peer_timeout);
+      wait_s_ += seconds_since(t0);
+      if (m) deliver(*m);
+    }
+  }
+
+  void deliver(const wire::Envelope& e) {
+    auto m = to_layer_message(e);
+    if (!m) {
+      if (e.has_bye()) {
+        throw transport::ProtocolError(
+            "coordinator", fmt::format("the coordinator ended the session ({}) before domain '{}' "
+                                       "reached the end time",
+                                       e.bye().reason(), o_.domain));
+      }
+      throw transport::ProtocolError(
+          "coordinator",
+          fmt::format("unexpected {} during the run of domain '{}'", body_name(e), o_.domain));
+    }
+    try {
+      stepper_->deliver(*m);
+    } catch (const ModelError& x) {
+      throw transport::ProtocolError("coordinator", x.what());
+    }
+  }
+
+  void finish() {
+    recorder_->finish();
+    write_timing();
+    writer_->close();
+    wire::Envelope bye = transport::make_bye("end time reached");
+    auto* rep = bye.mutable_bye()->mutable_report();
+    const auto& s = *solver();
+    rep->set_cpu_seconds(cpu_seconds() - cpu0_);
+    rep->set_wait_seconds(wait_s_);
+    rep->set_wall_seconds(seconds_since(run_wall0_));
+    rep->set_cycles(s.cycle());
+    rep->set_dt_min_s(s.dt_min_s());
+    rep->set_elements(elements_);
+    rep->set_time_ticks(stepper_->time());
+    link_->send(bye);
+  }
+
+  void write_timing() {
+    const auto* s = solver();
+    writer_->write_timing(seconds_since(wall0_), 0.0,
+                          {{o_.domain, cpu_seconds() - cpu0_, s != nullptr ? s->cycle() : 0,
+                            s != nullptr ? s->dt_min_s() : 0.0, elements_}});
+  }
+
+  /// Reports the failure to the coordinator, best effort (it may be the one that is gone). Before
+  /// the session exists, a short handshake is tried so that the run stops at once.
+  void tell(const Failure& f) {
+    try {
+      if (!link_ && !hash_.empty()) {
+        auto quick = o_.session;
+        quick.handshake_timeout =
+            std::min(quick.handshake_timeout, std::chrono::milliseconds{2000});
+        link_ = std::make_unique<transport::DaemonLink>(
+            o_.endpoint, transport::daemon_hello(o_.domain, hash_), quick);
+      }
+      if (link_ && link_->open()) link_->send_error(f.code, f.text);
+    } catch (const std::exception&) {
+      // Nobody to tell: the exit code and the message on stderr say it.
+    }
+  }
+
+  void close_output_after_failure() {
+    if (!writer_ || !writer_->is_open()) return;
+    try {
+      recorder_->flush();
+      write_timing();
+    } catch (const std::exception&) {
+    }
+    try {
+      writer_->close();
+    } catch (const std::exception&) {
+    }
+  }
+
+  const DaemonOptions& o_;
+  Clock::time_point wall0_, run_wall0_;
+  double cpu0_ = 0.0;
+  double wait_s_ = 0.0;
+  std::string hash_;
+  std::int64_t tps_ = 0;
+  std::int64_t elements_ = 0;
+  bool initialized_ = false;
+  std::string h5_path_;
+  // Owners before users: the sub-models outlive the solver, the writer the recorder.
+  std::unique_ptr<model::Model> model_;
+  std::unique_ptr<partition::Decomposition> dec_;
+  std::unique_ptr<cosim::LayerDomain> dom_;
+  std::unique_ptr<io::ResultWriter> writer_;
+  std::unique_ptr<run::DomainRecorder> recorder_;
+  std::unique_ptr<cosim::LayerStepper> stepper_;
+  std::unique_ptr<transport::DaemonLink> link_;
+  std::deque<wire::Envelope> pending_;
+};
+
+}  // namespace
+
+DaemonResult run_daemon(const DaemonOptions& options) {
+  return Daemon(options).run();
+}
+
+}  // namespace crashlink::daemon

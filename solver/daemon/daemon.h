@@ -1,0 +1,62 @@
+#pragma once
+// crashlink-solver: one domain of a `layer` run (DESIGN.md §1, §2.7 "How to distribute layer",
+// §3) as a daemon talking to the coordinator over a DaemonLink (transport/daemon_link.h).
+//
+//   read the scenario, hash it (io::scenario_hash: the coordinator refuses another file),
+//   cut it (partition::decompose, Layer), build this domain (cosim::build_layer_domain),
+//   Solver::initialize(), open DIR/domains/<domain>.h5,
+//   connect: Hello (protocol version, scenario hash, domain) -> the coordinator's Hello,
+//   Register: per interface its J node ids, masses (owner: J's natural summed mass, ghost
+//     holder: 0) and positions; the initial stable step floor(min(dt, max_step) * safety * tps),
+//   Setup: this domain's fixed step and every partner's step,
+//   cosim::LayerStepper: advance() -> send its outbox as LayerDisplacement / LayerForce -> when
+//     it waits, block on the link and deliver(); keep_alive() every cycle,
+//   at the end: a last field state, /timing, Bye with a DomainReport (CPU, wait, cycles).
+//
+// Output: DIR/domains/<domain>.h5 and .xdmf (io::ResultWriter layout, the domain's sub-model,
+// sampled at the instants a mono run samples: run/domain_recorder.h), what solver/gather reads.
+//
+// Failures (exit codes: run/exit_codes.h): a guard failure (NumericalError), a model error, a
+// protocol violation or an internal error is reported to the coordinator as an Error (code, and a
+// message naming the domain, the time and the cycle); an Error from the coordinator, a silent
+// coordinator (PeerTimeoutError) or a socket failure ends the daemon. In every case the result
+// file is flushed and closed (what was sampled stays readable) and run_daemon returns non-zero.
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "transport/session.h"
+
+namespace crashlink::daemon {
+
+struct DaemonOptions {
+  std::string endpoint;  ///< the coordinator's (tcp://host:port, ipc://path, inproc://name)
+  std::string domain;    ///< the domain this daemon runs (the scenario's `domains:` name)
+  std::string scenario;  ///< scenario file (the same content as the coordinator's)
+  std::string out_dir = "out";
+  transport::SessionOptions session;  ///< heartbeat interval, peer and handshake timeouts
+  /// Step proposal sent in Register: floor(step_safety * min(dt, max_step_s) * ticks_per_second),
+  /// dt the solver's initial stable step (LayerNetworkOptions' rule, so both plan the same steps).
+  double step_safety = 1.0;
+  double max_step_s = 0.0;  ///< > 0: caps the proposal (how tests and studies impose a ratio)
+  /// Run as a thread of a bigger process (crashlink run --transport inproc): CPU time is this
+  /// thread's, not the process's.
+  bool in_process = false;
+  /// Set from outside (signal handler) to stop: checked every cycle; the coordinator is told.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+struct DaemonResult {
+  int exit_code = 0;    ///< run/exit_codes.h
+  std::string message;  ///< empty on success; else what happened (names the domain)
+  std::string result_h5;
+  std::int64_t cycles = 0;
+  double cpu_seconds = 0.0;
+  double wait_seconds = 0.0;
+  double wall_seconds = 0.0;
+};
+
+/// Runs the daemon to the end (or the first failure). Never throws.
+DaemonResult run_daemon(const DaemonOptions& options);
+
+}  // namespace crashlink::daemon

@@ -1,0 +1,92 @@
+#include "solver/run/domain_recorder.h"
+
+namespace crashlink::run {
+
+namespace {
+
+io::GlstatSample glstat(const integration::Solver& s) {
+  const auto& e = s.energy();
+  io::GlstatSample g;
+  g.time_s = s.time_s();
+  g.kinetic_energy_J = e.kinetic_J;
+  g.internal_energy_J = e.internal_J;
+  g.hourglass_energy_J = e.hourglass_J;
+  g.contact_energy_J = e.contact_J;
+  g.external_work_J = e.external_work_J;
+  g.total_energy_J = e.total_J();
+  g.energy_balance_error = e.balance_error();
+  return g;
+}
+
+}  // namespace
+
+DomainRecorder::DomainRecorder(io::ResultWriter& writer, const integration::Solver& solver)
+    : writer_(writer), solver_(solver) {}
+
+void DomainRecorder::sample() {
+  const auto& c = solver_.model().controls;
+  const double t = solver_.time_s();
+  if (t >= next_history_) {
+    write_history();
+    do next_history_ += c.history_interval_s;
+    while (c.history_interval_s > 0.0 && next_history_ <= t);
+  }
+  if (t >= next_field_) {
+    write_fields();
+    next_field_ = c.field_interval_s > 0.0 ? next_field_ + c.field_interval_s : c.end_time_s * 2.0;
+    while (next_field_ <= t) next_field_ += c.field_interval_s;
+  }
+}
+
+void DomainRecorder::finish() {
+  if (last_field_time_ != solver_.time_s()) write_fields();
+  writer_.flush();
+}
+
+void DomainRecorder::write_history() {
+  const auto& s = solver_;
+  probes_.resize(s.model().probes.size());
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const auto v = s.probe(s.model().probes[k]);
+    for (std::size_t d = 0; d < 3; ++d) {
+      probes_[k].displacement_m[d] = v.displacement_m[d];
+      probes_[k].velocity_m_s[d] = v.velocity_m_s[d];
+      probes_[k].acceleration_m_s2[d] = v.acceleration_m_s2[d];
+    }
+  }
+  contacts_.resize(s.contact_steps().size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    for (std::size_t d = 0; d < 3; ++d)
+      contacts_[k].force_N[d] = s.contact_steps()[k].resultant_N[d];
+  }
+  writer_.append_history(glstat(s), probes_, contacts_);
+}
+
+void DomainRecorder::write_fields() {
+  const auto& s = solver_;
+  const auto& m = s.model();
+  eps_p_.resize(m.parts.size());
+  von_mises_.resize(m.parts.size());
+  stress_.resize(m.parts.size());
+  io::FieldState f;
+  f.time_s = s.time_s();
+  f.displacement_m = s.displacement();
+  velocity_.resize(3 * m.nodes.count());
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+    const Vec3 v = s.node_velocity(i);
+    for (std::size_t d = 0; d < 3; ++d) velocity_[3 * i + d] = v[d];
+  }
+  f.velocity_m_s = velocity_;
+  for (std::size_t p = 0; p < m.parts.size(); ++p) {
+    const std::size_t ne = m.parts[p].element_count();
+    eps_p_[p].resize(ne);
+    von_mises_[p].resize(ne);
+    stress_[p].resize(6 * ne);
+    s.element_output(p, {von_mises_[p].data(), eps_p_[p].data(), stress_[p].data()});
+    f.parts.push_back({eps_p_[p], von_mises_[p], stress_[p]});
+  }
+  writer_.write_field_state(f);
+  last_field_time_ = s.time_s();
+}
+
+}  // namespace crashlink::run

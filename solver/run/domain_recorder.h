@@ -1,0 +1,49 @@
+#pragma once
+// Sampling of one domain's solver into its result file (docs/result-format.md), shared by the
+// mono run (run_single.h) and the solver daemons (solver/daemon/daemon.h), so that both sample at
+// the same requested instants: a history row at the first state t^n >= 0, interval, 2 interval,
+// ... (every state when the interval is 0) and a field state at the first state t^n >= 0,
+// field_interval, ... and at the end (first and last only when the interval is 0).
+//
+// Call sample() after every Solver::begin_cycle() (the state at t^n is complete there, solver.h)
+// and finish() once after the last one.
+#include <vector>
+
+#include "solver/integration/solver.h"
+#include "solver/io/result_writer.h"
+
+namespace crashlink::run {
+
+class DomainRecorder {
+ public:
+  /// `writer` (created for solver.model()) and `solver` must outlive the recorder.
+  DomainRecorder(io::ResultWriter& writer, const integration::Solver& solver);
+
+  /// The state at the solver's current t^n: a history row and/or a field state when due.
+  void sample();
+  /// At the normal end of the run: a last field state at the current time unless one was written
+  /// there already, then the history is flushed. Not after a guard failure (the state may not be
+  /// finite; call flush() then: what was sampled so far is finite).
+  void finish();
+  /// Writes the buffered history rows (H5Fflush).
+  void flush() { writer_.flush(); }
+
+  io::ResultWriter& writer() { return writer_; }
+
+ private:
+  void write_history();
+  void write_fields();
+
+  io::ResultWriter& writer_;
+  const integration::Solver& solver_;
+  double next_history_ = 0.0;
+  double next_field_ = 0.0;
+  double last_field_time_ = -1.0;
+  // Buffers kept between samples (no allocation per state).
+  std::vector<io::ProbeSample> probes_;
+  std::vector<io::ContactSample> contacts_;
+  std::vector<std::vector<double>> eps_p_, von_mises_, stress_;
+  std::vector<double> velocity_;
+};
+
+}  // namespace crashlink::run

@@ -1,0 +1,18 @@
+#pragma once
+// Exit codes of `crashlink`, `crashlink-solver` and `crashlink-coordinator` (docs/processes.md).
+// One table for the three, so that a launcher can tell from a child's code what happened.
+namespace crashlink::run {
+
+inline constexpr int kExitOk = 0;
+/// Bad input: command line, scenario file, unknown domain; also a daemon refused by the
+/// coordinator for another protocol version or another scenario (the fix is in the invocation).
+inline constexpr int kExitInput = 2;
+/// The guard stopped the run (a blow-up in a domain); the output up to then is kept and finite.
+inline constexpr int kExitNumerical = 3;
+/// A bug: an unexpected exception.
+inline constexpr int kExitInternal = 4;
+/// The run was stopped by another process: a daemon or the coordinator died, went silent,
+/// reported an error or broke the protocol; or a socket failed. The message names the culprit.
+inline constexpr int kExitPeer = 5;
+
+}  // namespace crashlink::run

@@ -1,0 +1,281 @@
+// The `layer` scheme over real processes and sockets (crashlink run --mode split|multi, or
+// crashlink-coordinator + crashlink-solver started by hand) and over inproc threads: the daemons
+// run the same LayerStepper as the in-process cosim::LayerNetwork, only the messages travel over
+// ZeroMQ (packed doubles, bit for bit), so the nodal displacements must be identical to it; split
+// must also reproduce mono at the same step to round-off (DESIGN.md §4: <= 1e-10 relative). Every
+// suite runs over tcp (ephemeral port read back), ipc and inproc.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "process_test_support.h"
+#include "solver/coordination/coordinator_run.h"
+#include "solver/cosim/layer_network.h"
+#include "solver/daemon/daemon.h"
+#include "solver/integration/solver.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/partition/decomposition.h"
+
+using namespace crashlink;
+using namespace crashlink::proc_test;
+using transport::Scheme;
+
+namespace {
+
+/// max |u - ref| over the nodes of a result file, ref indexed by global node (model order).
+struct Diff {
+  double max_abs = -1.0;  ///< -1: nothing compared
+  double scale = 0.0;     ///< max |ref| over the same nodes
+  std::size_t nodes = 0;
+  double rel() const { return scale > 0.0 ? max_abs / scale : max_abs; }
+};
+
+Diff compare(const LastState& s, const model::Model& m, const std::vector<double>& ref) {
+  Diff d;
+  if (!s.ok()) return d;
+  std::map<std::int64_t, std::size_t> index;
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) index[m.nodes.id[i]] = i;
+  d.max_abs = 0.0;
+  for (std::size_t i = 0; i < s.node_ids.size(); ++i) {
+    const auto it = index.find(s.node_ids[i]);
+    if (it == index.end()) return Diff{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double r = ref[3 * it->second + c];
+      d.scale = std::max(d.scale, std::abs(r));
+      d.max_abs = std::max(d.max_abs, std::abs(s.u[3 * i + c] - r));
+    }
+    ++d.nodes;
+  }
+  return d;
+}
+
+/// The reference: every domain's stepper in this thread.
+struct Reference {
+  std::vector<double> u;                 ///< [3 n_global] at the end
+  std::vector<double> mono_u;            ///< mono at the common step (split only)
+  std::vector<coordinator::Tick> steps;  ///< [domains] the plan
+  std::int64_t cycles = 0;               ///< cycles of the first domain
+  std::vector<std::int64_t> cycles_of;   ///< [domains]
+  std::vector<double> coupling_work_J;   ///< [domains] each solver's coupling work at the end
+};
+
+Reference reference(const model::Model& m, const cosim::LayerNetworkOptions& o) {
+  Reference r;
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  EXPECT_TRUE(net.run());
+  r.u = net.global_displacement();
+  r.steps = net.plan().step;
+  r.cycles = net.solver(0).cycle();
+  for (std::size_t k = 0; k < net.size(); ++k) {
+    r.coupling_work_J.push_back(net.solver(k).energy().coupling_work_J);
+    r.cycles_of.push_back(net.solver(k).cycle());
+  }
+  if (o.common_step) {
+    integration::Solver mono(m, "mono");
+    const double h = net.seconds(net.plan().step[0]);
+    mono.initialize();
+    mono.impose_step(h);
+    for (std::int64_t n = 0; n < r.cycles; ++n) {
+      mono.begin_cycle();
+      mono.end_cycle();
+      mono.impose_step(h);
+    }
+    r.mono_u = mono.displacement();
+  }
+  return r;
+}
+
+/// Runs the coordinator and one daemon per domain, as processes (tcp, ipc) or threads (inproc);
+/// daemon_extra[d] are extra crashlink-solver arguments. Returns the coordinator's exit code.
+int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem::path& out,
+               const std::string& mode,
+               const std::vector<std::pair<std::string, std::vector<std::string>>>& daemons,
+               std::string& log) {
+  if (scheme == Scheme::inproc) {
+    coordination::CoordinatorOptions co;
+    co.bind = transport::local_endpoint(Scheme::inproc, "test");
+    co.scenario = scenario;
+    co.out_dir = out.string();
+    co.common_step = mode == "split";
+    co.in_process = true;
+    co.log = nullptr;
+    coordination::CoordinatorResult cr;
+    std::thread c([&] { cr = coordination::run_coordinator(co); });
+    std::vector<daemon::DaemonResult> dr(daemons.size());
+    std::vector<std::thread> ds;
+    for (std::size_t k = 0; k < daemons.size(); ++k) {
+      ds.emplace_back([&, k] {
+        daemon::DaemonOptions d;
+        d.endpoint = co.bind;  // inproc: connecting before the bind is fine
+        d.domain = daemons[k].first;
+        d.scenario = scenario;
+        d.out_dir = out.string();
+        d.in_process = true;
+        const auto& x = daemons[k].second;
+        for (std::size_t i = 0; i + 1 < x.size(); i += 2) {
+          if (x[i] == "--max-step") d.max_step_s = std::stod(x[i + 1]);
+          if (x[i] == "--step-safety") d.step_safety = std::stod(x[i + 1]);
+        }
+        dr[k] = daemon::run_daemon(d);
+      });
+    }
+    for (auto& t : ds) t.join();
+    c.join();
+    log = cr.message;
+    for (const auto& d : dr) {
+      log += d.message;
+      EXPECT_EQ(d.exit_code, 0) << d.message;
+    }
+    return cr.exit_code;
+  }
+  std::string endpoint;
+  auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, mode, endpoint);
+  std::vector<std::unique_ptr<Child>> ds;
+  for (const auto& [name, extra] : daemons) {
+    ds.push_back(start_solver(endpoint, name, scenario, out, extra));
+  }
+  for (auto& d : ds) {
+    const auto st = d->wait(60s);
+    EXPECT_TRUE(st && exit_code(*st) == 0) << d->output();
+  }
+  const auto st = c->wait(20s);
+  log = c->output();
+  return st ? exit_code(*st) : -999;
+}
+
+/// The coordinator's interface history (DIR/coordinator.h5): one row per owner instant, and its
+/// link work is the work of the layer's force and moment on J, which the owner counts as its
+/// coupling work. Returns {link work, owner's coupling work} at the end.
+std::pair<double, double> interface_history(const std::filesystem::path& out, const model::Model& m,
+                                            const Reference& ref) {
+  const auto dec = partition::decompose(m, partition::Scheme::Layer);
+  EXPECT_EQ(dec.interfaces.size(), 1u);
+  if (dec.interfaces.size() != 1) return {0.0, 0.0};
+  const auto& itf = dec.interfaces[0];
+  const auto coarse = static_cast<std::size_t>(itf.coarse);
+  const std::string iface = "/coupling/" + dec.domains[static_cast<std::size_t>(itf.fine)].name +
+                            "-" + dec.domains[coarse].name;
+  const auto time = read_doubles((out / "coordinator.h5").string(), iface + "/time");
+  const auto work = read_doubles((out / "coordinator.h5").string(), iface + "/link_work");
+  EXPECT_EQ(time.size(), static_cast<std::size_t>(ref.cycles_of[coarse]) + 1) << iface;
+  EXPECT_EQ(work.size(), time.size()) << iface;
+  if (work.empty()) return {0.0, ref.coupling_work_J[coarse]};
+  const double owner = ref.coupling_work_J[coarse];
+  EXPECT_NEAR(work.back(), owner, 1e-9 * std::abs(owner) + 1e-15) << iface;
+  return {work.back(), owner};
+}
+
+class LayerProcesses : public ::testing::TestWithParam<Scheme> {
+ protected:
+  std::string scheme() const { return std::string(transport::scheme_name(GetParam())); }
+};
+
+/// `crashlink run --mode split --transport T` on `scenario`; compares every domain file, the
+/// gathered result.h5 and mono with the reference.
+void split_case(Scheme scheme, const std::string& label, const std::string& yaml,
+                const std::vector<std::string>& domains) {
+  const std::string t(transport::scheme_name(scheme));
+  const auto dir = fresh_dir("split-" + label + "-" + t);
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / (label + ".yaml"), yaml);
+  const auto out = dir / "out";
+  std::vector<std::string> argv{bin("crashlink"), "run", scenario, "--mode",     "split",
+                                "--transport",    t,     "--out",  out.string(), "--quiet",
+                                "--step-safety",  "0.9"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  const auto t0 = Clock::now();
+  Child run(argv);
+  const auto st = run.wait(90s);
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
+  ASSERT_EQ(exit_code(*st), 0) << run.output();
+  EXPECT_NE(run.output().find("coordinator: CPU"), std::string::npos) << run.output();
+
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.common_step = true;
+  o.step_safety = 0.9;
+  const Reference ref = reference(m, o);
+  double worst_net = 0.0, worst_mono = 0.0;
+  for (const auto& d : domains) {
+    const auto s = last_state((out / "domains" / (d + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << d;
+    const Diff net = compare(s, m, ref.u);
+    const Diff mono = compare(s, m, ref.mono_u);
+    ASSERT_GE(net.max_abs, 0.0) << d;
+    EXPECT_GT(net.scale, 0.0) << d;
+    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
+    EXPECT_LE(mono.rel(), 1e-10) << d;
+    worst_net = std::max(worst_net, net.rel());
+    worst_mono = std::max(worst_mono, mono.rel());
+  }
+  const auto [link_work, owner_work] = interface_history(out, m, ref);
+  const auto g = last_state((out / "result.h5").string());
+  const Diff gathered = compare(g, m, ref.u);
+  EXPECT_EQ(gathered.max_abs, 0.0) << "gathered result.h5";
+  std::printf(
+      "[measured] split over %s, %s: %lld cycles of %.4e s, %zu domains, wall %.2f s; max "
+      "|u - u_network| / max|u| = %.3e (domain files), %.3e (gathered result.h5, %zu nodes); "
+      "vs mono at the same step: %.3e; link work %.6e J (owner's coupling work %.6e J)\n",
+      t.c_str(), label.c_str(), static_cast<long long>(ref.cycles),
+      static_cast<double>(ref.steps[0]) * 1e-15, domains.size(), wall, worst_net, gathered.rel(),
+      gathered.nodes, worst_mono, link_work, owner_work);
+}
+
+}  // namespace
+
+TEST_P(LayerProcesses, SplitBarReproducesNetworkAndMono) {
+  split_case(GetParam(), "bar", bar_yaml(1.2e-2), {"fine", "coarse"});
+}
+
+TEST_P(LayerProcesses, SplitShellPlateReproducesNetworkAndMono) {
+  split_case(GetParam(), "plate", plate_yaml(4.0e-3), {"left", "right"});
+}
+
+// multi at ratio 2: the fine domain proposes 1 us, the coarse 2 us (--max-step, as
+// LayerNetworkOptions::proposal_s), so the plan is H = 2 h.
+TEST_P(LayerProcesses, MultiBarAtRatio2IsNetworkToTheBit) {
+  const auto dir = fresh_dir("multi-bar-" + scheme());
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
+  const auto out = dir / "out";
+  std::string log;
+  const int code =
+      run_pieces(GetParam(), scenario, out, "multi",
+                 {{"fine", {"--max-step", "1e-6"}}, {"coarse", {"--max-step", "2e-6"}}}, log);
+  ASSERT_EQ(code, 0) << log;
+
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.common_step = false;
+  o.proposal_s = {1e-6, 2e-6};  // solver order = domain order: fine, coarse
+  const Reference ref = reference(m, o);
+  ASSERT_EQ(ref.steps.size(), 2u);
+  EXPECT_EQ(ref.steps[1], 2 * ref.steps[0]) << "the plan is not at ratio 2";
+  double worst = 0.0;
+  for (const std::string d : {"fine", "coarse"}) {
+    const auto s = last_state((out / "domains" / (d + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << d;
+    const Diff net = compare(s, m, ref.u);
+    ASSERT_GE(net.max_abs, 0.0) << d;
+    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
+    worst = std::max(worst, net.rel());
+  }
+  const auto [link_work, owner_work] = interface_history(out, m, ref);
+  std::printf(
+      "[measured] multi over %s, bar at H/h = %lld/%lld ticks: max |u - u_network| / max|u| = "
+      "%.3e; link work %.6e J (owner's coupling work %.6e J)\n",
+      scheme().c_str(), static_cast<long long>(ref.steps[1]), static_cast<long long>(ref.steps[0]),
+      worst, link_work, owner_work);
+}
+
+INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,
+                         ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
+                         scheme_test_name);
