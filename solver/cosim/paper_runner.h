@@ -39,7 +39,7 @@
 //
 // Limits: translations only (a link node with rotary inertia, i.e. a shell node shared by both
 // domains, is refused: the Solver has no hook to impose a corrected angular acceleration); fixed
-// steps; integer ratio H/h (else ModelError, like MultirateRunner).
+// steps; integer ratio H/h (else ModelError).
 #include <cstddef>
 #include <cstdint>
 #include <functional>

@@ -56,7 +56,7 @@ void expect_error(const std::string& domains, const std::string& marker, const s
   }
 }
 
-TEST(ScenarioDomains, PartsMapToDomainsInFileOrder) {
+TEST(ScenarioDomains, EachPartLandsInItsDomainInFileOrder) {
   const auto m = parse_scenario(kScene + R"(domains:
   body: {parts: [plate, frame]}
   impactor:
