@@ -14,6 +14,7 @@
 #include "solver/core/errors.h"
 #include "solver/io/result_reader.h"
 #include "solver/signal/cfc_filter.h"
+#include "solver/signal/head_metrics.h"
 #include "solver/signal/hic.h"
 #include "solver/signal/sampling.h"
 #include "solver/signal/signal_csv.h"
@@ -44,6 +45,16 @@ std::string ms(double t_s) {
   return fmt::format("{:.3f}", 1e3 * t_s);
 }
 
+/// time_ms,accel_g of the filtered resultant (what `crashlink report` plots).
+void write_filtered_csv(const std::string& path, const signal::HeadMetrics& m) {
+  std::ofstream f(path);
+  if (!f) throw InputError(fmt::format("hic: --csv-out {}: cannot write the file", path));
+  f << "time_ms,accel_g\n";
+  for (std::size_t i = 0; i < m.time_s.size(); ++i)
+    f << fmt::format("{:.6f},{:.6g}\n", 1e3 * m.time_s[i], m.accel_g[i]);
+  if (!f) throw InputError(fmt::format("hic: --csv-out {}: write failed", path));
+}
+
 }  // namespace
 
 CLI::App* add_hic_command(CLI::App& app, HicOptions& options) {
@@ -58,6 +69,8 @@ CLI::App* add_hic_command(CLI::App& app, HicOptions& options) {
       ->check(CLI::IsMember({"1000", "600", "180", "60", "none"}));
   cmd->add_option("--window", options.window_ms, "15 | 36: print only HIC15 or HIC36")
       ->check(CLI::IsMember({15, 36}));
+  cmd->add_option("--csv-out", options.csv_out,
+                  "write the filtered resultant (time_ms,accel_g) to this CSV file");
   return cmd;
 }
 
@@ -100,62 +113,41 @@ int run_hic(const HicOptions& options, std::FILE* out) {
     h.time_s = std::move(s.time_s);
     h.channels.push_back(std::move(s.accel_g));
   }
-  for (const auto& ch : h.channels) signal::check_signal(h.time_s, ch, source);
-
   const std::string cfc_text = options.cfc.empty() ? (is_result ? "1000" : "none") : options.cfc;
   if (cfc_text != "none" && !signal::is_cfc_class(std::atoi(cfc_text.c_str()))) {
     throw InputError(fmt::format("hic: --cfc {}: use 1000, 600, 180, 60 or none", cfc_text));
   }
   const int cfc = cfc_text == "none" ? 0 : std::atoi(cfc_text.c_str());
-  const std::size_t n = h.time_s.size();
-  std::fprintf(out, "crashlink hic: %s: %zu samples, %s - %s ms\n", source.c_str(), n,
+  const double to_g = is_result ? 1.0 / signal::kStandardGravity_m_s2 : 1.0;
+  const signal::HeadMetrics m = signal::head_metrics(h.time_s, h.channels, to_g, cfc, source);
+  std::fprintf(out, "crashlink hic: %s: %zu samples, %s - %s ms\n", source.c_str(), h.time_s.size(),
                ms(h.time_s.front()).c_str(), ms(h.time_s.back()).c_str());
-  const signal::Sampling s = signal::sampling_of(h.time_s);
-  if (s.uniform()) {
-    std::fprintf(out, "sampling: uniform, step %.6g us (%.6g kHz)\n", 1e6 * s.mean_step_s,
-                 1e-3 / s.mean_step_s);
-  } else if (cfc != 0) {
-    // J211/1 filters uniformly sampled channels: resample every channel to the mean step.
-    std::vector<double> t;
-    for (auto& ch : h.channels) ch = signal::resample_linear(h.time_s, ch, s.mean_step_s, &t);
-    h.time_s = std::move(t);
+  if (m.max_step_s - m.min_step_s <= signal::Sampling::kUniformTolerance * m.mean_step_s) {
+    std::fprintf(out, "sampling: uniform, step %.6g us (%.6g kHz)\n", 1e6 * m.mean_step_s,
+                 1e-3 / m.mean_step_s);
+  } else if (m.resampled) {
     std::fprintf(out,
                  "sampling: non-uniform (steps %.6g - %.6g us); resampled linearly to a uniform "
                  "%.6g us (%zu samples) for the CFC filter\n",
-                 1e6 * s.min_step_s, 1e6 * s.max_step_s, 1e6 * s.mean_step_s, h.time_s.size());
+                 1e6 * m.min_step_s, 1e6 * m.max_step_s, 1e6 * m.mean_step_s, m.time_s.size());
   } else {
     std::fprintf(out, "sampling: non-uniform (steps %.6g - %.6g us), used as is\n",
-                 1e6 * s.min_step_s, 1e6 * s.max_step_s);
+                 1e6 * m.min_step_s, 1e6 * m.max_step_s);
   }
   if (cfc != 0) {
-    const double step = signal::sampling_of(h.time_s).mean_step_s;
-    for (auto& ch : h.channels) ch = signal::cfc_filter(ch, step, cfc);
     std::fprintf(out, "filter: CFC %d (SAE J211/1 4-pole phaseless Butterworth)\n", cfc);
   } else {
     std::fprintf(out, "filter: none\n");
   }
-
-  std::vector<double> a_g;
-  if (h.channels.size() == 3) {
-    std::vector<double> xyz(3 * h.time_s.size());
-    for (std::size_t i = 0; i < h.time_s.size(); ++i) {
-      for (std::size_t c = 0; c < 3; ++c) xyz[3 * i + c] = h.channels[c][i];
-    }
-    a_g = signal::resultant(xyz, 1.0 / signal::kStandardGravity_m_s2);
-  } else {
-    a_g = std::move(h.channels[0]);
-  }
-  const auto peak = std::max_element(a_g.begin(), a_g.end());
   std::fprintf(out, "%s = %.6g g at %s ms\n",
-               is_result ? "peak resultant acceleration" : "peak acceleration", *peak,
-               ms(h.time_s[static_cast<std::size_t>(peak - a_g.begin())]).c_str());
-  for (const auto& [window_ms, window_s] :
-       {std::pair{15, signal::kHic15Window_s}, std::pair{36, signal::kHic36Window_s}}) {
+               is_result ? "peak resultant acceleration" : "peak acceleration", m.peak_g,
+               ms(m.peak_time_s).c_str());
+  for (const auto& [window_ms, r] : {std::pair{15, m.hic15}, std::pair{36, m.hic36}}) {
     if (options.window_ms != 0 && options.window_ms != window_ms) continue;
-    const signal::HicResult r = signal::hic(h.time_s, a_g, window_s);
     std::fprintf(out, "HIC%d = %.1f (t1 = %s ms, t2 = %s ms)\n", window_ms, r.hic,
                  ms(r.t1_s).c_str(), ms(r.t2_s).c_str());
   }
+  if (!options.csv_out.empty()) write_filtered_csv(options.csv_out, m);
   std::fflush(out);
   return 0;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// `crashlink hic FILE [--probe NAME] [--cfc 1000|600|180|60|none] [--window 15|36]`
+// `crashlink hic FILE [--probe NAME] [--cfc 1000|600|180|60|none] [--window 15|36]
+//  [--csv-out F]`
 // (DESIGN.md §4): HIC15 and HIC36 (solver/signal/hic.h) of a head acceleration history.
 //
 // FILE is a CSV `time_s,accel_g` (solver/signal/signal_csv.h; the 1-D value is used as given) or
@@ -27,9 +28,10 @@ namespace crashlink::apps {
 
 struct HicOptions {
   std::string file;
-  std::string probe;  ///< result.h5 only
-  std::string cfc;    ///< "1000", "600", "180", "60", "none"; "" = default for the file kind
-  int window_ms = 0;  ///< 15 or 36; 0 = both
+  std::string probe;    ///< result.h5 only
+  std::string cfc;      ///< "1000", "600", "180", "60", "none"; "" = default for the file kind
+  int window_ms = 0;    ///< 15 or 36; 0 = both
+  std::string csv_out;  ///< if set: the filtered resultant written as time_ms,accel_g
 };
 
 /// Adds the `hic` subcommand to `app`, parsing into `options` (which must outlive the parse).

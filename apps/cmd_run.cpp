@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "apps/cmd_compare.h"
 #include "apps/cmd_hic.h"
 #include "solver/core/errors.h"
 #include "solver/io/scenario_reader.h"
@@ -31,11 +32,36 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "then fixed for the run")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  run->add_option("--reference", o.reference,
+                  "split/multi: also run this mode (mono) into OUT/reference and print the "
+                  "comparison table (crashlink compare)")
+      ->check(CLI::IsMember({"mono"}));
   add_session_flags(*run, o.session);
   return run;
 }
 
 int run_run(const RunCommandOptions& o) {
+  if (!o.reference.empty()) {
+    if (o.mode == "mono") {
+      throw InputError(
+          "run: --reference mono compares a coupled run with the mono one; use it with --mode "
+          "split or --mode multi");
+    }
+    RunCommandOptions coupled = o;
+    coupled.reference.clear();
+    if (const int rc = run_coupled(coupled); rc != 0) return rc;
+    RunCommandOptions ref = coupled;
+    ref.mode = o.reference;
+    ref.out = o.out + "/reference";
+    std::printf("\n");
+    if (const int rc = run_run(ref); rc != 0) return rc;
+    std::printf("\n");
+    CompareOptions c;
+    c.reference = ref.out + "/result.h5";
+    c.run = o.out + "/result.h5";
+    compare_runs(c);
+    return 0;
+  }
   if (o.mode != "mono") return run_coupled(o);
   const auto model = io::read_scenario(o.scenario);
   std::printf("crashlink run: %s (%zu nodes, %zu elements, end time %.4g s) -> %s\n",

@@ -1,13 +1,15 @@
 #pragma once
 // `crashlink run SCENARIO [--out DIR] [--mode mono|split|multi] [--coupling layer|paper]
 // [--transport ipc|tcp|inproc] [--quiet] [--heartbeat-ms N] [--timeout-ms N]
-// [--join-timeout-ms N] [--step-safety F]` (DESIGN.md §4): runs the scenario, shows progress,
-// prints the summary and, for every probe on a rigid body (a headform), HIC15 and HIC36 after CFC
-// 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
+// [--join-timeout-ms N] [--step-safety F] [--reference mono]` (DESIGN.md §4): runs the scenario,
+// shows progress, prints the summary and, for every probe on a rigid body (a headform), HIC15 and
+// HIC36 after CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
 //   mono: the whole model in this process (run/run_single.h).
 //   split | multi: the coordinator and one daemon per domain (apps/launcher.h), then the results
 //     gathered into DIR/result.h5; the summary adds the coordinator's share of the CPU time and
 //     the wall time against the sum of the CPU times.
+//   --reference mono (split | multi only): afterwards, the same scene in `mono` into
+//     DIR/reference/, then the paper's Table 1 of the two (`crashlink compare`, cmd_compare.h).
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -27,6 +29,8 @@ struct RunCommandOptions {
   /// split/multi: factor on every domain's initial stable step before the steps are fixed for
   /// the run (the stable step shrinks as the mesh deforms; a fixed step above it stops the run).
   double step_safety = 0.9;
+  /// "" or "mono": run the reference too and compare (split/multi only).
+  std::string reference;
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

@@ -1,10 +1,12 @@
-// crashlink: the user's command. Subcommands: run, hic, gather.
+// crashlink: the user's command. Subcommands: run, hic, gather, compare, report.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
+#include "apps/cmd_compare.h"
 #include "apps/cmd_gather.h"
 #include "apps/cmd_hic.h"
+#include "apps/cmd_report.h"
 #include "apps/cmd_run.h"
 #include "solver/core/errors.h"
 
@@ -17,6 +19,10 @@ int main(int argc, char** argv) {
   auto* hic = crashlink::apps::add_hic_command(app, hic_options);
   crashlink::apps::GatherOptions gather_options;
   auto* gather = crashlink::apps::add_gather_command(app, gather_options);
+  crashlink::apps::CompareOptions compare_options;
+  auto* compare = crashlink::apps::add_compare_command(app, compare_options);
+  crashlink::apps::ReportOptions report_options;
+  auto* report = crashlink::apps::add_report_command(app, report_options);
 
   try {
     app.parse(argc, argv);
@@ -27,6 +33,8 @@ int main(int argc, char** argv) {
     if (*run) return crashlink::apps::run_run(run_options);
     if (*hic) return crashlink::apps::run_hic(hic_options);
     if (*gather) return crashlink::apps::run_gather(gather_options);
+    if (*compare) return crashlink::apps::run_compare(compare_options);
+    if (*report) return crashlink::apps::run_report(report_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

@@ -1,0 +1,177 @@
+#include "apps/cmd_compare.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "apps/timing_reader.h"
+#include "solver/core/errors.h"
+#include "solver/io/result_reader.h"
+#include "solver/signal/head_metrics.h"
+
+namespace crashlink::apps {
+
+namespace {
+
+TimingRecord timing_of(const std::string& path) {
+  auto t = read_timing(path);
+  if (!t || t->domains.empty()) {
+    throw InputError(fmt::format(
+        "compare: {} has no /timing: not the result.h5 of a finished run (rerun it, or gather a "
+        "coupled run's files with `crashlink gather`)",
+        path));
+  }
+  return *t;
+}
+
+/// The head probe: the one named, or the reference's first rigid-body probe; nullopt if none.
+std::optional<std::string> head_probe(const std::string& path, const std::string& wanted) {
+  if (!wanted.empty()) return wanted;
+  io::ResultReader reader(path);
+  for (const auto& name : reader.probe_names()) {
+    if (reader.probe(name).kind == "rigid_body") return name;
+  }
+  return std::nullopt;
+}
+
+signal::HeadMetrics metrics_of(const std::string& path, const std::string& probe) {
+  io::ResultReader reader(path);
+  const io::ProbeHistory p = reader.probe(probe);
+  return signal::head_metrics_xyz(p.time_s, p.acceleration_m_s2, 1000,
+                                  fmt::format("{}, probe '{}'", path, probe));
+}
+
+double element_cycles_per_second(const TimingRecord& t) {
+  double sum = 0.0;
+  for (const auto& d : t.domains) {
+    if (d.dt_min_s > 0.0) sum += static_cast<double>(d.elements) / d.dt_min_s;
+  }
+  return sum;
+}
+
+double cpu_of(const TimingRecord& t) {
+  double sum = t.coordinator_cpu_seconds;
+  for (const auto& d : t.domains) sum += d.cpu_seconds;
+  return sum;
+}
+
+std::int64_t elements_of(const TimingRecord& t) {
+  std::int64_t sum = 0;
+  for (const auto& d : t.domains) sum += d.elements;
+  return sum;
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "compare", "the paper's Table 1 for two runs of a scene: CPU, gain, HIC difference");
+  cmd->add_option("reference", options.reference, "result.h5 of the reference (mono) run")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("run", options.run, "result.h5 of the run to compare (split / multi)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--probe", options.probe,
+                  "head probe (default: the reference's first rigid-body probe)");
+  return cmd;
+}
+
+Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
+  const TimingRecord ref = timing_of(options.reference);
+  const TimingRecord run = timing_of(options.run);
+  Comparison c;
+  c.cpu_reference_s = cpu_of(ref);
+  c.cpu_run_s = cpu_of(run);
+  c.coordinator_cpu_s = run.coordinator_cpu_seconds;
+  c.wall_reference_s = ref.wall_seconds;
+  c.wall_run_s = run.wall_seconds;
+  c.gain = c.cpu_run_s > 0.0 ? c.cpu_reference_s / c.cpu_run_s : 0.0;
+  const double ec_run = element_cycles_per_second(run);
+  c.ideal_gain = ec_run > 0.0 ? element_cycles_per_second(ref) / ec_run : 0.0;
+  c.wall_gain = c.wall_run_s > 0.0 ? c.wall_reference_s / c.wall_run_s : 0.0;
+  c.coordinator_share = c.cpu_run_s > 0.0 ? c.coordinator_cpu_s / c.cpu_run_s : 0.0;
+
+  // Columns: the reference's domains, the run's domains, coordinator, total.
+  std::vector<std::string> head{"", "reference"};
+  std::vector<std::string> elements{"elements", ""}, step{"critical step [s]", ""},
+      cycles{"cycles", ""}, cpu{"CPU [s]", ""};
+  auto add = [&](const io::DomainTiming& d, bool first_of_ref) {
+    if (!first_of_ref) head.push_back(d.name);
+    const std::size_t i = first_of_ref ? 1 : head.size() - 1;
+    for (auto* row : {&elements, &step, &cycles, &cpu}) row->resize(head.size());
+    elements[i] = fmt::format("{}", d.elements);
+    step[i] = fmt::format("{:.4g}", d.dt_min_s);
+    cycles[i] = fmt::format("{}", d.cycles);
+    cpu[i] = fmt::format("{:.2f}", d.cpu_seconds);
+  };
+  if (ref.domains.size() == 1) {
+    add(ref.domains.front(), true);
+  } else {  // a coupled reference: one column per domain
+    head.pop_back();
+    for (const auto& d : ref.domains) add(d, false);
+  }
+  const std::size_t first_run_column = head.size();
+  for (const auto& d : run.domains) add(d, false);
+  head.push_back("coordinator");
+  for (auto* row : {&elements, &step, &cycles, &cpu}) row->resize(head.size(), "-");
+  cpu.back() = fmt::format("{:.2f}", run.coordinator_cpu_seconds);
+  head.push_back("total");
+  elements.push_back(fmt::format("{}", elements_of(run)));
+  step.push_back("-");
+  cycles.push_back("-");
+  cpu.push_back(fmt::format("{:.2f}", c.cpu_run_s));
+
+  std::fprintf(out, "crashlink compare: reference %s\n                   run       %s\n\n",
+               options.reference.c_str(), options.run.c_str());
+  std::vector<std::size_t> width(head.size(), 0);
+  for (const auto* row : {&head, &elements, &step, &cycles, &cpu})
+    for (std::size_t i = 0; i < row->size(); ++i) width[i] = std::max(width[i], (*row)[i].size());
+  for (const auto* row : {&head, &elements, &step, &cycles, &cpu}) {
+    std::string line;
+    for (std::size_t i = 0; i < row->size(); ++i) {
+      if (i == first_run_column) line.append(" |");
+      line.append(i == 0 ? fmt::format("{:<{}}", (*row)[i], width[i])
+                         : fmt::format("  {:>{}}", (*row)[i], width[i]));
+    }
+    std::fprintf(out, "%s\n", line.c_str());
+  }
+  std::fprintf(out,
+               "\nCPU: reference %.2f s, run %.2f s (coordinator %.2f s = %.2f %% of it)\n"
+               "gain %.3f, ideal gain from element counts and steps %.3f: %.1f %% of ideal\n"
+               "wall: reference %.2f s, run %.2f s: wall-clock gain %.3f\n",
+               c.cpu_reference_s, c.cpu_run_s, c.coordinator_cpu_s, 100.0 * c.coordinator_share,
+               c.gain, c.ideal_gain, c.ideal_gain > 0.0 ? 100.0 * c.gain / c.ideal_gain : 0.0,
+               c.wall_reference_s, c.wall_run_s, c.wall_gain);
+
+  const auto probe = head_probe(options.reference, options.probe);
+  if (!probe) {
+    std::fprintf(out,
+                 "head metrics: the reference has no rigid-body probe (name one with --probe)\n");
+  } else {
+    const signal::HeadMetrics a = metrics_of(options.reference, *probe);
+    const signal::HeadMetrics b = metrics_of(options.run, *probe);
+    c.has_head = true;
+    c.hic15_reference = a.hic15.hic;
+    c.hic15_run = b.hic15.hic;
+    c.hic15_difference = a.hic15.hic > 0.0 ? (b.hic15.hic - a.hic15.hic) / a.hic15.hic : 0.0;
+    c.peak_g_reference = a.peak_g;
+    c.peak_g_run = b.peak_g;
+    auto rel = [](double x, double ref_value) {
+      return ref_value != 0.0 ? 100.0 * (x - ref_value) / ref_value : 0.0;
+    };
+    std::fprintf(out,
+                 "head '%s' (CFC 1000): HIC15 %.1f vs %.1f (%+.2f %%), HIC36 %.1f vs %.1f "
+                 "(%+.2f %%), peak %.1f g vs %.1f g (%+.2f %%)\n",
+                 probe->c_str(), a.hic15.hic, b.hic15.hic, 100.0 * c.hic15_difference, a.hic36.hic,
+                 b.hic36.hic, rel(b.hic36.hic, a.hic36.hic), a.peak_g, b.peak_g,
+                 rel(b.peak_g, a.peak_g));
+  }
+  std::fflush(out);
+  return c;
+}
+
+}  // namespace crashlink::apps

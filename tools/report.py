@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""Report PNGs of a crashlink result (called by `crashlink report RESULT.h5 --out DIR`).
+
+    report.py RESULT.h5 OUTDIR [--head HEAD.csv --hic HIC --t1 T1_MS --t2 T2_MS --probe NAME]
+
+HEAD.csv (time_ms,accel_g) is the head's resultant after CFC 1000, written by the C++ side
+(solver/signal/head_metrics.h: one filter implementation); HIC, T1, T2 its HIC15 and window.
+Writes, each only when the file holds the data:
+  head_acceleration.png  acceleration (g) against time (ms), HIC15 window shaded, value written
+  energy.png             glstat energies (J) and the energy balance error (%)
+  interface_drift.png    /coupling/<interface>/displacement_gap (m) and velocity_jump (m/s)
+  contact_forces.png     |force| (kN) of every /history/contacts/<name>
+and prints the path of each file written. Needs python3-matplotlib and python3-h5py (Debian).
+"""
+import argparse
+import os
+import sys
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    print(path)
+
+
+def head_plot(args, out, title):
+    data = np.loadtxt(args.head, delimiter=",", skiprows=1, ndmin=2)
+    t, a = data[:, 0], data[:, 1]
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(t, a, lw=1.2, label=f"probe '{args.probe}', CFC 1000")
+    if args.t2 > args.t1:
+        ax.axvspan(args.t1, args.t2, color="tab:orange", alpha=0.25,
+                   label=f"HIC15 window {args.t1:.2f}-{args.t2:.2f} ms")
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("resultant acceleration [g]")
+    ax.set_title(f"{title}: HIC15 = {args.hic:.1f}, peak {a.max():.1f} g")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    save(fig, os.path.join(out, "head_acceleration.png"))
+
+
+def energy_plot(f, out, title):
+    g = f["history/glstat"]
+    t = g["time"][:] * 1e3
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True,
+                                 gridspec_kw={"height_ratios": [3, 1]})
+    for key in ("kinetic_energy", "internal_energy", "hourglass_energy", "contact_energy",
+                "external_work", "total_energy"):
+        if key in g:
+            ax.plot(t, g[key][:], lw=1.8 if key == "total_energy" else 1.0,
+                    label=key.replace("_", " "))
+    ax.set_ylabel("energy [J]")
+    ax.set_title(f"{title}: energy balance")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    bx.plot(t, 100.0 * g["energy_balance_error"][:], color="k", lw=1.0)
+    bx.set_ylabel("balance error [%]")
+    bx.set_xlabel("time [ms]")
+    bx.grid(alpha=0.3)
+    save(fig, os.path.join(out, "energy.png"))
+
+
+def drift_plot(f, out, title):
+    if "coupling" not in f or len(f["coupling"]) == 0:
+        return
+    fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    for name, g in f["coupling"].items():
+        label = g.attrs.get("name", name)
+        label = label.decode() if isinstance(label, bytes) else str(label)
+        t = g["time"][:] * 1e3
+        if "displacement_gap" in g:
+            ax.plot(t, g["displacement_gap"][:], lw=1.0, label=label)
+        if "velocity_jump" in g:
+            bx.plot(t, g["velocity_jump"][:], lw=1.0, label=label)
+        if "link_work" in g:
+            cx.plot(t, g["link_work"][:], lw=1.0, label=f"{label}: link work")
+        if "drift_work" in g:
+            cx.plot(t, g["drift_work"][:], lw=1.0, ls="--", label=f"{label}: drift work")
+    ax.set_ylabel("displacement gap [m]")
+    ax.set_title(f"{title}: interface drift (layer: J is one set of dofs, gap 0 by construction)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    bx.set_ylabel("velocity jump [m/s]")
+    bx.grid(alpha=0.3)
+    cx.set_ylabel("coupling work [J]")
+    cx.set_xlabel("time [ms]")
+    cx.grid(alpha=0.3)
+    cx.legend(fontsize=8)
+    save(fig, os.path.join(out, "interface_drift.png"))
+
+
+def contact_plot(f, out, title):
+    if "history/contacts" not in f or len(f["history/contacts"]) == 0:
+        return
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for name, g in f["history/contacts"].items():
+        label = g.attrs.get("name", name)
+        label = label.decode() if isinstance(label, bytes) else str(label)
+        ax.plot(g["time"][:] * 1e3, np.linalg.norm(g["force"][:], axis=1) * 1e-3, lw=1.0,
+                label=label)
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("contact force |F| [kN]")
+    ax.set_title(f"{title}: contact forces")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    save(fig, os.path.join(out, "contact_forces.png"))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("result")
+    p.add_argument("out")
+    p.add_argument("--head")
+    p.add_argument("--probe", default="")
+    p.add_argument("--hic", type=float, default=0.0)
+    p.add_argument("--t1", type=float, default=0.0)
+    p.add_argument("--t2", type=float, default=0.0)
+    args = p.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    with h5py.File(args.result, "r") as f:
+        title = os.path.basename(os.path.dirname(os.path.abspath(args.result))) or args.result
+        if args.head:
+            head_plot(args, args.out, title)
+        energy_plot(f, args.out, title)
+        drift_plot(f, args.out, title)
+        contact_plot(f, args.out, title)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
