@@ -1,8 +1,9 @@
-// crashlink: the user's command. Subcommands: run, hic, gather, compare, report.
+// crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
+#include "apps/cmd_advise.h"
 #include "apps/cmd_compare.h"
 #include "apps/cmd_gather.h"
 #include "apps/cmd_hic.h"
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
   auto* compare = crashlink::apps::add_compare_command(app, compare_options);
   crashlink::apps::ReportOptions report_options;
   auto* report = crashlink::apps::add_report_command(app, report_options);
+  crashlink::apps::AdviseOptions advise_options;
+  auto* advise = crashlink::apps::add_advise_command(app, advise_options);
 
   try {
     app.parse(argc, argv);
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
     if (*gather) return crashlink::apps::run_gather(gather_options);
     if (*compare) return crashlink::apps::run_compare(compare_options);
     if (*report) return crashlink::apps::run_report(report_options);
+    if (*advise) return crashlink::apps::run_advise(advise_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

@@ -552,6 +552,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       if (viscous) store(q, bq_all);
     }
     for (int l = 0; l < nl; ++l) {
+      if (step.element_dt_s) step.element_dt_s[eid[l]] = dt_e[l];
       if (dt_e[l] < res.dt_stable_s) {
         res.dt_stable_s = dt_e[l];
         res.critical_element = static_cast<std::int64_t>(eid[l]);

@@ -625,6 +625,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       e_int += ework[l];
       e_hg += ehg[l];
       if constexpr (kDamped) e_damp += edamp[l] * 0.25 * (h[0][l] + h_new[0][l]) * A[l];
+      if (step.element_dt_s) step.element_dt_s[b0 + l] = dte[l];
       if (dte[l] < dt_min) {
         dt_min = dte[l];
         crit = static_cast<std::int64_t>(b0 + l);

@@ -230,6 +230,10 @@ void Solver::compute_forces(double dt) {
     auto& rt = parts_[p];
     const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
     elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic};
+    if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
+      rt.element_dt_s.assign(part.element_count(), 0.0);
+      step.element_dt_s = rt.element_dt_s.data();
+    }
     if (auto* hs = std::get_if<elements::Hex8State>(&rt.state)) {
       rt.last = elements::hex8_internal_forces(part, mat, *hs, nv, step);
     } else if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {

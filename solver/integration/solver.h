@@ -32,6 +32,9 @@ struct PartRuntime {
   double internal_energy_J = 0.0;
   double hourglass_energy_J = 0.0;
   double damping_energy_J = 0.0;  ///< stiffness-proportional damping work, part of internal
+  /// [ne] each element's stable step at the last force computation (no safety factor); filled
+  /// only after Solver::record_element_steps(true).
+  std::vector<double> element_dt_s;
 };
 
 /// A kinematic sample of one probe at t^n.
@@ -126,6 +129,9 @@ class Solver {
   ProbeValue probe(const model::Probe& p) const;
   const std::vector<RigidBodyState>& rigid_bodies() const { return bodies_; }
   const std::vector<PartRuntime>& parts() const { return parts_; }
+  /// Keep every element's stable step in PartRuntime::element_dt_s (from the next force
+  /// computation: call before initialize() for the initial steps). For analysis (`advise`).
+  void record_element_steps(bool on) { record_element_steps_ = on; }
   /// Element output of part p (von Mises, eps_p, stress); rigid parts give zeros.
   void element_output(std::size_t p, const elements::ElementOutput& out) const;
   /// Total mass of the model [kg] (nodes + rigid bodies).
@@ -190,6 +196,7 @@ class Solver {
   double time_s_ = 0.0;
   std::int64_t cycle_ = 0;
   double dt_ = 0.0, dt_prev_ = 0.0, dt_min_ = 0.0, dt_stable_ = 0.0;
+  bool record_element_steps_ = false;
   std::size_t critical_part_ = 0;
   std::int64_t critical_local_ = -1;
   bool begun_ = false;

@@ -1,0 +1,133 @@
+#include "apps/cmd_advise.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "solver/cosim/split_advice.h"
+#include "solver/io/scenario_reader.h"
+
+namespace crashlink::apps {
+
+namespace {
+
+constexpr int kBins = 12;  ///< histogram bins, log-spaced over the model's range of steps
+
+std::string histogram(const std::vector<double>& dt, double lo, double hi) {
+  std::vector<long long> count(kBins, 0);
+  const double span = std::log(hi / lo);
+  for (double d : dt) {
+    int b = span > 0.0 ? static_cast<int>(std::log(d / lo) / span * kBins) : 0;
+    count[static_cast<std::size_t>(std::clamp(b, 0, kBins - 1))]++;
+  }
+  const long long top = *std::max_element(count.begin(), count.end());
+  std::string bars;
+  static const char* kLevels[] = {" ", ".", ":", "|", "#"};
+  for (long long c : count) {
+    // 0: none; 1-4: up to a quarter, a half, three quarters, all of the fullest bin.
+    const double share = static_cast<double>(c) / static_cast<double>(top);
+    const int level = c == 0 ? 0 : std::min(4, 1 + static_cast<int>(4.0 * share - 1e-9));
+    bars.append(kLevels[level]);
+  }
+  return bars;
+}
+
+}  // namespace
+
+CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "advise", "element steps per part and the two-domain split with the best predicted gain");
+  cmd->add_option("scenario", options.scenario, "scenario YAML file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--step-safety", options.step_safety,
+                  "the coupled run's factor on the domains' initial steps")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  return cmd;
+}
+
+int run_advise(const AdviseOptions& options, std::FILE* out) {
+  const auto model = io::read_scenario(options.scenario);
+  const auto a = cosim::advise_split(model, options.step_safety);
+  std::fprintf(out, "crashlink advise: %s (%zu elements, %lld deformable)\n\n", model.name.c_str(),
+               model.element_count(), a.deformable_elements);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  std::size_t name_width = 4;
+  for (const auto& p : a.parts) {
+    name_width = std::max(name_width, p.name.size());
+    if (p.dt_s.empty()) continue;
+    lo = std::min(lo, p.min_s);
+    hi = std::max(hi, p.max_s);
+  }
+  std::fprintf(out,
+               "element stable steps x dt_scale %.3g [s]; histogram on %d log bins %.3g - %.3g s\n",
+               model.controls.dt_scale, kBins, lo, hi);
+  std::fprintf(out, "%-*s  %8s  %10s  %10s  %10s  %s\n", static_cast<int>(name_width), "part",
+               "elements", "min", "median", "max", "histogram (density: . : | #)");
+  for (const auto& p : a.parts) {
+    if (p.rigid) {
+      std::fprintf(out, "%-*s  %8s  rigid: no step\n", static_cast<int>(name_width), p.name.c_str(),
+                   "-");
+      continue;
+    }
+    std::fprintf(out, "%-*s  %8zu  %10.4g  %10.4g  %10.4g  [%s]\n", static_cast<int>(name_width),
+                 p.name.c_str(), p.dt_s.size(), p.min_s, p.median_s, p.max_s,
+                 histogram(p.dt_s, lo, hi).c_str());
+  }
+  std::fprintf(out, "mono: step %.4g s for all %lld deformable elements\n\n", a.dt_mono_s,
+               a.deformable_elements);
+
+  auto describe = [&](const cosim::SplitCandidate& c) {
+    if (!c.refused.empty()) return fmt::format("impossible: {}", c.refused);
+    std::string s;
+    for (std::size_t k = 0; k < c.domain_names.size(); ++k) {
+      s.append(fmt::format("{}{} {} el. at {:.4g} s", k ? ", " : "", c.domain_names[k],
+                           c.deformable_elements[k], c.dt_s[k]));
+    }
+    std::string sampled;
+    if (c.sampled_gain > 0.0) {
+      sampled = fmt::format("; timed sample over {:.3g} ms: gain {:.3f}",
+                            1e3 * c.sample_simulated_s, c.sampled_gain);
+    }
+    return fmt::format("predicted gain {:.3f} ({}){}", c.predicted_gain, s, sampled);
+  };
+  std::fprintf(
+      out,
+      "two-domain splits (set up as `multi` runs them: `layer` cut, step safety %.3g, nested "
+      "steps; gain = element-cycles of mono / of the split):\n",
+      options.step_safety);
+  for (std::size_t i = 0; i < a.candidates.size(); ++i) {
+    const auto& c = a.candidates[i];
+    std::string parts;
+    for (const auto& n : c.fine_parts) parts.append(parts.empty() ? n : ", " + n);
+    std::fprintf(out, "%s fine = [%s]: %s\n", static_cast<int>(i) == a.best ? "*" : " ",
+                 parts.c_str(), describe(c).c_str());
+  }
+  if (a.has_scenario_split) {
+    std::fprintf(out, "\nthe scenario's own domains: %s\n", describe(a.scenario).c_str());
+  }
+  if (a.best >= 0) {
+    const auto& b = a.candidates[static_cast<std::size_t>(a.best)];
+    std::string fine, coarse;
+    for (const auto& n : b.fine_parts) fine.append(fine.empty() ? n : ", " + n);
+    for (const auto& p : model.parts) {
+      if (std::find(b.fine_parts.begin(), b.fine_parts.end(), p.name) != b.fine_parts.end())
+        continue;
+      coarse.append(coarse.empty() ? p.name : ", " + p.name);
+    }
+    std::fprintf(out,
+                 "\nbest: predicted gain %.3f from element counts and steps, %.3f from the timed "
+                 "sample (neither counts the coordinator's share); in the scenario:\ndomains:\n  "
+                 "fine: {parts: [%s]}\n  coarse: {parts: [%s]}\n",
+                 b.predicted_gain, b.sampled_gain, fine.c_str(), coarse.c_str());
+  } else {
+    std::fprintf(out, "\nno two-domain split is possible or useful for this model\n");
+  }
+  std::fflush(out);
+  return 0;
+}
+
+}  // namespace crashlink::apps

@@ -1,0 +1,60 @@
+#pragma once
+// Which split into two domains pays (issue #5, `crashlink advise`; the paper's conclusion: "the
+// choice of decomposition is decisive"). From the scenario alone, before any run:
+//  * every element's initial stable step (the kernels' own dt_e, times controls.dt_scale),
+//    summarised per part (min, median, max and a histogram on log-spaced bins);
+//  * for each threshold between the parts' minimum steps, the split {parts below} | {the rest},
+//    cut and set up exactly as a `multi` run does (cosim::LayerNetwork: the `layer` cut moves
+//    contact surfaces and link layers into the fine domain; the domains' initial steps include
+//    the contact springs; step safety, then coordinator::nested_steps), with the predicted CPU
+//    gain over mono
+//        gain = (N / dt_mono) / sum_k (N_k / dt_k)
+//    N the deformable elements (rigid ones cost nothing per cycle), dt_mono mono's initial step,
+//    dt_k each domain's planned step. Every element is assumed to cost the same per cycle and the
+//    coordinator nothing: this is the ideal gain of `crashlink compare`;
+//  * and, for the best split and the scenario's own, the gain measured on a timed sample: mono
+//    and the coupled domains (in one thread, cosim::LayerNetwork, no transport) each advance the
+//    same short simulated time from t = 0, CPU time compared (median of 3 alternating pairs). It
+//    includes what the element count leaves out: the contacts (all in the fine domain under
+//    `layer`), the hex/shell cost difference, the coupling's own work.
+#include <string>
+#include <vector>
+
+#include "solver/model/model.h"
+
+namespace crashlink::cosim {
+
+struct PartSteps {
+  std::string name;
+  bool rigid = false;
+  std::vector<double> dt_s;  ///< [elements] initial stable step x dt_scale [s]; empty if rigid
+  double min_s = 0.0, median_s = 0.0, max_s = 0.0;
+};
+
+struct SplitCandidate {
+  std::vector<std::string> fine_parts;  ///< the fine domain's parts (as written); rest: coarse
+  std::vector<std::string> domain_names;
+  std::vector<long long> deformable_elements;  ///< [domains] after the cut (moved ones included)
+  std::vector<double> dt_s;                    ///< [domains] planned step of the run [s]
+  double predicted_gain = 0.0;
+  std::string refused;              ///< non-empty: the cut is impossible (the ModelError's message)
+  double sampled_gain = 0.0;        ///< mono CPU / coupled CPU over the sample; 0: not sampled
+  double sample_simulated_s = 0.0;  ///< simulated time of each sample run [s]
+};
+
+struct SplitAdvice {
+  std::vector<PartSteps> parts;  ///< scenario order
+  long long deformable_elements = 0;
+  double dt_mono_s = 0.0;  ///< mono's initial step (elements and contact springs, x dt_scale)
+  std::vector<SplitCandidate> candidates;  ///< thresholds in increasing step
+  int best = -1;                           ///< index of the largest predicted gain, -1: none
+  SplitCandidate scenario;  ///< the scenario's own `domains:` (empty fine_parts if none)
+  bool has_scenario_split = false;
+};
+
+/// step_safety: the coupled run's factor on the domains' initial steps (`--step-safety`);
+/// sample_base_periods: length of the timed sample in coarse steps (0: no sample).
+SplitAdvice advise_split(const model::Model& global, double step_safety,
+                         int sample_base_periods = 40);
+
+}  // namespace crashlink::cosim
