@@ -24,6 +24,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def name_of(group, default):
+    """A group's user name (attribute "name", written by crashlink), else its link name."""
+    label = group.attrs.get("name", default)
+    return label.decode() if isinstance(label, bytes) else str(label)
+
+
 def save(fig, path):
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -73,8 +79,7 @@ def drift_plot(f, out, title):
         return
     fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     for name, g in f["coupling"].items():
-        label = g.attrs.get("name", name)
-        label = label.decode() if isinstance(label, bytes) else str(label)
+        label = name_of(g, name)
         t = g["time"][:] * 1e3
         if "displacement_gap" in g:
             ax.plot(t, g["displacement_gap"][:], lw=1.0, label=label)
@@ -102,8 +107,7 @@ def contact_plot(f, out, title):
         return
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for name, g in f["history/contacts"].items():
-        label = g.attrs.get("name", name)
-        label = label.decode() if isinstance(label, bytes) else str(label)
+        label = name_of(g, name)
         ax.plot(g["time"][:] * 1e3, np.linalg.norm(g["force"][:], axis=1) * 1e-3, lw=1.0,
                 label=label)
     ax.set_xlabel("time [ms]")

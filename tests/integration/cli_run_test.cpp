@@ -2,26 +2,14 @@
 // result.h5 with the contact history, and HIC15/HIC36 printed for the headform probe.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "solver/io/result_reader.h"
+#include "tests/integration/shell_command.h"
 
-namespace {
-
-std::string run_command(const std::string& cmd, int& status) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), p)) out += buf.data();
-  status = pclose(p);
-  return out;
-}
-
-}  // namespace
+using crashlink::testing::run_command;
 
 TEST(CliRun, HeadformOnPlatePrintsSummaryAndHic) {
   const auto dir = std::filesystem::temp_directory_path() / "crashlink_cli_run";

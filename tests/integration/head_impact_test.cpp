@@ -14,25 +14,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "solver/io/result_reader.h"
+#include "tests/integration/shell_command.h"
 
 namespace {
 
-std::string run_command(const std::string& cmd, int& status) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), p)) out += buf.data();
-  status = pclose(p);
-  return out;
-}
+using crashlink::testing::run_command;
 
 /// The number after `key` in `text` (the first occurrence after `from`), NaN if absent.
 double number_after(const std::string& text, const std::string& key, std::size_t from = 0) {

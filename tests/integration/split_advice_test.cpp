@@ -6,13 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
+#include "tests/integration/shell_command.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;
@@ -70,14 +70,12 @@ TEST(SplitAdvice, PredictedGainIsTheElementCycleRatioOfTheRunsPlan) {
 }
 
 TEST(SplitAdvice, CommandOnTheHeadImpactSceneNamesTheWiper) {
-  std::string out;
-  const std::string cmd = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink advise " +
-                          CRASHLINK_SOURCE_DIR + "/scenarios/head_impact_small.yaml 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), p)) out += buf.data();
-  ASSERT_EQ(pclose(p), 0) << out;
+  int status = -1;
+  const std::string out =
+      run_command(std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink advise " +
+                      CRASHLINK_SOURCE_DIR + "/scenarios/head_impact_small.yaml",
+                  status);
+  ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("wiper_bar"), std::string::npos) << out;
   EXPECT_NE(out.find("the scenario's own domains: predicted gain"), std::string::npos) << out;
   const auto best = out.find("best: predicted gain ");
