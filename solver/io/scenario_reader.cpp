@@ -67,6 +67,32 @@ void read_controls(const YamlNode& c, model::Controls& out) {
   out.gravity_m_s2 = c.vec3_or("gravity", {0.0, 0.0, 0.0});
 }
 
+namespace {
+
+/// `coupling: {interface_damping: {ratio, layers}}` (docs/scenario-format.md "coupling"):
+/// options of the coupling between domains, so it needs a `domains` section.
+void read_coupling(const YamlNode& c, ScenarioBuild& b) {
+  c.expect_keys({"interface_damping"});
+  if (b.model.domains.empty())
+    c.fail(
+        "has no effect without a `domains` section (a single-domain run has no interface); "
+        "add `domains` or remove `coupling`");
+  if (auto d = c.optional("interface_damping")) {
+    d->expect_keys({"ratio", "layers"});
+    auto& out = b.model.coupling.interface_damping;
+    const auto ratio = d->required("ratio", "fraction of critical damping, e.g. 0.06");
+    out.ratio = ratio.non_negative();
+    if (out.ratio > 0.5)
+      ratio.fail(
+          fmt::format("{} exceeds 0.5: the stable step would fall below 0.62 of the undamped "
+                      "one; use e.g. 0.06",
+                      out.ratio));
+    if (auto l = d->optional("layers")) out.layers = l->positive_int();
+  }
+}
+
+}  // namespace
+
 }  // namespace detail
 
 model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages) {
@@ -82,7 +108,7 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
     root.fail("a scenario is a mapping of sections (name, controls, materials, parts, ...)");
   root.expect_keys({"name", "description", "controls", "materials", "parts", "node_sets",
                     "boundary", "prescribed_velocity", "loads", "initial_velocity", "rigid_bodies",
-                    "contacts", "probes", "domains"});
+                    "contacts", "probes", "domains", "coupling"});
 
   detail::ScenarioBuild b;
   b.file = name_for_messages;
@@ -105,6 +131,7 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
   if (auto s = root.optional("contacts")) detail::read_contacts(*s, b);
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);
+  if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
 
   try {
     model::validate(b.model);

@@ -99,6 +99,16 @@ void validate(const Model& m) {
             fmt::format("rigid body '{}': part '{}' has material '{}' which is not rigid", rb.name,
                         m.parts[static_cast<std::size_t>(pi)].name, mat.name));
     }
+  const auto& idamp = m.coupling.interface_damping;
+  if (!(idamp.ratio >= 0.0 && idamp.ratio <= 0.5))
+    throw ModelError(fmt::format(
+        "coupling: interface damping ratio {} outside [0, 0.5]; give the fraction of critical "
+        "damping at the element's highest frequency, e.g. 0.06 (0: off)",
+        idamp.ratio));
+  if (idamp.layers < 1)
+    throw ModelError(
+        fmt::format("coupling: interface damping over {} element layers; give at least 1 (e.g. 3)",
+                    idamp.layers));
   if (!(m.controls.end_time_s > 0.0))
     throw ModelError(fmt::format("controls: end time {} s must be > 0", m.controls.end_time_s));
   if (!(m.controls.dt_scale > 0.0))

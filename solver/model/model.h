@@ -146,6 +146,22 @@ struct Domain {
   std::vector<int> parts;
 };
 
+/// Damping confined to the element layers around every `layer` interface (DESIGN.md §2.7: the
+/// coupling study's stabiliser for 2-D/3-D; docs/multirate.md "Long-run stability"). The layer
+/// decomposition (solver/partition) sets element_damping_ratio = max(own, ratio) on every element
+/// within `layers` element layers of an interface's far nodes J, on both sides (the moved layer is
+/// the fine side's first). Stiffness-proportional, like Part::damping_ratio. ratio 0: off; the
+/// `paper` scheme and single-domain runs ignore it.
+struct InterfaceDamping {
+  double ratio = 0.0;  ///< xi at each element's highest frequency, in [0, 0.5]
+  int layers = 3;      ///< element layers on each side of J (>= 1)
+};
+
+/// Options of the coupling between domains (scenario key `coupling`, docs/scenario-format.md).
+struct Coupling {
+  InterfaceDamping interface_damping;
+};
+
 struct Model {
   std::string name;
   Nodes nodes;
@@ -160,6 +176,7 @@ struct Model {
   std::vector<Probe> probes;
   Controls controls;
   std::vector<Domain> domains;  ///< scenario order; empty: a single-domain run
+  Coupling coupling;            ///< used by the decomposition only
 
   /// Index of the node with user id `id`, or -1.
   int node_index(std::int64_t id) const;

@@ -13,6 +13,9 @@
 //    their natural summed mass, the link sum [8]) and is a read-only ghost in the others.
 //    Check: no element of an originally finer domain touches a node owned by a coarser one (it
 //    would be integrated above its stable step).
+// 5. Interface damping (model::InterfaceDamping, off by default): stiffness-proportional damping
+//    on the elements within n element layers of J on both sides (the moved layer is the fine
+//    side's first), the coupling study's stabiliser of the layer scheme in 2-D/3-D.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -21,6 +24,46 @@
 #include "solver/partition/partition_detail.h"
 
 namespace crashlink::partition::detail {
+
+// Step 5 (partition_detail.h): the element layers around J, breadth-first from the seed nodes.
+std::vector<double> interface_damping(const Analysis& a, const std::vector<std::uint8_t>& seed) {
+  const model::Model& g = *a.global;
+  const auto& idamp = g.coupling.interface_damping;
+  if (!(idamp.ratio > 0.0)) return {};
+  const std::size_t n = a.node_count(), ne = a.element_count();
+  std::vector<std::uint8_t> node_in(seed), elem_in(ne, 0);
+  std::vector<std::int32_t> front;
+  for (std::size_t i = 0; i < n; ++i)
+    if (seed[i]) front.push_back(static_cast<std::int32_t>(i));
+  // Breadth-first over the element-node adjacency, one element layer per pass.
+  for (int layer = 0; layer < idamp.layers && !front.empty(); ++layer) {
+    std::vector<std::int32_t> next;
+    for (std::int32_t i : front)
+      for (std::size_t k = a.node_start[static_cast<std::size_t>(i)];
+           k < a.node_start[static_cast<std::size_t>(i) + 1]; ++k) {
+        const auto e = static_cast<std::size_t>(a.node_elems[k]);
+        if (elem_in[e]) continue;
+        elem_in[e] = 1;
+        int kn = 0;
+        const std::int32_t* en = a.element_nodes(e, kn);
+        for (int j = 0; j < kn; ++j) {
+          const auto u = static_cast<std::size_t>(en[j]);
+          if (node_in[u]) continue;
+          node_in[u] = 1;
+          next.push_back(en[j]);
+        }
+      }
+    front.swap(next);
+  }
+  std::vector<double> xi(ne, 0.0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto p = static_cast<std::size_t>(a.elem_part[e]);
+    const bool rigid = g.materials[static_cast<std::size_t>(g.parts[p].material)].kind ==
+                       materials::MaterialKind::Rigid;
+    if (elem_in[e] && !rigid) xi[e] = idamp.ratio;  // a rigid part has no damping
+  }
+  return xi;
+}
 
 Decomposition decompose_layer(const Analysis& a) {
   const model::Model& g = *a.global;
@@ -174,6 +217,8 @@ Decomposition decompose_layer(const Analysis& a) {
     for (std::size_t k = 0; k < why.size(); ++k) itf.kind += (k ? "+" : "") + why[k];
     out.interfaces.push_back(std::move(itf));
   }
+  // 5. Interface damping (model::InterfaceDamping): the element layers around J on both sides.
+  pl.elem_damping_ratio = interface_damping(a, pl.summed);
   build_domains(a, pl, nd, out);
   return out;
 }

@@ -70,7 +70,16 @@ struct Placement {
   std::vector<int> primary;                     ///< [n] domain carrying loads and node probes
   std::vector<std::uint8_t> summed;             ///< [n] 1: integrate with mass_kg[n] (shared)
   std::vector<int> contact_domain;              ///< [contacts]
+  /// [elements] or empty: interface damping ratio of each element (layer,
+  /// model::InterfaceDamping; 0: not near an interface); the sub-model takes max(own, this).
+  std::vector<double> elem_damping_ratio;
 };
+
+/// [elements] model::InterfaceDamping::ratio on every deformable element within `layers` element
+/// layers of a node flagged in `seed` ([n], the layer's far nodes J), 0 elsewhere; empty when the
+/// ratio is 0. Layer 1 = the elements touching a seed node, layer k+1 = those touching a node of
+/// layer k (both sides of J, whatever their domain).
+std::vector<double> interface_damping(const Analysis& a, const std::vector<std::uint8_t>& seed);
 
 /// Builds domain d's sub-model from the placement and validates it (model::validate).
 DomainModel build_domain(const Analysis& a, const Placement& p, int d);

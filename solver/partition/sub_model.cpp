@@ -68,13 +68,27 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     lp.hourglass_coefficient = gp.hourglass_coefficient;
     lp.damping_ratio = gp.damping_ratio;
     const auto k = static_cast<std::size_t>(model::nodes_per_element(gp.kind));
+    // Interface damping (Placement::elem_damping_ratio): max(own, interface) per element; the
+    // per-element vector is only created when some element of the part gets more than its own.
+    bool raised = false;
+    std::vector<double> xi_here;
+    if (!pl.elem_damping_ratio.empty()) {
+      for (Index le : elems) {
+        const auto ue = static_cast<std::size_t>(le);
+        const double own = gp.damping_ratio_of(ue);
+        const double xi = std::max(own, pl.elem_damping_ratio[a.offset[p] + ue]);
+        raised = raised || xi != own;
+        xi_here.push_back(xi);
+      }
+    }
+    if (raised) lp.element_damping_ratio = std::move(xi_here);
     for (Index le : elems) {
       const auto ue = static_cast<std::size_t>(le);
       for (std::size_t j = 0; j < k; ++j)
         lp.connectivity.push_back(local(gp.connectivity[k * ue + j]));
       lp.element_id.push_back(gp.element_id[ue]);
       // per-element damping ratios sliced with the element subset
-      if (!gp.element_damping_ratio.empty())
+      if (!gp.element_damping_ratio.empty() && !raised)
         lp.element_damping_ratio.push_back(gp.element_damping_ratio[ue]);
     }
     g2l_part[p] = static_cast<int>(m.parts.size());
