@@ -1,4 +1,5 @@
-// crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise.
+// crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise,
+// stability-map.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -9,6 +10,7 @@
 #include "apps/cmd_hic.h"
 #include "apps/cmd_report.h"
 #include "apps/cmd_run.h"
+#include "apps/cmd_stability_map.h"
 #include "solver/core/errors.h"
 
 int main(int argc, char** argv) {
@@ -26,6 +28,8 @@ int main(int argc, char** argv) {
   auto* report = crashlink::apps::add_report_command(app, report_options);
   crashlink::apps::AdviseOptions advise_options;
   auto* advise = crashlink::apps::add_advise_command(app, advise_options);
+  crashlink::apps::StabilityMapOptions map_options;
+  auto* map = crashlink::apps::add_stability_map_command(app, map_options);
 
   try {
     app.parse(argc, argv);
@@ -39,6 +43,7 @@ int main(int argc, char** argv) {
     if (*compare) return crashlink::apps::run_compare(compare_options);
     if (*report) return crashlink::apps::run_report(report_options);
     if (*advise) return crashlink::apps::run_advise(advise_options);
+    if (*map) return crashlink::apps::run_stability_map(map_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

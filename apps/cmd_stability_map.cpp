@@ -1,0 +1,83 @@
+#include "apps/cmd_stability_map.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "solver/core/errors.h"
+#include "solver/cosim/free_vibration.h"
+
+namespace crashlink::apps {
+
+CLI::App* add_stability_map_command(CLI::App& app, StabilityMapOptions& options) {
+  auto* cmd = app.add_subcommand(
+      "stability-map", "long-run energy growth of the layer coupling against the step ratio");
+  cmd->add_option("--steps", options.steps, "fine steps per run")
+      ->check(CLI::Range(10LL, 100000000LL))
+      ->capture_default_str();
+  cmd->add_option("--ratios", options.ratios, "step ratios H/h (>= 1)")
+      ->check(CLI::Range(1.0, 64.0))
+      ->delimiter(',');
+  cmd->add_option("--shapes", options.shapes, "bar, plate, block")
+      ->check(CLI::IsMember({"bar", "plate", "block"}))
+      ->delimiter(',');
+  cmd->add_option("--out", options.out, "output folder")->capture_default_str();
+  return cmd;
+}
+
+int run_stability_map(const StabilityMapOptions& o) {
+  namespace fs = std::filesystem;
+  fs::create_directories(o.out);
+  const fs::path csv = fs::path(o.out) / "stability_map.csv";
+  std::ofstream f(csv);
+  if (!f) throw InputError(fmt::format("stability-map: cannot write {}", csv.string()));
+  f << "shape,configuration,ratio,nested_ratio,fine_steps,max_rise,late_rise,e_end_over_e0,"
+       "stopped\n";
+  struct Configuration {
+    const char* name;
+    double ratio;
+  };
+  const Configuration configurations[] = {{"layer", 0.0},
+                                          {"layer + interface damping 0.06 x 3 layers", 0.06}};
+  for (const auto& shape_key : o.shapes) {
+    const auto shape = shape_key == "bar"     ? cosim::FreeVibrationShape::Bar
+                       : shape_key == "plate" ? cosim::FreeVibrationShape::Plate
+                                              : cosim::FreeVibrationShape::Block;
+    for (const auto& c : configurations) {
+      for (double r : o.ratios) {
+        cosim::FreeVibrationConfig cfg;
+        cfg.damping = {c.ratio, 3};
+        const auto res = cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
+        const double e_ratio = res.e0_J > 0.0 ? res.e_end_J / res.e0_J : 0.0;
+        f << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.6f},{}\n", shape_key, c.name, r,
+                         res.ratio, o.steps, res.rise, res.late_rise, e_ratio,
+                         res.error.empty() ? "" : "\"" + res.error + "\"");
+        f.flush();
+        std::printf(
+            "%-6s %-42s r = %-5g (nested %-3g): max rise %.3e of E0, after 20 %% %.3e, "
+            "E_end/E0 %.4f%s\n",
+            shape_key.c_str(), c.name, r, res.ratio, res.rise, res.late_rise, e_ratio,
+            res.error.empty() ? "" : "  STOPPED");
+        std::fflush(stdout);
+      }
+    }
+  }
+  f.close();
+  std::printf("%s\n", csv.string().c_str());
+  const char* env = std::getenv("CRASHLINK_STABILITY_MAP_SCRIPT");
+  const std::string script =
+      env ? std::string(env) : std::string(CRASHLINK_SOURCE_DIR) + "/tools/stability_map.py";
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", script, csv.string(),
+                                      (fs::path(o.out) / "stability_map.png").string());
+  if (std::system(cmd.c_str()) != 0) {
+    std::fprintf(stderr, "crashlink stability-map: the plotting script failed (%s)\n",
+                 script.c_str());
+    return 4;
+  }
+  return 0;
+}
+
+}  // namespace crashlink::apps
