@@ -11,6 +11,7 @@
 #include "apps/cmd_report.h"
 #include "apps/cmd_run.h"
 #include "apps/cmd_stability_map.h"
+#include "apps/cmd_sweep.h"
 #include "solver/core/errors.h"
 
 int main(int argc, char** argv) {
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
   auto* advise = crashlink::apps::add_advise_command(app, advise_options);
   crashlink::apps::StabilityMapOptions map_options;
   auto* map = crashlink::apps::add_stability_map_command(app, map_options);
+  crashlink::apps::SweepOptions sweep_options;
+  auto* sweep = crashlink::apps::add_sweep_command(app, sweep_options);
 
   try {
     app.parse(argc, argv);
@@ -44,6 +47,7 @@ int main(int argc, char** argv) {
     if (*report) return crashlink::apps::run_report(report_options);
     if (*advise) return crashlink::apps::run_advise(advise_options);
     if (*map) return crashlink::apps::run_stability_map(map_options);
+    if (*sweep) return crashlink::apps::run_sweep(sweep_options);
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

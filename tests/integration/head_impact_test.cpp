@@ -17,7 +17,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "solver/io/result_reader.h"
 #include "tests/integration/shell_command.h"
@@ -93,4 +97,41 @@ TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
     ASSERT_TRUE(std::filesystem::exists(path)) << path << "\n" << report_out;
     EXPECT_GT(std::filesystem::file_size(path), 1000u) << path;
   }
+}
+
+// `crashlink sweep` on the CI variant (README): every configuration runs, the CSV has a finite
+// row per configuration, the chart is written. Conventional mass scaling of the wiper up to the
+// body's step must cost less CPU than mono and change the head's answer (the wiper gets heavier:
+// measured +60 % on HIC15): the trade-off the chart shows.
+TEST(HeadImpact, SweepOfTheSmallSceneWritesTheChart) {
+  const auto dir = std::filesystem::temp_directory_path() / "crashlink_sweep_small";
+  std::filesystem::remove_all(dir);
+  int status = -1;
+  const std::string out = run_command(std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink sweep " +
+                                          CRASHLINK_SOURCE_DIR +
+                                          "/scenarios/head_impact_small.yaml --out " + dir.string(),
+                                      status);
+  ASSERT_EQ(status, 0) << out;
+  ASSERT_GT(std::filesystem::file_size(dir / "sweep.png"), 1000u);
+  std::ifstream f(dir / "sweep.csv");
+  std::string line;
+  std::getline(f, line);
+  std::map<std::string, std::vector<double>> row;
+  while (std::getline(f, line)) {
+    std::stringstream ss(line);
+    std::string name, cell;
+    std::getline(ss, name, ',');
+    for (int k = 0; k < 10 && std::getline(ss, cell, ','); ++k)
+      row[name].push_back(std::stod(cell));
+  }
+  ASSERT_EQ(row.size(), 4u) << out;
+  for (const auto& [name, v] : row) {
+    ASSERT_EQ(v.size(), 10u) << name;
+    for (double x : v) EXPECT_TRUE(std::isfinite(x)) << name;
+  }
+  EXPECT_EQ(row["mono"][1], 1.0);                    // cpu_over_mono
+  EXPECT_LT(row["mass_scaled"][1], 1.0);             // cheaper ...
+  EXPECT_GT(std::abs(row["mass_scaled"][4]), 10.0);  // ... and wrong: HIC15 error %
+  EXPECT_GT(row["mass_scaled"][9], 0.0);             // added mass, kg
+  EXPECT_LT(std::abs(row["multi"][4]), 3.0);         // HIC15 error %, as the test above
 }

@@ -1,0 +1,33 @@
+#pragma once
+// `crashlink sweep SCENARIO [--out DIR] [--disp-probe NAME]` (issue #5): the speed-accuracy
+// chart of one scene. Runs, each into DIR/<configuration>/:
+//   mono         the reference (global minimum step);
+//   split        `layer`, every domain at the common step (processes);
+//   multi        `layer`, each domain at its own step (processes);
+//   mass_scaled  mono with conventional mass scaling of the fine domain's parts: each part whose
+//                smallest element step is below the coarse domains' is given the density that
+//                brings it there (its mass grows by the square of the step ratio; the added mass
+//                is in the table): what users pick today instead of multi-time-step.
+// Then DIR/sweep.csv (configuration, CPU and its ratio to mono, wall, HIC15, peak acceleration
+// after CFC 1000, the displacement probe's peak, each with its error against mono, added mass)
+// and DIR/sweep.png (x: CPU relative to mono; y: error against mono, one marker per quantity;
+// tools/sweep_chart.py).
+// Not yet in the sweep: `paper` (it runs in one process, for two domains, and refuses links that
+// carry rotations, as the cowl's shell nodes do here), wiper refinements (need a scene generator).
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace crashlink::apps {
+
+struct SweepOptions {
+  std::string scenario;
+  std::string out = "out/sweep";
+  std::string disp_probe;  ///< "" = the first node probe
+};
+
+CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);
+
+/// Returns 0; the exit code of the first run that failed otherwise (the others still run).
+int run_sweep(const SweepOptions& options);
+
+}  // namespace crashlink::apps
