@@ -132,9 +132,9 @@ std::vector<LayerSample> LayerRouter::pair_up(Track& t, const LayerRoute& r) {
     s.link_work_J = t.work_J;
     for (std::size_t i = 0; i < g.size(); ++i) s.force_N[i % 3] += g[i];
     out.push_back(s);
-    t.g_prev = g;
-    t.u_prev = u;
-    t.m_prev = f.second;
+    t.g_prev = std::move(f.first);  // the vectors are not needed any more: no copies
+    t.u_prev = std::move(d.first);
+    t.m_prev = std::move(f.second);
     t.have_prev = true;
   }
   return out;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <utility>
 
 #include "transport/detail/zmq.h"
 #include "transport/received.h"
@@ -72,6 +73,16 @@ bool wait_readable(zmq::socket_t& socket, std::chrono::milliseconds timeout) {
 }
 
 }  // namespace detail
+
+Payload::Payload() = default;
+Payload::~Payload() = default;
+Payload::Payload(Payload&&) noexcept = default;
+Payload& Payload::operator=(Payload&&) noexcept = default;
+Payload::Payload(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+std::size_t Payload::size() const {
+  return impl_ ? impl_->message.size() : 0;
+}
 
 std::string printable_peer(std::string_view routing_id) {
   const bool printable =

@@ -97,7 +97,7 @@ std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_
     default:
       break;
   }
-  return Incoming{id, std::move(envelope)};
+  return Incoming{id, std::move(envelope), std::move(received.payload)};
 }
 
 void CoordinatorLink::handshake(const std::string& routing_id, const wire::Hello& hello,
@@ -145,6 +145,26 @@ void CoordinatorLink::send(std::string_view domain, const wire::Envelope& envelo
   router_.send(domain, envelope);
   it->second.last_sent = Clock::now();
   if (envelope.has_bye() || envelope.has_error()) it->second.active = false;
+}
+
+void CoordinatorLink::forward(std::string_view domain, Incoming& message) {
+  if (message.payload.empty()) {
+    send(domain, message.envelope);
+    return;
+  }
+  const auto it = peers_.find(std::string(domain));
+  if (it == peers_.end() || !it->second.active) {
+    throw TransportError(endpoint(),
+                         fmt::format("forward to domain '{}': it has not joined or its session "
+                                     "has ended (Bye or Error)",
+                                     domain));
+  }
+  if (message.envelope.has_bye() || message.envelope.has_error()) {
+    send(domain, message.envelope);  // ends that session: keep send()'s bookkeeping
+    return;
+  }
+  router_.forward(domain, std::move(message.payload));
+  it->second.last_sent = Clock::now();
 }
 
 bool CoordinatorLink::joined(std::string_view domain) const {

@@ -41,6 +41,7 @@ struct CoordinatorConfig {
 struct Incoming {
   std::string domain;
   wire::Envelope envelope;
+  Payload payload;  ///< the envelope's bytes as received (forward()); empty if not kept
 };
 
 /// Something the link refused or dropped, for the log: a refused Hello, garbage bytes, a message
@@ -66,6 +67,12 @@ class CoordinatorLink {
   /// Sends to a joined domain. Sending Bye or Error ends that domain's session (no more
   /// heartbeats, no liveness check). Throws TransportError (domain not joined or not connected).
   void send(std::string_view domain, const wire::Envelope& envelope);
+
+  /// Sends a received message on to a joined domain: its bytes as they came (Incoming::payload,
+  /// consumed: no serialisation, no copy), or the envelope serialised when no bytes were kept.
+  /// For the messages the coordinator routes unchanged (LayerForce, LayerDisplacement). Throws
+  /// as send().
+  void forward(std::string_view domain, Incoming& message);
 
   /// Whether `domain` has completed its handshake and not ended its session.
   bool joined(std::string_view domain) const;

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "transport/detail/zmq.h"
@@ -17,8 +21,8 @@ struct Router::Impl {
   std::vector<zmq::message_t> frames;
 
   /// False when the first frame cannot be queued (EAGAIN: queue full, after the send timeout if
-  /// `wait` is none); throws TransportError for an unknown peer.
-  bool send(std::string_view peer, const wire::Envelope& envelope, zmq::send_flags wait);
+  /// `wait` is none); throws TransportError for an unknown peer. `payload` is consumed when sent.
+  bool send(std::string_view peer, zmq::message_t& payload, zmq::send_flags wait);
 };
 
 Router::Router(std::string_view endpoint, const SocketOptions& options)
@@ -45,22 +49,35 @@ const std::string& Router::endpoint() const {
   return impl_->endpoint;
 }
 
+namespace {
+
+[[noreturn]] void send_timed_out(const std::string& endpoint, std::string_view peer) {
+  throw TransportError(endpoint, fmt::format("send to '{}' timed out: its queue is full (peer "
+                                             "stalled or gone)",
+                                             printable_peer(peer)));
+}
+
+}  // namespace
+
 void Router::send(std::string_view peer, const wire::Envelope& envelope) {
-  if (!impl_->send(peer, envelope, zmq::send_flags::none)) {
-    throw TransportError(impl_->endpoint,
-                         fmt::format("send to '{}' timed out: its queue is full (peer stalled "
-                                     "or gone)",
-                                     printable_peer(peer)));
-  }
+  zmq::message_t payload = detail::serialize(envelope);
+  if (!impl_->send(peer, payload, zmq::send_flags::none)) send_timed_out(impl_->endpoint, peer);
 }
 
 bool Router::try_send(std::string_view peer, const wire::Envelope& envelope) {
-  return impl_->send(peer, envelope, zmq::send_flags::dontwait);
+  zmq::message_t payload = detail::serialize(envelope);
+  return impl_->send(peer, payload, zmq::send_flags::dontwait);
 }
 
-bool Router::Impl::send(std::string_view peer, const wire::Envelope& envelope,
-                        zmq::send_flags wait) {
-  zmq::message_t payload = detail::serialize(envelope);
+void Router::forward(std::string_view peer, Payload&& payload) {
+  if (payload.empty()) throw std::invalid_argument("crashlink::transport: forward of no payload");
+  const Payload taken = std::move(payload);
+  if (!impl_->send(peer, taken.impl()->message, zmq::send_flags::none)) {
+    send_timed_out(impl_->endpoint, peer);
+  }
+}
+
+bool Router::Impl::send(std::string_view peer, zmq::message_t& payload, zmq::send_flags wait) {
   try {
     // ROUTER_MANDATORY fails the first frame for an unknown peer (EHOSTUNREACH) or a full queue
     // (EAGAIN), so nothing half-sent remains; the second frame then always queues.
@@ -86,6 +103,13 @@ std::optional<Received> Router::receive(std::chrono::milliseconds timeout) {
   const auto deadline = Clock::now() + timeout;
   auto& frames = impl_->frames;
   for (;;) {
+    // Poll first: zmq_poll looks at the socket's pending commands before it blocks, so a message
+    // already there costs no extra system call, and an empty socket no failed receive.
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
+    if (!detail::wait_readable(impl_->socket, std::max(left, std::chrono::milliseconds{0}))) {
+      if (left.count() <= 0) return std::nullopt;
+      continue;
+    }
     frames.clear();
     std::optional<std::size_t> n;
     try {
@@ -97,9 +121,6 @@ std::optional<Received> Router::receive(std::chrono::milliseconds timeout) {
       }
     }
     if (n && *n > 0) break;
-    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
-    if (left.count() <= 0) return std::nullopt;
-    detail::wait_readable(impl_->socket, left);
   }
   Received r;
   r.peer = frames.front().to_string();
@@ -111,6 +132,11 @@ std::optional<Received> Router::receive(std::chrono::milliseconds timeout) {
     return r;
   }
   r.error = detail::parse(frames[1], r.envelope);
+  if (r.ok()) {
+    auto kept = std::make_unique<Payload::Impl>();
+    kept->message = std::move(frames[1]);
+    r.payload = Payload(std::move(kept));
+  }
   return r;
 }
 

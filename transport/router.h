@@ -36,8 +36,13 @@ class Router {
   void send(std::string_view peer, const wire::Envelope& envelope);
   /// As send(), but never waits: returns false when the peer's queue is full (for heartbeats).
   bool try_send(std::string_view peer, const wire::Envelope& envelope);
+  /// As send(), for a message received earlier (Received::payload): its bytes go to `peer` as they
+  /// came, without serialising again or copying; `payload` is left empty. Throws TransportError
+  /// as send(), and std::invalid_argument for an empty payload.
+  void forward(std::string_view peer, Payload&& payload);
 
-  /// The next message, or nullopt after `timeout` with none (0: do not wait).
+  /// The next message, or nullopt after `timeout` with none (0: do not wait). A parsed message
+  /// keeps its bytes in Received::payload (for forward()).
   std::optional<Received> receive(std::chrono::milliseconds timeout);
 
  private:

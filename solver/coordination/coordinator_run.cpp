@@ -269,14 +269,14 @@ class Coordinator {
             const auto& f = e.layer_force();
             auto routed = router_->force(k, f.interface_index(), f.time_ticks(), view(f.forces_n()),
                                          view(f.moments_n_m()));
-            forward(routed.to, e);
+            forward(routed.to, *in);
             history_->append(f.interface_index(), routed.samples, o_.ticks_per_second);
           } else if (e.has_layer_displacement()) {
             const auto& d = e.layer_displacement();
             auto routed = router_->displacement(k, d.interface_index(), d.time_ticks(),
                                                 view(d.displacements_m()),
                                                 view(d.angular_velocities_rad_s()));
-            forward(routed.to, e);
+            forward(routed.to, *in);
             history_->append(d.interface_index(), routed.samples, o_.ticks_per_second);
           } else if (e.has_bye()) {
             bye(k, e.bye());
@@ -316,10 +316,11 @@ class Coordinator {
     return slow;
   }
 
-  void forward(int to, const wire::Envelope& e) {
+  /// The message's bytes as they came (CoordinatorLink::forward: no re-serialisation, no copy).
+  void forward(int to, transport::Incoming& in) {
     const auto& name = cut_.names[static_cast<std::size_t>(to)];
     if (outcomes_[static_cast<std::size_t>(to)].finished) return;  // nothing left to use it for
-    link_->send(name, e);
+    link_->forward(name, in);
   }
 
   void bye(int k, const wire::Bye& b) {

@@ -155,6 +155,10 @@ std::deque<LayerMessage> LayerStepper::take_outbox() {
   return std::exchange(outbox_, {});
 }
 
+void LayerStepper::flush_outbox() {
+  if (on_outbox_ && !outbox_.empty()) on_outbox_();
+}
+
 bool LayerStepper::ghost_targets_ready() {
   // Every fine port: J at t + h, linear in time between the owner's u_J(T) and u_J(T+H)
   // (LRunner of coupling-study/layer-check: Unext = uJ_T + (t1 - T)/H (uJ_1 - uJ_T)).
@@ -337,9 +341,11 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         }
         solver_.end_cycle_positions();
         send_displacements();
+        flush_outbox();               // u_J(t + h) leaves before this domain's forces
         solver_.end_cycle_compute();  // overlaps the partners' work
         t_ += h_;
         send_forces();
+        flush_outbox();
         phase_ = Phase::Accelerations;
         break;
       case Phase::Accelerations:

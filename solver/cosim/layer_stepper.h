@@ -22,9 +22,9 @@
 //   begin_cycle()                                        (state at t sampled: on_sample)
 //   fine ports: need u_J(T') for the owner instant T' >= t + h      -> Wait::Displacement
 //   set_ghost_displacement / set_ghost_angular_velocity, end_cycle_positions()
-//   coarse ports: send u_J(t + h), omega_J(t + h/2)
+//   coarse ports: send u_J(t + h), omega_J(t + h/2)                  -> on_outbox
 //   end_cycle_compute()                                  (overlaps the partners' work)
-//   fine ports at an owner instant (t + h = k H): send g_A(t + h)
+//   fine ports at an owner instant (t + h = k H): send g_A(t + h)    -> on_outbox
 //   coarse ports: need g_A(t + h)                                   -> Wait::Force
 //   add_coupling_force/moment, end_cycle_accelerations(), impose_step(h)
 // The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
@@ -36,6 +36,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coordinator/ticks.h"
@@ -99,7 +100,15 @@ class LayerStepper {
 
   /// Messages produced so far, to be sent in order; take_outbox() empties the queue.
   std::deque<LayerMessage> take_outbox();
+  /// Called by advance() as soon as it has queued a message it will not wait on before its next
+  /// computation: u_J(t + h) right after the positions at t + h, before the forces at t + h, and
+  /// g_A(t + h) right after those forces. A daemon takes the outbox there and sends it, so that
+  /// the partner computes while this domain computes its forces instead of taking turns
+  /// (DESIGN.md §2.6 "Overlap"). Unset (LayerNetwork), the messages wait in the outbox until
+  /// advance() returns. Only when messages leave changes: the messages and the numbers do not.
+  void set_on_outbox(std::function<void()> on_outbox) { on_outbox_ = std::move(on_outbox); }
   bool has_outbox() const { return !outbox_.empty(); }
+  const std::deque<LayerMessage>& outbox() const { return outbox_; }  ///< not taken yet
 
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
@@ -135,6 +144,7 @@ class LayerStepper {
   void send_forces();
   bool forces_ready();
   void apply_forces();
+  void flush_outbox();
 
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;
@@ -146,6 +156,7 @@ class LayerStepper {
   Wait wait_ = Wait::None;
   std::uint32_t wait_iface_ = 0;
   std::deque<LayerMessage> outbox_;
+  std::function<void()> on_outbox_;
   std::vector<double> ghost_u_, ghost_omega_;  ///< [3 n_ghost] Solver::ghost_nodes() order
   std::vector<std::size_t> ghost_slot_;        ///< [n_local] position in the ghost list
 };

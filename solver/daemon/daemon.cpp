@@ -168,6 +168,9 @@ class Daemon {
     stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
                                                      setup.step_ticks(), tps_);
     stepper_->initialize();
+    // u_J(T + H) leaves before the coarse side's forces, g_A right after the fine side's: the
+    // domains compute at the same time (LayerStepper::set_on_outbox, DESIGN.md §2.6 "Overlap").
+    stepper_->set_on_outbox([this] { send_outbox(); });
     run_wall0_ = Clock::now();
   }
 
@@ -274,14 +277,20 @@ class Daemon {
         deliver(m);
       }
       const Wait w = stepper_->advance(on_sample);
-      for (const auto& m : stepper_->take_outbox()) link_->send(to_envelope(m));
+      send_outbox();  // g_A(0) after initialize(); otherwise sent from advance() already
       if (w == Wait::Finished) return;
-      if (w == Wait::None) continue;
+      // What on_sample read meanwhile may be the very message the stepper waits for: deliver it
+      // before blocking (the partner, served early by set_on_outbox, often answers mid-advance).
+      if (w == Wait::None || !pending_.empty()) continue;
       const auto t0 = Clock::now();
       auto m = link_->receive(o_.session.peer_timeout);
       wait_s_ += seconds_since(t0);
       if (m) deliver(*m);
     }
+  }
+
+  void send_outbox() {
+    for (const auto& m : stepper_->take_outbox()) link_->send(to_envelope(m));
   }
 
   void deliver(const wire::Envelope& e) {

@@ -9,8 +9,10 @@
 //   Register: per interface its J node ids, masses (owner: J's natural summed mass, ghost
 //     holder: 0) and positions; the initial stable step floor(min(dt, max_step) * safety * tps),
 //   Setup: this domain's fixed step and every partner's step,
-//   cosim::LayerStepper: advance() -> send its outbox as LayerDisplacement / LayerForce -> when
-//     it waits, block on the link and deliver(); keep_alive() every cycle,
+//   cosim::LayerStepper: advance(); each message it produces leaves as soon as it is queued
+//     (LayerStepper::set_on_outbox: u_J(T + H) before the coarse side's forces, so the domains
+//     compute at the same time) as LayerDisplacement / LayerForce; when it waits, block on the
+//     link and deliver(); keep_alive() every cycle,
 //   at the end: a last field state, /timing, Bye with a DomainReport (CPU, wait, cycles).
 //
 // Output: DIR/domains/<domain>.h5 and .xdmf (io::ResultWriter layout, the domain's sub-model,

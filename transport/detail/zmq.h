@@ -16,7 +16,16 @@
 #include <string_view>
 
 #include "proto/crashlink.pb.h"
+#include "transport/received.h"
 #include "transport/socket_options.h"
+
+namespace crashlink::transport {
+
+struct Payload::Impl {
+  zmq::message_t message;
+};
+
+}  // namespace crashlink::transport
 
 namespace crashlink::transport::detail {
 
