@@ -3,39 +3,15 @@
 #include <fmt/format.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "apps/python_script.h"
 #include "solver/core/errors.h"
 #include "solver/io/result_reader.h"
 #include "solver/signal/head_metrics.h"
 
 namespace crashlink::apps {
-
-namespace {
-
-/// A shell word: 'text' with every ' written '\''.
-std::string shell_word(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') {
-      out.append("'\\''");
-    } else {
-      out.push_back(c);
-    }
-  }
-  out.push_back('\'');
-  return out;
-}
-
-/// tools/report.py of the source tree this binary was built from; CRASHLINK_REPORT_SCRIPT wins.
-std::string report_script() {
-  if (const char* env = std::getenv("CRASHLINK_REPORT_SCRIPT")) return env;
-  return std::string(CRASHLINK_SOURCE_DIR) + "/tools/report.py";
-}
-
-}  // namespace
 
 CLI::App* add_report_command(CLI::App& app, ReportOptions& options) {
   auto* cmd = app.add_subcommand(
@@ -63,7 +39,7 @@ int run_report(const ReportOptions& options) {
       }
     }
   }
-  std::string head_args;
+  std::vector<std::string> args{options.result, out.string()};
   if (!probe.empty()) {
     const io::ProbeHistory p = reader.probe(probe);
     const signal::HeadMetrics m = signal::head_metrics_xyz(
@@ -76,24 +52,13 @@ int run_report(const ReportOptions& options) {
     f.close();
     if (!f) throw InputError(fmt::format("report: cannot write {}", csv.string()));
     std::printf("%s\n", csv.string().c_str());
-    head_args = fmt::format(" --head {} --probe {} --hic {:.6g} --t1 {:.6g} --t2 {:.6g}",
-                            shell_word(csv.string()), shell_word(probe), m.hic15.hic,
-                            1e3 * m.hic15.t1_s, 1e3 * m.hic15.t2_s);
+    for (auto& a : std::vector<std::string>{"--head", csv.string(), "--probe", probe, "--hic",
+                                            fmt::format("{:.6g}", m.hic15.hic), "--t1",
+                                            fmt::format("{:.6g}", 1e3 * m.hic15.t1_s), "--t2",
+                                            fmt::format("{:.6g}", 1e3 * m.hic15.t2_s)})
+      args.push_back(std::move(a));
   }
-  std::fflush(stdout);
-  const std::string cmd =
-      fmt::format("/usr/bin/python3 {} {} {}{}", shell_word(report_script()),
-                  shell_word(options.result), shell_word(out.string()), head_args);
-  const int status = std::system(cmd.c_str());
-  if (status != 0) {
-    std::fprintf(stderr,
-                 "crashlink report: the plotting script failed (%s, status %d); it needs "
-                 "/usr/bin/python3 with python3-matplotlib and python3-h5py "
-                 "(tools/install-deps.sh installs them)\n",
-                 report_script().c_str(), status);
-    return 4;
-  }
-  return 0;
+  return run_python_script("report.py", "CRASHLINK_REPORT_SCRIPT", args, "report");
 }
 
 }  // namespace crashlink::apps

@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "apps/python_script.h"
 #include "solver/core/errors.h"
 #include "solver/cosim/free_vibration.h"
 
@@ -67,17 +67,9 @@ int run_stability_map(const StabilityMapOptions& o) {
   }
   f.close();
   std::printf("%s\n", csv.string().c_str());
-  const char* env = std::getenv("CRASHLINK_STABILITY_MAP_SCRIPT");
-  const std::string script =
-      env ? std::string(env) : std::string(CRASHLINK_SOURCE_DIR) + "/tools/stability_map.py";
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", script, csv.string(),
-                                      (fs::path(o.out) / "stability_map.png").string());
-  if (std::system(cmd.c_str()) != 0) {
-    std::fprintf(stderr, "crashlink stability-map: the plotting script failed (%s)\n",
-                 script.c_str());
-    return 4;
-  }
-  return 0;
+  return run_python_script("stability_map.py", "CRASHLINK_STABILITY_MAP_SCRIPT",
+                           {csv.string(), (fs::path(o.out) / "stability_map.png").string()},
+                           "stability-map");
 }
 
 }  // namespace crashlink::apps

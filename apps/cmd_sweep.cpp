@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <vector>
 
 #include "apps/cmd_run.h"
+#include "apps/python_script.h"
 #include "apps/timing_reader.h"
 #include "solver/core/errors.h"
 #include "solver/cosim/split_advice.h"
@@ -206,15 +206,10 @@ int run_sweep(const SweepOptions& o) {
   f.close();
   std::printf("%s\n", csv.string().c_str());
   std::fflush(stdout);
-  const char* env = std::getenv("CRASHLINK_SWEEP_SCRIPT");
-  const std::string script =
-      env ? std::string(env) : std::string(CRASHLINK_SOURCE_DIR) + "/tools/sweep_chart.py";
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", script, csv.string(),
-                                      (fs::path(o.out) / "sweep.png").string());
-  if (std::system(cmd.c_str()) != 0) {
-    std::fprintf(stderr, "crashlink sweep: the plotting script failed (%s)\n", script.c_str());
-    return first_failure != 0 ? first_failure : 4;
-  }
+  const int rc =
+      run_python_script("sweep_chart.py", "CRASHLINK_SWEEP_SCRIPT",
+                        {csv.string(), (fs::path(o.out) / "sweep.png").string()}, "sweep");
+  if (rc != 0) return first_failure != 0 ? first_failure : rc;
   return first_failure;
 }
 
