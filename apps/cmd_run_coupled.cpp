@@ -92,6 +92,10 @@ void print_energy(std::FILE* f, const std::string& h5, bool complete) {
                  "%.6g  external work %.6g  total %.6g\n",
                  e.time_s, e.kinetic_energy_J, e.internal_energy_J, e.hourglass_energy_J,
                  e.contact_energy_J, e.external_work_J, e.total_energy_J);
+    // The coupling's own work: energy the scheme put in (> 0) or took out, of the initial total.
+    const double e0 = g.front().total_energy_J;
+    std::fprintf(f, "coupling work %.6g J (%+.3f %% of the initial total energy)\n",
+                 e.coupling_work_J, e0 != 0.0 ? 100.0 * e.coupling_work_J / e0 : 0.0);
     std::fprintf(f, "energy balance error %.4f %% of the largest energy%s\n",
                  100.0 * e.energy_balance_error,
                  complete ? "" : " (the run failed: some domains' histories are incomplete)");

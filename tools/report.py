@@ -59,7 +59,7 @@ def energy_plot(f, out, title):
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True,
                                  gridspec_kw={"height_ratios": [3, 1]})
     for key in ("kinetic_energy", "internal_energy", "hourglass_energy", "contact_energy",
-                "external_work", "total_energy"):
+                "external_work", "coupling_work", "total_energy"):
         if key in g:
             ax.plot(t, g[key][:], lw=1.8 if key == "total_energy" else 1.0,
                     label=key.replace("_", " "))

@@ -35,7 +35,8 @@ namespace {
 constexpr double io::GlstatSample::*kSummed[] = {
     &io::GlstatSample::kinetic_energy_J,   &io::GlstatSample::internal_energy_J,
     &io::GlstatSample::hourglass_energy_J, &io::GlstatSample::contact_energy_J,
-    &io::GlstatSample::external_work_J,    &io::GlstatSample::total_energy_J};
+    &io::GlstatSample::external_work_J,    &io::GlstatSample::total_energy_J,
+    &io::GlstatSample::coupling_work_J};
 
 }  // namespace
 
@@ -80,12 +81,15 @@ GlstatMerge merge_glstat(const std::vector<std::vector<io::GlstatSample>>& serie
 
 void recompute_balance_error(std::vector<io::GlstatSample>& rows) {
   if (rows.empty()) return;
-  const double e0 = rows.front().total_energy_J - rows.front().external_work_J;
+  // Balance of energy.h: total - E0 - external work - coupling work (the coupling's work is
+  // energy put in or taken out by the scheme, not integration error; it has its own column).
+  const double e0 =
+      rows.front().total_energy_J - rows.front().external_work_J - rows.front().coupling_work_J;
   double reference = 0.0;
   for (io::GlstatSample& g : rows) {
     reference = std::max({reference, std::abs(g.kinetic_energy_J), std::abs(g.internal_energy_J),
                           std::abs(e0 + g.external_work_J), std::abs(g.external_work_J)});
-    const double balance = g.total_energy_J - e0 - g.external_work_J;
+    const double balance = g.total_energy_J - e0 - g.external_work_J - g.coupling_work_J;
     g.energy_balance_error = reference > 0.0 ? balance / reference : 0.0;
   }
 }

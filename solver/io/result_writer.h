@@ -32,9 +32,15 @@ struct GlstatSample {
   double internal_energy_J = 0.0;  ///< stress work incl. bulk viscosity
   double hourglass_energy_J = 0.0;
   double contact_energy_J = 0.0;
-  double external_work_J = 0.0;  ///< work of loads, prescribed motion, gravity (and coupling)
+  double external_work_J = 0.0;  ///< work of loads, prescribed motion, gravity
   double total_energy_J = 0.0;
-  double energy_balance_error = 0.0;  ///< relative: |total - initial - external| / reference [-]
+  /// relative: (total - initial - external - coupling) / reference [-]
+  double energy_balance_error = 0.0;
+  /// Work done on the domain(s) by the coupling between domains (link and drift forces; the
+  /// `layer` scheme's layer force on J and the ghost motion): energy.h coupling_work_J. 0 in a
+  /// single-domain run; summed over the domains it is the energy the coupling put in (> 0) or
+  /// took out.
+  double coupling_work_J = 0.0;
 };
 
 /// One probe row (node or rigid-body centre of mass), global frame.

@@ -15,6 +15,7 @@ io::GlstatSample glstat(const integration::Solver& s) {
   g.external_work_J = e.external_work_J;
   g.total_energy_J = e.total_J();
   g.energy_balance_error = e.balance_error();
+  g.coupling_work_J = e.coupling_work_J;
   return g;
 }
 
