@@ -5,7 +5,8 @@ pkgs=(build-essential cmake ninja-build pkg-config
       libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler libeigen3-dev libhdf5-dev
       libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev clang-format
-      python3 python3-numpy python3-matplotlib python3-h5py)
+      python3 python3-numpy python3-matplotlib python3-h5py
+      iproute2)
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
