@@ -243,15 +243,7 @@ std::vector<std::string> solver_argv(const std::string& endpoint, const std::str
                                      const std::string& scenario, const std::filesystem::path& out,
                                      const std::vector<std::string>& extra,
                                      const std::vector<std::string>& session) {
-  std::vector<std::string> a{bin("crashlink-solver"),
-                             "--connect",
-                             endpoint,
-                             "--domain",
-                             domain,
-                             "--scenario",
-                             scenario,
-                             "--out",
-                             out.string()};
+  std::vector<std::string> a = solver_args(endpoint, domain, scenario, out);
   a.insert(a.end(), session.begin(), session.end());
   a.insert(a.end(), extra.begin(), extra.end());
   return a;

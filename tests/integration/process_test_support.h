@@ -281,19 +281,26 @@ inline std::unique_ptr<Child> start_coordinator(const std::string& bind,
   return c;
 }
 
+/// crashlink-solver's command line for one domain (no session flags).
+inline std::vector<std::string> solver_args(const std::string& endpoint, const std::string& domain,
+                                            const std::string& scenario,
+                                            const std::filesystem::path& out) {
+  return {bin("crashlink-solver"),
+          "--connect",
+          endpoint,
+          "--domain",
+          domain,
+          "--scenario",
+          scenario,
+          "--out",
+          out.string()};
+}
+
 inline std::unique_ptr<Child> start_solver(const std::string& endpoint, const std::string& domain,
                                            const std::string& scenario,
                                            const std::filesystem::path& out,
                                            std::vector<std::string> extra = {}) {
-  std::vector<std::string> a{bin("crashlink-solver"),
-                             "--connect",
-                             endpoint,
-                             "--domain",
-                             domain,
-                             "--scenario",
-                             scenario,
-                             "--out",
-                             out.string()};
+  std::vector<std::string> a = solver_args(endpoint, domain, scenario, out);
   for (const auto& s : fast_session_args()) a.push_back(s);
   for (auto& s : extra) a.push_back(std::move(s));
   return std::make_unique<Child>(a);
