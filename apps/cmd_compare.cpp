@@ -4,13 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <vector>
 
+#include "apps/result_head.h"
 #include "apps/timing_reader.h"
 #include "solver/core/errors.h"
 #include "solver/io/result_reader.h"
-#include "solver/signal/head_metrics.h"
 
 namespace crashlink::apps {
 
@@ -27,34 +26,11 @@ TimingRecord timing_of(const std::string& path) {
   return *t;
 }
 
-/// The head probe: the one named, or the reference's first rigid-body probe; nullopt if none.
-std::optional<std::string> head_probe(const std::string& path, const std::string& wanted) {
-  if (!wanted.empty()) return wanted;
-  io::ResultReader reader(path);
-  for (const auto& name : reader.probe_names()) {
-    if (reader.probe(name).kind == "rigid_body") return name;
-  }
-  return std::nullopt;
-}
-
-signal::HeadMetrics metrics_of(const std::string& path, const std::string& probe) {
-  io::ResultReader reader(path);
-  const io::ProbeHistory p = reader.probe(probe);
-  return signal::head_metrics_xyz(p.time_s, p.acceleration_m_s2, 1000,
-                                  fmt::format("{}, probe '{}'", path, probe));
-}
-
 double element_cycles_per_second(const TimingRecord& t) {
   double sum = 0.0;
   for (const auto& d : t.domains) {
     if (d.dt_min_s > 0.0) sum += static_cast<double>(d.elements) / d.dt_min_s;
   }
-  return sum;
-}
-
-double cpu_of(const TimingRecord& t) {
-  double sum = t.coordinator_cpu_seconds;
-  for (const auto& d : t.domains) sum += d.cpu_seconds;
   return sum;
 }
 
@@ -84,8 +60,8 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   const TimingRecord ref = timing_of(options.reference);
   const TimingRecord run = timing_of(options.run);
   Comparison c;
-  c.cpu_reference_s = cpu_of(ref);
-  c.cpu_run_s = cpu_of(run);
+  c.cpu_reference_s = ref.total_cpu_seconds();
+  c.cpu_run_s = run.total_cpu_seconds();
   c.coordinator_cpu_s = run.coordinator_cpu_seconds;
   c.wall_reference_s = ref.wall_seconds;
   c.wall_run_s = run.wall_seconds;
@@ -147,13 +123,15 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
                c.gain, c.ideal_gain, c.ideal_gain > 0.0 ? 100.0 * c.gain / c.ideal_gain : 0.0,
                c.wall_reference_s, c.wall_run_s, c.wall_gain);
 
-  const auto probe = head_probe(options.reference, options.probe);
-  if (!probe) {
+  const io::ResultReader ref_reader(options.reference), run_reader(options.run);
+  const std::string probe =
+      options.probe.empty() ? first_rigid_body_probe(ref_reader) : options.probe;
+  if (probe.empty()) {
     std::fprintf(out,
                  "head metrics: the reference has no rigid-body probe (name one with --probe)\n");
   } else {
-    const signal::HeadMetrics a = metrics_of(options.reference, *probe);
-    const signal::HeadMetrics b = metrics_of(options.run, *probe);
+    const signal::HeadMetrics a = result_head_metrics(ref_reader, options.reference, probe);
+    const signal::HeadMetrics b = result_head_metrics(run_reader, options.run, probe);
     c.has_head = true;
     c.hic15_reference = a.hic15.hic;
     c.hic15_run = b.hic15.hic;
@@ -166,7 +144,7 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
     std::fprintf(out,
                  "head '%s' (CFC 1000): HIC15 %.1f vs %.1f (%+.2f %%), HIC36 %.1f vs %.1f "
                  "(%+.2f %%), peak %.1f g vs %.1f g (%+.2f %%)\n",
-                 probe->c_str(), a.hic15.hic, b.hic15.hic, 100.0 * c.hic15_difference, a.hic36.hic,
+                 probe.c_str(), a.hic15.hic, b.hic15.hic, 100.0 * c.hic15_difference, a.hic36.hic,
                  b.hic36.hic, rel(b.hic36.hic, a.hic36.hic), a.peak_g, b.peak_g,
                  rel(b.peak_g, a.peak_g));
   }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <vector>
 
+#include "apps/result_head.h"
 #include "solver/core/errors.h"
 #include "solver/io/result_reader.h"
 #include "solver/signal/cfc_filter.h"
@@ -43,16 +44,6 @@ struct Channels {
 
 std::string ms(double t_s) {
   return fmt::format("{:.3f}", 1e3 * t_s);
-}
-
-/// time_ms,accel_g of the filtered resultant (what `crashlink report` plots).
-void write_filtered_csv(const std::string& path, const signal::HeadMetrics& m) {
-  std::ofstream f(path);
-  if (!f) throw InputError(fmt::format("hic: --csv-out {}: cannot write the file", path));
-  f << "time_ms,accel_g\n";
-  for (std::size_t i = 0; i < m.time_s.size(); ++i)
-    f << fmt::format("{:.6f},{:.6g}\n", 1e3 * m.time_s[i], m.accel_g[i]);
-  if (!f) throw InputError(fmt::format("hic: --csv-out {}: write failed", path));
 }
 
 }  // namespace
@@ -147,7 +138,7 @@ int run_hic(const HicOptions& options, std::FILE* out) {
     std::fprintf(out, "HIC%d = %.1f (t1 = %s ms, t2 = %s ms)\n", window_ms, r.hic,
                  ms(r.t1_s).c_str(), ms(r.t2_s).c_str());
   }
-  if (!options.csv_out.empty()) write_filtered_csv(options.csv_out, m);
+  if (!options.csv_out.empty()) write_head_csv(options.csv_out, m, "hic: --csv-out");
   std::fflush(out);
   return 0;
 }

@@ -4,12 +4,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "apps/python_script.h"
+#include "apps/result_head.h"
 #include "solver/core/errors.h"
-#include "solver/io/result_reader.h"
-#include "solver/signal/head_metrics.h"
 
 namespace crashlink::apps {
 
@@ -29,28 +27,13 @@ int run_report(const ReportOptions& options) {
   const fs::path out = options.out.empty() ? fs::absolute(options.result).parent_path() / "report"
                                            : fs::path(options.out);
   fs::create_directories(out);
-  std::string probe = options.probe;
-  io::ResultReader reader(options.result);
-  if (probe.empty()) {
-    for (const auto& name : reader.probe_names()) {
-      if (reader.probe(name).kind == "rigid_body") {
-        probe = name;
-        break;
-      }
-    }
-  }
+  const io::ResultReader reader(options.result);
+  const std::string probe = options.probe.empty() ? first_rigid_body_probe(reader) : options.probe;
   std::vector<std::string> args{options.result, out.string()};
   if (!probe.empty()) {
-    const io::ProbeHistory p = reader.probe(probe);
-    const signal::HeadMetrics m = signal::head_metrics_xyz(
-        p.time_s, p.acceleration_m_s2, 1000, fmt::format("{}, probe '{}'", options.result, probe));
+    const signal::HeadMetrics m = result_head_metrics(reader, options.result, probe);
     const fs::path csv = out / "head_cfc1000.csv";
-    std::ofstream f(csv);
-    f << "time_ms,accel_g\n";
-    for (std::size_t i = 0; i < m.time_s.size(); ++i)
-      f << fmt::format("{:.6f},{:.6g}\n", 1e3 * m.time_s[i], m.accel_g[i]);
-    f.close();
-    if (!f) throw InputError(fmt::format("report: cannot write {}", csv.string()));
+    write_head_csv(csv.string(), m, "report");
     std::printf("%s\n", csv.string().c_str());
     for (auto& a : std::vector<std::string>{"--head", csv.string(), "--probe", probe, "--hic",
                                             fmt::format("{:.6g}", m.hic15.hic), "--t1",

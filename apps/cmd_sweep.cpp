@@ -12,6 +12,7 @@
 
 #include "apps/cmd_run.h"
 #include "apps/python_script.h"
+#include "apps/result_head.h"
 #include "apps/timing_reader.h"
 #include "solver/core/errors.h"
 #include "solver/cosim/split_advice.h"
@@ -19,7 +20,6 @@
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/run_single.h"
-#include "solver/signal/head_metrics.h"
 
 namespace crashlink::apps {
 
@@ -29,14 +29,13 @@ namespace fs = std::filesystem;
 
 /// Conventional mass scaling of the fine parts (header). Returns the added mass [kg].
 double mass_scale_fine_parts(model::Model& m) {
-  const auto advice = cosim::advise_split(m, 1.0, 0);
-  std::size_t fine_part = 0;
-  for (std::size_t p = 0; p < advice.parts.size(); ++p)
-    if (!advice.parts[p].rigid && advice.parts[p].min_s == advice.dt_mono_s) fine_part = p;
+  const auto advice = cosim::survey_steps(m);
+  const int fine_part = advice.finest_part();
+  if (fine_part < 0) throw InputError("sweep: mass scaling needs deformable parts");
   // The fine domain: the one holding the part with the smallest step (all parts if none).
   std::vector<char> fine(m.parts.size(), 1);
   for (const auto& d : m.domains) {
-    if (std::find(d.parts.begin(), d.parts.end(), static_cast<int>(fine_part)) == d.parts.end())
+    if (std::find(d.parts.begin(), d.parts.end(), fine_part) == d.parts.end())
       for (int p : d.parts) fine[static_cast<std::size_t>(p)] = 0;
   }
   double target = std::numeric_limits<double>::infinity();
@@ -86,16 +85,12 @@ void read_row(const std::string& h5, const std::string& disp_probe, Row& r) {
     r.note = "no /timing: the run did not finish";
     return;
   }
-  r.cpu_s = t->coordinator_cpu_seconds;
-  for (const auto& d : t->domains) r.cpu_s += d.cpu_seconds;
+  r.cpu_s = t->total_cpu_seconds();
   r.wall_s = t->wall_seconds;
-  io::ResultReader reader(h5);
-  std::string head;
-  for (const auto& name : reader.probe_names())
-    if (head.empty() && reader.probe(name).kind == "rigid_body") head = name;
+  const io::ResultReader reader(h5);
+  const std::string head = first_rigid_body_probe(reader);
   if (!head.empty()) {
-    const auto p = reader.probe(head);
-    const auto m = signal::head_metrics_xyz(p.time_s, p.acceleration_m_s2, 1000, h5);
+    const auto m = result_head_metrics(reader, h5, head);
     r.hic15 = m.hic15.hic;
     r.peak_g = m.peak_g;
   }

@@ -1,8 +1,11 @@
 // crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise,
-// stability-map.
+// stability-map, sweep.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "apps/cmd_advise.h"
 #include "apps/cmd_compare.h"
@@ -17,22 +20,30 @@
 int main(int argc, char** argv) {
   CLI::App app{"crashlink: multi-domain, multi-time-scale explicit dynamics for crash simulation"};
   app.require_subcommand(1);
-  crashlink::apps::RunCommandOptions run_options;
-  auto* run = crashlink::apps::add_run_command(app, run_options);
-  crashlink::apps::HicOptions hic_options;
-  auto* hic = crashlink::apps::add_hic_command(app, hic_options);
-  crashlink::apps::GatherOptions gather_options;
-  auto* gather = crashlink::apps::add_gather_command(app, gather_options);
-  crashlink::apps::CompareOptions compare_options;
-  auto* compare = crashlink::apps::add_compare_command(app, compare_options);
-  crashlink::apps::ReportOptions report_options;
-  auto* report = crashlink::apps::add_report_command(app, report_options);
-  crashlink::apps::AdviseOptions advise_options;
-  auto* advise = crashlink::apps::add_advise_command(app, advise_options);
-  crashlink::apps::StabilityMapOptions map_options;
-  auto* map = crashlink::apps::add_stability_map_command(app, map_options);
-  crashlink::apps::SweepOptions sweep_options;
-  auto* sweep = crashlink::apps::add_sweep_command(app, sweep_options);
+  namespace cl = crashlink::apps;
+  // Each subcommand: its options (filled by the parse) and the function that runs it.
+  std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
+  auto add = [&](auto& options, auto add_command, auto run_command) {
+    commands.emplace_back(add_command(app, options),
+                          [&options, run_command] { return run_command(options); });
+  };
+  cl::RunCommandOptions run_options;
+  cl::HicOptions hic_options;
+  cl::GatherOptions gather_options;
+  cl::CompareOptions compare_options;
+  cl::ReportOptions report_options;
+  cl::AdviseOptions advise_options;
+  cl::StabilityMapOptions map_options;
+  cl::SweepOptions sweep_options;
+  add(run_options, cl::add_run_command, cl::run_run);
+  add(hic_options, cl::add_hic_command, [](const cl::HicOptions& o) { return cl::run_hic(o); });
+  add(gather_options, cl::add_gather_command, cl::run_gather);
+  add(compare_options, cl::add_compare_command, cl::run_compare);
+  add(report_options, cl::add_report_command, cl::run_report);
+  add(advise_options, cl::add_advise_command,
+      [](const cl::AdviseOptions& o) { return cl::run_advise(o); });
+  add(map_options, cl::add_stability_map_command, cl::run_stability_map);
+  add(sweep_options, cl::add_sweep_command, cl::run_sweep);
 
   try {
     app.parse(argc, argv);
@@ -40,14 +51,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    if (*run) return crashlink::apps::run_run(run_options);
-    if (*hic) return crashlink::apps::run_hic(hic_options);
-    if (*gather) return crashlink::apps::run_gather(gather_options);
-    if (*compare) return crashlink::apps::run_compare(compare_options);
-    if (*report) return crashlink::apps::run_report(report_options);
-    if (*advise) return crashlink::apps::run_advise(advise_options);
-    if (*map) return crashlink::apps::run_stability_map(map_options);
-    if (*sweep) return crashlink::apps::run_sweep(sweep_options);
+    for (const auto& [command, run_command] : commands)
+      if (*command) return run_command();
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;

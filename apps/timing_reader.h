@@ -14,6 +14,12 @@ struct TimingRecord {
   double wall_seconds = 0.0;
   double coordinator_cpu_seconds = 0.0;
   std::vector<io::DomainTiming> domains;  ///< link order
+  /// The coordinator's and every domain's CPU [s].
+  double total_cpu_seconds() const {
+    double sum = coordinator_cpu_seconds;
+    for (const auto& d : domains) sum += d.cpu_seconds;
+    return sum;
+  }
 };
 
 /// nullopt when the file cannot be opened or has no /timing; never throws.

@@ -125,8 +125,18 @@ void sample_gain(const model::Model& g, const std::vector<model::Domain>& domain
 
 }  // namespace
 
-SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_base_periods) {
-  SplitAdvice a;
+int StepSurvey::finest_part() const {
+  int best = -1;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    if (parts[p].rigid || parts[p].dt_s.empty()) continue;
+    if (best < 0 || parts[p].min_s < parts[static_cast<std::size_t>(best)].min_s)
+      best = static_cast<int>(p);
+  }
+  return best;
+}
+
+StepSurvey survey_steps(const model::Model& g) {
+  StepSurvey a;
   const auto steps = element_steps(g, a.dt_mono_s);
   for (std::size_t p = 0; p < g.parts.size(); ++p) {
     PartSteps ps;
@@ -144,6 +154,12 @@ SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_b
     }
     a.parts.push_back(std::move(ps));
   }
+  return a;
+}
+
+SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_base_periods) {
+  SplitAdvice a;
+  static_cast<StepSurvey&>(a) = survey_steps(g);
   if (a.deformable_elements == 0) return a;
   const double mono_cost = static_cast<double>(a.deformable_elements) / a.dt_mono_s;
 

@@ -31,6 +31,18 @@ struct PartSteps {
   double min_s = 0.0, median_s = 0.0, max_s = 0.0;
 };
 
+/// Every part's element steps, the deformable element count and mono's initial step.
+struct StepSurvey {
+  std::vector<PartSteps> parts;  ///< scenario order
+  long long deformable_elements = 0;
+  double dt_mono_s = 0.0;  ///< mono's initial step (elements and contact springs, x dt_scale)
+  /// The deformable part with the smallest element step (-1: none).
+  int finest_part() const;
+};
+
+/// The first half of advise_split (no cut, no run): one mono Solver initialised.
+StepSurvey survey_steps(const model::Model& global);
+
 struct SplitCandidate {
   std::vector<std::string> fine_parts;  ///< the fine domain's parts (as written); rest: coarse
   std::vector<std::string> domain_names;
@@ -42,10 +54,7 @@ struct SplitCandidate {
   double sample_simulated_s = 0.0;  ///< simulated time of each sample run [s]
 };
 
-struct SplitAdvice {
-  std::vector<PartSteps> parts;  ///< scenario order
-  long long deformable_elements = 0;
-  double dt_mono_s = 0.0;  ///< mono's initial step (elements and contact springs, x dt_scale)
+struct SplitAdvice : StepSurvey {
   std::vector<SplitCandidate> candidates;  ///< thresholds in increasing step
   int best = -1;                           ///< index of the largest predicted gain, -1: none
   SplitCandidate scenario;  ///< the scenario's own `domains:` (empty fine_parts if none)
