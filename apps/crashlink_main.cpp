@@ -1,5 +1,5 @@
 // crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise,
-// stability-map, sweep.
+// stability-map, sweep, keygen.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -11,6 +11,7 @@
 #include "apps/cmd_compare.h"
 #include "apps/cmd_gather.h"
 #include "apps/cmd_hic.h"
+#include "apps/cmd_keygen.h"
 #include "apps/cmd_report.h"
 #include "apps/cmd_run.h"
 #include "apps/cmd_stability_map.h"
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   cl::AdviseOptions advise_options;
   cl::StabilityMapOptions map_options;
   cl::SweepOptions sweep_options;
+  cl::KeygenOptions keygen_options;
   add(run_options, cl::add_run_command, cl::run_run);
   add(hic_options, cl::add_hic_command, [](const cl::HicOptions& o) { return cl::run_hic(o); });
   add(gather_options, cl::add_gather_command, cl::run_gather);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
       [](const cl::AdviseOptions& o) { return cl::run_advise(o); });
   add(map_options, cl::add_stability_map_command, cl::run_stability_map);
   add(sweep_options, cl::add_sweep_command, cl::run_sweep);
+  add(keygen_options, cl::add_keygen_command, cl::run_keygen);
 
   try {
     app.parse(argc, argv);

@@ -41,7 +41,9 @@ std::optional<Incoming> CoordinatorLink::poll(std::chrono::milliseconds timeout)
     const auto until = std::min(deadline, next_heartbeat());
     const auto wait = std::max(std::chrono::ceil<std::chrono::milliseconds>(until - now),
                                std::chrono::milliseconds{0});
-    if (auto received = router_.receive(wait)) {
+    auto received = router_.receive(wait);
+    collect_refusals();
+    if (received) {
       const auto joins_before = joins_;
       if (auto in = handle(*received, Clock::now())) return in;
       if (joins_ != joins_before) return std::nullopt;  // a domain joined: an event too
@@ -252,6 +254,13 @@ CoordinatorLink::Clock::time_point CoordinatorLink::next_heartbeat() const {
     if (peer.active) next = std::min(next, peer.last_sent + config_.options.heartbeat_interval);
   }
   return next;
+}
+
+void CoordinatorLink::collect_refusals() {
+  if (!router_.curve()) return;
+  for (auto& r : router_.take_refusals()) {
+    notice(r.client_key.empty() ? r.address : r.client_key, std::move(r.text));
+  }
 }
 
 void CoordinatorLink::notice(const std::string& routing_id, std::string text) {

@@ -13,7 +13,8 @@
 // a joined domain (Register, FreeState, LayerForce, LayerDisplacement, Bye, Error). An Error from
 // a daemon comes back with Error.domain filled in: `throw RemoteError(in->envelope.error())`
 // reports it with the domain's name. Refused Hellos and bytes that are not Envelopes are answered
-// with an Error to the sender and recorded as notices (take_notices()), never thrown.
+// with an Error to the sender and recorded as notices (take_notices()), never thrown; so are the
+// daemons the CURVE handshake refused (Router::take_refusals(): their key and address).
 // One thread at a time.
 #include <chrono>
 #include <cstdint>
@@ -106,6 +107,7 @@ class CoordinatorLink {
   void send_heartbeats(Clock::time_point now);
   Clock::time_point next_heartbeat() const;
   void notice(const std::string& routing_id, std::string text);
+  void collect_refusals();
 
   CoordinatorConfig config_;
   Router router_;

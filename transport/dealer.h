@@ -3,7 +3,11 @@
 // routing id = the domain name (so the coordinator addresses it by name), one Envelope per
 // ZeroMQ message. Connecting never blocks (ZeroMQ connects and reconnects in the background);
 // receive() always has a timeout; bytes that are not an Envelope come back as a Received with
-// error() set. One thread at a time; movable, not copyable.
+// error() set. CURVE (curve_policy.h): on any non-loopback tcp endpoint, or when
+// SocketOptions::curve.force, the Dealer is a CURVE client; over tcp and ipc a socket monitor
+// watches the security handshake and receive() throws CurveRefusedError as soon as the
+// coordinator refuses it (key not authorised, wrong server key, CURVE on one side only).
+// One thread at a time; movable, not copyable.
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -19,7 +23,8 @@ namespace crashlink::transport {
 class Dealer {
  public:
   /// Connects to `endpoint` (parse_endpoint(…, Use::connect)) as `routing_id` (1-255 bytes, not
-  /// starting with a zero byte). Throws TransportError.
+  /// starting with a zero byte). Throws TransportError; with CURVE on, CurveConfigError or
+  /// CurveKeyFileError (a key missing or unusable).
   Dealer(std::string_view endpoint, std::string_view routing_id, const SocketOptions& options = {});
   ~Dealer();
   Dealer(Dealer&&) noexcept;
@@ -27,6 +32,8 @@ class Dealer {
 
   const std::string& endpoint() const;
   const std::string& routing_id() const;
+  /// Whether this Dealer is a CURVE client.
+  bool curve() const;
 
   /// Queues one Envelope for the coordinator. Throws TransportError if the queue stays full for
   /// SocketOptions::send_timeout_ms.
@@ -37,7 +44,8 @@ class Dealer {
   /// Queues arbitrary bytes as one message: for tests and diagnostics tools only.
   void send_raw(std::string_view bytes);
 
-  /// The next message, or nullopt after `timeout` with none (0: do not wait).
+  /// The next message, or nullopt after `timeout` with none (0: do not wait). Throws
+  /// CurveRefusedError when the coordinator has refused the security handshake.
   std::optional<Received> receive(std::chrono::milliseconds timeout);
 
  private:

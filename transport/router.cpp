@@ -5,20 +5,33 @@
 #include <algorithm>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include "transport/curve_policy.h"
+#include "transport/curve_support.h"
+#include "transport/detail/handshake_monitor.h"
 #include "transport/detail/zmq.h"
 #include "transport/endpoint.h"
 #include "transport/errors.h"
+#include "transport/zap_handler.h"
 
 namespace crashlink::transport {
 
 struct Router::Impl {
+  // Declared first, so destroyed last: no handshake can reach a stopped ZAP handler (libzmq
+  // accepts every client when no handler is bound).
+  std::unique_ptr<ZapDomain> zap;
   zmq::socket_t socket;
   std::string endpoint;
   std::vector<zmq::message_t> frames;
+  std::string public_key;                           // CURVE: ours, for the messages
+  std::optional<detail::HandshakeMonitor> monitor;  // CURVE: failed handshakes, for the log
+
+  /// CURVE server: our secret key, the ZAP domain with the authorized keys, the monitor.
+  void secure(const Endpoint& parsed, const CurveServerKeys& keys);
 
   /// False when the first frame cannot be queued (EAGAIN: queue full, after the send timeout if
   /// `wait` is none); throws TransportError for an unknown peer. `payload` is consumed when sent.
@@ -32,6 +45,10 @@ Router::Router(std::string_view endpoint, const SocketOptions& options)
     impl_->socket = zmq::socket_t(detail::process_context(), zmq::socket_type::router);
     detail::configure(impl_->socket, options);
     impl_->socket.set(zmq::sockopt::router_mandatory, true);
+    // A new connection with the routing id of one not yet torn down (a refused daemon restarted
+    // at once) takes the id over; without this ZeroMQ ignores it and its Hello goes unanswered.
+    impl_->socket.set(zmq::sockopt::router_handover, true);
+    if (auto keys = curve_server_keys(parsed, options.curve)) impl_->secure(parsed, *keys);
     impl_->socket.bind(parsed.text);
     impl_->endpoint = impl_->socket.get(zmq::sockopt::last_endpoint);
   } catch (const zmq::error_t& e) {
@@ -41,12 +58,53 @@ Router::Router(std::string_view endpoint, const SocketOptions& options)
   }
 }
 
+void Router::Impl::secure(const Endpoint& parsed, const CurveServerKeys& keys) {
+  require_curve(fmt::format("the coordinator's endpoint {}", parsed.text));
+  zap = std::make_unique<ZapDomain>(keys.authorized, keys.authorized_file);
+  public_key = keys.public_key;
+  socket.set(zmq::sockopt::curve_server, true);
+  socket.set(zmq::sockopt::curve_secretkey, keys.secret_key);
+  socket.set(zmq::sockopt::zap_domain, zap->name());
+  monitor.emplace(socket, ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL);
+}
+
 Router::~Router() = default;
 Router::Router(Router&&) noexcept = default;
 Router& Router::operator=(Router&&) noexcept = default;
 
 const std::string& Router::endpoint() const {
   return impl_->endpoint;
+}
+
+bool Router::curve() const {
+  return impl_->zap != nullptr;
+}
+
+std::vector<CurveRefusal> Router::take_refusals() {
+  if (!impl_->zap) return {};
+  std::vector<CurveRefusal> out = impl_->zap->take_refusals();
+  for (const auto& e : impl_->monitor->drain()) {
+    CurveRefusal r;
+    r.address = e.address;
+    if (e.value == ZMQ_PROTOCOL_ERROR_ZMTP_CRYPTOGRAPHIC) {
+      r.text = fmt::format(
+          "refused a CURVE connection on {}: the client's HELLO does not decrypt with this "
+          "coordinator's key ({}), so that daemon was given the wrong server public key; fix: "
+          "give it this coordinator's public key {} (its PREFIX.pub) as --curve-server-key",
+          impl_->endpoint, detail::protocol_error_name(e.value), impl_->public_key);
+    } else if (e.value == ZMQ_PROTOCOL_ERROR_ZMTP_MECHANISM_MISMATCH) {
+      r.text = fmt::format(
+          "refused a connection on {}: the client does not use CURVE ({}) and this coordinator "
+          "requires it; fix: start that daemon with --curve, --curve-secret-key and "
+          "--curve-server-key",
+          impl_->endpoint, detail::protocol_error_name(e.value));
+    } else {
+      r.text = fmt::format("refused a connection on {}: the CURVE handshake failed with {}",
+                           impl_->endpoint, detail::protocol_error_name(e.value));
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 namespace {

@@ -2,6 +2,8 @@
 // Socket settings shared by Router and Dealer (DESIGN.md §3: "set linger, poll with timeouts").
 #include <cstdint>
 
+#include "transport/curve_options.h"
+
 namespace crashlink::transport {
 
 struct SocketOptions {
@@ -18,6 +20,8 @@ struct SocketOptions {
   /// Larger incoming messages are dropped by ZeroMQ (and the connection closed): a bound on what
   /// garbage can make us allocate. 256 MiB is 11 million interface nodes' 3-vectors.
   std::int64_t max_message_bytes = std::int64_t{256} << 20;
+  /// CURVE keys (curve_policy.h: on for every non-loopback tcp endpoint, or when forced).
+  CurveOptions curve;
 };
 
 }  // namespace crashlink::transport

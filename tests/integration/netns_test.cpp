@@ -39,6 +39,7 @@
 #include "process_test_support.h"
 #include "solver/io/result_reader.h"
 #include "solver/run/exit_codes.h"
+#include "transport/curve_keygen.h"
 
 using namespace crashlink;
 using namespace crashlink::proc_test;
@@ -355,6 +356,20 @@ std::string case_name(const ::testing::TestParamInfo<Case>& p) {
 
 class AcrossNamespaces : public ::testing::TestWithParam<Case> {};
 
+/// The coordinator binds a non-loopback address, so CURVE is on (docs/processes.md, "Security
+/// (CURVE)"): one key pair for every piece, its public key the only authorized one. The loopback
+/// runs get the same flags and use no CURVE (not forced).
+std::vector<std::string> with_curve(std::vector<std::string> session,
+                                    const std::filesystem::path& dir) {
+  const auto keys = transport::write_curve_keypair((dir / "run").string(), false);
+  for (const std::string& a :
+       {std::string("--curve-secret-key"), keys.secret_file, std::string("--curve-server-key"),
+        keys.public_file, std::string("--curve-authorized-keys"), keys.public_file}) {
+    session.push_back(a);
+  }
+  return session;
+}
+
 }  // namespace
 
 TEST_P(AcrossNamespaces, MultiRunEqualsLoopbackRunToTheBit) {
@@ -365,7 +380,7 @@ TEST_P(AcrossNamespaces, MultiRunEqualsLoopbackRunToTheBit) {
   const RemoveIfPassed cleanup{dir};
   const std::string scenario = write_file(dir / (c.label + ".yaml"), c.yaml);
   const auto out_net = dir / "netns", out_local = dir / "local";
-  const auto session = fast_session_args();
+  const auto session = with_curve(fast_session_args(), dir);
 
   // Across the namespaces: the coordinator on the bridge's address, each daemon behind its veth.
   double wall_net = 0.0, wall_local = 0.0;
@@ -453,7 +468,7 @@ TEST(NetworkCut, LinkDownIsDetectedOnBothSides) {
     return net.in(k == 0 ? net.coordinator() : net.daemon(k - 1), std::move(argv));
   };
   ASSERT_NO_FATAL_FAILURE(start(p, wrap, "tcp://" + std::string(kCoordinatorAddress) + ":*",
-                                scenario, out, domains, fast_session_args()));
+                                scenario, out, domains, with_curve(fast_session_args(), dir)));
   ASSERT_TRUE(p.coordinator->wait_for_output("steps:", std::chrono::seconds(20)))
       << p.coordinator->output();
   // Mid-run: both daemons stepping and flushing history for a while.
