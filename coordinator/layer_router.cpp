@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <limits>
+
 #include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
 
@@ -57,6 +59,13 @@ const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool f
         fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the next "
                     "one must be at {} ticks (every {} ticks, in time order)",
                     who, what, interface, time, expected, r.coarse_step));
+  }
+  if (time > std::numeric_limits<Tick>::max() - r.coarse_step) {
+    throw ProtocolError(
+        fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the one after it, {} "
+                    "ticks later, would be beyond the tick range (2^63 - 1 ticks): the "
+                    "coordinator's steps do not fit this run (a smaller ticks_per_second)",
+                    who, what, interface, time, r.coarse_step));
   }
   const std::size_t n = 3 * r.n_j;
   if (first_size != n || (second_size != 0 && second_size != n)) {

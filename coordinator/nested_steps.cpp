@@ -17,6 +17,24 @@ std::string name_of(const std::vector<std::string>& names, std::size_t k) {
   if (k < names.size()) r.push_back('\'');
   return r;
 }
+
+/// a * b, or a ModelError when it leaves the tick range (proposals near 2^63 ticks, or substep
+/// counts whose product does: no whole-tick plan exists).
+std::int64_t times(std::int64_t a, std::int64_t b, const char* what) {
+  std::int64_t r = 0;
+  if (__builtin_mul_overflow(a, b, &r))
+    throw ModelError("steps: " + std::string(what) + " " + std::to_string(a) + " x " +
+                     std::to_string(b) +
+                     " exceeds the tick range (2^63 ticks); fix: step "
+                     "proposals far below 2^63 ticks (a smaller ticks_per_second) or fewer "
+                     "substeps between the domains");
+  return r;
+}
+
+/// lcm(a, b) for a, b >= 1, without overflow (ModelError as times()).
+std::int64_t lcm_of(std::int64_t a, std::int64_t b) {
+  return times(a / std::gcd(a, b), b, "the lcm of the substep counts");
+}
 }  // namespace
 
 StepPlan nested_steps(const std::vector<Tick>& proposal,
@@ -69,9 +87,10 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
                        " form a cycle; no nested steps exist. Fix: re-cut the domains");
     }
     std::int64_t L = 1;
-    for (auto c : coarse_of[pick]) L = std::lcm(L, plan.n[c]);
-    const std::int64_t per = limit(pick) * L;  // ceil(base / (limit L)) in integers
-    std::int64_t need = std::max<std::int64_t>(1, (base + per - 1) / per);
+    for (auto c : coarse_of[pick]) L = lcm_of(L, plan.n[c]);
+    const std::int64_t per = times(limit(pick), L, "a step proposal times its substep count");
+    // ceil(base / (limit L)) in integers (base + per - 1 could leave the tick range)
+    std::int64_t need = std::max<std::int64_t>(1, base / per + (base % per != 0 ? 1 : 0));
     // A ratio just above a whole number k (within kShrink) costs one substep more than it is
     // worth: shrink the base period to k limit L instead (every step only gets smaller).
     if (need > 1 && static_cast<double>(base) <= (1.0 + kShrink) * static_cast<double>(need - 1) *
@@ -79,12 +98,12 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
       --need;
       base = need * per;
     }
-    plan.n[pick] = L * need;
+    plan.n[pick] = times(L, need, "a substep count");
     done[pick] = 1;
     for (auto f : fine_of[pick]) --pending[f];
   }
   std::int64_t all = 1;
-  for (auto n : plan.n) all = std::lcm(all, n);
+  for (auto n : plan.n) all = lcm_of(all, n);
   if (all > base / 1000)
     throw ModelError("steps: the substep counts need a base period divisible by " +
                      std::to_string(all) + " ticks, more than 0.1 % of the largest step (" +

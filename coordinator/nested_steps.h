@@ -34,7 +34,7 @@ struct StepPlan {
 /// A link whose fine side has the larger proposal runs that side at its coarse side's step.
 /// Throws ModelError when no domain has a limit, when the links form a cycle of coarse -> fine
 /// (names the domains), or when lcm(n) exceeds base / 1000 (steps would lose more than 0.1 % to
-/// rounding).
+/// rounding), or when a step times a substep count leaves the tick range (2^63 ticks).
 StepPlan nested_steps(const std::vector<Tick>& proposal,
                       const std::vector<std::pair<int, int>>& links, bool common,
                       const std::vector<std::string>& names = {});

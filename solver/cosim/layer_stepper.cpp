@@ -143,7 +143,14 @@ void LayerStepper::deliver(const LayerMessage& m) {
                        ": " + kind_name(m.kind) + " from '" + port.partner + "' carries " +
                        std::to_string(m.first.size()) + " + " + std::to_string(m.second.size()) +
                        " values; expected " + std::to_string(n3) + " (3 per J node)");
-    ps.next_expected += port.fine_side ? port.partner_step : h_;
+    const Tick every = port.fine_side ? port.partner_step : h_;
+    if (ps.next_expected > std::numeric_limits<Tick>::max() - every)
+      throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                       ": " + kind_name(m.kind) + " from '" + port.partner + "' for t = " +
+                       std::to_string(m.time) + " ticks; the next one, " + std::to_string(every) +
+                       " ticks later, would be beyond the tick range (2^63 - 1 ticks): the "
+                       "coordinator's steps do not fit this run (a smaller ticks_per_second)");
+    ps.next_expected += every;
     ps.inbox.push_back(m);
     return;
   }

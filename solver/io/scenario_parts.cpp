@@ -28,6 +28,22 @@ std::array<double, N> read_sizes(const YamlNode& s, const char* form) {
   return out;
 }
 
+/// Most elements a scenario may generate in all: ten times the largest benchmark (1e6 elements at
+/// ~70 ns per element per cycle is 0.07 s per cycle on one core, hours for a crash run), low
+/// enough that a typo in `divisions` fails at its line instead of exhausting memory (found by the
+/// scenario fuzz target, docs/fuzzing.md).
+constexpr double kMaxElements = 1.0e6;
+
+/// Fails at `divisions` when `elements` more would take the model past kMaxElements.
+void check_element_count(const model::Model& m, const YamlNode& divisions, double elements) {
+  const double total = static_cast<double>(m.element_count()) + elements;
+  if (total > kMaxElements)
+    divisions.fail(
+        fmt::format("{:.4g} elements (model total {:.4g}), more than the {:.0f} a "
+                    "scenario may hold; use fewer divisions",
+                    elements, total, kMaxElements));
+}
+
 int read_axis(const YamlNode& a) {
   const std::string s = a.choice({"x", "y", "z"});
   return s == "x" ? 0 : s == "y" ? 1 : 2;
@@ -39,7 +55,10 @@ int mesh_box(model::Model& m, model::Part part, const YamlNode& mesh) {
   box.origin_m = mesh.vec3_or("origin", {0.0, 0.0, 0.0});
   const auto size = read_sizes<3>(mesh.required("size", "[lx, ly, lz] in m"), "[lx, ly, lz]");
   box.size_m = {size[0], size[1], size[2]};
-  box.divisions = read_divisions3(mesh.required("divisions", "[nx, ny, nz] elements per edge"));
+  const auto d = mesh.required("divisions", "[nx, ny, nz] elements per edge");
+  box.divisions = read_divisions3(d);
+  check_element_count(m, d,
+                      static_cast<double>(box.divisions[0]) * box.divisions[1] * box.divisions[2]);
   return model::generate_box(m, std::move(part), box);
 }
 
@@ -52,12 +71,15 @@ int mesh_bar(model::Model& m, model::Part part, const YamlNode& mesh) {
   bar.length_m = mesh.required("length", "bar length in m").positive();
   bar.cross_section_m =
       read_sizes<2>(mesh.required("cross_section", "[a, b] side lengths in m"), "[a, b]");
-  bar.elements = mesh.required("divisions", "number of hexahedra along the bar").positive_int();
+  const auto d = mesh.required("divisions", "number of hexahedra along the bar");
+  bar.elements = d.positive_int();
   if (auto cd = mesh.optional("cross_divisions")) {
     const auto all = cd->items("2 integers [na, nb]");
     if (all.size() != 2) cd->fail(fmt::format("expected 2 integers [na, nb], got {}", all.size()));
     bar.cross_divisions = {all[0].positive_int(), all[1].positive_int()};
   }
+  check_element_count(
+      m, d, static_cast<double>(bar.elements) * bar.cross_divisions[0] * bar.cross_divisions[1]);
   return model::generate_bar(m, std::move(part), bar);
 }
 
@@ -86,6 +108,7 @@ int mesh_plate(model::Model& m, model::Part part, const YamlNode& mesh) {
   const auto all = d.items("2 integers [n1, n2]");
   if (all.size() != 2) d.fail(fmt::format("expected 2 integers [n1, n2], got {}", all.size()));
   plate.divisions = {all[0].positive_int(), all[1].positive_int()};
+  check_element_count(m, d, static_cast<double>(plate.divisions[0]) * plate.divisions[1]);
   if (auto dist = mesh.optional("distort")) {
     plate.distort = dist->non_negative();
     if (plate.distort > 0.4)
@@ -100,7 +123,9 @@ int mesh_sphere(model::Model& m, model::Part part, const YamlNode& mesh) {
   model::SphereMesh s;
   s.centre_m = mesh.required("centre", "[x, y, z] in m").vec3();
   s.radius_m = mesh.required("radius", "m").positive();
-  s.divisions = mesh.required("divisions", "elements per cube edge, 6 n^2 quads").positive_int();
+  const auto d = mesh.required("divisions", "elements per cube edge, 6 n^2 quads");
+  s.divisions = d.positive_int();
+  check_element_count(m, d, 6.0 * s.divisions * static_cast<double>(s.divisions));
   return model::generate_sphere(m, std::move(part), s);
 }
 

@@ -36,10 +36,16 @@ std::size_t merge_coincident_nodes(Model& m, std::size_t first_new, double toler
   const std::size_t n = m.nodes.count();
   CRASHLINK_ASSERT(first_new <= n);
   const auto& x = m.nodes.x0;
+  // Cell index of one coordinate. Coordinates beyond 4e18 tolerances (or not finite) share the
+  // edge cells: converting them would overflow (found by the scenario fuzz target,
+  // docs/fuzzing.md); distances are still checked exactly, so merging stays right.
+  auto index = [&](double v) {
+    constexpr double kEdge = 4.0e18;
+    const double q = std::floor(v / tolerance_m);
+    return static_cast<std::int64_t>(q > kEdge ? kEdge : q >= -kEdge ? q : -kEdge);
+  };
   auto cell_of = [&](std::size_t node) {
-    return Cell{static_cast<std::int64_t>(std::floor(x[3 * node] / tolerance_m)),
-                static_cast<std::int64_t>(std::floor(x[3 * node + 1] / tolerance_m)),
-                static_cast<std::int64_t>(std::floor(x[3 * node + 2] / tolerance_m))};
+    return Cell{index(x[3 * node]), index(x[3 * node + 1]), index(x[3 * node + 2])};
   };
   std::unordered_map<Cell, std::vector<std::int32_t>, CellHash> grid;
   grid.reserve(first_new);

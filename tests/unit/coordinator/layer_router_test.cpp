@@ -83,3 +83,12 @@ TEST(LayerRouter, RefusesBadRoutes) {
   EXPECT_THROW(LayerRouter({{0, 2, 1, 10, 1.0}}, {"a", "b"}), crashlink::ModelError);
   EXPECT_THROW(LayerRouter({{0, 1, 1, 0, 0.0}}, {"a", "b"}), crashlink::ModelError);
 }
+
+// A coarse step so long that the next instant leaves the tick range (fuzz regression,
+// docs/fuzzing.md): refused by name instead of overflowing.
+TEST(LayerRouter, RefusesAnInstantWhoseSuccessorLeavesTheTickRange) {
+  const Tick H = 5'000'000'000'000'000'000;
+  LayerRouter r({{0, 1, 2, H, 5.0e3}}, {"fine", "coarse"});
+  EXPECT_EQ(r.force(0, 0, 0, vec(1.0), {}).to, 1);
+  EXPECT_THROW(r.displacement(1, 0, H, vec(0.5), {}), ProtocolError);
+}

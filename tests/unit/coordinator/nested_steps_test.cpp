@@ -105,5 +105,19 @@ TEST(NestedSteps, RatioJustAboveAWholeNumberShrinksTheBase) {
   // 2.05 h: a real excess, three substeps
   EXPECT_EQ(nested_steps({2050000, 1000000}, {{0, 1}}, false).n[1], 3);
 }
+// Proposals near 2^63 ticks (fuzz regression, docs/fuzzing.md): the plan is still exact, and a
+// chain whose substep counts leave the tick range is refused by name instead of overflowing.
+TEST(NestedSteps, HugeProposalsPlanOrFailWithinTheTickRange) {
+  const std::vector<Tick> huge{9'000'000'000'000'000'000, 528'184'804};
+  const auto p = nested_steps(huge, {{0, 1}}, false);
+  expect_nested(p, huge, {{0, 1}});
+  try {
+    (void)nested_steps({4'000'000'000'000'000'000, 1, 4'000'000'000'000'000'000}, {{0, 1}, {1, 2}},
+                       false);
+    ADD_FAILURE() << "no error for substep counts beyond the tick range";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("tick range"), std::string::npos) << e.what();
+  }
+}
 }  // namespace
 }  // namespace crashlink::coordinator

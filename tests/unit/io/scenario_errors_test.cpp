@@ -293,5 +293,17 @@ TEST(ScenarioErrors, MissingFileNamesIt) {
   }
 }
 
+// A typo in divisions must fail at its line, not exhaust memory (fuzz regression,
+// docs/fuzzing.md).
+TEST(ScenarioErrors, TooManyElements) {
+  expect_error(kHead + R"(parts:
+  sheet:
+    material: steel
+    thickness: 1.0e-3
+    mesh: {generator: plate, size: [1.0, 1.0], divisions: [100000, 100000]}
+)",
+               "mesh:", "parts.sheet.mesh.divisions", "more than the 1000000");
+}
+
 }  // namespace
 }  // namespace crashlink::io
