@@ -36,6 +36,13 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "split/multi: also run this mode (mono) into OUT/reference and print the "
                   "comparison table (crashlink compare)")
       ->check(CLI::IsMember({"mono"}));
+  run->add_option("--checkpoint-interval", o.checkpoint_interval_s,
+                  "split/multi: every process writes a checkpoint every this much simulated "
+                  "time, s (rounded to a multiple of every domain's step) into OUT/checkpoints")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--restart", o.restart,
+                  "split/multi: resume the run in this folder (its --out) from the newest "
+                  "checkpoint every process has; same scenario, mode and step safety");
   add_session_flags(*run, o.session);
   return run;
 }
@@ -61,6 +68,16 @@ int run_run(const RunCommandOptions& o) {
     c.run = o.out + "/result.h5";
     compare_runs(c);
     return 0;
+  }
+  if (!o.restart.empty() && (o.mode == "mono" || !o.reference.empty())) {
+    throw InputError(
+        "run: --restart resumes a coupled run: use it with the --mode (split or multi) of the "
+        "run that wrote the checkpoints, without --reference");
+  }
+  if (!o.restart.empty()) {
+    RunCommandOptions r = o;
+    r.out = o.restart;  // --restart DIR continues the run in DIR
+    return run_coupled(r);
   }
   if (o.mode != "mono") return run_coupled(o);
   const auto model = io::read_scenario(o.scenario);

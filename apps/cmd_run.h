@@ -1,7 +1,8 @@
 #pragma once
 // `crashlink run SCENARIO [--out DIR] [--mode mono|split|multi] [--coupling layer|paper]
 // [--transport ipc|tcp|inproc] [--quiet] [--heartbeat-ms N] [--timeout-ms N]
-// [--join-timeout-ms N] [--step-safety F] [--reference mono]` (DESIGN.md §4): runs the scenario,
+// [--join-timeout-ms N] [--step-safety F] [--reference mono] [--checkpoint-interval S]
+// [--restart DIR]` (DESIGN.md §4): runs the scenario,
 // shows progress, prints the summary and, for every probe on a rigid body (a headform), HIC15 and
 // HIC36 after CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
 //   mono: the whole model in this process (run/run_single.h).
@@ -10,6 +11,9 @@
 //     the wall time against the sum of the CPU times.
 //   --reference mono (split | multi only): afterwards, the same scene in `mono` into
 //     DIR/reference/, then the paper's Table 1 of the two (`crashlink compare`, cmd_compare.h).
+//   --checkpoint-interval S (split | multi): checkpoints of every process every S of simulated
+//     time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest one every
+//     process has, and ends as the uninterrupted run would have (docs/processes.md).
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -31,6 +35,10 @@ struct RunCommandOptions {
   double step_safety = 0.9;
   /// "" or "mono": run the reference too and compare (split/multi only).
   std::string reference;
+  /// split/multi: checkpoints every this much simulated time [s] (0: none).
+  double checkpoint_interval_s = 0.0;
+  /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
+  std::string restart;
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

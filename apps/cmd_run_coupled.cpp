@@ -143,6 +143,8 @@ int run_coupled(const RunCommandOptions& o) {
   lo.session = o.session;
   lo.join_timeout_ms = o.join_timeout_ms;
   lo.step_safety = o.step_safety;
+  lo.checkpoint_interval_s = o.checkpoint_interval_s;
+  lo.restart = !o.restart.empty();
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

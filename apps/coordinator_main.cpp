@@ -38,6 +38,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 86400000))
       ->capture_default_str();
   app.add_flag("--progress", progress, "progress line on stderr (the slowest domain's time)");
+  app.add_option("--checkpoint-interval", o.checkpoint_interval_s,
+                 "write checkpoints (all domains) every this much simulated time, s, rounded to a "
+                 "multiple of every domain's step; 0: none")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_flag("--restart", o.restart,
+               "resume from the newest checkpoint in --out that every domain has (the daemons "
+               "list theirs when they register)");
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);

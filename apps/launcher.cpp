@@ -138,6 +138,11 @@ class ProcessRun {
                                   std::to_string(o_.join_timeout_ms)};
     for (const auto& a : o_.session.arguments()) args.push_back(a);
     if (o_.progress) args.emplace_back("--progress");
+    if (o_.checkpoint_interval_s > 0.0) {
+      args.emplace_back("--checkpoint-interval");
+      args.push_back(fmt::format("{:.17g}", o_.checkpoint_interval_s));
+    }
+    if (o_.restart) args.emplace_back("--restart");
     add("coordinator", spawn(coordinator_exe, args));
 
     LaunchResult r;
@@ -255,6 +260,8 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.join_timeout = std::chrono::milliseconds{o.join_timeout_ms};
   co.in_process = true;
   co.stop = &stop_flag();
+  co.checkpoint_interval_s = o.checkpoint_interval_s;
+  co.restart = o.restart;
   std::promise<std::string> bound;
   std::atomic<bool> bound_set{false};
   co.on_bound = [&](const std::string& ep) {

@@ -29,7 +29,9 @@ struct LaunchOptions {
   bool progress = true;  ///< the coordinator's progress line on stderr
   SessionFlags session;
   int join_timeout_ms = 60000;
-  double step_safety = 0.9;  ///< passed to every daemon (DaemonOptions::step_safety)
+  double step_safety = 0.9;            ///< passed to every daemon (DaemonOptions::step_safety)
+  double checkpoint_interval_s = 0.0;  ///< CoordinatorOptions::checkpoint_interval_s
+  bool restart = false;                ///< CoordinatorOptions::restart (out_dir holds the run)
 };
 
 /// How one piece of the run ended.

@@ -64,6 +64,23 @@ class LayerRouter {
                       std::span<const double> displacement_m,
                       std::span<const double> angular_velocity_rad_s);
 
+  /// One interface between two owner instants, all it needs to go on (checkpoints, DESIGN.md
+  /// §2.6 "Checkpoints"): the next expected times and the vectors of the last history row.
+  struct TrackState {
+    Tick next_force = 0;
+    Tick next_displacement = 0;
+    std::vector<double> g_prev, u_prev, m_prev;
+    bool have_prev = false;
+    double work_J = 0.0;
+  };
+  /// Interface i right after its force at an owner instant was paired (layer_router_state.cpp).
+  /// Throws ModelError if a message is still waiting to be paired (not between two instants).
+  TrackState track_state(std::size_t i) const;
+  /// A restarted run: interface i continues from `s`; every domain's latest time becomes `time`
+  /// and the forwarded count `forwarded`.
+  void restore_track(std::size_t i, TrackState s);
+  void restore_progress(Tick time, std::int64_t forwarded);
+
   std::size_t size() const { return routes_.size(); }
   const LayerRoute& route(std::size_t i) const { return routes_[i]; }
   /// Time of the latest message domain k sent on any interface (-1: none yet).

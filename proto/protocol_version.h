@@ -10,7 +10,8 @@ namespace crashlink::wire {
 
 // History: 1 first version; 2 `layer` processes: Setup.step_ticks,
 // LayerInterface.partner_step_ticks, Register.layer_interfaces, the rotational vectors of
-// LayerForce / LayerDisplacement, Bye.report.
-inline constexpr std::uint32_t kProtocolVersion = 2;
+// LayerForce / LayerDisplacement, Bye.report; 3 checkpoints and restart: Register.checkpoint_ticks,
+// Setup.restart / restart_ticks (a version-2 daemon would start from t = 0 in a restarted run).
+inline constexpr std::uint32_t kProtocolVersion = 3;
 
 }  // namespace crashlink::wire

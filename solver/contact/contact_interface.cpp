@@ -406,3 +406,39 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
 }
 
 }  // namespace crashlink::contact
+
+namespace crashlink::contact {
+
+void ContactInterface::save_state(core::StateWriter& w, const std::string& prefix) const {
+  const Impl& s = *impl_;
+  w.put_double(prefix + "travelled_m", s.travelled_m);
+  w.put_bool(prefix + "need_sort", s.need_sort);
+  w.put_int(prefix + "sorts", s.sorts);
+  w.put_double(prefix + "dt_last_s", s.dt_last_s);
+  w.put(prefix + "cand.offset", std::span<const std::int32_t>(s.cand.offset));
+  w.put(prefix + "cand.segment", std::span<const std::int32_t>(s.cand.segment));
+  w.put(prefix + "ft_N", std::span<const double>(s.ft_N));
+  w.put(prefix + "side", std::span<const std::int8_t>(s.side));
+  w.put(prefix + "last", std::span<const std::int32_t>(s.last));
+}
+
+void ContactInterface::restore_state(const core::StateReader& r, const std::string& prefix) {
+  Impl& s = *impl_;
+  s.travelled_m = r.get_double(prefix + "travelled_m");
+  s.need_sort = r.get_bool(prefix + "need_sort");
+  s.sorts = r.get_int(prefix + "sorts");
+  s.dt_last_s = r.get_double(prefix + "dt_last_s");
+  r.get(prefix + "cand.offset", s.cand.offset);
+  r.get(prefix + "cand.segment", s.cand.segment);
+  if (!s.cand.offset.empty() && s.cand.offset.size() != s.slave.size() + 1) {
+    throw CheckpointError(
+        fmt::format("checkpoint {}: contact '{}' has {} slave nodes, the "
+                    "checkpoint's candidate list {}",
+                    r.path(), s.name, s.slave.size(), s.cand.offset.size() - 1));
+  }
+  r.get_exact(prefix + "ft_N", s.ft_N);
+  r.get_exact(prefix + "side", s.side);
+  r.get_exact(prefix + "last", s.last);
+}
+
+}  // namespace crashlink::contact

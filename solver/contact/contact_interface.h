@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "solver/core/state_archive.h"
 #include "solver/model/model.h"
 
 namespace crashlink::contact {
@@ -31,6 +32,11 @@ class ContactInterface {
   /// (f is an external-force accumulator: positive pushes the node). dt = dt^n, the step just
   /// taken (friction's elastic predictor uses v * dt).
   ContactStep compute(const double* x, const double* v, double dt, double* f);
+
+  /// Checkpoints: the search state (candidates, travel since the last sort), the friction
+  /// history and the contact memory of every slave node, under `prefix`.
+  void save_state(core::StateWriter& w, const std::string& prefix) const;
+  void restore_state(const core::StateReader& r, const std::string& prefix);
 
   const std::string& name() const;
   /// Diagnostics: bucket sorts done so far, candidate pairs of the last sort, master segments.

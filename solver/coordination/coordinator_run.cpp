@@ -9,7 +9,9 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <span>
@@ -21,9 +23,11 @@
 #include "solver/coordination/coupling_history.h"
 #include "solver/coordination/layer_cut.h"
 #include "solver/core/errors.h"
+#include "solver/core/state_archive.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
+#include "solver/run/checkpoint_store.h"
 #include "solver/run/cpu_clock.h"
 #include "solver/run/exit_codes.h"
 #include "transport/coordinator_link.h"
@@ -113,12 +117,14 @@ class Coordinator {
       r.message = stop->text;
       r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
     }
-    r.cpu_seconds = cpu_seconds() - cpu0_;
+    r.cpu_seconds = cpu_before_ + cpu_seconds() - cpu0_;
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
     close_history(r);
     r.endpoint = link_ ? link_->endpoint() : std::string();
     r.messages_forwarded = router_ ? router_->forwarded() : 0;
     r.notices = notices_;
+    r.checkpoint_interval_ticks = checkpoint_every_;
+    r.restarted_from_ticks = restart_from_;
     r.domains = outcomes_;
     return r;
   }
@@ -139,6 +145,8 @@ class Coordinator {
     registered_.assign(cut_.names.size(), false);
 
     std::filesystem::create_directories(o_.out_dir);
+    hash_ = hash;
+    if (!o_.restart) run::remove_checkpoints(o_.out_dir, kSelf);
     history_ = std::make_unique<CouplingHistory>(
         (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut_);
 
@@ -236,10 +244,18 @@ class Coordinator {
                         static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
+    plan_checkpoints(plan.step);
+    options.set_checkpoint_interval_ticks(checkpoint_every_);
+    if (o_.restart) restore(choose_restart());
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       outcomes_[k].step_ticks = plan.step[k];
-      link_->send(cut_.names[k], setup_message(cut_, plan, static_cast<int>(k), o_.common_step,
-                                               options, o_.ticks_per_second));
+      auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.common_step, options,
+                                 o_.ticks_per_second);
+      if (restart_from_ >= 0) {
+        setup.mutable_setup()->set_restart(true);
+        setup.mutable_setup()->set_restart_ticks(restart_from_);
+      }
+      link_->send(cut_.names[k], setup);
     }
     if (o_.log != nullptr) {
       std::string steps;
@@ -271,6 +287,7 @@ class Coordinator {
                                          view(f.moments_n_m()));
             forward(routed.to, *in);
             history_->append(f.interface_index(), routed.samples, o_.ticks_per_second);
+            snapshot(f.interface_index(), f.time_ticks());
           } else if (e.has_layer_displacement()) {
             const auto& d = e.layer_displacement();
             auto routed = router_->displacement(k, d.interface_index(), d.time_ticks(),
@@ -303,6 +320,144 @@ class Coordinator {
       }
       link_->check_alive();
     }
+  }
+
+  static constexpr const char* kSelf = "coordinator";
+
+  /// The interval in ticks: checkpoint_interval_s rounded to a whole multiple (>= 1) of the least
+  /// common multiple of the domains' steps, so every domain is between two cycles there.
+  void plan_checkpoints(const std::vector<coordinator::Tick>& steps) {
+    if (!(o_.checkpoint_interval_s > 0.0)) return;
+    coordinator::Tick l = 1;
+    for (const auto h : steps) {
+      if (h < 1) continue;
+      l = std::lcm(l, h);
+      if (l > (std::int64_t{1} << 60)) {
+        throw StopRun(Stop{run::kExitInput,
+                           wire::ERROR_CODE_MODEL,
+                           {},
+                           "coordinator: the domains' steps have no common multiple that fits "
+                           "a tick count; run without checkpoints"});
+      }
+    }
+    const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
+    const auto n = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(std::llround(want / static_cast<double>(l))));
+    checkpoint_every_ = n * l;
+    if (o_.log != nullptr) {
+      std::fprintf(
+          o_.log,
+          "crashlink-coordinator: checkpoints every %.6e s (asked %.6e s; a multiple of "
+          "every domain's step) into %s/checkpoints\n",
+          static_cast<double>(checkpoint_every_) / static_cast<double>(o_.ticks_per_second),
+          o_.checkpoint_interval_s, o_.out_dir.c_str());
+      std::fflush(o_.log);
+    }
+  }
+
+  /// The newest instant at which the coordinator and every daemon have a checkpoint.
+  coordinator::Tick choose_restart() {
+    std::vector<coordinator::Tick> common = run::list_checkpoints(o_.out_dir, kSelf);
+    const bool any_interface = router_->size() > 0;
+    std::string listing = fmt::format("coordinator: [{}]", fmt::join(common, ", "));
+    bool first = true;
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+      const auto& ticks = regs_[k].checkpoint_ticks();
+      std::vector<coordinator::Tick> mine(ticks.begin(), ticks.end());
+      std::sort(mine.begin(), mine.end());
+      listing += fmt::format("; {}: [{}]", cut_.names[k], fmt::join(mine, ", "));
+      if (first && !any_interface) {
+        common = mine;  // no interface: the coordinator keeps no state of its own
+      } else {
+        std::vector<coordinator::Tick> both;
+        std::set_intersection(common.begin(), common.end(), mine.begin(), mine.end(),
+                              std::back_inserter(both));
+        common = std::move(both);
+      }
+      first = false;
+    }
+    if (common.empty()) {
+      throw StopRun(Stop{run::kExitInput,
+                         wire::ERROR_CODE_MODEL,
+                         {},
+                         fmt::format("coordinator: --restart: no checkpoint instant (ticks of "
+                                     "1/{} s) that the coordinator and every domain have ({}); "
+                                     "run from the start without --restart",
+                                     o_.ticks_per_second, listing)});
+    }
+    return common.back();
+  }
+
+  /// Router and interface histories as they were at T.
+  void restore(coordinator::Tick T) {
+    const std::string dir = run::checkpoint_folder(o_.out_dir, T, kSelf);
+    std::size_t rows = 0;
+    if (router_->size() > 0) {
+      const core::StateReader r((std::filesystem::path(dir) / "state.bin").string());
+      if (r.get_string("scenario_hash") != hash_ || r.get_int("time_ticks") != T ||
+          r.get_int("interfaces") != static_cast<std::int64_t>(router_->size())) {
+        throw CheckpointError(fmt::format(
+            "checkpoint {}: written at {} ticks for scenario {} with {} interfaces; this run is "
+            "at {} ticks of scenario {} with {}: restart with the scenario that wrote it",
+            r.path(), r.get_int("time_ticks"), r.get_string("scenario_hash"),
+            r.get_int("interfaces"), T, hash_, router_->size()));
+      }
+      for (std::size_t i = 0; i < router_->size(); ++i) {
+        const std::string p = fmt::format("interface{}.", i);
+        coordinator::LayerRouter::TrackState t;
+        t.next_force = r.get_int(p + "next_force");
+        t.next_displacement = r.get_int(p + "next_displacement");
+        r.get(p + "g_prev", t.g_prev);
+        r.get(p + "u_prev", t.u_prev);
+        r.get(p + "m_prev", t.m_prev);
+        t.have_prev = r.get_bool(p + "have_prev");
+        t.work_J = r.get_double(p + "work_J");
+        router_->restore_track(i, std::move(t));
+      }
+      router_->restore_progress(T, r.get_int("forwarded"));
+      cpu_before_ = r.get_double("run.cpu_seconds");
+      rows = history_->replay((std::filesystem::path(dir) / "coordinator.h5").string(),
+                              static_cast<double>(T) / static_cast<double>(o_.ticks_per_second));
+    }
+    restart_from_ = T;
+    if (o_.log != nullptr) {
+      std::fprintf(o_.log,
+                   "crashlink-coordinator: restarting every domain from the checkpoint at t = "
+                   "%.6e s (%zu interface history rows kept)\n",
+                   static_cast<double>(T) / static_cast<double>(o_.ticks_per_second), rows);
+      std::fflush(o_.log);
+    }
+  }
+
+  /// After interface i's force at `time` was routed and paired: at a checkpoint instant, keep
+  /// its state; once every interface has passed that instant, write the coordinator's checkpoint.
+  void snapshot(std::uint32_t i, coordinator::Tick time) {
+    if (checkpoint_every_ <= 0 || time <= 0 || time % checkpoint_every_ != 0) return;
+    auto& snaps = snapshots_[time];
+    snaps.emplace(i, router_->track_state(i));
+    if (snaps.size() < router_->size()) return;
+    const std::string dir = run::begin_checkpoint(o_.out_dir, time, kSelf);
+    history_->flush();  // rows up to `time` (and some later ones: replay keeps <= time)
+    run::copy_into_checkpoint(history_->path(), dir);
+    core::StateWriter w;
+    w.put_string("scenario_hash", hash_);
+    w.put_int("time_ticks", time);
+    w.put_int("interfaces", static_cast<std::int64_t>(router_->size()));
+    w.put_int("forwarded", router_->forwarded());
+    w.put_double("run.cpu_seconds", cpu_before_ + cpu_seconds() - cpu0_);
+    for (const auto& [k, t] : snaps) {
+      const std::string p = fmt::format("interface{}.", k);
+      w.put_int(p + "next_force", t.next_force);
+      w.put_int(p + "next_displacement", t.next_displacement);
+      w.put(p + "g_prev", std::span<const double>(t.g_prev));
+      w.put(p + "u_prev", std::span<const double>(t.u_prev));
+      w.put(p + "m_prev", std::span<const double>(t.m_prev));
+      w.put_bool(p + "have_prev", t.have_prev);
+      w.put_double(p + "work_J", t.work_J);
+    }
+    w.save((std::filesystem::path(dir) / "state.bin").string());
+    run::commit_checkpoint(o_.out_dir, time, kSelf);
+    snapshots_.erase(time);
   }
 
   /// The unfinished domain furthest behind (by its latest message), or -1.
@@ -418,6 +573,12 @@ class Coordinator {
   std::unique_ptr<transport::CoordinatorLink> link_;
   std::int64_t notices_ = 0;
   std::set<std::string> logged_;
+  std::string hash_;
+  coordinator::Tick checkpoint_every_ = 0;
+  coordinator::Tick restart_from_ = -1;
+  double cpu_before_ = 0.0;  ///< CPU of the run(s) before the checkpoint restarted from
+  std::map<coordinator::Tick, std::map<std::uint32_t, coordinator::LayerRouter::TrackState>>
+      snapshots_;
 };
 
 }  // namespace

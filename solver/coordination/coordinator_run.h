@@ -44,6 +44,13 @@ struct CoordinatorOptions {
   std::function<void(double, double, const std::string&)> on_progress;
   /// Set from outside (signal handler, launcher) to stop the run: every daemon gets an Error.
   const std::atomic<bool>* stop = nullptr;
+  /// > 0: every domain writes a checkpoint at every multiple of this interval [s], rounded to a
+  /// whole multiple of every domain's step (DESIGN.md §2.6 "Checkpoints"), into
+  /// OUT/checkpoints/<T>/<domain>; the coordinator its own into OUT/checkpoints/<T>/coordinator.
+  double checkpoint_interval_s = 0.0;
+  /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons
+  /// list theirs in their Register); a run without one is refused (exit 2, naming what each has).
+  bool restart = false;
   bool in_process = false;  ///< a thread of a bigger process: CPU time of this thread only
   std::FILE* log = stderr;  ///< notices (refused peers, garbage), one line each; nullptr: none
 };
@@ -70,7 +77,9 @@ struct CoordinatorResult {
   double cpu_seconds = 0.0;
   double wall_seconds = 0.0;
   std::int64_t messages_forwarded = 0;
-  std::int64_t notices = 0;  ///< refused or dropped messages logged
+  std::int64_t notices = 0;                    ///< refused or dropped messages logged
+  std::int64_t checkpoint_interval_ticks = 0;  ///< the interval used (0: none)
+  std::int64_t restarted_from_ticks = -1;      ///< the checkpoint resumed from (-1: from t = 0)
   std::vector<DomainOutcome> domains;
 };
 

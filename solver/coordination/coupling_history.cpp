@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "solver/io/coupling_history_reader.h"
 #include "solver/io/coupling_history_writer.h"
 
 namespace crashlink::coordination {
@@ -35,6 +36,24 @@ void CouplingHistory::append(std::uint32_t interface,
     for (std::size_t d = 0; d < 3; ++d) s.force_N[d] = r.force_N[d];
     if (impl_) impl_->writer.append(impl_->slot[interface], s);
   }
+}
+
+std::size_t CouplingHistory::replay(const std::string& from, double until_s) {
+  std::size_t rows = 0;
+  if (!impl_) return rows;
+  for (const std::size_t slot : impl_->slot) {
+    for (const auto& s : io::read_coupling_rows(from, impl_->writer.group_path(slot))) {
+      if (!(s.time_s <= until_s)) break;
+      impl_->writer.append(slot, s);
+      ++rows;
+    }
+  }
+  impl_->writer.flush();
+  return rows;
+}
+
+void CouplingHistory::flush() {
+  if (impl_) impl_->writer.flush();
 }
 
 void CouplingHistory::finish(double wall_seconds, double cpu_seconds,

@@ -25,6 +25,11 @@ class CouplingHistory {
 
   void append(std::uint32_t interface, const std::vector<coordinator::LayerSample>& rows,
               std::int64_t ticks_per_second);
+  /// Restart: copies every interface's rows with time <= until_s from `from` (the checkpoint's
+  /// copy of coordinator.h5, same cut), then flushes. Returns the rows copied.
+  std::size_t replay(const std::string& from, double until_s);
+  /// Writes the buffered rows to disk (before the file is copied into a checkpoint).
+  void flush();
   /// /timing, flush, close.
   void finish(double wall_seconds, double cpu_seconds, const std::vector<DomainOutcome>& domains);
   const std::string& path() const { return path_; }

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "coordinator/ticks.h"
+#include "solver/core/state_archive.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::cosim {
@@ -109,6 +110,20 @@ class LayerStepper {
   void set_on_outbox(std::function<void()> on_outbox) { on_outbox_ = std::move(on_outbox); }
   bool has_outbox() const { return !outbox_.empty(); }
   const std::deque<LayerMessage>& outbox() const { return outbox_; }  ///< not taken yet
+
+  /// Checkpoints (layer_stepper_state.cpp, DESIGN.md §2.6 "Checkpoints"). At a cycle boundary
+  /// (advance() returned Wait::None because time() reached `until`, outbox empty): the phase, the
+  /// time and every port's owner step in use, with the ghost targets. Messages already received for
+  /// later instants are left out (their senders had passed this instant and sent them after their
+  /// own checkpoint: after a restart they send them again), and the port's next expected time is
+  /// that of the first of them. Throws ModelError when not at a cycle boundary, with messages
+  /// queued to send, or holding a received message for an instant <= time() (unconsumed).
+  void save_state(core::StateWriter& w) const;
+  /// Instead of initialize(), after the solver's own restore_state(): resumes at the saved instant.
+  /// Throws CheckpointError if the saved step, tick or ports differ from this stepper's.
+  void restore_state(const core::StateReader& r);
+  /// advance() stopped between two cycles (at `until`) or has not started.
+  bool at_cycle_boundary() const { return phase_ == Phase::Begin; }
 
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)

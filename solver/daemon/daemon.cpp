@@ -8,6 +8,7 @@
 #include <ctime>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -15,14 +16,18 @@
 #include "solver/core/errors.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
+#include "solver/daemon/apply_setup.h"
 #include "solver/daemon/layer_wire.h"
+#include "solver/io/result_replay.h"
 #include "solver/io/result_writer.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
+#include "solver/run/checkpoint_store.h"
 #include "solver/run/cpu_clock.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/exit_codes.h"
+#include "transport/curve_errors.h"
 #include "transport/daemon_link.h"
 #include "transport/errors.h"
 
@@ -88,6 +93,10 @@ class Daemon {
     } catch (const NumericalError& e) {
       failure = Failure{run::kExitNumerical, wire::ERROR_CODE_NUMERICAL, true,
                         fmt::format("{}: {}", where(), e.what())};
+    } catch (const transport::CurveRefusedError& e) {
+      // Refused by the coordinator's CURVE check: a second handshake would be refused too.
+      failure = Failure{run::kExitInput, wire::ERROR_CODE_PROTOCOL, false,
+                        fmt::format("{}: {}", where(), e.what())};
     } catch (const InputError& e) {
       failure = Failure{run::kExitInput, wire::ERROR_CODE_MODEL, true,
                         fmt::format("{}: input error: {}", where(), e.what())};
@@ -107,7 +116,7 @@ class Daemon {
     }
     r.result_h5 = h5_path_;
     r.cycles = solver() ? solver()->cycle() : 0;
-    r.cpu_seconds = cpu_seconds() - cpu0_;
+    r.cpu_seconds = run_cpu_seconds();
     r.wait_seconds = wait_s_;
     r.wall_seconds = seconds_since(wall0_);
     return r;
@@ -118,6 +127,71 @@ class Daemon {
 
   double cpu_seconds() const {
     return o_.in_process ? thread_cpu_seconds() : run::process_cpu_seconds();
+  }
+
+  /// CPU of this run, plus that of the run(s) before the checkpoint it restarted from.
+  double run_cpu_seconds() const { return cpu_before_ + cpu_seconds() - cpu0_; }
+
+  static constexpr cosim::Tick max_tick() { return std::numeric_limits<cosim::Tick>::max(); }
+
+  /// DESIGN.md §2.6 "Checkpoints": between two cycles at a multiple of the coordinator's
+  /// interval, with every message up to this instant sent and consumed (LayerStepper::save_state).
+  /// The result file's rows so far go along as a copy, so a restart rebuilds its file from it.
+  void write_checkpoint() {
+    const auto t0 = Clock::now();
+    const cosim::Tick T = stepper_->time();
+    const std::string dir = run::begin_checkpoint(o_.out_dir, T, o_.domain);
+    recorder_->flush();
+    run::copy_into_checkpoint(writer_->h5_path(), dir);
+    core::StateWriter w;
+    w.put_string("scenario_hash", hash_);
+    w.put_string("domain", o_.domain);
+    w.put_int("time_ticks", T);
+    const auto sched = recorder_->schedule();
+    w.put_double("recorder.next_history_s", sched.next_history_s);
+    w.put_double("recorder.next_field_s", sched.next_field_s);
+    w.put_double("recorder.last_field_time_s", sched.last_field_time_s);
+    w.put_double("run.cpu_seconds", run_cpu_seconds());
+    w.put_double("run.wait_seconds", wait_s_);
+    solver()->save_state(w);
+    stepper_->save_state(w);
+    w.save((std::filesystem::path(dir) / "state.bin").string());
+    run::commit_checkpoint(o_.out_dir, T, o_.domain);
+    std::fprintf(stderr,
+                 "crashlink-solver: domain '%s': checkpoint at t = %.6e s (cycle %lld), %.1f MB "
+                 "of state, %.0f ms\n",
+                 o_.domain.c_str(), stepper_->seconds(T), static_cast<long long>(solver()->cycle()),
+                 static_cast<double>(w.bytes()) / 1e6, 1e3 * seconds_since(t0));
+  }
+
+  /// Resumes from this domain's checkpoint at T (the coordinator's choice, from our Register).
+  void restore(cosim::Tick T) {
+    const std::string dir = run::checkpoint_folder(o_.out_dir, T, o_.domain);
+    const core::StateReader r((std::filesystem::path(dir) / "state.bin").string());
+    if (r.get_string("scenario_hash") != hash_ || r.get_string("domain") != o_.domain ||
+        r.get_int("time_ticks") != T) {
+      throw CheckpointError(fmt::format(
+          "checkpoint {}: written for domain '{}' at {} ticks of scenario {}; this is domain '{}' "
+          "at {} ticks of scenario {}: restart with the scenario file that wrote it",
+          r.path(), r.get_string("domain"), r.get_int("time_ticks"), r.get_string("scenario_hash"),
+          o_.domain, T, hash_));
+    }
+    solver()->restore_state(r);
+    stepper_->restore_state(r);
+    recorder_->restore_schedule({r.get_double("recorder.next_history_s"),
+                                 r.get_double("recorder.next_field_s"),
+                                 r.get_double("recorder.last_field_time_s")});
+    cpu_before_ = r.get_double("run.cpu_seconds");
+    wait_s_ = r.get_double("run.wait_seconds");
+    const auto copied = io::replay_results(
+        (std::filesystem::path(dir) / std::filesystem::path(writer_->h5_path()).filename())
+            .string(),
+        *writer_, solver()->model(), solver()->time_s());
+    std::fprintf(stderr,
+                 "crashlink-solver: domain '%s': restarted from the checkpoint at t = %.6e s "
+                 "(cycle %lld; %zu history rows and %zu field states kept)\n",
+                 o_.domain.c_str(), stepper_->seconds(T), static_cast<long long>(solver()->cycle()),
+                 copied.glstat_rows, copied.states);
   }
 
   std::string where() const {
@@ -150,6 +224,7 @@ class Daemon {
 
     solver()->initialize();
     initialized_ = true;
+    checkpoints_ = run::list_checkpoints(o_.out_dir, o_.domain);
   }
 
   void connect() {
@@ -167,7 +242,16 @@ class Daemon {
     apply_setup(setup);
     stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
                                                      setup.step_ticks(), tps_);
-    stepper_->initialize();
+    if (setup.restart()) {
+      restore(setup.restart_ticks());
+    } else {
+      run::remove_checkpoints(o_.out_dir, o_.domain);  // another run's: not to be mixed with ours
+      stepper_->initialize();
+    }
+    checkpoint_every_ = setup.options().checkpoint_interval_ticks();
+    next_checkpoint_ = checkpoint_every_ > 0
+                           ? (stepper_->time() / checkpoint_every_ + 1) * checkpoint_every_
+                           : std::numeric_limits<cosim::Tick>::max();
     // u_J(T + H) leaves before the coarse side's forces, g_A right after the fine side's: the
     // domains compute at the same time (LayerStepper::set_on_outbox, DESIGN.md §2.6 "Overlap").
     stepper_->set_on_outbox([this] { send_outbox(); });
@@ -199,6 +283,7 @@ class Daemon {
     r->set_end_time_ticks(static_cast<std::int64_t>(
         std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
     r->set_elements(elements_);
+    for (const auto t : checkpoints_) r->add_checkpoint_ticks(t);
     for (const auto& port : dom_->ports) {
       auto* li = r->add_layer_interfaces();
       li->set_index(port.index);
@@ -225,29 +310,7 @@ class Daemon {
   }
 
   void apply_setup(const wire::Setup& setup) {
-    if (setup.ticks_per_second() != tps_ || setup.step_ticks() < 1) {
-      throw transport::ProtocolError(
-          "coordinator",
-          fmt::format("Setup for domain '{}' with step {} ticks at {} ticks per "
-                      "second (Hello: {}); expected a step >= 1 at the Hello's tick",
-                      o_.domain, setup.step_ticks(), setup.ticks_per_second(), tps_));
-    }
-    for (auto& port : dom_->ports) {
-      const wire::LayerInterface* found = nullptr;
-      for (const auto& li : setup.layer_interfaces()) {
-        if (li.index() == port.index) found = &li;
-      }
-      if (found == nullptr || found->fine_side() != port.fine_side ||
-          found->partner() != port.partner) {
-        throw transport::ProtocolError(
-            "coordinator",
-            fmt::format("Setup for domain '{}' does not describe interface {} as this domain's cut "
-                        "does ({} side, partner '{}'): do both read the same scenario?",
-                        o_.domain, port.index, port.fine_side ? "fine" : "coarse", port.partner));
-      }
-      // As LayerNetwork: the owner's step on the fine side; the coarse side needs none.
-      if (port.fine_side) port.partner_step = found->partner_step_ticks();
-    }
+    daemon::apply_setup(setup, tps_, o_.domain, dom_->ports);  // solver/daemon/apply_setup.h
   }
 
   static std::string body_name(const wire::Envelope& e) {
@@ -276,9 +339,16 @@ class Daemon {
         pending_.pop_front();
         deliver(m);
       }
-      const Wait w = stepper_->advance(on_sample);
+      const cosim::Tick until =
+          next_checkpoint_ < stepper_->end_time() ? next_checkpoint_ : max_tick();
+      const Wait w = stepper_->advance(on_sample, until);
       send_outbox();  // g_A(0) after initialize(); otherwise sent from advance() already
       if (w == Wait::Finished) return;
+      if (w == Wait::None && stepper_->time() >= until && stepper_->at_cycle_boundary()) {
+        write_checkpoint();
+        next_checkpoint_ += checkpoint_every_;
+        continue;
+      }
       // What on_sample read meanwhile may be the very message the stepper waits for: deliver it
       // before blocking (the partner, served early by set_on_outbox, often answers mid-advance).
       if (w == Wait::None || !pending_.empty()) continue;
@@ -320,7 +390,7 @@ class Daemon {
     wire::Envelope bye = transport::make_bye("end time reached");
     auto* rep = bye.mutable_bye()->mutable_report();
     const auto& s = *solver();
-    rep->set_cpu_seconds(cpu_seconds() - cpu0_);
+    rep->set_cpu_seconds(run_cpu_seconds());
     rep->set_wait_seconds(wait_s_);
     rep->set_wall_seconds(seconds_since(run_wall0_));
     rep->set_cycles(s.cycle());
@@ -333,7 +403,7 @@ class Daemon {
   void write_timing() {
     const auto* s = solver();
     writer_->write_timing(seconds_since(wall0_), 0.0,
-                          {{o_.domain, cpu_seconds() - cpu0_, s != nullptr ? s->cycle() : 0,
+                          {{o_.domain, run_cpu_seconds(), s != nullptr ? s->cycle() : 0,
                             s != nullptr ? s->dt_min_s() : 0.0, elements_}});
   }
 
@@ -385,6 +455,10 @@ class Daemon {
   std::unique_ptr<cosim::LayerStepper> stepper_;
   std::unique_ptr<transport::DaemonLink> link_;
   std::deque<wire::Envelope> pending_;
+  std::vector<std::int64_t> checkpoints_;  ///< instants of our complete checkpoints (Register)
+  cosim::Tick checkpoint_every_ = 0;       ///< the coordinator's interval, ticks (0: none)
+  cosim::Tick next_checkpoint_ = 0;
+  double cpu_before_ = 0.0;  ///< CPU of the runs before the checkpoint restarted from
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "solver/contact/contact_interface.h"
+#include "solver/core/state_archive.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/kernel_io.h"
 #include "solver/elements/shell_bt.h"
@@ -102,6 +103,16 @@ class Solver {
   void impose_step(double dt);
   /// True when t^n has reached the end time (checked after begin_cycle()).
   bool finished() const { return time_s_ >= model_.controls.end_time_s * (1.0 - 1e-12); }
+
+  // ---- checkpoints (solver_state.cpp, DESIGN.md §2.6 "Checkpoints") ----
+  /// Writes everything that evolves (nodal vectors, element histories, rigid bodies, contact
+  /// history and candidates, prescribed-motion reactions, energies, time, cycle, steps) at a cycle
+  /// boundary: after end_cycle_accelerations() / impose_step(), before the next begin_cycle().
+  void save_state(core::StateWriter& w) const;
+  /// After initialize() of the same model with the same couplings (ghosts, mass overrides):
+  /// replaces that state, so that the next cycles are those of the run that saved it, to the bit.
+  /// Throws CheckpointError when a record is missing or sized for another model.
+  void restore_state(const core::StateReader& r);
 
   double time_s() const { return time_s_; }
   std::int64_t cycle() const { return cycle_; }

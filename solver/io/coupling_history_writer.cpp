@@ -184,4 +184,12 @@ void CouplingHistoryWriter::flush() {
   w.flush_file();
 }
 
+const std::string& CouplingHistoryWriter::group_path(std::size_t iface) const {
+  if (iface >= impl_->interfaces.size()) {
+    throw ResultFileError(impl_->path, "/coupling",
+                          fmt::format("interface index {} of {}", iface, impl_->interfaces.size()));
+  }
+  return impl_->interfaces[iface].path;
+}
+
 }  // namespace crashlink::io

@@ -53,6 +53,8 @@ class CouplingHistoryWriter {
   std::size_t add_interface(const std::string& name, const std::string& kind,
                             const std::string& fine, const std::string& coarse,
                             const std::string& scheme, std::int64_t j_nodes);
+  /// The HDF5 group of interface `iface` ("/coupling/<link>"), what read_coupling_rows reads.
+  const std::string& group_path(std::size_t iface) const;
   /// Buffers one row of interface `iface` (an index add_interface returned; ResultFileError
   /// otherwise); may flush.
   void append(std::size_t iface, const CouplingSample& s);

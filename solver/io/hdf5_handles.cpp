@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <functional>
 #include <numeric>
 
@@ -259,6 +260,36 @@ void write_attribute(const Location& at, const std::string& name, double value) 
 
 void write_attribute(const Location& at, const std::string& name, std::int64_t value) {
   write_scalar_attribute(at, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+std::vector<double> read_doubles(const Location& at, const std::string& name, hsize_t cols,
+                                 std::size_t* rows) {
+  const std::string object = at.child(name);
+  if (!link_exists(at, name)) {
+    throw ResultFileError(at.file, object,
+                          "dataset missing (the file does not follow docs/result-format.md)");
+  }
+  DatasetHandle ds(H5Dopen2(at.id, name.c_str(), H5P_DEFAULT));
+  if (!ds) throw ResultFileError(at.file, object, "H5Dopen2 (open dataset)");
+  DataspaceHandle space(H5Dget_space(ds.get()));
+  if (!space) throw ResultFileError(at.file, object, "H5Dget_space");
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  const int want_rank = cols == 0 ? 1 : 2;
+  std::array<hsize_t, 2> dims{0, 0};
+  if (rank != want_rank || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0 ||
+      (cols != 0 && dims[1] != cols)) {
+    throw ResultFileError(
+        at.file, object,
+        fmt::format("shape is rank {} [{}, {}]; expected {} (docs/result-format.md)", rank, dims[0],
+                    dims[1], cols == 0 ? "[k]" : fmt::format("[k, {}]", cols)));
+  }
+  std::vector<double> out(dims[0] * (cols == 0 ? 1 : cols));
+  if (!out.empty() &&
+      H5Dread(ds.get(), H5T_NATIVE_DOUBLE, kAll, kAll, H5P_DEFAULT, out.data()) < 0) {
+    throw ResultFileError(at.file, object, "H5Dread");
+  }
+  *rows = static_cast<std::size_t>(dims[0]);
+  return out;
 }
 
 }  // namespace crashlink::io

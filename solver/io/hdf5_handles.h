@@ -129,6 +129,11 @@ DatasetHandle create_extendible(const Location& at, const std::string& name, hsi
 /// Appends rows (rows*cols values, row-major) at the end of an extendible dataset.
 void append_rows(const Location& ds, std::span<const double> data, hsize_t cols);
 
+/// A whole double dataset `name` under `at`: rank 1 ([k], cols = 0) or rank 2 ([k, cols]).
+/// Returns the values row-major; *rows receives k. Throws ResultFileError (missing, other shape).
+std::vector<double> read_doubles(const Location& at, const std::string& name, hsize_t cols,
+                                 std::size_t* rows);
+
 /// Attributes (replaced if present).
 void write_attribute(const Location& at, const std::string& name, const std::string& value);
 void write_attribute(const Location& at, const std::string& name, double value);

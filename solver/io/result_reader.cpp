@@ -23,36 +23,6 @@ constexpr hid_t kAll = H5S_ALL;
   throw ResultFileError(at.file, object, what);
 }
 
-/// A whole double dataset `name` under `at`: rank 1 ([k], cols = 0) or rank 2 ([k, cols]).
-/// Returns the values row-major; *rows receives k.
-std::vector<double> read_doubles(const Location& at, const std::string& name, hsize_t cols,
-                                 std::size_t* rows) {
-  const std::string object = at.child(name);
-  if (!link_exists(at, name)) {
-    fail(at, object, "dataset missing (the file does not follow docs/result-format.md)");
-  }
-  DatasetHandle ds(H5Dopen2(at.id, name.c_str(), H5P_DEFAULT));
-  if (!ds) fail(at, object, "H5Dopen2 (open dataset)");
-  DataspaceHandle space(H5Dget_space(ds.get()));
-  if (!space) fail(at, object, "H5Dget_space");
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  const int want_rank = cols == 0 ? 1 : 2;
-  std::array<hsize_t, 2> dims{0, 0};
-  if (rank != want_rank || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0 ||
-      (cols != 0 && dims[1] != cols)) {
-    fail(at, object,
-         fmt::format("shape is rank {} [{}, {}]; expected {} (docs/result-format.md)", rank,
-                     dims[0], dims[1], cols == 0 ? "[k]" : fmt::format("[k, {}]", cols)));
-  }
-  std::vector<double> out(dims[0] * (cols == 0 ? 1 : cols));
-  if (!out.empty() &&
-      H5Dread(ds.get(), H5T_NATIVE_DOUBLE, kAll, kAll, H5P_DEFAULT, out.data()) < 0) {
-    fail(at, object, "H5Dread");
-  }
-  *rows = static_cast<std::size_t>(dims[0]);
-  return out;
-}
-
 /// A whole rank-1 int64 dataset `name` under `at`.
 std::vector<std::int64_t> read_int64s(const Location& at, const std::string& name) {
   const std::string object = at.child(name);

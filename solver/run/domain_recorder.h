@@ -28,6 +28,19 @@ class DomainRecorder {
   /// Writes the buffered history rows (H5Fflush).
   void flush() { writer_.flush(); }
 
+  /// What decides the next samples (checkpoints: a restarted run samples the same instants).
+  struct Schedule {
+    double next_history_s = 0.0;
+    double next_field_s = 0.0;
+    double last_field_time_s = -1.0;
+  };
+  Schedule schedule() const { return {next_history_, next_field_, last_field_time_}; }
+  void restore_schedule(const Schedule& s) {
+    next_history_ = s.next_history_s;
+    next_field_ = s.next_field_s;
+    last_field_time_ = s.last_field_time_s;
+  }
+
   io::ResultWriter& writer() { return writer_; }
 
  private:

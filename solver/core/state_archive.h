@@ -1,0 +1,117 @@
+#pragma once
+// A checkpoint file (DESIGN.md §2.6 "Checkpoints", issue #6 item 5): named binary records, so
+// that a restarted run continues from exactly the bits an uninterrupted run had.
+//
+// File layout (little-endian, the machine's own double format: a checkpoint is read back by the
+// same build on the same kind of machine; a foreign file is refused by the magic and the check):
+//   magic "CRASHLINK-STATE\n" (16 bytes), format version u32,
+//   records: name length u32, name bytes, type u8 (Type), count u64, count * sizeof(type) bytes,
+//   trailer: the FNV-1a 64 hash of every byte before it (u64).
+// StateWriter::save writes PATH.tmp, fsyncs it and renames it to PATH: a reader sees a complete
+// file or none. StateReader checks the magic, the version and the hash, and every get() checks
+// the record's name, type and (get_exact) count, throwing CheckpointError with the fix.
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "solver/core/errors.h"
+
+namespace crashlink {
+
+/// A checkpoint that cannot be written, read or used (missing, damaged, another model or run).
+class CheckpointError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+namespace core {
+
+class StateWriter {
+ public:
+  void put(std::string_view name, std::span<const double> v);
+  void put(std::string_view name, std::span<const std::int64_t> v);
+  void put(std::string_view name, std::span<const std::int32_t> v);
+  void put(std::string_view name, std::span<const std::uint8_t> v);
+  void put(std::string_view name, std::span<const std::int8_t> v);
+  void put_double(std::string_view name, double x) { put(name, std::span<const double>(&x, 1)); }
+  void put_int(std::string_view name, std::int64_t x) {
+    put(name, std::span<const std::int64_t>(&x, 1));
+  }
+  void put_bool(std::string_view name, bool b) { put_int(name, b ? 1 : 0); }
+  void put_string(std::string_view name, std::string_view s);
+  /// Raw bytes of a trivially copyable value (Vec3, Mat3, small structs of doubles).
+  template <class T>
+  void put_pod(std::string_view name, const T& x) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put(name, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(&x), sizeof x));
+  }
+
+  /// Writes PATH atomically (PATH.tmp, fsync, rename, fsync of the folder). Throws
+  /// CheckpointError naming the path and the system's reason.
+  void save(const std::string& path) const;
+  std::size_t bytes() const { return body_.size(); }
+
+ private:
+  void record(std::string_view name, std::uint8_t type, std::size_t count, const void* data,
+              std::size_t bytes);
+  std::vector<std::uint8_t> body_;
+};
+
+class StateReader {
+ public:
+  /// Reads and checks the whole file; throws CheckpointError (absent, truncated, damaged, other
+  /// format version).
+  explicit StateReader(std::string path);
+
+  bool has(std::string_view name) const { return index_.count(std::string(name)) != 0; }
+  /// Any length (the record's own).
+  void get(std::string_view name, std::vector<double>& v) const;
+  void get(std::string_view name, std::vector<std::int64_t>& v) const;
+  void get(std::string_view name, std::vector<std::int32_t>& v) const;
+  void get(std::string_view name, std::vector<std::uint8_t>& v) const;
+  void get(std::string_view name, std::vector<std::int8_t>& v) const;
+  /// The record must have exactly v.size() values (arrays sized by the model): a checkpoint of
+  /// another model is refused here, naming the record and both sizes.
+  template <class T>
+  void get_exact(std::string_view name, std::vector<T>& v) const {
+    const std::size_t want = v.size();
+    get(name, v);
+    if (v.size() != want) size_mismatch(name, v.size(), want);
+  }
+  double get_double(std::string_view name) const;
+  std::int64_t get_int(std::string_view name) const;
+  bool get_bool(std::string_view name) const { return get_int(name) != 0; }
+  std::string get_string(std::string_view name) const;
+  template <class T>
+  void get_pod(std::string_view name, T& x) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::vector<std::uint8_t> b;
+    get(name, b);
+    if (b.size() != sizeof x) size_mismatch(name, b.size(), sizeof x);
+    std::memcpy(&x, b.data(), sizeof x);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Entry {
+    std::uint8_t type = 0;
+    std::size_t count = 0;
+    std::size_t offset = 0;  // of the data in bytes_
+  };
+  const Entry& find(std::string_view name, std::uint8_t type) const;
+  [[noreturn]] void size_mismatch(std::string_view name, std::size_t got, std::size_t want) const;
+  template <class T>
+  void get_any(std::string_view name, std::uint8_t type, std::vector<T>& v) const;
+
+  std::string path_;
+  std::vector<std::uint8_t> bytes_;
+  std::map<std::string, Entry> index_;
+};
+
+}  // namespace core
+}  // namespace crashlink

@@ -1,0 +1,168 @@
+// Checkpoint and restart of a coupled run over processes (issue #6 item 5, DESIGN.md §2.6
+// "Checkpoints"): the CI head-impact scene (wiper and body domains, links and contacts across
+// them, shells, hexes, a rigid headform) run in `multi` with checkpoints every 2 ms; the same run
+// SIGKILLed (the launcher, hence every process: PR_SET_PDEATHSIG) between its second and third
+// checkpoints, then resumed with `crashlink run --restart DIR`. The resumed result.h5 equals the
+// uninterrupted one to the bit (histories, coupling histories, field states), and the restart
+// lost at most one checkpoint interval of simulated time.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "solver/io/result_reader.h"
+#include "solver/run/checkpoint_store.h"
+#include "tests/integration/process_test_support.h"
+#include "tests/integration/shell_command.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using crashlink::proc_test::bin;
+using crashlink::proc_test::Child;
+using crashlink::proc_test::fresh_dir;
+using crashlink::testing::run_command;
+
+const std::string kScenario =
+    std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/head_impact_small.yaml";
+constexpr double kInterval_s = 0.002;
+
+std::string run_line(const fs::path& out, const std::string& extra) {
+  return bin("crashlink") + " run " + kScenario + " --mode multi --quiet --checkpoint-interval " +
+         std::to_string(kInterval_s) + " " + extra + " --out " + out.string();
+}
+
+std::size_t complete_instants(const fs::path& out) {
+  const auto c = crashlink::run::list_checkpoints(out.string(), "coordinator");
+  std::size_t n = 0;
+  for (const auto t : c) {
+    const bool all = fs::exists(crashlink::run::checkpoint_folder(out.string(), t, "wiper")) &&
+                     fs::exists(crashlink::run::checkpoint_folder(out.string(), t, "body"));
+    n += all ? 1 : 0;
+  }
+  return n;
+}
+
+/// The latest time any domain file of a killed run had on disk (its flushed history rows).
+double time_reached(const fs::path& out) {
+  double t = 0.0;
+  for (const char* d : {"wiper", "body"}) {
+    try {
+      const crashlink::io::ResultReader r((out / "domains" / (std::string(d) + ".h5")).string());
+      const auto g = r.glstat();
+      if (!g.empty()) t = std::max(t, g.back().time_s);
+    } catch (const std::exception&) {
+      // a file killed mid-write: the checkpoints are what a restart uses
+    }
+  }
+  return t;
+}
+
+void expect_same_results(const std::string& ref_h5, const std::string& run_h5) {
+  const crashlink::io::ResultReader a(ref_h5), b(run_h5);
+  const auto ga = a.glstat(), gb = b.glstat();
+  ASSERT_EQ(ga.size(), gb.size());
+  for (std::size_t i = 0; i < ga.size(); ++i) {
+    ASSERT_EQ(ga[i].time_s, gb[i].time_s) << "row " << i;
+    ASSERT_EQ(ga[i].kinetic_energy_J, gb[i].kinetic_energy_J) << "row " << i;
+    ASSERT_EQ(ga[i].internal_energy_J, gb[i].internal_energy_J) << "row " << i;
+    ASSERT_EQ(ga[i].contact_energy_J, gb[i].contact_energy_J) << "row " << i;
+    ASSERT_EQ(ga[i].coupling_work_J, gb[i].coupling_work_J) << "row " << i;
+  }
+  for (const auto& name : a.probe_names()) {
+    const auto pa = a.probe(name), pb = b.probe(name);
+    EXPECT_EQ(pa.time_s, pb.time_s) << name;
+    EXPECT_EQ(pa.displacement_m, pb.displacement_m) << name;
+    EXPECT_EQ(pa.velocity_m_s, pb.velocity_m_s) << name;
+    EXPECT_EQ(pa.acceleration_m_s2, pb.acceleration_m_s2) << name;
+  }
+  for (const auto& name : a.contact_names()) {
+    EXPECT_EQ(a.contact(name).force_N, b.contact(name).force_N) << name;
+  }
+  ASSERT_EQ(a.state_count(), b.state_count());
+  ASSERT_GT(a.state_count(), 2u);
+  const auto last = a.state_count() - 1;
+  const auto sa = a.state(last), sb = b.state(last);
+  EXPECT_EQ(sa.time_s, sb.time_s);
+  EXPECT_EQ(sa.displacement_m, sb.displacement_m);
+  EXPECT_EQ(sa.velocity_m_s, sb.velocity_m_s);
+  ASSERT_EQ(sa.parts.size(), sb.parts.size());
+  for (std::size_t p = 0; p < sa.parts.size(); ++p) {
+    EXPECT_EQ(sa.parts[p].eps_p, sb.parts[p].eps_p) << sa.parts[p].link;
+    EXPECT_EQ(sa.parts[p].stress_Pa, sb.parts[p].stress_Pa) << sa.parts[p].link;
+  }
+}
+
+TEST(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
+  const fs::path ref = fresh_dir("ckpt_ref");
+  int status = -1;
+  const std::string out_ref = run_command(run_line(ref, ""), status);
+  ASSERT_EQ(status, 0) << out_ref;
+  EXPECT_GE(complete_instants(ref), 3u) << out_ref;  // 3 kept (6, 8, 10 ms)
+
+  // The same run, killed between its second and third checkpoints.
+  const fs::path dir = fresh_dir("ckpt_killed");
+  {
+    std::vector<std::string> argv{bin("crashlink"),
+                                  "run",
+                                  kScenario,
+                                  "--mode",
+                                  "multi",
+                                  "--quiet",
+                                  "--checkpoint-interval",
+                                  std::to_string(kInterval_s),
+                                  "--out",
+                                  dir.string()};
+    Child run(argv);
+    const auto deadline = std::chrono::steady_clock::now() + 300s;
+    while (complete_instants(dir) < 2 && std::chrono::steady_clock::now() < deadline) {
+      ASSERT_FALSE(run.wait(20ms).has_value()) << "finished before it could be killed:\n"
+                                               << run.output();
+    }
+    // Into the next interval (about 0.6 ms of simulated time here); wherever the kill lands
+    // before the end, the checks below hold.
+    ASSERT_FALSE(run.wait(300ms).has_value()) << run.output();
+    ASSERT_GE(complete_instants(dir), 2u) << run.output();
+    run.signal(SIGKILL);  // the launcher; its pieces die with it (PR_SET_PDEATHSIG)
+    ASSERT_TRUE(run.wait(10s).has_value());
+  }
+  std::this_thread::sleep_for(200ms);  // the pieces' own SIGKILL is delivered asynchronously
+  const double reached_s = time_reached(dir);
+  ASSERT_FALSE(fs::exists(dir / "result.h5"));
+
+  const std::string out = run_command(
+      bin("crashlink") + " run " + kScenario + " --mode multi --quiet --checkpoint-interval " +
+          std::to_string(kInterval_s) + " --restart " + dir.string(),
+      status);
+  ASSERT_EQ(status, 0) << out;
+  const std::string marker = "from the checkpoint at t = ";
+  const auto at = out.find(marker);
+  ASSERT_NE(at, std::string::npos) << out;
+  const double restart_s = std::stod(out.substr(at + marker.size()));
+  std::printf("[measured] killed with %.4f ms on disk, restarted from %.4f ms (interval %.4f ms)\n",
+              1e3 * reached_s, 1e3 * restart_s, 1e3 * kInterval_s);
+  EXPECT_GT(restart_s, 0.0);
+  // At most one interval of simulated time lost (+1 % for the interval's rounding to steps).
+  EXPECT_GE(restart_s, reached_s - 1.01 * kInterval_s);
+
+  expect_same_results((ref / "result.h5").string(), (dir / "result.h5").string());
+}
+
+TEST(CheckpointRestart, RestartWithoutCheckpointsIsRefusedNamingWhatEachHas) {
+  const fs::path dir = fresh_dir("ckpt_none");
+  int status = -1;
+  const std::string out = run_command(
+      bin("crashlink") + " run " + kScenario + " --mode multi --quiet --restart " + dir.string(),
+      status);
+  EXPECT_NE(status, 0) << out;
+  EXPECT_NE(out.find("no checkpoint instant"), std::string::npos) << out;
+  EXPECT_NE(out.find("wiper: []"), std::string::npos) << out;
+  EXPECT_NE(out.find("run from the start without --restart"), std::string::npos) << out;
+}
+
+}  // namespace

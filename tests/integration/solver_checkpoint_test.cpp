@@ -1,0 +1,107 @@
+// Solver::save_state / restore_state (solver_state.cpp): a solver restored from a checkpoint taken
+// mid-run, with the headform in contact with the plate (rigid body, shells with plasticity,
+// contact history and candidates), ends in the same state as the solver that went on, to the bit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "solver/core/state_archive.h"
+#include "solver/integration/solver.h"
+#include "solver/io/scenario_reader.h"
+
+namespace {
+
+using crashlink::integration::Solver;
+
+struct End {
+  std::vector<double> u, v, a;
+  double total_J = 0.0, contact_J = 0.0, internal_J = 0.0, time_s = 0.0;
+  std::int64_t cycle = 0;
+  double head_v = 0.0;
+};
+
+End run_to_end(Solver& s) {
+  for (;;) {
+    s.begin_cycle();
+    if (s.finished()) break;
+    s.end_cycle();
+  }
+  End e;
+  e.u = s.displacement();
+  e.v = s.velocity_mid();
+  e.a = s.acceleration();
+  e.total_J = s.energy().total_J();
+  e.contact_J = s.energy().contact_J;
+  e.internal_J = s.energy().internal_J;
+  e.time_s = s.time_s();
+  e.cycle = s.cycle();
+  e.head_v = s.rigid_bodies().at(0).velocity[2];
+  return e;
+}
+
+std::string checkpoint_path() {
+  const auto dir = std::filesystem::temp_directory_path() / "crashlink_solver_checkpoint";
+  std::filesystem::create_directories(dir);
+  return (dir / "state.bin").string();
+}
+
+TEST(SolverCheckpoint, RestoredSolverEndsBitIdenticalToTheOneThatWentOn) {
+  const auto model = crashlink::io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) +
+                                                  "/scenarios/plate_impact_small.yaml");
+  Solver a(model);
+  a.initialize();
+  const double t_save = 0.6 * model.controls.end_time_s;  // the headform is on the plate
+  for (;;) {
+    a.begin_cycle();
+    a.end_cycle();
+    if (a.time_s() >= t_save) break;
+  }
+  ASSERT_GT(a.energy().contact_J, 0.0) << "the checkpoint should be taken during contact";
+  crashlink::core::StateWriter w;
+  a.save_state(w);
+  w.save(checkpoint_path());
+  const std::int64_t saved_cycle = a.cycle();
+  const End went_on = run_to_end(a);
+
+  Solver b(model);
+  b.initialize();
+  b.restore_state(crashlink::core::StateReader(checkpoint_path()));
+  EXPECT_EQ(b.cycle(), saved_cycle);
+  const End restored = run_to_end(b);
+
+  EXPECT_EQ(restored.cycle, went_on.cycle);
+  EXPECT_EQ(restored.time_s, went_on.time_s);
+  EXPECT_EQ(restored.u, went_on.u);  // to the bit: every double equal
+  EXPECT_EQ(restored.v, went_on.v);
+  EXPECT_EQ(restored.a, went_on.a);
+  EXPECT_EQ(restored.total_J, went_on.total_J);
+  EXPECT_EQ(restored.contact_J, went_on.contact_J);
+  EXPECT_EQ(restored.internal_J, went_on.internal_J);
+  EXPECT_EQ(restored.head_v, went_on.head_v);
+  // and the run did change after the checkpoint (the comparison is not of two frozen states)
+  EXPECT_GT(went_on.cycle, saved_cycle + 10);
+}
+
+TEST(SolverCheckpoint, CheckpointOfAnotherModelIsRefused) {
+  const auto plate = crashlink::io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) +
+                                                  "/scenarios/plate_impact_small.yaml");
+  const auto bar =
+      crashlink::io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/bar_wave.yaml");
+  Solver a(plate);
+  a.initialize();
+  crashlink::core::StateWriter w;
+  a.save_state(w);
+  w.save(checkpoint_path());
+  Solver b(bar);
+  b.initialize();
+  try {
+    b.restore_state(crashlink::core::StateReader(checkpoint_path()));
+    FAIL() << "restored a plate checkpoint into a bar";
+  } catch (const crashlink::CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("nodes"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
