@@ -1,6 +1,7 @@
 #include "apps/cmd_sweep.h"
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "apps/cmd_run.h"
@@ -72,6 +74,8 @@ double mass_scale_fine_parts(model::Model& m) {
 
 struct Row {
   std::string name;
+  std::string reference = "mono";  ///< the row its CPU ratio and errors are against
+  double step_ratio = 0.0;         ///< coarsest over finest domain step (element steps)
   double cpu_s = 0.0, wall_s = 0.0;
   double hic15 = 0.0, peak_g = 0.0, disp_m = 0.0;
   double added_mass_kg = 0.0;
@@ -103,6 +107,70 @@ void read_row(const std::string& h5, const std::string& disp_probe, Row& r) {
   r.ok = true;
 }
 
+/// Largest over smallest of the domains' smallest element steps (0 without two deformable domains).
+double step_ratio(const model::Model& m) {
+  const auto survey = cosim::survey_steps(m);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const auto& d : m.domains) {
+    double dmin = std::numeric_limits<double>::infinity();
+    for (int p : d.parts) {
+      const auto& ps = survey.parts[static_cast<std::size_t>(p)];
+      if (!ps.rigid) dmin = std::min(dmin, ps.min_s);
+    }
+    if (!std::isfinite(dmin)) continue;
+    lo = std::min(lo, dmin);
+    hi = std::max(hi, dmin);
+  }
+  return std::isfinite(lo) && lo > 0.0 ? hi / lo : 0.0;
+}
+
+/// --refine PART=N1,N2: the part and the division counts.
+std::pair<std::string, std::vector<int>> parse_refine(const std::string& spec) {
+  const auto eq = spec.find('=');
+  auto bad = [&] {
+    return InputError(
+        fmt::format("sweep: --refine '{}': expected PART=N1,N2,... (a part with a "
+                    "generated mesh and its new `divisions:`, whole numbers >= 1)",
+                    spec));
+  };
+  if (eq == std::string::npos || eq == 0) throw bad();
+  std::vector<int> n;
+  std::stringstream ss(spec.substr(eq + 1));
+  std::string cell;
+  while (std::getline(ss, cell, ',')) {
+    std::size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(cell, &used);
+    } catch (const std::exception&) {
+      throw bad();
+    }
+    if (used != cell.size() || v < 1) throw bad();
+    n.push_back(v);
+  }
+  if (n.empty()) throw bad();
+  return {spec.substr(0, eq), n};
+}
+
+/// The scenario with parts.PART.mesh.divisions = n, written to `path` (YAML; comments dropped).
+void write_refined(const std::string& scenario, const std::string& part, int n,
+                   const std::string& path) {
+  YAML::Node root = YAML::LoadFile(scenario);
+  YAML::Node mesh = root["parts"][part]["mesh"];
+  if (!mesh || !mesh.IsMap() || !mesh["divisions"] || !mesh["divisions"].IsScalar()) {
+    throw InputError(
+        fmt::format("sweep: --refine: {}: part '{}' has no generated mesh with a "
+                    "scalar `divisions:` (the bar generator's length divisions)",
+                    scenario, part));
+  }
+  mesh["divisions"] = n;
+  std::ofstream out(path);
+  out << "# " << scenario << " with parts." << part << ".mesh.divisions = " << n
+      << " (crashlink sweep --refine)\n"
+      << root << "\n";
+  if (!out) throw InputError(fmt::format("sweep: cannot write {}", path));
+}
+
 }  // namespace
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
@@ -114,6 +182,9 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("--out", options.out, "output folder")->capture_default_str();
   cmd->add_option("--disp-probe", options.disp_probe,
                   "node probe whose peak displacement is compared (default: the first node probe)");
+  cmd->add_option("--refine", options.refine,
+                  "PART=N1,N2,...: also the scene with PART's generated mesh at `divisions: N` "
+                  "(mono and multi each; e.g. wiper_bar=100,200 for larger step ratios)");
   return cmd;
 }
 
@@ -132,33 +203,40 @@ int run_sweep(const SweepOptions& o) {
   fs::create_directories(o.out);
   std::vector<Row> rows;
   int first_failure = 0;
-  for (const char* mode : {"mono", "split", "multi"}) {
+  const double base_ratio = step_ratio(model);
+  auto run_mode = [&](const std::string& scenario, const std::string& mode, const std::string& name,
+                      const std::string& reference, double ratio) {
     RunCommandOptions r;
-    r.scenario = o.scenario;
-    r.out = (fs::path(o.out) / mode).string();
+    r.scenario = scenario;
+    r.out = (fs::path(o.out) / name).string();
     r.mode = mode;
     r.quiet = true;
-    std::printf("\nsweep: %s\n", mode);
+    std::printf("\nsweep: %s\n", name.c_str());
     std::fflush(stdout);
     int rc = 0;
     try {
       rc = run_run(r);
     } catch (const Error& e) {
-      std::fprintf(stderr, "sweep: %s failed: %s\n", mode, e.what());
+      std::fprintf(stderr, "sweep: %s failed: %s\n", name.c_str(), e.what());
       rc = 3;
     }
     Row row;
-    row.name = mode;
+    row.name = name;
+    row.reference = reference;
+    row.step_ratio = ratio;
     if (rc == 0) read_row(r.out + "/result.h5", disp_probe, row);
     if (rc != 0) row.note = fmt::format("exit code {}", rc);
     if (rc != 0 && first_failure == 0) first_failure = rc;
     rows.push_back(row);
-  }
+  };
+  for (const char* mode : {"mono", "split", "multi"})
+    run_mode(o.scenario, mode, mode, "mono", base_ratio);
   {
     std::printf("\nsweep: mass_scaled\n");
     model::Model m = model;
     Row row;
     row.name = "mass_scaled";
+    row.step_ratio = 1.0;
     row.added_mass_kg = mass_scale_fine_parts(m);
     m.domains.clear();
     run::RunOptions ro;
@@ -175,26 +253,47 @@ int run_sweep(const SweepOptions& o) {
     rows.push_back(row);
   }
 
-  const Row& ref = rows.front();
+  if (!o.refine.empty()) {
+    const auto [part, divisions] = parse_refine(o.refine);
+    for (const int n : divisions) {
+      const std::string tag = fmt::format("{}{}", part, n);
+      fs::create_directories(fs::path(o.out) / "scenarios");
+      const std::string scenario = (fs::path(o.out) / "scenarios" / (tag + ".yaml")).string();
+      write_refined(o.scenario, part, n, scenario);
+      const double ratio = step_ratio(io::read_scenario(scenario));
+      std::printf("\nsweep: %s = %d divisions: step ratio %.2f\n", part.c_str(), n, ratio);
+      run_mode(scenario, "mono", "mono_" + tag, "mono_" + tag, ratio);
+      run_mode(scenario, "multi", "multi_" + tag, "mono_" + tag, ratio);
+    }
+  }
+
+  auto reference_of = [&](const Row& r) -> const Row& {
+    for (const auto& x : rows)
+      if (x.name == r.reference) return x;
+    return rows.front();
+  };
   auto err = [](double x, double r) { return r != 0.0 ? 100.0 * (x - r) / r : 0.0; };
   const fs::path csv = fs::path(o.out) / "sweep.csv";
   std::ofstream f(csv);
   f << "configuration,cpu_s,cpu_over_mono,wall_s,hic15,hic15_error_pct,peak_g,peak_error_pct,"
-       "disp_max_m,disp_error_pct,added_mass_kg,note\n";
-  std::printf("\n%-12s %9s %9s %9s %10s %8s %9s %8s %10s %8s\n", "config", "CPU [s]", "CPU/mono",
+       "disp_max_m,disp_error_pct,added_mass_kg,step_ratio,reference,note\n";
+  std::printf("\n%-20s %9s %9s %9s %10s %8s %9s %8s %10s %8s\n", "config", "CPU [s]", "CPU/mono",
               "wall [s]", "HIC15", "err %", "peak [g]", "err %", "disp [mm]", "err %");
   for (const auto& r : rows) {
     if (!r.ok) {
-      f << fmt::format("{},,,,,,,,,,,\"{}\"\n", r.name, r.note);
-      std::printf("%-12s failed: %s\n", r.name.c_str(), r.note.c_str());
+      f << fmt::format("{},,,,,,,,,,,{:.4f},{},\"{}\"\n", r.name, r.step_ratio, r.reference,
+                       r.note);
+      std::printf("%-20s failed: %s\n", r.name.c_str(), r.note.c_str());
       continue;
     }
+    const Row& ref = reference_of(r);
     const double ratio = ref.ok && ref.cpu_s > 0.0 ? r.cpu_s / ref.cpu_s : 0.0;
     f << fmt::format(
-        "{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{:.3f},{:.4f},{:.6e},{:.4f},{:.4f},{}\n", r.name,
-        r.cpu_s, ratio, r.wall_s, r.hic15, err(r.hic15, ref.hic15), r.peak_g,
-        err(r.peak_g, ref.peak_g), r.disp_m, err(r.disp_m, ref.disp_m), r.added_mass_kg, r.note);
-    std::printf("%-12s %9.2f %9.3f %9.2f %10.1f %+8.2f %9.1f %+8.2f %10.3f %+8.2f\n",
+        "{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{:.3f},{:.4f},{:.6e},{:.4f},{:.4f},{:.4f},{},{}\n",
+        r.name, r.cpu_s, ratio, r.wall_s, r.hic15, err(r.hic15, ref.hic15), r.peak_g,
+        err(r.peak_g, ref.peak_g), r.disp_m, err(r.disp_m, ref.disp_m), r.added_mass_kg,
+        r.step_ratio, r.reference, r.note);
+    std::printf("%-20s %9.2f %9.3f %9.2f %10.1f %+8.2f %9.1f %+8.2f %10.3f %+8.2f\n",
                 r.name.c_str(), r.cpu_s, ratio, r.wall_s, r.hic15, err(r.hic15, ref.hic15),
                 r.peak_g, err(r.peak_g, ref.peak_g), 1e3 * r.disp_m, err(r.disp_m, ref.disp_m));
   }

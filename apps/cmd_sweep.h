@@ -12,8 +12,12 @@
 // after CFC 1000, the displacement probe's peak, each with its error against mono, added mass)
 // and DIR/sweep.png (x: CPU relative to mono; y: error against mono, one marker per quantity;
 // tools/sweep_chart.py).
+// --refine PART=N1,N2,... adds, per N, the scene with the generated mesh of PART given
+// `divisions: N` (its length divisions: the fine part's elements shorter, the step ratio larger),
+// run mono_N and multi_N; multi_N's CPU and errors are against mono_N (the same mesh), and the
+// CSV's step_ratio column says how far apart the domains' steps are.
 // Not yet in the sweep: `paper` (it runs in one process, for two domains, and refuses links that
-// carry rotations, as the cowl's shell nodes do here), wiper refinements (need a scene generator).
+// carry rotations, as the cowl's shell nodes do here).
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -23,6 +27,8 @@ struct SweepOptions {
   std::string scenario;
   std::string out = "out/sweep";
   std::string disp_probe;  ///< "" = the first node probe
+  /// "PART=N1,N2,...": also the scene refined to `divisions: N` of PART's mesh (mono and multi).
+  std::string refine;
 };
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);
