@@ -113,5 +113,55 @@ class StateReader {
   std::map<std::string, Entry> index_;
 };
 
+/// Visitors for a state saved and restored by ONE list of fields (Solver::visit_state): the list
+/// calls v.vec / v.sized / v.num / v.integer / v.flag / v.pod on each member; StateSave writes it,
+/// StateLoad reads it back into the same member (sized: the record must have the member's current
+/// length, i.e. the model's). `loading` tells the list which way it goes where it must differ.
+struct StateSave {
+  static constexpr bool loading = false;
+  StateWriter& w;
+  template <class T>
+  void vec(std::string_view n, const std::vector<T>& v) {
+    w.put(n, std::span<const T>(v));
+  }
+  template <class T>
+  void sized(std::string_view n, const std::vector<T>& v) {
+    vec(n, v);
+  }
+  void num(std::string_view n, double x) { w.put_double(n, x); }
+  template <class T>
+  void integer(std::string_view n, T x) {
+    w.put_int(n, static_cast<std::int64_t>(x));
+  }
+  void flag(std::string_view n, bool b) { w.put_bool(n, b); }
+  template <class T>
+  void pod(std::string_view n, const T& x) {
+    w.put_pod(n, x);
+  }
+};
+
+struct StateLoad {
+  static constexpr bool loading = true;
+  const StateReader& r;
+  template <class T>
+  void vec(std::string_view n, std::vector<T>& v) {
+    r.get(n, v);
+  }
+  template <class T>
+  void sized(std::string_view n, std::vector<T>& v) {
+    r.get_exact(n, v);
+  }
+  void num(std::string_view n, double& x) { x = r.get_double(n); }
+  template <class T>
+  void integer(std::string_view n, T& x) {
+    x = static_cast<T>(r.get_int(n));
+  }
+  void flag(std::string_view n, bool& b) { b = r.get_bool(n); }
+  template <class T>
+  void pod(std::string_view n, T& x) {
+    r.get_pod(n, x);
+  }
+};
+
 }  // namespace core
 }  // namespace crashlink

@@ -108,15 +108,8 @@ void write_probes(const model::Model& global, const partition::Decomposition& de
       continue;
     }
     const std::size_t k = rows_until(h.time_s, t_cut);
-    std::vector<io::ProbeSample> rows(k);
-    for (std::size_t r = 0; r < k; ++r) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        rows[r].displacement_m[c] = h.displacement_m[3 * r + c];
-        rows[r].velocity_m_s[c] = h.velocity_m_s[3 * r + c];
-        rows[r].acceleration_m_s2[c] = h.acceleration_m_s2[3 * r + c];
-      }
-    }
-    writer.append_probe_rows(i, std::span<const double>(h.time_s.data(), k), rows);
+    writer.append_probe_rows(i, std::span<const double>(h.time_s.data(), k),
+                             io::probe_samples(h, k));
   }
 }
 
@@ -142,10 +135,8 @@ void write_contacts(const model::Model& global, const partition::Decomposition& 
       continue;
     }
     const std::size_t k = rows_until(h.time_s, t_cut);
-    std::vector<io::ContactSample> rows(k);
-    for (std::size_t r = 0; r < k; ++r)
-      for (std::size_t c = 0; c < 3; ++c) rows[r].force_N[c] = h.force_N[3 * r + c];
-    writer.append_contact_rows(i, std::span<const double>(h.time_s.data(), k), rows);
+    writer.append_contact_rows(i, std::span<const double>(h.time_s.data(), k),
+                               io::contact_samples(h, k));
   }
 }
 

@@ -163,6 +163,10 @@ class Solver {
   double ghost_reaction_work(double weight) const;  // weight * sum_g R_g . du_g
   void propose_step();
   GuardContext guard_context() const;
+  /// The one list of evolving members behind save_state / restore_state (solver_state.cpp);
+  /// Self is const Solver when saving, Solver when loading.
+  template <class Visitor, class Self>
+  static void visit_state(Visitor& v, Self& self);
 
   const model::Model& model_;
   std::string domain_;

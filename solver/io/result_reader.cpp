@@ -399,4 +399,23 @@ TimingData ResultReader::timing() const {
   return t;
 }
 
+std::vector<ProbeSample> probe_samples(const ProbeHistory& h, std::size_t k) {
+  std::vector<ProbeSample> rows(k);
+  for (std::size_t r = 0; r < k; ++r) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      rows[r].displacement_m[c] = h.displacement_m[3 * r + c];
+      rows[r].velocity_m_s[c] = h.velocity_m_s[3 * r + c];
+      rows[r].acceleration_m_s2[c] = h.acceleration_m_s2[3 * r + c];
+    }
+  }
+  return rows;
+}
+
+std::vector<ContactSample> contact_samples(const ContactHistory& h, std::size_t k) {
+  std::vector<ContactSample> rows(k);
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < 3; ++c) rows[r].force_N[c] = h.force_N[3 * r + c];
+  return rows;
+}
+
 }  // namespace crashlink::io

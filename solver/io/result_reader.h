@@ -75,6 +75,11 @@ struct TimingData {
   std::vector<DomainTiming> domains;  ///< /timing/<domain> groups, link order
 };
 
+/// The first k rows of a history as the writer takes them (ResultWriter::append_probe_rows /
+/// append_contact_rows): what the gather and a restart copy from one file into another.
+std::vector<ProbeSample> probe_samples(const ProbeHistory& h, std::size_t k);
+std::vector<ContactSample> contact_samples(const ContactHistory& h, std::size_t k);
+
 /// Opens DIR/result.h5 read-only. Not thread-safe (serial HDF5); may be used while a writer in
 /// another process is appending (it sees the rows flushed so far).
 class ResultReader {

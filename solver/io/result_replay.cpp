@@ -34,25 +34,14 @@ ReplayCounts replay_results(const std::string& from, ResultWriter& to, const mod
   for (std::size_t p = 0; p < model.probes.size(); ++p) {
     const ProbeHistory h = in.probe(result_link_name(model.probes[p].name, "probe", p));
     const std::size_t k = rows_before(h.time_s, before_s);
-    std::vector<ProbeSample> samples(k);
-    for (std::size_t i = 0; i < k; ++i) {
-      for (std::size_t d = 0; d < 3; ++d) {
-        samples[i].displacement_m[d] = h.displacement_m[3 * i + d];
-        samples[i].velocity_m_s[d] = h.velocity_m_s[3 * i + d];
-        samples[i].acceleration_m_s2[d] = h.acceleration_m_s2[3 * i + d];
-      }
-    }
-    to.append_probe_rows(p, std::span<const double>(h.time_s.data(), k), samples);
+    to.append_probe_rows(p, std::span<const double>(h.time_s.data(), k), probe_samples(h, k));
     counts.probe_rows += k;
   }
 
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     const ContactHistory h = in.contact(result_link_name(model.contacts[c].name, "contact", c));
     const std::size_t k = rows_before(h.time_s, before_s);
-    std::vector<ContactSample> samples(k);
-    for (std::size_t i = 0; i < k; ++i)
-      for (std::size_t d = 0; d < 3; ++d) samples[i].force_N[d] = h.force_N[3 * i + d];
-    to.append_contact_rows(c, std::span<const double>(h.time_s.data(), k), samples);
+    to.append_contact_rows(c, std::span<const double>(h.time_s.data(), k), contact_samples(h, k));
     counts.contact_rows += k;
   }
 
