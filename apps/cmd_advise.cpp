@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "apps/advise_process_sample.h"
 #include "solver/cosim/split_advice.h"
 #include "solver/io/scenario_reader.h"
 
@@ -46,6 +47,10 @@ CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options) {
                   "the coupled run's factor on the domains' initial steps")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  cmd->add_option("--process-sample", options.process_sample,
+                  "also time the scenario's own split over processes (mono and multi to F and 2F "
+                  "of the end time; the gain from the differences), F in (0, 0.5]")
+      ->check(CLI::Range(0.0, 0.5));
   return cmd;
 }
 
@@ -125,6 +130,16 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
                  b.predicted_gain, b.sampled_gain, fine.c_str(), coarse.c_str());
   } else {
     std::fprintf(out, "\nno two-domain split is possible or useful for this model\n");
+  }
+  if (options.process_sample > 0.0) {
+    std::fflush(out);
+    const auto s =
+        sample_on_processes(options.scenario, options.process_sample, options.step_safety);
+    std::fprintf(out,
+                 "\nthe scenario's own split timed over processes (ipc) from %.3g to %.3g of the "
+                 "end time: mono %.3f s, multi %.3f s of CPU (coordinator %.2f %%): gain %.3f\n",
+                 s.fraction, 2.0 * s.fraction, s.mono_cpu_s, s.multi_cpu_s,
+                 100.0 * s.coordinator_share, s.gain);
   }
   std::fflush(out);
   return 0;

@@ -3,6 +3,8 @@
 // part (min, median, max, a histogram on log-spaced bins) and the split into two domains that
 // maximises the predicted CPU gain over mono (solver/partition/split_advice.h for the rule), with
 // the `domains:` block to paste into the scenario; the scenario's own split is evaluated too.
+// --process-sample F: the scenario's own split also timed over processes (advise_process_sample.h),
+// which counts what the messages and the coordinator cost.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
@@ -12,6 +14,9 @@ namespace crashlink::apps {
 struct AdviseOptions {
   std::string scenario;
   double step_safety = 0.9;  ///< as `crashlink run --step-safety`
+  /// > 0: also the scenario's own split timed on processes over [F, 2F] of the end time
+  /// (advise_process_sample.h).
+  double process_sample = 0.0;
 };
 
 CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options);

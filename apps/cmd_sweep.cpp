@@ -1,7 +1,6 @@
 #include "apps/cmd_sweep.h"
 
 #include <fmt/format.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,7 @@
 #include "apps/cmd_run.h"
 #include "apps/python_script.h"
 #include "apps/result_head.h"
+#include "apps/scenario_variant.h"
 #include "apps/timing_reader.h"
 #include "solver/core/errors.h"
 #include "solver/cosim/split_advice.h"
@@ -152,25 +152,6 @@ std::pair<std::string, std::vector<int>> parse_refine(const std::string& spec) {
   return {spec.substr(0, eq), n};
 }
 
-/// The scenario with parts.PART.mesh.divisions = n, written to `path` (YAML; comments dropped).
-void write_refined(const std::string& scenario, const std::string& part, int n,
-                   const std::string& path) {
-  YAML::Node root = YAML::LoadFile(scenario);
-  YAML::Node mesh = root["parts"][part]["mesh"];
-  if (!mesh || !mesh.IsMap() || !mesh["divisions"] || !mesh["divisions"].IsScalar()) {
-    throw InputError(
-        fmt::format("sweep: --refine: {}: part '{}' has no generated mesh with a "
-                    "scalar `divisions:` (the bar generator's length divisions)",
-                    scenario, part));
-  }
-  mesh["divisions"] = n;
-  std::ofstream out(path);
-  out << "# " << scenario << " with parts." << part << ".mesh.divisions = " << n
-      << " (crashlink sweep --refine)\n"
-      << root << "\n";
-  if (!out) throw InputError(fmt::format("sweep: cannot write {}", path));
-}
-
 }  // namespace
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
@@ -259,7 +240,8 @@ int run_sweep(const SweepOptions& o) {
       const std::string tag = fmt::format("{}{}", part, n);
       fs::create_directories(fs::path(o.out) / "scenarios");
       const std::string scenario = (fs::path(o.out) / "scenarios" / (tag + ".yaml")).string();
-      write_refined(o.scenario, part, n, scenario);
+      write_scenario_variant(o.scenario, {"parts", part, "mesh", "divisions"}, std::to_string(n),
+                             scenario);
       const double ratio = step_ratio(io::read_scenario(scenario));
       std::printf("\nsweep: %s = %d divisions: step ratio %.2f\n", part.c_str(), n, ratio);
       run_mode(scenario, "mono", "mono_" + tag, "mono_" + tag, ratio);
