@@ -31,25 +31,13 @@ Cost run_sample(const std::string& scenario, const std::string& mode, double ste
   r.mode = mode;
   r.quiet = true;
   r.step_safety = step_safety;
-  // The run's own summary and HIC lines would bury the advice: they go to /dev/null.
-  std::fflush(stdout);
-  const int saved = ::dup(1);
-  std::FILE* null = std::fopen("/dev/null", "w");
-  if (null != nullptr) ::dup2(::fileno(null), 1);
   int rc = 0;
   try {
     rc = run_run(r);
-  } catch (...) {
-    std::fflush(stdout);
-    ::dup2(saved, 1);
-    ::close(saved);
-    if (null != nullptr) std::fclose(null);
-    throw;
+  } catch (const Error& e) {
+    throw InputError(fmt::format("advise --process-sample: the {} sample run into {} failed: {}",
+                                 mode, out.string(), e.what()));
   }
-  std::fflush(stdout);
-  ::dup2(saved, 1);
-  ::close(saved);
-  if (null != nullptr) std::fclose(null);
   const auto t = read_timing((out / "result.h5").string());
   if (rc != 0 || !t) {
     throw InputError(

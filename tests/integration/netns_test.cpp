@@ -224,22 +224,6 @@ struct Pieces {
   std::string endpoint;
 };
 
-std::vector<std::string> coordinator_argv(const std::string& bind, const std::string& scenario,
-                                          const std::filesystem::path& out,
-                                          const std::vector<std::string>& session) {
-  std::vector<std::string> a{bin("crashlink-coordinator"),
-                             "--bind",
-                             bind,
-                             "--scenario",
-                             scenario,
-                             "--out",
-                             out.string(),
-                             "--mode",
-                             "multi"};
-  a.insert(a.end(), session.begin(), session.end());
-  return a;
-}
-
 std::vector<std::string> solver_argv(const std::string& endpoint, const std::string& domain,
                                      const std::string& scenario, const std::filesystem::path& out,
                                      const std::vector<std::string>& extra,
@@ -257,7 +241,9 @@ void start(Pieces& p, const Wrap& wrap, const std::string& bind, const std::stri
            const std::filesystem::path& out,
            const std::vector<std::pair<std::string, std::vector<std::string>>>& domains,
            const std::vector<std::string>& session) {
-  p.coordinator = std::make_unique<Child>(wrap(0, coordinator_argv(bind, scenario, out, session)));
+  auto argv = coordinator_args(bind, scenario, out, "multi");
+  argv.insert(argv.end(), session.begin(), session.end());
+  p.coordinator = std::make_unique<Child>(wrap(0, std::move(argv)));
   ASSERT_TRUE(p.coordinator->wait_for_output(" for ", std::chrono::seconds(15)))
       << p.coordinator->output();
   p.endpoint = p.coordinator->between("listening on ", " for ");

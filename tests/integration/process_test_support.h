@@ -258,21 +258,29 @@ inline std::string bind_endpoint(transport::Scheme scheme, const std::filesystem
                                           : "ipc://" + (dir / "c.sock").string();
 }
 
+/// crashlink-coordinator's command line (no session flags).
+inline std::vector<std::string> coordinator_args(const std::string& bind,
+                                                 const std::string& scenario,
+                                                 const std::filesystem::path& out,
+                                                 const std::string& mode) {
+  return {bin("crashlink-coordinator"),
+          "--bind",
+          bind,
+          "--scenario",
+          scenario,
+          "--out",
+          out.string(),
+          "--mode",
+          mode};
+}
+
 /// Starts crashlink-coordinator and returns it once it listens; `endpoint` gets the real one.
 inline std::unique_ptr<Child> start_coordinator(const std::string& bind,
                                                 const std::string& scenario,
                                                 const std::filesystem::path& out,
                                                 const std::string& mode, std::string& endpoint,
                                                 std::vector<std::string> extra = {}) {
-  std::vector<std::string> a{bin("crashlink-coordinator"),
-                             "--bind",
-                             bind,
-                             "--scenario",
-                             scenario,
-                             "--out",
-                             out.string(),
-                             "--mode",
-                             mode};
+  std::vector<std::string> a = coordinator_args(bind, scenario, out, mode);
   for (const auto& s : fast_session_args()) a.push_back(s);
   for (auto& s : extra) a.push_back(std::move(s));
   auto c = std::make_unique<Child>(a);
