@@ -40,6 +40,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "split/multi: every process writes a checkpoint every this much simulated "
                   "time, s (rounded to a multiple of every domain's step) into OUT/checkpoints")
       ->check(CLI::NonNegativeNumber);
+  run->add_flag("--no-lanes", o.no_lanes,
+                "split/multi: the layer vectors go through the coordinator instead of daemon to "
+                "daemon (docs/processes.md \"Lanes\"; for comparison)");
   run->add_option("--restart", o.restart,
                   "split/multi: resume the run in this folder (its --out) from the newest "
                   "checkpoint every process has; same scenario, mode and step safety");

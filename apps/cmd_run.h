@@ -39,6 +39,7 @@ struct RunCommandOptions {
   double checkpoint_interval_s = 0.0;
   /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
+  bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

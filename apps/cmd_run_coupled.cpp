@@ -145,6 +145,7 @@ int run_coupled(const RunCommandOptions& o) {
   lo.step_safety = o.step_safety;
   lo.checkpoint_interval_s = o.checkpoint_interval_s;
   lo.restart = !o.restart.empty();
+  lo.lanes = !o.no_lanes;
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

@@ -3,6 +3,8 @@
 //   crashlink-coordinator --bind tcp://0.0.0.0:5555 --scenario FILE --out DIR [--mode multi]
 // It prints the bound endpoint (and writes it to --endpoint-file), waits for one daemon per
 // domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/run/exit_codes.h.
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
@@ -43,6 +45,10 @@ int main(int argc, char** argv) {
                  "multiple of every domain's step; 0: none")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  bool no_lanes = false;
+  app.add_flag("--no-lanes", no_lanes,
+               "route the layer vectors through the coordinator even where the daemons offer "
+               "lanes (daemon to daemon; docs/processes.md \"Lanes\")");
   app.add_flag("--restart", o.restart,
                "resume from the newest checkpoint in --out that every domain has (the daemons "
                "list theirs when they register)");
@@ -53,6 +59,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : run::kExitInput;
   }
   o.common_step = mode == "split";
+  o.lanes = !no_lanes;
   o.session = session.options();
   o.join_timeout = std::chrono::milliseconds{join_timeout_ms};
   apps::install_stop_handlers();
@@ -75,9 +82,10 @@ int main(int argc, char** argv) {
   if (r.exit_code != 0) {
     std::fprintf(stderr, "crashlink-coordinator: error: %s\n", r.message.c_str());
   } else {
-    std::fprintf(stderr,
-                 "crashlink-coordinator: done: %lld messages routed, CPU %.3f s, wall %.3f s\n",
-                 static_cast<long long>(r.messages_forwarded), r.cpu_seconds, r.wall_seconds);
+    std::fprintf(stderr, "crashlink-coordinator: done: %s, %lld reports, CPU %.3f s, wall %.3f s\n",
+                 r.lanes ? "layer vectors daemon to daemon (lanes)"
+                         : fmt::format("{} layer vectors routed", r.messages_forwarded).c_str(),
+                 static_cast<long long>(r.reports), r.cpu_seconds, r.wall_seconds);
   }
   return r.exit_code;
 }

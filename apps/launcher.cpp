@@ -143,6 +143,7 @@ class ProcessRun {
       args.push_back(fmt::format("{:.17g}", o_.checkpoint_interval_s));
     }
     if (o_.restart) args.emplace_back("--restart");
+    if (!o_.lanes) args.emplace_back("--no-lanes");
     add("coordinator", spawn(coordinator_exe, args));
 
     LaunchResult r;
@@ -262,6 +263,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.stop = &stop_flag();
   co.checkpoint_interval_s = o.checkpoint_interval_s;
   co.restart = o.restart;
+  co.lanes = o.lanes;
   std::promise<std::string> bound;
   std::atomic<bool> bound_set{false};
   co.on_bound = [&](const std::string& ep) {

@@ -32,6 +32,7 @@ struct LaunchOptions {
   double step_safety = 0.9;            ///< passed to every daemon (DaemonOptions::step_safety)
   double checkpoint_interval_s = 0.0;  ///< CoordinatorOptions::checkpoint_interval_s
   bool restart = false;                ///< CoordinatorOptions::restart (out_dir holds the run)
+  bool lanes = true;                   ///< CoordinatorOptions::lanes
 };
 
 /// How one piece of the run ended.

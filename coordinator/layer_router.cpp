@@ -25,11 +25,8 @@ LayerRouter::LayerRouter(std::vector<LayerRoute> routes, std::vector<std::string
   }
   tracks_.resize(routes_.size());
   for (std::size_t i = 0; i < routes_.size(); ++i) {
-    tracks_[i].next_displacement = routes_[i].coarse_step;
-    // u_J(0) = 0: the first row (T = 0) needs only g_A(0).
-    tracks_[i].displacements.push_back({0, std::vector<double>(3 * routes_[i].n_j, 0.0), {}});
+    tracks_[i].next_displacement = routes_[i].coarse_step;  // u_J(H) first; g_A(0) first
   }
-  latest_.assign(names_.size(), -1);
 }
 
 const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool force_message,
@@ -82,13 +79,9 @@ LayerRouter::Routed LayerRouter::force(int from, std::uint32_t interface, Tick t
                                        std::span<const double> force_N,
                                        std::span<const double> moment_Nm) {
   const auto& r = checked(from, interface, true, time, force_N.size(), moment_Nm.size());
-  auto& t = tracks_[interface];
-  t.next_force = time + r.coarse_step;
-  t.forces.push_back({time, std::vector<double>(force_N.begin(), force_N.end()),
-                      std::vector<double>(moment_Nm.begin(), moment_Nm.end())});
-  latest_[static_cast<std::size_t>(from)] = std::max(latest_[static_cast<std::size_t>(from)], time);
+  tracks_[interface].next_force = time + r.coarse_step;
   ++forwarded_;
-  return {r.coarse, pair_up(t, r)};
+  return {r.coarse};
 }
 
 LayerRouter::Routed LayerRouter::displacement(int from, std::uint32_t interface, Tick time,
@@ -96,57 +89,56 @@ LayerRouter::Routed LayerRouter::displacement(int from, std::uint32_t interface,
                                               std::span<const double> angular_velocity_rad_s) {
   const auto& r =
       checked(from, interface, false, time, displacement_m.size(), angular_velocity_rad_s.size());
-  auto& t = tracks_[interface];
-  t.next_displacement = time + r.coarse_step;
-  t.displacements.push_back(
-      {time, std::vector<double>(displacement_m.begin(), displacement_m.end()),
-       std::vector<double>(angular_velocity_rad_s.begin(), angular_velocity_rad_s.end())});
-  // u_J(T + H) is known once the owner is at T + H minus its compute: count it at T.
-  latest_[static_cast<std::size_t>(from)] =
-      std::max(latest_[static_cast<std::size_t>(from)], time - r.coarse_step);
+  tracks_[interface].next_displacement = time + r.coarse_step;
   ++forwarded_;
-  return {r.fine, pair_up(t, r)};
+  return {r.fine};
 }
 
-std::vector<LayerSample> LayerRouter::pair_up(Track& t, const LayerRoute& r) {
-  std::vector<LayerSample> out;
-  while (!t.forces.empty() && !t.displacements.empty() &&
-         t.forces.front().time == t.displacements.front().time) {
-    auto f = std::move(t.forces.front());
-    auto d = std::move(t.displacements.front());
-    t.forces.pop_front();
-    t.displacements.pop_front();
-    const auto& g = f.first;
-    const auto& u = d.first;
-    if (t.have_prev) {
-      // Trapezoid rule on [T_prev, T]: 1/2 (g(T_prev) + g(T)) . (u(T) - u(T_prev)).
-      double dw = 0.0;
-      for (std::size_t i = 0; i < g.size(); ++i) {
-        dw += 0.5 * (t.g_prev[i] + g[i]) * (u[i] - t.u_prev[i]);
-      }
-      // Moments: 1/2 (m(T_prev) + m(T)) . H omega(T_prev + H/2), as Solver counts them.
-      const auto& m = f.second;
-      const auto& omega = d.second;
-      if (!m.empty() && !omega.empty()) {
-        for (std::size_t i = 0; i < m.size(); ++i) {
-          const double m_prev = t.m_prev.empty() ? 0.0 : t.m_prev[i];
-          dw += 0.5 * m_prev * (r.coarse_step_s * omega[i]);
-          dw += 0.5 * m[i] * (r.coarse_step_s * omega[i]);
-        }
-      }
-      t.work_J += dw;
+std::vector<LayerSample> LayerRouter::rows(int from, std::uint32_t interface,
+                                           std::span<const std::int64_t> times,
+                                           std::span<const double> force_N,
+                                           std::span<const double> work_J) {
+  const std::string who = from >= 0 && from < static_cast<int>(names_.size())
+                              ? names_[static_cast<std::size_t>(from)]
+                              : fmt::format("#{}", from);
+  if (interface >= routes_.size() || routes_[interface].fine != from) {
+    throw ProtocolError(fmt::format(
+        "domain '{}' reported history rows of interface {}, {}", who, interface,
+        interface >= routes_.size() ? fmt::format("one of {} interfaces", routes_.size())
+                                    : std::string("of which it is not the fine side")));
+  }
+  const std::size_t n = times.size();
+  if (force_N.size() != 3 * n || work_J.size() != n) {
+    throw ProtocolError(
+        fmt::format("domain '{}' reported {} history rows of interface {} with {} "
+                    "force values and {} link works; expected {} and {}",
+                    who, n, interface, force_N.size(), work_J.size(), 3 * n, n));
+  }
+  const Tick H = routes_[interface].coarse_step;
+  auto& t = tracks_[interface];
+  std::vector<LayerSample> out(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (times[r] != t.next_row || times[r] > std::numeric_limits<Tick>::max() - H) {
+      throw ProtocolError(fmt::format(
+          "domain '{}' reported a history row of interface {} at {} ticks; the next one must be "
+          "at {} ticks (every {} ticks, in time order, within the tick range)",
+          who, interface, times[r], t.next_row, H));
     }
-    LayerSample s;
-    s.time = f.time;
-    s.link_work_J = t.work_J;
-    for (std::size_t i = 0; i < g.size(); ++i) s.force_N[i % 3] += g[i];
-    out.push_back(s);
-    t.g_prev = std::move(f.first);  // the vectors are not needed any more: no copies
-    t.u_prev = std::move(d.first);
-    t.m_prev = std::move(f.second);
-    t.have_prev = true;
+    t.next_row = times[r] + H;
+    out[r].time = times[r];
+    out[r].link_work_J = work_J[r];
+    for (std::size_t d = 0; d < 3; ++d) out[r].force_N[d] = force_N[3 * r + d];
   }
   return out;
+}
+
+void LayerRouter::restore_progress(Tick time, std::int64_t forwarded) {
+  for (std::size_t i = 0; i < routes_.size(); ++i) {
+    tracks_[i].next_force = time + routes_[i].coarse_step;
+    tracks_[i].next_displacement = time + routes_[i].coarse_step;
+    tracks_[i].next_row = time + routes_[i].coarse_step;
+  }
+  forwarded_ = forwarded;
 }
 
 }  // namespace crashlink::coordinator

@@ -12,6 +12,6 @@ namespace crashlink::wire {
 // LayerInterface.partner_step_ticks, Register.layer_interfaces, the rotational vectors of
 // LayerForce / LayerDisplacement, Bye.report; 3 checkpoints and restart: Register.checkpoint_ticks,
 // Setup.restart / restart_ticks (a version-2 daemon would start from t = 0 in a restarted run).
-inline constexpr std::uint32_t kProtocolVersion = 3;
+inline constexpr std::uint32_t kProtocolVersion = 4;
 
 }  // namespace crashlink::wire

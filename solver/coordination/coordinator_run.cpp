@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -122,6 +123,8 @@ class Coordinator {
     close_history(r);
     r.endpoint = link_ ? link_->endpoint() : std::string();
     r.messages_forwarded = router_ ? router_->forwarded() : 0;
+    r.lanes = lanes_;
+    r.reports = reports_;
     r.notices = notices_;
     r.checkpoint_interval_ticks = checkpoint_every_;
     r.restarted_from_ticks = restart_from_;
@@ -244,6 +247,10 @@ class Coordinator {
                         static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
+    latest_.assign(cut_.names.size(), 0);
+    lanes_ = o_.lanes && std::all_of(regs_.begin(), regs_.end(), [](const wire::Register& r) {
+               return !r.lane_endpoint().empty();
+             });
     plan_checkpoints(plan.step);
     options.set_checkpoint_interval_ticks(checkpoint_every_);
     if (o_.restart) restore(choose_restart());
@@ -255,6 +262,7 @@ class Coordinator {
         setup.mutable_setup()->set_restart(true);
         setup.mutable_setup()->set_restart_ticks(restart_from_);
       }
+      if (lanes_) add_lanes(static_cast<int>(k), *setup.mutable_setup());
       link_->send(cut_.names[k], setup);
     }
     if (o_.log != nullptr) {
@@ -264,8 +272,9 @@ class Coordinator {
             "{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
             static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
       }
-      std::fprintf(o_.log, "crashlink-coordinator: %s run, steps: %s\n",
-                   o_.common_step ? "split" : "multi", steps.c_str());
+      std::fprintf(o_.log, "crashlink-coordinator: %s run, steps: %s; layer vectors %s\n",
+                   o_.common_step ? "split" : "multi", steps.c_str(),
+                   lanes_ ? "daemon to daemon (lanes)" : "through the coordinator");
       std::fflush(o_.log);
     }
   }
@@ -281,20 +290,19 @@ class Coordinator {
         const int k = index_of(in->domain);
         auto& e = in->envelope;
         try {
-          if (e.has_layer_force()) {
+          if (e.has_layer_report()) {
+            report(k, e.layer_report());
+          } else if (e.has_layer_force()) {
             const auto& f = e.layer_force();
             auto routed = router_->force(k, f.interface_index(), f.time_ticks(), view(f.forces_n()),
                                          view(f.moments_n_m()));
             forward(routed.to, *in);
-            history_->append(f.interface_index(), routed.samples, o_.ticks_per_second);
-            snapshot(f.interface_index(), f.time_ticks());
           } else if (e.has_layer_displacement()) {
             const auto& d = e.layer_displacement();
             auto routed = router_->displacement(k, d.interface_index(), d.time_ticks(),
                                                 view(d.displacements_m()),
                                                 view(d.angular_velocities_rad_s()));
             forward(routed.to, *in);
-            history_->append(d.interface_index(), routed.samples, o_.ticks_per_second);
           } else if (e.has_bye()) {
             bye(k, e.bye());
             ++done;
@@ -309,11 +317,9 @@ class Coordinator {
         }
         if (o_.on_progress) {
           const int slow = slowest();
-          const double t =
-              slow < 0
-                  ? end_s
-                  : static_cast<double>(std::max<coordinator::Tick>(router_->latest(slow), 0)) /
-                        static_cast<double>(o_.ticks_per_second);
+          const double t = slow < 0 ? end_s
+                                    : static_cast<double>(latest_[static_cast<std::size_t>(slow)]) /
+                                          static_cast<double>(o_.ticks_per_second);
           o_.on_progress(t, end_s,
                          slow < 0 ? std::string() : cut_.names[static_cast<std::size_t>(slow)]);
         }
@@ -402,19 +408,8 @@ class Coordinator {
             r.path(), r.get_int("time_ticks"), r.get_string("scenario_hash"),
             r.get_int("interfaces"), T, hash_, router_->size()));
       }
-      for (std::size_t i = 0; i < router_->size(); ++i) {
-        const std::string p = fmt::format("interface{}.", i);
-        coordinator::LayerRouter::TrackState t;
-        t.next_force = r.get_int(p + "next_force");
-        t.next_displacement = r.get_int(p + "next_displacement");
-        r.get(p + "g_prev", t.g_prev);
-        r.get(p + "u_prev", t.u_prev);
-        r.get(p + "m_prev", t.m_prev);
-        t.have_prev = r.get_bool(p + "have_prev");
-        t.work_J = r.get_double(p + "work_J");
-        router_->restore_track(i, std::move(t));
-      }
       router_->restore_progress(T, r.get_int("forwarded"));
+      std::fill(latest_.begin(), latest_.end(), T);
       cpu_before_ = r.get_double("run.cpu_seconds");
       rows = history_->replay((std::filesystem::path(dir) / "coordinator.h5").string(),
                               static_cast<double>(T) / static_cast<double>(o_.ticks_per_second));
@@ -429,12 +424,13 @@ class Coordinator {
     }
   }
 
-  /// After interface i's force at `time` was routed and paired: at a checkpoint instant, keep
-  /// its state; once every interface has passed that instant, write the coordinator's checkpoint.
+  /// After interface i's history row at `time` was recorded: at a checkpoint instant, once every
+  /// interface has its row there, write the coordinator's checkpoint (its history up to `time`;
+  /// the link work's running state is in the fine sides' checkpoints).
   void snapshot(std::uint32_t i, coordinator::Tick time) {
     if (checkpoint_every_ <= 0 || time <= 0 || time % checkpoint_every_ != 0) return;
     auto& snaps = snapshots_[time];
-    snaps.emplace(i, router_->track_state(i));
+    snaps.insert(i);
     if (snaps.size() < router_->size()) return;
     const std::string dir = run::begin_checkpoint(o_.out_dir, time, kSelf);
     history_->flush();  // rows up to `time` (and some later ones: replay keeps <= time)
@@ -445,28 +441,53 @@ class Coordinator {
     w.put_int("interfaces", static_cast<std::int64_t>(router_->size()));
     w.put_int("forwarded", router_->forwarded());
     w.put_double("run.cpu_seconds", cpu_before_ + cpu_seconds() - cpu0_);
-    for (const auto& [k, t] : snaps) {
-      const std::string p = fmt::format("interface{}.", k);
-      w.put_int(p + "next_force", t.next_force);
-      w.put_int(p + "next_displacement", t.next_displacement);
-      w.put(p + "g_prev", std::span<const double>(t.g_prev));
-      w.put(p + "u_prev", std::span<const double>(t.u_prev));
-      w.put(p + "m_prev", std::span<const double>(t.m_prev));
-      w.put_bool(p + "have_prev", t.have_prev);
-      w.put_double(p + "work_J", t.work_J);
-    }
     w.save((std::filesystem::path(dir) / "state.bin").string());
     run::commit_checkpoint(o_.out_dir, time, kSelf);
     snapshots_.erase(time);
   }
 
-  /// The unfinished domain furthest behind (by its latest message), or -1.
+  /// A LayerReport from domain k: its progress and, from a fine side, history rows, each checked
+  /// (LayerRouter::rows: k's fine-side interface, the next owner instants in order, sizes).
+  void report(int k, const wire::LayerReport& rep) {
+    ++reports_;
+    const auto ku = static_cast<std::size_t>(k);
+    if (rep.time_ticks() < latest_[ku]) {
+      throw coordinator::ProtocolError(
+          fmt::format("domain '{}' reported t = {} ticks after t = {} ticks (time goes forward)",
+                      cut_.names[ku], rep.time_ticks(), latest_[ku]));
+    }
+    latest_[ku] = rep.time_ticks();
+    for (const auto& rows : rep.rows()) {
+      const auto i = rows.interface_index();
+      const auto samples = router_->rows(
+          k, i, {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
+          view(rows.force_n()), view(rows.link_work_j()));
+      history_->append(i, samples, o_.ticks_per_second);
+      for (const auto& row : samples) snapshot(i, row.time);
+    }
+  }
+
+  /// A partner's lane in daemon k's Setup for every domain k shares an interface with.
+  void add_lanes(int k, wire::Setup& setup) const {
+    std::set<int> partners;
+    for (const auto& c : cut_.interfaces) {
+      if (c.fine == k) partners.insert(c.coarse);
+      if (c.coarse == k) partners.insert(c.fine);
+    }
+    for (const int p : partners) {
+      auto* lane = setup.add_lanes();
+      lane->set_domain(cut_.names[static_cast<std::size_t>(p)]);
+      lane->set_endpoint(regs_[static_cast<std::size_t>(p)].lane_endpoint());
+    }
+  }
+
+  /// The unfinished domain furthest behind (by its latest report), or -1.
   int slowest() const {
     int slow = -1;
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       if (outcomes_[k].finished) continue;
       const int ki = static_cast<int>(k);
-      if (slow < 0 || router_->latest(ki) < router_->latest(slow)) slow = ki;
+      if (slow < 0 || latest_[k] < latest_[static_cast<std::size_t>(slow)]) slow = ki;
     }
     return slow;
   }
@@ -577,8 +598,10 @@ class Coordinator {
   coordinator::Tick checkpoint_every_ = 0;
   coordinator::Tick restart_from_ = -1;
   double cpu_before_ = 0.0;  ///< CPU of the run(s) before the checkpoint restarted from
-  std::map<coordinator::Tick, std::map<std::uint32_t, coordinator::LayerRouter::TrackState>>
-      snapshots_;
+  std::map<coordinator::Tick, std::set<std::uint32_t>> snapshots_;
+  std::vector<coordinator::Tick> latest_;  ///< [daemons] the instant of the latest report
+  bool lanes_ = false;
+  std::int64_t reports_ = 0;
 };
 
 }  // namespace

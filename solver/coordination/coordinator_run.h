@@ -2,9 +2,12 @@
 // crashlink-coordinator for the `layer` scheme (DESIGN.md §1, §2.6, §2.7, §3): binds a
 // CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario, checks
 // their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends the
-// Setups, then routes LayerDisplacement (coarse -> fine) and LayerForce (fine -> coarse) in
-// arrival order (coordinator/layer_router.h: per-interface time order checked, link work and
-// resultant force recorded) until every daemon has said Bye.
+// Setups, then, until every daemon has said Bye: records the interface history rows the fine
+// sides report (LayerReport: link work and resultant force, coordinator/layer_work.h) and the
+// progress of each domain; the layer vectors go daemon to daemon over lanes when every daemon
+// offered one (docs/processes.md "Lanes"), else the coordinator routes LayerDisplacement
+// (coarse -> fine) and LayerForce (fine -> coarse) in arrival order (coordinator/layer_router.h:
+// per-interface time order checked).
 //
 // Output: DIR/coordinator.h5 (io::CouplingHistoryWriter): /coupling/<interface>/ histories and
 // /timing (wall, the coordinator's CPU, each daemon's time spent waiting, from its Bye).
@@ -51,6 +54,9 @@ struct CoordinatorOptions {
   /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons
   /// list theirs in their Register); a run without one is refused (exit 2, naming what each has).
   bool restart = false;
+  /// Let the daemons exchange the layer vectors directly when every one offers a lane
+  /// (Register.lane_endpoint); false: always through the coordinator (--no-lanes).
+  bool lanes = true;
   bool in_process = false;  ///< a thread of a bigger process: CPU time of this thread only
   std::FILE* log = stderr;  ///< notices (refused peers, garbage), one line each; nullptr: none
 };
@@ -76,7 +82,9 @@ struct CoordinatorResult {
   std::string coordinator_h5;
   double cpu_seconds = 0.0;
   double wall_seconds = 0.0;
-  std::int64_t messages_forwarded = 0;
+  std::int64_t messages_forwarded = 0;         ///< layer vectors routed (0 over lanes)
+  bool lanes = false;                          ///< the layer vectors went daemon to daemon
+  std::int64_t reports = 0;                    ///< LayerReports received
   std::int64_t notices = 0;                    ///< refused or dropped messages logged
   std::int64_t checkpoint_interval_ticks = 0;  ///< the interval used (0: none)
   std::int64_t restarted_from_ticks = -1;      ///< the checkpoint resumed from (-1: from t = 0)

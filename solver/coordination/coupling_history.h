@@ -1,15 +1,15 @@
 #pragma once
-// The coordinator's record of a `layer` run: per interface the rows coordinator::LayerRouter
-// completes (velocity jump and displacement gap 0 by construction, link work, drift work 0,
-// resultant layer force) and, at the end, /timing (wall, the coordinator's CPU, each daemon's
-// time spent waiting), written through io::CouplingHistoryWriter to DIR/coordinator.h5 (gathered
-// into result.h5 under /coupling/<interface>/ and /timing).
+// The coordinator's record of a `layer` run: per interface the rows the fine side reports
+// (LayerReport, coordinator/layer_work.h: velocity jump and displacement gap 0 by construction,
+// link work, drift work 0, resultant layer force) and, at the end, /timing (wall, the coordinator's
+// CPU, each daemon's time spent waiting), written through io::CouplingHistoryWriter to
+// DIR/coordinator.h5 (gathered into result.h5 under /coupling/<interface>/ and /timing).
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "coordinator/layer_router.h"
+#include "coordinator/layer_work.h"
 #include "solver/coordination/coordinator_run.h"
 #include "solver/coordination/layer_cut.h"
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -53,6 +54,7 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
       ps.rotates = ps.rotates || solver_.inertia()[l] > 0.0;
     }
     if (port.fine_side) {
+      ps.meter = coordinator::LayerWorkMeter(seconds(port.partner_step));
       if (port.partner_step < h_ || port.partner_step % h_ != 0)
         throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                          ": the owner's step " + std::to_string(port.partner_step) +
@@ -158,6 +160,16 @@ void LayerStepper::deliver(const LayerMessage& m) {
                    std::to_string(m.interface_index) + ", which this domain is not part of");
 }
 
+std::vector<LayerRows> LayerStepper::take_history() {
+  std::vector<LayerRows> out;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    auto& ps = state_[p];
+    if (ps.rows.empty()) continue;
+    out.push_back({ports_[p].index, std::exchange(ps.rows, {})});
+  }
+  return out;
+}
+
 std::deque<LayerMessage> LayerStepper::take_outbox() {
   return std::exchange(outbox_, {});
 }
@@ -254,6 +266,15 @@ void LayerStepper::send_forces() {
         m.first[3 * j + d] = f[d];
         if (!m.second.empty()) m.second[3 * j + d] = mo[d];
       }
+    }
+    if (record_history_) {
+      // u_J(T): 0 at T = 0 (the owner's initial displacement), else the target of the owner step
+      // [T - H, T] just completed, with omega_J(T - H/2) (ghost_targets_ready).
+      auto& ps = state_[p];
+      const bool start = t_ == 0;
+      const std::span<const double> omega =
+          start ? std::span<const double>() : std::span<const double>(ps.omega);
+      ps.rows.push_back(ps.meter.add(t_, m.first, m.second, start ? ps.u_T : ps.u_1, omega));
     }
     outbox_.push_back(std::move(m));
   }

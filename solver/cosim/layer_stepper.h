@@ -39,6 +39,7 @@
 #include <utility>
 #include <vector>
 
+#include "coordinator/layer_work.h"
 #include "coordinator/ticks.h"
 #include "solver/core/state_archive.h"
 #include "solver/integration/solver.h"
@@ -65,6 +66,12 @@ struct LayerMessage {
   Tick time = 0;
   std::vector<double> first;
   std::vector<double> second;
+};
+
+/// History rows of one fine-side interface (coordinator/layer_work.h), for the coordinator.
+struct LayerRows {
+  std::uint32_t interface_index = 0;
+  std::vector<coordinator::LayerSample> rows;
 };
 
 class LayerStepper {
@@ -109,6 +116,13 @@ class LayerStepper {
   /// advance() returns. Only when messages leave changes: the messages and the numbers do not.
   void set_on_outbox(std::function<void()> on_outbox) { on_outbox_ = std::move(on_outbox); }
   bool has_outbox() const { return !outbox_.empty(); }
+
+  /// Interface histories: with recording on (a daemon; off by default, LayerNetwork keeps none),
+  /// each fine port adds a row at every owner instant T from the g_A(T) it sends and the u_J(T)
+  /// it received (coordinator::LayerWorkMeter); take_history() returns the rows since the last
+  /// call, fine ports without new rows left out.
+  void set_record_history(bool on) { record_history_ = on; }
+  std::vector<LayerRows> take_history();
   const std::deque<LayerMessage>& outbox() const { return outbox_; }  ///< not taken yet
 
   /// Checkpoints (layer_stepper_state.cpp, DESIGN.md §2.6 "Checkpoints"). At a cycle boundary
@@ -140,14 +154,16 @@ class LayerStepper {
   enum class Phase : std::uint8_t { Initial, Begin, Positions, Accelerations, Done };
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct PortState {
-    std::deque<LayerMessage> inbox;  ///< received, not consumed yet
-    Tick next_expected = 0;          ///< time of the next message from the partner
-    std::vector<double> u_T;         ///< fine side: u_J(T) of the current owner step
-    std::vector<double> u_1;         ///< fine side: u_J(T + H)
-    std::vector<double> omega;       ///< fine side: omega_J(T + H/2)
-    Tick T = 0;                      ///< fine side: the owner step [T, T + H] in use
-    bool have_u1 = false;            ///< fine side: u_1 received for this owner step
-    bool rotates = false;            ///< J has rotational dofs (shell nodes)
+    std::deque<LayerMessage> inbox;              ///< received, not consumed yet
+    Tick next_expected = 0;                      ///< time of the next message from the partner
+    std::vector<double> u_T;                     ///< fine side: u_J(T) of the current owner step
+    std::vector<double> u_1;                     ///< fine side: u_J(T + H)
+    std::vector<double> omega;                   ///< fine side: omega_J(T + H/2)
+    Tick T = 0;                                  ///< fine side: the owner step [T, T + H] in use
+    bool have_u1 = false;                        ///< fine side: u_1 received for this owner step
+    bool rotates = false;                        ///< J has rotational dofs (shell nodes)
+    coordinator::LayerWorkMeter meter;           ///< fine side: the interface history
+    std::vector<coordinator::LayerSample> rows;  ///< fine side: rows not taken yet
   };
 
   Tick to_ticks_end(double t_s) const;
@@ -166,6 +182,7 @@ class LayerStepper {
   std::vector<PortState> state_;
   Tick h_ = 0, t_ = 0, end_ = 0;
   bool initialized_ = false;
+  bool record_history_ = false;
   std::int64_t ticks_per_second_ = 0;
   Phase phase_ = Phase::Initial;
   Wait wait_ = Wait::None;

@@ -39,6 +39,18 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put(pre + "omega", std::span<const double>(ps.omega));
     w.put_int(pre + "T", ps.T);
     w.put_bool(pre + "have_u1", ps.have_u1);
+    if (!ps.rows.empty()) {
+      throw ModelError(
+          fmt::format("layer stepper '{}': checkpoint at {} ticks with {} history rows "
+                      "of interface {} not reported",
+                      dom, t_, ps.rows.size(), port.index));
+    }
+    const auto& h = ps.meter.state();
+    w.put(pre + "work.g_prev", std::span<const double>(h.g_prev));
+    w.put(pre + "work.u_prev", std::span<const double>(h.u_prev));
+    w.put(pre + "work.m_prev", std::span<const double>(h.m_prev));
+    w.put_bool(pre + "work.have_prev", h.have_prev);
+    w.put_double(pre + "work.J", h.work_J);
   }
   w.put("stepper.ghost_u", std::span<const double>(ghost_u_));
   w.put("stepper.ghost_omega", std::span<const double>(ghost_omega_));
@@ -76,6 +88,14 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     r.get(pre + "omega", ps.omega);
     ps.T = r.get_int(pre + "T");
     ps.have_u1 = r.get_bool(pre + "have_u1");
+    coordinator::LayerWorkState h;
+    r.get(pre + "work.g_prev", h.g_prev);
+    r.get(pre + "work.u_prev", h.u_prev);
+    r.get(pre + "work.m_prev", h.m_prev);
+    h.have_prev = r.get_bool(pre + "work.have_prev");
+    h.work_J = r.get_double(pre + "work.J");
+    ps.meter.restore(std::move(h));
+    ps.rows.clear();
   }
   r.get_exact("stepper.ghost_u", ghost_u_);
   r.get_exact("stepper.ghost_omega", ghost_omega_);

@@ -9,6 +9,7 @@
 #include <deque>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -29,7 +30,10 @@
 #include "solver/run/exit_codes.h"
 #include "transport/curve_errors.h"
 #include "transport/daemon_link.h"
+#include "transport/dealer.h"
 #include "transport/errors.h"
+#include "transport/lane_endpoint.h"
+#include "transport/router.h"
 
 namespace crashlink::daemon {
 
@@ -140,6 +144,7 @@ class Daemon {
   void write_checkpoint() {
     const auto t0 = Clock::now();
     const cosim::Tick T = stepper_->time();
+    send_report();  // the interface history up to T, which the coordinator's checkpoint holds
     const std::string dir = run::begin_checkpoint(o_.out_dir, T, o_.domain);
     recorder_->flush();
     run::copy_into_checkpoint(writer_->h5_path(), dir);
@@ -237,11 +242,19 @@ class Daemon {
                                      "expected >= 1",
                                      tps_));
     }
+    // Our lane (docs/processes.md "Lanes"), bound before the Register that announces it.
+    if (const auto lane =
+            transport::lane_endpoint_for(o_.endpoint, o_.domain, o_.session.socket.curve);
+        !lane.empty()) {
+      lane_in_ = std::make_unique<transport::Router>(lane, o_.session.socket);
+    }
     link_->send(register_message());
     const wire::Setup setup = await_setup();
     apply_setup(setup);
+    open_lanes(setup);
     stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
                                                      setup.step_ticks(), tps_);
+    stepper_->set_record_history(true);
     if (setup.restart()) {
       restore(setup.restart_ticks());
     } else {
@@ -284,6 +297,7 @@ class Daemon {
         std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
     r->set_elements(elements_);
     for (const auto t : checkpoints_) r->add_checkpoint_ticks(t);
+    if (lane_in_) r->set_lane_endpoint(lane_in_->endpoint());
     for (const auto& port : dom_->ports) {
       auto* li = r->add_layer_interfaces();
       li->set_index(port.index);
@@ -313,6 +327,74 @@ class Daemon {
     daemon::apply_setup(setup, tps_, o_.domain, dom_->ports);  // solver/daemon/apply_setup.h
   }
 
+  /// The Setup's lanes: a Dealer to each partner's lane, named by our domain; every interface's
+  /// vectors then leave on its partner's lane. No lanes: they go to the coordinator.
+  void open_lanes(const wire::Setup& setup) {
+    if (setup.lanes_size() == 0) return;
+    if (!lane_in_) {
+      throw transport::ProtocolError(
+          "coordinator", fmt::format("the Setup of domain '{}' lists {} lanes, but this daemon "
+                                     "offered none",
+                                     o_.domain, setup.lanes_size()));
+    }
+    for (const auto& lane : setup.lanes()) {
+      lanes_out_.emplace(lane.domain(), std::make_unique<transport::Dealer>(
+                                            lane.endpoint(), o_.domain, o_.session.socket));
+    }
+    for (const auto& port : dom_->ports) {
+      const auto it = lanes_out_.find(port.partner);
+      if (it == lanes_out_.end()) {
+        throw transport::ProtocolError(
+            "coordinator", fmt::format("the Setup of domain '{}' has no lane to '{}', its "
+                                       "partner on interface {}",
+                                       o_.domain, port.partner, port.index));
+      }
+      if (lane_of_.size() <= port.index) lane_of_.resize(port.index + 1, nullptr);
+      lane_of_[port.index] = it->second.get();
+    }
+  }
+
+  /// Progress and the interface history rows completed since the last report (LayerReport).
+  void send_report() {
+    wire::Envelope e;
+    auto* rep = e.mutable_layer_report();
+    rep->set_time_ticks(stepper_->time());
+    for (const auto& h : stepper_->take_history()) {
+      auto* rows = rep->add_rows();
+      rows->set_interface_index(h.interface_index);
+      for (const auto& row : h.rows) {
+        rows->add_time_ticks(row.time);
+        for (const double f : row.force_N) rows->add_force_n(f);
+        rows->add_link_work_j(row.link_work_J);
+      }
+    }
+    link_->send(e);
+  }
+
+  /// Blocks until a partner's vector comes on our lane or the coordinator says something (an
+  /// Error or a Bye is thrown or queued; heartbeats are swallowed); the coordinator's silence,
+  /// and through it a partner's death, ends the wait (DaemonLink::keep_alive).
+  void wait_on_lane() {
+    const auto t0 = Clock::now();
+    for (;;) {
+      if (auto r = lane_in_->receive(20ms)) {
+        if (!r->ok() || lanes_out_.find(r->peer) == lanes_out_.end()) {
+          throw transport::ProtocolError(
+              "lane", fmt::format("domain '{}' got {} on its lane {} from '{}', which is not one "
+                                  "of its partners' vectors",
+                                  o_.domain, r->ok() ? body_name(r->envelope) : r->error,
+                                  lane_in_->endpoint(), r->peer));
+        }
+        pending_.push_back(std::move(r->envelope));
+        break;
+      }
+      while (auto m = link_->receive(0ms)) pending_.push_back(std::move(*m));
+      if (!pending_.empty()) break;
+      link_->keep_alive();
+    }
+    wait_s_ += seconds_since(t0);
+  }
+
   static std::string body_name(const wire::Envelope& e) {
     const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(e.body_case());
     return field != nullptr ? field->name() : "empty Envelope";
@@ -331,6 +413,7 @@ class Daemon {
       if (const auto now = Clock::now(); now >= next_service) {
         next_service = now + service_every;
         while (auto m = link_->receive(0ms)) pending_.push_back(std::move(*m));
+        send_report();
       }
     };
     for (;;) {
@@ -352,6 +435,10 @@ class Daemon {
       // What on_sample read meanwhile may be the very message the stepper waits for: deliver it
       // before blocking (the partner, served early by set_on_outbox, often answers mid-advance).
       if (w == Wait::None || !pending_.empty()) continue;
+      if (lane_in_ && !lanes_out_.empty()) {
+        wait_on_lane();
+        continue;
+      }
       const auto t0 = Clock::now();
       auto m = link_->receive(o_.session.peer_timeout);
       wait_s_ += seconds_since(t0);
@@ -360,7 +447,13 @@ class Daemon {
   }
 
   void send_outbox() {
-    for (const auto& m : stepper_->take_outbox()) link_->send(to_envelope(m));
+    for (const auto& m : stepper_->take_outbox()) {
+      if (m.interface_index < lane_of_.size() && lane_of_[m.interface_index] != nullptr) {
+        lane_of_[m.interface_index]->send(to_envelope(m));
+      } else {
+        link_->send(to_envelope(m));
+      }
+    }
   }
 
   void deliver(const wire::Envelope& e) {
@@ -384,6 +477,7 @@ class Daemon {
   }
 
   void finish() {
+    send_report();
     recorder_->finish();
     write_timing();
     writer_->close();
@@ -454,6 +548,9 @@ class Daemon {
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::unique_ptr<cosim::LayerStepper> stepper_;
   std::unique_ptr<transport::DaemonLink> link_;
+  std::unique_ptr<transport::Router> lane_in_;  ///< our lane: the partners' vectors come here
+  std::map<std::string, std::unique_ptr<transport::Dealer>> lanes_out_;  ///< partner -> its lane
+  std::vector<transport::Dealer*> lane_of_;  ///< [interface index] the lane its vectors leave on
   std::deque<wire::Envelope> pending_;
   std::vector<std::int64_t> checkpoints_;  ///< instants of our complete checkpoints (Register)
   cosim::Tick checkpoint_every_ = 0;       ///< the coordinator's interval, ticks (0: none)

@@ -120,7 +120,16 @@ class Coordinator {
 
   void route(int k, const wire::Envelope& e) {
     try {
-      if (e.has_layer_force()) {
+      if (e.has_layer_report()) {
+        for (const auto& rows : e.layer_report().rows()) {
+          const auto samples = router_->rows(
+              k, rows.interface_index(),
+              {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
+              view(rows.force_n()), view(rows.link_work_j()));
+          for (std::size_t i = 1; i < samples.size(); ++i)
+            if (samples[i].time <= samples[i - 1].time) std::abort();
+        }
+      } else if (e.has_layer_force()) {
         const auto& f = e.layer_force();
         check(router_->force(k, f.interface_index(), f.time_ticks(), view(f.forces_n()),
                              view(f.moments_n_m())));
@@ -143,8 +152,6 @@ class Coordinator {
 
   void check(const coordinator::LayerRouter::Routed& r) const {
     if (r.to < 0 || static_cast<std::size_t>(r.to) >= cut_.names.size()) std::abort();
-    for (std::size_t i = 1; i < r.samples.size(); ++i)
-      if (r.samples[i].time <= r.samples[i - 1].time) std::abort();
   }
 
   static constexpr std::int64_t kTicksPerSecond = coordinator::kDefaultTicksPerSecond;

@@ -100,7 +100,7 @@ Reference reference(const model::Model& m, const cosim::LayerNetworkOptions& o) 
 int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem::path& out,
                const std::string& mode,
                const std::vector<std::pair<std::string, std::vector<std::string>>>& daemons,
-               std::string& log) {
+               std::string& log, bool lanes = true) {
   if (scheme == Scheme::inproc) {
     coordination::CoordinatorOptions co;
     co.bind = transport::local_endpoint(Scheme::inproc, "test");
@@ -109,6 +109,7 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     co.common_step = mode == "split";
     co.in_process = true;
     co.log = nullptr;
+    co.lanes = lanes;
     coordination::CoordinatorResult cr;
     std::thread c([&] { cr = coordination::run_coordinator(co); });
     std::vector<daemon::DaemonResult> dr(daemons.size());
@@ -131,7 +132,8 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     }
     for (auto& t : ds) t.join();
     c.join();
-    log = cr.message;
+    log = cr.message + (cr.lanes ? "layer vectors daemon to daemon (lanes)"
+                                 : "layer vectors through the coordinator");
     for (const auto& d : dr) {
       log += d.message;
       EXPECT_EQ(d.exit_code, 0) << d.message;
@@ -139,7 +141,9 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     return cr.exit_code;
   }
   std::string endpoint;
-  auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, mode, endpoint);
+  auto c = start_coordinator(
+      bind_endpoint(scheme, out), scenario, out, mode, endpoint,
+      lanes ? std::vector<std::string>{} : std::vector<std::string>{"--no-lanes"});
   std::vector<std::unique_ptr<Child>> ds;
   for (const auto& [name, extra] : daemons) {
     ds.push_back(start_solver(endpoint, name, scenario, out, extra));
@@ -243,17 +247,24 @@ TEST_P(LayerProcesses, SplitShellPlateReproducesNetworkAndMono) {
 }
 
 // multi at ratio 2: the fine domain proposes 1 us, the coarse 2 us (--max-step, as
-// LayerNetworkOptions::proposal_s), so the plan is H = 2 h.
-TEST_P(LayerProcesses, MultiBarAtRatio2IsNetworkToTheBit) {
-  const auto dir = fresh_dir("multi-bar-" + scheme());
+// LayerNetworkOptions::proposal_s), so the plan is H = 2 h. The layer vectors go daemon to daemon
+// (lanes, docs/processes.md) or, with --no-lanes, through the coordinator: the same bits either
+// way, and the interface history the fine side reports is the owner's coupling work.
+static void multi_bar_case(Scheme scheme, bool lanes) {
+  const std::string t(transport::scheme_name(scheme));
+  const auto dir = fresh_dir(std::string("multi-bar-") + (lanes ? "lanes-" : "routed-") + t);
   const RemoveIfPassed cleanup{dir};
   const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
   const auto out = dir / "out";
   std::string log;
-  const int code =
-      run_pieces(GetParam(), scenario, out, "multi",
-                 {{"fine", {"--max-step", "1e-6"}}, {"coarse", {"--max-step", "2e-6"}}}, log);
+  const int code = run_pieces(
+      scheme, scenario, out, "multi",
+      {{"fine", {"--max-step", "1e-6"}}, {"coarse", {"--max-step", "2e-6"}}}, log, lanes);
   ASSERT_EQ(code, 0) << log;
+  EXPECT_NE(log.find(lanes ? "layer vectors daemon to daemon (lanes)"
+                           : "layer vectors through the coordinator"),
+            std::string::npos)
+      << log;
 
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;
@@ -273,10 +284,18 @@ TEST_P(LayerProcesses, MultiBarAtRatio2IsNetworkToTheBit) {
   }
   const auto [link_work, owner_work] = interface_history(out, m, ref);
   std::printf(
-      "[measured] multi over %s, bar at H/h = %lld/%lld ticks: max |u - u_network| / max|u| = "
-      "%.3e; link work %.6e J (owner's coupling work %.6e J)\n",
-      scheme().c_str(), static_cast<long long>(ref.steps[1]), static_cast<long long>(ref.steps[0]),
-      worst, link_work, owner_work);
+      "[measured] multi over %s (%s), bar at H/h = %lld/%lld ticks: max |u - u_network| / "
+      "max|u| = %.3e; link work %.6e J (owner's coupling work %.6e J)\n",
+      t.c_str(), lanes ? "lanes" : "through the coordinator", static_cast<long long>(ref.steps[1]),
+      static_cast<long long>(ref.steps[0]), worst, link_work, owner_work);
+}
+
+TEST_P(LayerProcesses, MultiBarAtRatio2IsNetworkToTheBit) {
+  multi_bar_case(GetParam(), true);
+}
+
+TEST_P(LayerProcesses, MultiBarThroughTheCoordinatorIsNetworkToTheBit) {
+  multi_bar_case(GetParam(), false);
 }
 
 INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,

@@ -1,5 +1,5 @@
 // coordinator::LayerRouter (coordinator/layer_router.h): routing of the `layer` exchanges, the
-// per-interface time order, and the link work by the trapezoid rule on the owner's instants.
+// per-interface time order of the vectors and of the fine side's history rows.
 #include "coordinator/layer_router.h"
 
 #include <gtest/gtest.h>
@@ -31,30 +31,43 @@ TEST(LayerRouter, ForcesGoToTheOwnerDisplacementsToTheHolder) {
   EXPECT_EQ(r.forwarded(), 2);
 }
 
-TEST(LayerRouter, LinkWorkIsTheTrapezoidOnTheOwnerInstants) {
+TEST(LayerRouter, HistoryRowsComeFromTheFineSideInOrder) {
   auto r = two_domains();
-  // T = 0: g = (2, 0), u = 0 -> a first row, no work yet.
-  auto a = r.force(0, 0, 0, vec(2.0), {});
-  ASSERT_EQ(a.samples.size(), 1u);
-  EXPECT_EQ(a.samples[0].time, 0);
-  EXPECT_EQ(a.samples[0].link_work_J, 0.0);
-  EXPECT_EQ(a.samples[0].force_N[0], 2.0);
-  // u(H) arrives before g(H) (the holder needs it to reach H): no row until both are there.
-  EXPECT_TRUE(r.displacement(1, 0, 10, vec(0.1, 0.3), {}).samples.empty());
-  auto b = r.force(0, 0, 10, vec(4.0, 1.0), {});
-  ASSERT_EQ(b.samples.size(), 1u);
-  // 1/2 (2 + 4) 0.1 + 1/2 (0 + 1) 0.3 = 0.45
-  EXPECT_DOUBLE_EQ(b.samples[0].link_work_J, 0.45);
-  EXPECT_EQ(b.samples[0].force_N[0], 5.0);
+  const std::vector<std::int64_t> t{0, 10};
+  const std::vector<double> f{1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
+  const std::vector<double> w{0.0, 0.25};
+  const auto rows = r.rows(0, 0, t, f, w);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].time, 10);
+  EXPECT_EQ(rows[1].force_N[2], 6.0);
+  EXPECT_EQ(rows[1].link_work_J, 0.25);
+  const std::vector<std::int64_t> next{20};
+  const std::vector<double> f1{0.0, 0.0, 0.0}, w1{0.5};
+  EXPECT_THROW(r.rows(1, 0, next, f1, w1), ProtocolError);  // the owner reports no rows
+  EXPECT_THROW(r.rows(0, 1, next, f1, w1), ProtocolError);  // no interface 1
+  EXPECT_THROW(r.rows(0, 0, next, f, w1), ProtocolError);   // 6 force values for 1 row
+  const std::vector<std::int64_t> skip{30};
+  try {
+    r.rows(0, 0, skip, f1, w1);
+    ADD_FAILURE() << "a row at 3H after the one at H was accepted";
+  } catch (const ProtocolError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'fine'"), std::string::npos) << what;
+    EXPECT_NE(what.find("30 ticks"), std::string::npos) << what;
+    EXPECT_NE(what.find("20 ticks"), std::string::npos) << what;
+  }
+  EXPECT_EQ(r.rows(0, 0, next, f1, w1).size(), 1u);
 }
 
-TEST(LayerRouter, MomentWorkUsesTheRotationIncrementOfTheOwnerStep) {
+TEST(LayerRouter, ARestartExpectsEverythingOneStepAfterTheCheckpoint) {
   auto r = two_domains();
-  (void)r.force(0, 0, 0, vec(0.0), vec(1.0));
-  (void)r.displacement(1, 0, 10, vec(0.0), vec(0.5));  // omega(H/2) = 0.5 rad/s, H = 1 s
-  const auto b = r.force(0, 0, 10, vec(0.0), vec(3.0));
-  ASSERT_EQ(b.samples.size(), 1u);
-  EXPECT_DOUBLE_EQ(b.samples[0].link_work_J, 0.5 * (1.0 + 3.0) * 0.5);
+  r.restore_progress(40, 8);
+  EXPECT_EQ(r.forwarded(), 8);
+  EXPECT_EQ(r.force(0, 0, 50, vec(1.0), {}).to, 1);
+  EXPECT_EQ(r.displacement(1, 0, 50, vec(1.0), {}).to, 0);
+  const std::vector<std::int64_t> t{50};
+  const std::vector<double> f{0.0, 0.0, 0.0}, w{0.0};
+  EXPECT_EQ(r.rows(0, 0, t, f, w).size(), 1u);
 }
 
 TEST(LayerRouter, RefusesOutOfOrderWrongSideAndWrongSizes) {
