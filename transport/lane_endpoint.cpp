@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <functional>
+
 #include "transport/curve_policy.h"
 #include "transport/endpoint.h"
 
@@ -15,9 +18,14 @@ std::string lane_endpoint_for(std::string_view coordinator_endpoint, std::string
     case Scheme::inproc:
       return fmt::format("inproc://{}.lane.{}", c.address, domain);
     case Scheme::ipc: {
-      const std::string path = fmt::format("{}.{}.lane", c.address, domain);
-      if (path.size() <= kMaxIpcPath) return "ipc://" + path;
-      return local_endpoint(Scheme::ipc, fmt::format("lane-{}", domain));
+      // One machine: shared memory (shm_lane.h), in /dev/shm (memory, never written back to a
+      // disk) under a name unique to the session's socket, else beside the socket file.
+      std::error_code ec;
+      if (std::filesystem::is_directory("/dev/shm", ec)) {
+        return fmt::format("shm:///dev/shm/crashlink-{:016x}.{}",
+                           std::hash<std::string>{}(c.address), domain);
+      }
+      return fmt::format("shm://{}.{}", c.address, domain);
     }
     case Scheme::tcp: {
       const auto colon = c.address.rfind(':');

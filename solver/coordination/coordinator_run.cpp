@@ -33,6 +33,7 @@
 #include "solver/run/exit_codes.h"
 #include "transport/coordinator_link.h"
 #include "transport/errors.h"
+#include "transport/shm_lane.h"
 
 namespace crashlink::coordination {
 
@@ -118,6 +119,7 @@ class Coordinator {
       r.message = stop->text;
       r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
     }
+    remove_lane_files();
     r.cpu_seconds = cpu_before_ + cpu_seconds() - cpu0_;
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
     close_history(r);
@@ -464,6 +466,14 @@ class Coordinator {
           view(rows.force_n()), view(rows.link_work_j()));
       history_->append(i, samples, o_.ticks_per_second);
       for (const auto& row : samples) snapshot(i, row.time);
+    }
+  }
+
+  /// Shared-memory lanes of daemons that died leave their files behind: remove them.
+  void remove_lane_files() const {
+    for (std::size_t k = 0; k < regs_.size(); ++k) {
+      if (!registered_[k]) continue;
+      transport::remove_shm_lane_files(regs_[k].lane_endpoint(), cut_.names);
     }
   }
 

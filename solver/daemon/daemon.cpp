@@ -34,6 +34,7 @@
 #include "transport/errors.h"
 #include "transport/lane_endpoint.h"
 #include "transport/router.h"
+#include "transport/shm_lane.h"
 
 namespace crashlink::daemon {
 
@@ -51,6 +52,19 @@ double thread_cpu_seconds() {
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+
+/// Where one partner's layer vectors leave: its ZeroMQ lane or its shared-memory lane.
+struct LaneOut {
+  std::unique_ptr<transport::Dealer> zmq;
+  std::unique_ptr<transport::ShmLaneOut> shm;
+  void send(const wire::Envelope& e) {
+    if (zmq) {
+      zmq->send(e);
+    } else {
+      shm->send(e.SerializeAsString());
+    }
+  }
+};
 
 /// Thrown from the sample hook when DaemonOptions::stop is set.
 struct Stopped {};
@@ -245,8 +259,12 @@ class Daemon {
     // Our lane (docs/processes.md "Lanes"), bound before the Register that announces it.
     if (const auto lane =
             transport::lane_endpoint_for(o_.endpoint, o_.domain, o_.session.socket.curve);
-        !lane.empty()) {
+        lane.rfind(transport::kShmScheme, 0) == 0) {
+      shm_in_ = std::make_unique<transport::ShmLaneIn>(lane.substr(transport::kShmScheme.size()));
+      lane_endpoint_ = shm_in_->endpoint();
+    } else if (!lane.empty()) {
       lane_in_ = std::make_unique<transport::Router>(lane, o_.session.socket);
+      lane_endpoint_ = lane_in_->endpoint();
     }
     link_->send(register_message());
     const wire::Setup setup = await_setup();
@@ -297,7 +315,7 @@ class Daemon {
         std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
     r->set_elements(elements_);
     for (const auto t : checkpoints_) r->add_checkpoint_ticks(t);
-    if (lane_in_) r->set_lane_endpoint(lane_in_->endpoint());
+    r->set_lane_endpoint(lane_endpoint_);
     for (const auto& port : dom_->ports) {
       auto* li = r->add_layer_interfaces();
       li->set_index(port.index);
@@ -331,15 +349,30 @@ class Daemon {
   /// vectors then leave on its partner's lane. No lanes: they go to the coordinator.
   void open_lanes(const wire::Setup& setup) {
     if (setup.lanes_size() == 0) return;
-    if (!lane_in_) {
+    if (lane_endpoint_.empty()) {
       throw transport::ProtocolError(
           "coordinator", fmt::format("the Setup of domain '{}' lists {} lanes, but this daemon "
                                      "offered none",
                                      o_.domain, setup.lanes_size()));
     }
     for (const auto& lane : setup.lanes()) {
-      lanes_out_.emplace(lane.domain(), std::make_unique<transport::Dealer>(
-                                            lane.endpoint(), o_.domain, o_.session.socket));
+      LaneOut out;
+      if (lane.endpoint().rfind(transport::kShmScheme, 0) == 0) {
+        if (!shm_in_) {
+          throw transport::ProtocolError(
+              "coordinator",
+              fmt::format("the Setup of domain '{}' gives '{}' the shared-memory "
+                          "lane {}, but this daemon's lane is {}",
+                          o_.domain, lane.domain(), lane.endpoint(), lane_endpoint_));
+        }
+        shm_in_->add_partner(lane.domain());  // its vectors to us: created before it can send
+        out.shm = std::make_unique<transport::ShmLaneOut>(lane.endpoint(), o_.domain,
+                                                          o_.session.peer_timeout);
+      } else {
+        out.zmq =
+            std::make_unique<transport::Dealer>(lane.endpoint(), o_.domain, o_.session.socket);
+      }
+      lanes_out_.emplace(lane.domain(), std::move(out));
     }
     for (const auto& port : dom_->ports) {
       const auto it = lanes_out_.find(port.partner);
@@ -350,7 +383,7 @@ class Daemon {
                                        o_.domain, port.partner, port.index));
       }
       if (lane_of_.size() <= port.index) lane_of_.resize(port.index + 1, nullptr);
-      lane_of_[port.index] = it->second.get();
+      lane_of_[port.index] = &it->second;
     }
   }
 
@@ -377,15 +410,8 @@ class Daemon {
   void wait_on_lane() {
     const auto t0 = Clock::now();
     for (;;) {
-      if (auto r = lane_in_->receive(20ms)) {
-        if (!r->ok() || lanes_out_.find(r->peer) == lanes_out_.end()) {
-          throw transport::ProtocolError(
-              "lane", fmt::format("domain '{}' got {} on its lane {} from '{}', which is not one "
-                                  "of its partners' vectors",
-                                  o_.domain, r->ok() ? body_name(r->envelope) : r->error,
-                                  lane_in_->endpoint(), r->peer));
-        }
-        pending_.push_back(std::move(r->envelope));
+      if (auto r = receive_lane()) {
+        pending_.push_back(std::move(*r));
         break;
       }
       while (auto m = link_->receive(0ms)) pending_.push_back(std::move(*m));
@@ -435,7 +461,7 @@ class Daemon {
       // What on_sample read meanwhile may be the very message the stepper waits for: deliver it
       // before blocking (the partner, served early by set_on_outbox, often answers mid-advance).
       if (w == Wait::None || !pending_.empty()) continue;
-      if (lane_in_ && !lanes_out_.empty()) {
+      if (!lanes_out_.empty()) {
         wait_on_lane();
         continue;
       }
@@ -444,6 +470,35 @@ class Daemon {
       wait_s_ += seconds_since(t0);
       if (m) deliver(*m);
     }
+  }
+
+  /// A partner's vector from our lane within 20 ms, or nullopt; anything else is a ProtocolError.
+  std::optional<wire::Envelope> receive_lane() {
+    std::string peer, what;
+    wire::Envelope e;
+    bool ok = false;
+    if (shm_in_) {
+      auto r = shm_in_->receive(20ms);
+      if (!r) return std::nullopt;
+      peer = r->first;
+      ok = e.ParseFromString(r->second);
+      if (!ok) what = fmt::format("{} bytes that are not an Envelope", r->second.size());
+    } else {
+      auto r = lane_in_->receive(20ms);
+      if (!r) return std::nullopt;
+      peer = r->peer;
+      ok = r->ok();
+      what = ok ? std::string() : r->error;
+      if (ok) e = std::move(r->envelope);
+    }
+    if (!ok || lanes_out_.find(peer) == lanes_out_.end() ||
+        !(e.has_layer_displacement() || e.has_layer_force())) {
+      throw transport::ProtocolError(
+          "lane", fmt::format("domain '{}' got {} on its lane {} from '{}'; a lane carries only "
+                              "its partners' layer vectors",
+                              o_.domain, ok ? body_name(e) : what, lane_endpoint_, peer));
+    }
+    return e;
   }
 
   void send_outbox() {
@@ -548,9 +603,11 @@ class Daemon {
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::unique_ptr<cosim::LayerStepper> stepper_;
   std::unique_ptr<transport::DaemonLink> link_;
-  std::unique_ptr<transport::Router> lane_in_;  ///< our lane: the partners' vectors come here
-  std::map<std::string, std::unique_ptr<transport::Dealer>> lanes_out_;  ///< partner -> its lane
-  std::vector<transport::Dealer*> lane_of_;  ///< [interface index] the lane its vectors leave on
+  std::string lane_endpoint_;                     ///< our lane (Register.lane_endpoint), or ""
+  std::unique_ptr<transport::Router> lane_in_;    ///< our ZeroMQ lane (loopback tcp, inproc)
+  std::unique_ptr<transport::ShmLaneIn> shm_in_;  ///< our shared-memory lane (ipc sessions)
+  std::map<std::string, LaneOut> lanes_out_;      ///< partner -> its lane
+  std::vector<LaneOut*> lane_of_;  ///< [interface index] the lane its vectors leave on
   std::deque<wire::Envelope> pending_;
   std::vector<std::int64_t> checkpoints_;  ///< instants of our complete checkpoints (Register)
   cosim::Tick checkpoint_every_ = 0;       ///< the coordinator's interval, ticks (0: none)

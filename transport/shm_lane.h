@@ -1,0 +1,60 @@
+#pragma once
+// A daemon's shared-memory lane (shm_queue.h; docs/processes.md "Lanes"), for daemons that share
+// a machine (an ipc session): lane endpoint "shm://PREFIX".
+//   receiving end (ShmLaneIn): PREFIX.bell, and PREFIX.from.<partner> for every partner;
+//   sending end (ShmLaneOut): opens the partner's PREFIX.from.<self> and PREFIX.bell at the first
+//   send (the partner creates them once it has its Setup), then pushes and rings.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "transport/shm_queue.h"
+
+namespace crashlink::transport {
+
+inline constexpr std::string_view kShmScheme = "shm://";
+
+/// Removes a shared-memory lane's files (PREFIX.bell, PREFIX.from.<partner>) if they are still
+/// there: the coordinator's clean-up after a run whose daemon was killed. Never throws.
+void remove_shm_lane_files(std::string_view endpoint, const std::vector<std::string>& partners);
+
+class ShmLaneIn {
+ public:
+  /// Creates PREFIX.bell. `spin`: how long receive() polls before it sleeps on the bell.
+  explicit ShmLaneIn(std::string prefix,
+                     std::chrono::microseconds spin = std::chrono::microseconds{0});
+  const std::string& endpoint() const { return endpoint_; }  ///< "shm://PREFIX"
+  /// Creates PREFIX.from.<domain>.
+  void add_partner(const std::string& domain);
+  /// The next message (sender's domain, bytes), or nullopt after `timeout`.
+  std::optional<std::pair<std::string, std::string>> receive(std::chrono::microseconds timeout);
+
+ private:
+  std::optional<std::pair<std::string, std::string>> poll_once();
+  std::string prefix_, endpoint_;
+  std::chrono::microseconds spin_;
+  ShmDoorbell bell_;
+  std::vector<std::pair<std::string, ShmQueue>> queues_;  ///< (partner, its queue)
+  std::size_t next_ = 0;                                  ///< round robin
+};
+
+class ShmLaneOut {
+ public:
+  /// `endpoint` "shm://PREFIX" of the partner; `self` this daemon's domain; `timeout` bounds the
+  /// wait for the partner's files and for room in its ring.
+  ShmLaneOut(std::string_view endpoint, std::string self, std::chrono::milliseconds timeout);
+  void send(std::string_view bytes);
+
+ private:
+  std::string prefix_, self_;
+  std::chrono::milliseconds timeout_;
+  std::optional<ShmQueue> queue_;
+  std::optional<ShmDoorbell> bell_;
+};
+
+}  // namespace crashlink::transport
