@@ -25,8 +25,10 @@ ShmLaneIn::ShmLaneIn(std::string prefix, std::chrono::microseconds spin)
       spin_(spin),
       bell_(ShmDoorbell::create(prefix_ + ".bell")) {}
 
-void ShmLaneIn::add_partner(const std::string& domain) {
-  queues_.emplace_back(domain, ShmQueue::create(prefix_ + ".from." + domain));
+void ShmLaneIn::add_partner(const std::string& domain, std::size_t capacity) {
+  std::size_t cap = ShmQueue::kDefaultCapacity;
+  while (cap < capacity) cap *= 2;
+  queues_.emplace_back(domain, ShmQueue::create(prefix_ + ".from." + domain, cap));
 }
 
 std::optional<std::pair<std::string, std::string>> ShmLaneIn::poll_once() {

@@ -29,8 +29,9 @@ class ShmLaneIn {
   explicit ShmLaneIn(std::string prefix,
                      std::chrono::microseconds spin = std::chrono::microseconds{0});
   const std::string& endpoint() const { return endpoint_; }  ///< "shm://PREFIX"
-  /// Creates PREFIX.from.<domain>.
-  void add_partner(const std::string& domain);
+  /// Creates PREFIX.from.<domain> with a ring of at least `capacity` bytes (rounded up to a power
+  /// of two, never less than ShmQueue::kDefaultCapacity).
+  void add_partner(const std::string& domain, std::size_t capacity = 0);
   /// The next message (sender's domain, bytes), or nullopt after `timeout`.
   std::optional<std::pair<std::string, std::string>> receive(std::chrono::microseconds timeout);
 

@@ -365,7 +365,12 @@ class Daemon {
                           "lane {}, but this daemon's lane is {}",
                           o_.domain, lane.domain(), lane.endpoint(), lane_endpoint_));
         }
-        shm_in_->add_partner(lane.domain());  // its vectors to us: created before it can send
+        // Its vectors to us, created before it can send: room for 8 of the largest (two 3-vectors
+        // of doubles per J node, plus the envelope).
+        std::size_t largest = 0;
+        for (const auto& port : dom_->ports)
+          if (port.partner == lane.domain()) largest = std::max(largest, port.local.size());
+        shm_in_->add_partner(lane.domain(), 8 * (48 * largest + 1024));
         out.shm = std::make_unique<transport::ShmLaneOut>(lane.endpoint(), o_.domain,
                                                           o_.session.peer_timeout);
       } else {
