@@ -14,7 +14,8 @@ namespace crashlink::apps {
 
 CLI::App* add_stability_map_command(CLI::App& app, StabilityMapOptions& options) {
   auto* cmd = app.add_subcommand(
-      "stability-map", "long-run energy growth of the layer coupling against the step ratio");
+      "stability-map",
+      "long-run energy growth of the layer and paper couplings against the step ratio");
   cmd->add_option("--steps", options.steps, "fine steps per run")
       ->check(CLI::Range(10LL, 100000000LL))
       ->capture_default_str();
@@ -35,13 +36,18 @@ int run_stability_map(const StabilityMapOptions& o) {
   std::ofstream f(csv);
   if (!f) throw InputError(fmt::format("stability-map: cannot write {}", csv.string()));
   f << "shape,configuration,ratio,nested_ratio,fine_steps,max_rise,late_rise,e_end_over_e0,"
-       "stopped\n";
+       "fine_steps_run,stopped\n";
   struct Configuration {
     const char* name;
-    double ratio;
+    bool paper;
+    double damping;  ///< layer: interface damping ratio over 3 element layers
+    bool drift;      ///< paper: [11] on
   };
-  const Configuration configurations[] = {{"layer", 0.0},
-                                          {"layer + interface damping 0.06 x 3 layers", 0.06}};
+  const Configuration configurations[] = {
+      {"layer", false, 0.0, false},
+      {"layer + interface damping 0.06 x 3 layers", false, 0.06, false},
+      {"paper + drift correction [11]", true, 0.0, true},
+      {"paper without drift correction", true, 0.0, false}};
   for (const auto& shape_key : o.shapes) {
     const auto shape = shape_key == "bar"     ? cosim::FreeVibrationShape::Bar
                        : shape_key == "plate" ? cosim::FreeVibrationShape::Plate
@@ -49,18 +55,26 @@ int run_stability_map(const StabilityMapOptions& o) {
     for (const auto& c : configurations) {
       for (double r : o.ratios) {
         cosim::FreeVibrationConfig cfg;
-        cfg.damping = {c.ratio, 3};
-        const auto res = cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
+        cfg.damping = {c.damping, 3};
+        const auto res = c.paper ? cosim::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
+                                 : cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
         const double e_ratio = res.e0_J > 0.0 ? res.e_end_J / res.e0_J : 0.0;
-        f << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.6f},{}\n", shape_key, c.name, r,
-                         res.ratio, o.steps, res.rise, res.late_rise, e_ratio,
-                         res.error.empty() ? "" : "\"" + res.error + "\"");
+        std::string why = res.error;  // CSV: one quoted cell
+        for (char& ch : why)
+          if (ch == '"' || ch == '\n') ch = '\'';
+        f << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.6f},{},{}\n", shape_key, c.name, r,
+                         res.ratio, o.steps, res.rise, res.late_rise, e_ratio, res.fine_steps_run,
+                         why.empty() ? "" : "\"" + why + "\"");
         f.flush();
+        const std::string tail = res.error.empty()
+                                     ? std::string()
+                                     : fmt::format("  STOPPED after {} fine steps: {}",
+                                                   res.fine_steps_run, res.error.substr(0, 160));
         std::printf(
             "%-6s %-42s r = %-5g (nested %-3g): max rise %.3e of E0, after 20 %% %.3e, "
             "E_end/E0 %.4f%s\n",
             shape_key.c_str(), c.name, r, res.ratio, res.rise, res.late_rise, e_ratio,
-            res.error.empty() ? "" : "  STOPPED");
+            tail.c_str());
         std::fflush(stdout);
       }
     }

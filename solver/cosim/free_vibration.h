@@ -6,7 +6,7 @@
 // ends fixed; a velocity band over [0.3, 0.5] of the fine part plus 1e-4 relative noise on every
 // node; bulk viscosity on (the shells' membrane too). Domains "fine" and "coarse".
 // Used by tests/integration/layer_stability_test.cpp (issue #4) and `crashlink stability-map`
-// (issue #5).
+// (issue #5), which also runs it under the `paper` scheme (run_paper_free_vibration).
 //
 // Measures, summed energy E = sum of the domains' total_J at every base instant (all domains
 // there; it includes what bulk viscosity and damping dissipated, so a rise is net work of the
@@ -42,7 +42,8 @@ struct FreeVibrationResult {
   double e0_J = 0.0, e_end_J = 0.0;
   double ratio = 0.0;  ///< the planned (nested) step ratio
   double simulated_s = 0.0;
-  std::string error;  ///< non-empty: the run was stopped (the solver's message)
+  std::int64_t fine_steps_run = 0;  ///< fine steps done (before the stop, if stopped)
+  std::string error;                ///< non-empty: the run was stopped (the solver's message)
 };
 
 /// One sample of the summed energy: t [s], E/E0 - 1, (E - running min)/E0, hourglass/E0 and the
@@ -57,5 +58,15 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
                                              std::int64_t fine_steps,
                                              const FreeVibrationConfig& cfg,
                                              const FreeVibrationSample& on_sample = {});
+
+/// The same free vibration under the `paper` scheme (PaperRunner: two domains, no interface
+/// damping, H/h = r rounded down to a whole number, h under 0.9 of both stable steps), drift
+/// correction [11] on or off. Energy sampled at every coarse instant (PaperRunner::energy). The
+/// runner's guard (coupled energy 5 % of its peak above its running minimum, or not finite) stops
+/// a run that goes unstable: its message in `error`; a cut the scheme cannot run (shell links
+/// carry rotations) too.
+FreeVibrationResult run_paper_free_vibration(FreeVibrationShape s, double r,
+                                             std::int64_t fine_steps,
+                                             const FreeVibrationConfig& cfg, bool drift);
 
 }  // namespace crashlink::cosim

@@ -1,6 +1,7 @@
 // `crashlink stability-map` end to end on a short map (the README's command runs 10^5 fine steps):
-// exit 0, one CSV row per shape x configuration x ratio with finite values, the PNG written. The
-// physics of the map is asserted by LayerStability.* (layer_stability_test.cpp).
+// exit 0, one CSV row per shape x configuration x ratio with finite values, the PNG written;
+// `paper` runs the bar (at r = 1 as mono does) and refuses the plate's shell links. The physics of
+// the map is asserted by LayerStability.* (layer_stability_test.cpp) and PaperScheme.*.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,18 +28,31 @@ TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
   std::string line;
   std::getline(f, line);
   EXPECT_EQ(line.rfind("shape,configuration,ratio", 0), 0u) << line;
-  int rows = 0;
+  int rows = 0, paper_rows = 0;
   while (std::getline(f, line)) {
     ++rows;
     std::vector<std::string> cell;
     std::stringstream ss(line);
     for (std::string c; std::getline(ss, c, ',');) cell.push_back(c);
-    ASSERT_GE(cell.size(), 8u) << line;
-    for (std::size_t k = 2; k < 8; ++k) {
+    ASSERT_GE(cell.size(), 9u) << line;
+    for (std::size_t k = 2; k < 9; ++k) {
       const double v = std::stod(cell[k]);
       EXPECT_TRUE(std::isfinite(v)) << line;
     }
-    EXPECT_LT(std::stod(cell[5]), 0.2) << "max rise, short run: " << line;
+    const bool stopped = cell.size() > 9 && !cell[9].empty();
+    if (cell[1].rfind("paper", 0) != 0) {
+      EXPECT_FALSE(stopped) << "layer, short run: " << line;
+      EXPECT_LT(std::stod(cell[5]), 0.2) << "max rise, short run: " << line;
+      continue;
+    }
+    ++paper_rows;
+    if (cell[0] == "plate") {  // shell links carry rotations: the paper runner refuses them
+      EXPECT_TRUE(stopped && line.find("rotations") != std::string::npos) << line;
+    } else if (std::stod(cell[2]) == 1.0) {  // r = 1: the paper scheme is mono's integration
+      EXPECT_FALSE(stopped) << line;
+      EXPECT_LT(std::stod(cell[5]), 1e-3) << line;
+    }
   }
-  EXPECT_EQ(rows, 2 * 2 * 2);  // shapes x configurations x ratios
+  EXPECT_EQ(rows, 2 * 4 * 2);  // shapes x configurations x ratios
+  EXPECT_EQ(paper_rows, 2 * 2 * 2);
 }
