@@ -8,6 +8,7 @@
 
 #include "apps/python_script.h"
 #include "solver/core/errors.h"
+#include "solver/cosim/contact_drop.h"
 #include "solver/cosim/free_vibration.h"
 
 namespace crashlink::apps {
@@ -22,8 +23,13 @@ CLI::App* add_stability_map_command(CLI::App& app, StabilityMapOptions& options)
   cmd->add_option("--ratios", options.ratios, "step ratios H/h (>= 1)")
       ->check(CLI::Range(1.0, 64.0))
       ->delimiter(',');
-  cmd->add_option("--shapes", options.shapes, "bar, plate, block")
-      ->check(CLI::IsMember({"bar", "plate", "block"}))
+  cmd->add_option("--shapes", options.shapes,
+                  "bar, plate, block (linked, free vibration), contact (a block dropped on a slab "
+                  "across the domains)")
+      ->check(CLI::IsMember({"bar", "plate", "block", "contact"}))
+      ->delimiter(',');
+  cmd->add_option("--penalties", options.penalties, "contact: penalty scale factors")
+      ->check(CLI::Range(1e-4, 1e4))
       ->delimiter(',');
   cmd->add_option("--out", options.out, "output folder")->capture_default_str();
   return cmd;
@@ -38,26 +44,37 @@ int run_stability_map(const StabilityMapOptions& o) {
   f << "shape,configuration,ratio,nested_ratio,fine_steps,max_rise,late_rise,e_end_over_e0,"
        "fine_steps_run,stopped\n";
   struct Configuration {
-    const char* name;
+    std::string name;
     bool paper;
     double damping;  ///< layer: interface damping ratio over 3 element layers
     bool drift;      ///< paper: [11] on
+    double penalty;  ///< contact: penalty scale
   };
-  const Configuration configurations[] = {
-      {"layer", false, 0.0, false},
-      {"layer + interface damping 0.06 x 3 layers", false, 0.06, false},
-      {"paper + drift correction [11]", true, 0.0, true},
-      {"paper without drift correction", true, 0.0, false}};
+  const std::vector<Configuration> linked = {
+      {"layer", false, 0.0, false, 0.0},
+      {"layer + interface damping 0.06 x 3 layers", false, 0.06, false, 0.0},
+      {"paper + drift correction [11]", true, 0.0, true, 0.0},
+      {"paper without drift correction", true, 0.0, false, 0.0}};
+  std::vector<Configuration> contact;
+  for (const double k : o.penalties) {
+    contact.push_back({fmt::format("layer penalty x{:g}", k), false, 0.0, false, k});
+    contact.push_back(
+        {fmt::format("paper + drift correction [11] penalty x{:g}", k), true, 0.0, true, k});
+  }
   for (const auto& shape_key : o.shapes) {
+    const bool is_contact = shape_key == "contact";
     const auto shape = shape_key == "bar"     ? cosim::FreeVibrationShape::Bar
                        : shape_key == "plate" ? cosim::FreeVibrationShape::Plate
                                               : cosim::FreeVibrationShape::Block;
-    for (const auto& c : configurations) {
+    for (const auto& c : is_contact ? contact : linked) {
       for (double r : o.ratios) {
         cosim::FreeVibrationConfig cfg;
         cfg.damping = {c.damping, 3};
-        const auto res = c.paper ? cosim::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
-                                 : cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
+        const auto res =
+            is_contact ? (c.paper ? cosim::run_paper_contact_drop(r, c.penalty, o.steps, c.drift)
+                                  : cosim::run_layer_contact_drop(r, c.penalty, o.steps))
+            : c.paper  ? cosim::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
+                       : cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
         const double e_ratio = res.e0_J > 0.0 ? res.e_end_J / res.e0_J : 0.0;
         std::string why = res.error;  // CSV: one quoted cell
         for (char& ch : why)
@@ -73,7 +90,7 @@ int run_stability_map(const StabilityMapOptions& o) {
         std::printf(
             "%-6s %-42s r = %-5g (nested %-3g): max rise %.3e of E0, after 20 %% %.3e, "
             "E_end/E0 %.4f%s\n",
-            shape_key.c_str(), c.name, r, res.ratio, res.rise, res.late_rise, e_ratio,
+            shape_key.c_str(), c.name.c_str(), r, res.ratio, res.rise, res.late_rise, e_ratio,
             tail.c_str());
         std::fflush(stdout);
       }

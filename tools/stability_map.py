@@ -22,7 +22,7 @@ def main():
     for r in rows:
         curves.setdefault((r["shape"], r["configuration"]), []).append(r)
     fig, ax = plt.subplots(figsize=(9, 5.5))
-    markers = {"bar": "o", "plate": "s", "block": "^"}
+    markers = {"bar": "o", "plate": "s", "block": "^", "contact": "D"}
     top = 20.0  # % of E0: where stopped runs are drawn
     for (shape, config), rs in sorted(curves.items()):
         rs = [r for r in rs if float(r["nested_ratio"]) > 0]  # refused by the scheme: not run

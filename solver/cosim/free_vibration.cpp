@@ -92,7 +92,14 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
                                              std::int64_t fine_steps,
                                              const FreeVibrationConfig& cfg,
                                              const FreeVibrationSample& on_sample) {
-  const auto m = free_vibration_model(s, r, cfg);
+  return run_layer_energy(free_vibration_model(s, r, cfg), r, fine_steps, on_sample);
+}
+
+namespace {
+
+/// run_layer_energy; throws what stops the set-up (a run stopped midway is caught inside).
+FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                 const FreeVibrationSample& on_sample) {
   double h0 = 0.0;
   {
     model::Model mono = m;
@@ -168,12 +175,29 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
   return out;
 }
 
+}  // namespace
+
+FreeVibrationResult run_layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                     const FreeVibrationSample& on_sample) {
+  try {
+    return layer_energy(m, r, fine_steps, on_sample);
+  } catch (const Error& e) {  // the cut or the plan refused: nothing ran
+    FreeVibrationResult out;
+    out.error = e.what();
+    return out;
+  }
+}
+
 FreeVibrationResult run_paper_free_vibration(FreeVibrationShape s, double r,
                                              std::int64_t fine_steps,
                                              const FreeVibrationConfig& cfg, bool drift) {
   FreeVibrationConfig c = cfg;
   c.damping = {0.0, 1};  // the paper has no interface damping (a `layer` stabiliser)
-  const auto m = free_vibration_model(s, r, c);
+  return run_paper_energy(free_vibration_model(s, r, c), r, fine_steps, drift);
+}
+
+FreeVibrationResult run_paper_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                     bool drift) {
   FreeVibrationResult out;
   try {
     PaperOptions o;

@@ -59,6 +59,11 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
                                              const FreeVibrationConfig& cfg,
                                              const FreeVibrationSample& on_sample = {});
 
+/// The loop behind run_layer_free_vibration for any two-domain model with domains "fine" and
+/// "coarse" (the contact drop of contact_drop.h too).
+FreeVibrationResult run_layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                     const FreeVibrationSample& on_sample = {});
+
 /// The same free vibration under the `paper` scheme (PaperRunner: two domains, no interface
 /// damping, H/h = r rounded down to a whole number, h under 0.9 of both stable steps), drift
 /// correction [11] on or off. Energy sampled at every coarse instant (PaperRunner::energy). The
@@ -68,5 +73,8 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
 FreeVibrationResult run_paper_free_vibration(FreeVibrationShape s, double r,
                                              std::int64_t fine_steps,
                                              const FreeVibrationConfig& cfg, bool drift);
+/// The loop behind run_paper_free_vibration for any two-domain model ("fine", "coarse").
+FreeVibrationResult run_paper_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                     bool drift);
 
 }  // namespace crashlink::cosim
