@@ -97,6 +97,33 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
 
 namespace {
 
+/// The two measures over the samples of the summed energy E at instants t (free_vibration.h):
+/// rise above the running minimum, and the same after `t_settle`, both / E0; E_end.
+struct EnergyRise {
+  FreeVibrationResult& out;
+  double t_settle = 0.0;
+  double running_min = 0.0, late_min = 0.0;
+  bool first = true, late = false;
+  void add(double t, double sum) {
+    if (first) {
+      out.e0_J = running_min = sum;
+      first = false;
+    }
+    running_min = std::min(running_min, sum);
+    if ((sum - running_min) / out.e0_J > out.rise) {
+      out.rise = (sum - running_min) / out.e0_J;
+      out.t_rise_s = t;
+    }
+    if (t >= t_settle) {
+      late_min = late ? std::min(late_min, sum) : sum;
+      late = true;
+      out.late_rise = std::max(out.late_rise, (sum - late_min) / out.e0_J);
+    }
+    out.e_end_J = sum;
+  }
+  double since_min(double sum) const { return (sum - running_min) / out.e0_J; }
+};
+
 /// run_layer_energy; throws what stops the set-up (a run stopped midway is caught inside).
 FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
                                  const FreeVibrationSample& on_sample) {
@@ -126,10 +153,10 @@ FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t f
   out.ratio = static_cast<double>(h_max) / static_cast<double>(h_min);
   const coordinator::Tick t_end = fine_steps * h_min, t_settle = t_end / 5;
   out.simulated_s = net.seconds(t_end);
-  double sum = 0.0, hourglass = 0.0, running_min = 0.0, late_min = 0.0;
+  double sum = 0.0, hourglass = 0.0;
   std::vector<double> work(net.size(), 0.0);
   std::size_t count = 0;
-  bool first = true, late = false;
+  EnergyRise measure{out, net.seconds(t_settle)};
   try {
     net.run(
         [&](std::size_t k) {
@@ -140,25 +167,11 @@ FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t f
           hourglass += e.hourglass_J;
           work[k] = e.coupling_work_J;
           if (++count < net.size()) return;
-          if (first) {
-            out.e0_J = running_min = sum;
-            first = false;
-          }
-          running_min = std::min(running_min, sum);
-          if ((sum - running_min) / out.e0_J > out.rise) {
-            out.rise = (sum - running_min) / out.e0_J;
-            out.t_rise_s = net.seconds(t);
-          }
-          if (t >= t_settle) {
-            late_min = late ? std::min(late_min, sum) : sum;
-            late = true;
-            out.late_rise = std::max(out.late_rise, (sum - late_min) / out.e0_J);
-          }
-          out.e_end_J = sum;
+          measure.add(net.seconds(t), sum);
           if (on_sample) {
             std::vector<double> w(work);
             for (double& x : w) x /= out.e0_J;
-            on_sample(net.seconds(t), sum / out.e0_J - 1.0, (sum - running_min) / out.e0_J,
+            on_sample(net.seconds(t), sum / out.e0_J - 1.0, measure.since_min(sum),
                       hourglass / out.e0_J, w);
           }
           sum = hourglass = 0.0;
@@ -215,28 +228,10 @@ FreeVibrationResult run_paper_energy(const model::Model& m, double r, std::int64
     } count{out, runner};
     out.ratio = static_cast<double>(runner.ratio());
     out.simulated_s = runner.fine_dt_s() * static_cast<double>(fine_steps);
-    const double t_settle = 0.2 * out.simulated_s;
-    double running_min = 0.0, late_min = 0.0;
-    bool first = true, late = false;
+    EnergyRise measure{out, 0.2 * out.simulated_s};
     while (runner.fine_steps() < fine_steps) {
       runner.advance();
-      const double sum = runner.energy().total_J();
-      const double t = runner.seconds(runner.coarse_time_ticks());
-      if (first) {
-        out.e0_J = running_min = sum;
-        first = false;
-      }
-      running_min = std::min(running_min, sum);
-      if ((sum - running_min) / out.e0_J > out.rise) {
-        out.rise = (sum - running_min) / out.e0_J;
-        out.t_rise_s = t;
-      }
-      if (t >= t_settle) {
-        late_min = late ? std::min(late_min, sum) : sum;
-        late = true;
-        out.late_rise = std::max(out.late_rise, (sum - late_min) / out.e0_J);
-      }
-      out.e_end_J = sum;
+      measure.add(runner.seconds(runner.coarse_time_ticks()), runner.energy().total_J());
     }
   } catch (const Error& e) {
     out.error = e.what();
