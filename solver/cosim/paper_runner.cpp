@@ -94,14 +94,19 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
       for (int s = 0; s < 2; ++s)
         pn.copy =
             pn.copy || dec_.domains[static_cast<std::size_t>(domain_[s])].copy[pn.local[s]] != 0;
+      // A link node with rotations on ONE side (a shell node welded to solids: the cowl at the
+      // wiper's pads) is coupled exactly by its translations: the other side has no rotational
+      // dof there, so the rotation and its moments stay in the shell's domain alone. Rotations on
+      // both sides would need [8] on the angular accelerations too, which the Solver cannot
+      // impose.
       if (!pn.copy &&
-          (partial_inertia[0][pn.local[0]] > 0.0 || partial_inertia[1][pn.local[1]] > 0.0))
+          (partial_inertia[0][pn.local[0]] > 0.0 && partial_inertia[1][pn.local[1]] > 0.0))
         throw ModelError(
             "paper: link node id " + std::to_string(global.nodes.id[g]) +
-            " carries rotations (a shell node shared by both domains); the paper runner couples "
-            "translations only (the Solver has no hook to impose a corrected angular "
-            "acceleration). Fix: use the `layer` scheme, or cut the model where no shell node is "
-            "shared");
+            " carries rotations in both domains (a shell node shared by shells on both sides); "
+            "the paper runner couples translations only (the Solver has no hook to impose a "
+            "corrected angular acceleration). Fix: use the `layer` scheme, or cut the model where "
+            "no shell node is shared by shells of both domains");
       nodes_.push_back(pn);
     }
   }
