@@ -233,9 +233,11 @@ int run_sweep(const SweepOptions& o) {
     row.peak_g = pr.peak_g;
     row.disp_m = pr.disp_m;
     row.ok = pr.finished;
-    row.note = pr.finished ? fmt::format("H/h = {:g}", pr.ratio)
-                           : fmt::format("H/h = {:g}; stopped after {:.3f} ms: {}", pr.ratio,
-                                         1e3 * pr.stopped_at_s, pr.stopped.substr(0, 200));
+    const std::string gaps = fmt::format("largest gap link {:.3g} m, copy {:.3g} m",
+                                         pr.max_link_gap_m, pr.max_copy_gap_m);
+    row.note = pr.finished ? fmt::format("H/h = {:g}; {}", pr.ratio, gaps)
+                           : fmt::format("H/h = {:g}; {}; stopped after {:.3f} ms: {}", pr.ratio,
+                                         gaps, 1e3 * pr.stopped_at_s, pr.stopped.substr(0, 200));
     std::printf("sweep: %s: %s\n", name.c_str(), row.note.c_str());
     rows.push_back(row);
   }

@@ -79,6 +79,8 @@ PaperSceneResult run_paper_scene(const model::Model& m, bool drift, const std::s
       }
       if (t >= end) break;
       r.advance();
+      out.max_link_gap_m = r.max_gap().link_m;
+      out.max_copy_gap_m = r.max_gap().copy_m;
     }
     out.finished = true;
   } catch (const Error& e) {

@@ -4,7 +4,9 @@
 // the step ratio `multi` plans for it (the `layer` plan's H/h, h under 0.9 of both domains'
 // stable steps), sampled as a result file would be (every history interval): CPU, HIC15 and peak
 // of the headform after CFC 1000, the displacement probe's peak. The runner's guard ends a run
-// that goes unstable ("the coupling went unstable", no NaN kept): the row says when.
+// that goes unstable ("the coupling went unstable", no NaN kept): the row says when. Without
+// drift correction the copies may wander off their originals without any energy growth: the
+// largest gaps are reported, so that such a run is not read as a valid one.
 #include <string>
 
 #include "solver/model/model.h"
@@ -18,6 +20,8 @@ struct PaperSceneResult {
   double ratio = 0.0;  ///< H/h run
   double cpu_s = 0.0, wall_s = 0.0;
   double hic15 = 0.0, peak_g = 0.0, disp_m = 0.0;
+  double max_link_gap_m = 0.0;  ///< largest distance between a link node's two presences
+  double max_copy_gap_m = 0.0;  ///< ... and between a contact copy and its original
 };
 
 /// `head_probe`: a rigid-body probe name ("" for none); `disp_probe`: a node probe ("" none).
