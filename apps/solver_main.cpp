@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-step", o.max_step_s,
                  "cap on the step this domain proposes, s (0: its stable step); for studies")
       ->check(CLI::NonNegativeNumber);
+  bool no_lane = false;
+  app.add_flag("--no-lane", no_lane,
+               "offer no lane: the layer vectors go through the coordinator (a firewall that lets "
+               "only the coordinator's port through; docs/processes.md \"Lanes\")");
   app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
@@ -39,6 +43,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : run::kExitInput;
   }
   o.session = session.options();
+  o.offer_lane = !no_lane;
   apps::install_stop_handlers();
   o.stop = &apps::stop_flag();
   const auto r = daemon::run_daemon(o);

@@ -22,6 +22,14 @@ struct CurveOptions {
   /// Coordinator: the daemons' public keys, one per line. --curve-authorized-keys,
   /// CRASHLINK_CURVE_AUTHORIZED_KEYS_FILE.
   std::string authorized_keys_file;
+
+  // In memory, for a daemon's lane (docs/processes.md "Lanes"), whose keys come from the
+  // coordinator's Setup rather than from files:
+  /// Client: the server's public key (Z85); replaces server_key_file when not empty.
+  std::string server_key;
+  /// Server: no authorized-keys file; the keys come later (Router::authorize). A client that
+  /// connects before then waits for them (up to 10 s) instead of being refused.
+  bool authorize_later = false;
 };
 
 inline constexpr const char* kCurveEnv = "CRASHLINK_CURVE";

@@ -81,15 +81,20 @@ std::optional<CurveServerKeys> curve_server_keys(const Endpoint& endpoint,
     missing(endpoint, "the coordinator's secret key", "--curve-secret-key", kCurveSecretKeyEnv,
             kMakeSecret);
   }
-  if (options.authorized_keys_file.empty()) {
+  if (options.authorized_keys_file.empty() && !options.authorize_later) {
     missing(endpoint, "the file of the daemons' authorized public keys", "--curve-authorized-keys",
             kCurveAuthorizedKeysEnv, "put every daemon's PREFIX.pub in it, one key per line");
   }
   CurveServerKeys k;
   k.secret_key = read_curve_key_file(options.secret_key_file, "secret key", true);
   k.public_key = curve_public_key(k.secret_key);
-  k.authorized = read_authorized_keys(options.authorized_keys_file);
-  k.authorized_file = options.authorized_keys_file;
+  if (options.authorize_later) {
+    k.authorized_file = "the partners' keys in the coordinator's Setup";
+    k.authorize_later = true;
+  } else {
+    k.authorized = read_authorized_keys(options.authorized_keys_file);
+    k.authorized_file = options.authorized_keys_file;
+  }
   return k;
 }
 
@@ -100,14 +105,16 @@ std::optional<CurveClientKeys> curve_client_keys(const Endpoint& endpoint,
     missing(endpoint, "this daemon's secret key", "--curve-secret-key", kCurveSecretKeyEnv,
             kMakeSecret);
   }
-  if (options.server_key_file.empty()) {
+  if (options.server_key_file.empty() && options.server_key.empty()) {
     missing(endpoint, "the coordinator's public key", "--curve-server-key", kCurveServerKeyEnv,
             "it is the coordinator's PREFIX.pub");
   }
   CurveClientKeys k;
   k.secret_key = read_curve_key_file(options.secret_key_file, "secret key", true);
   k.public_key = curve_public_key(k.secret_key);
-  k.server_key = read_curve_key_file(options.server_key_file, "server public key", false);
+  k.server_key = !options.server_key.empty()
+                     ? options.server_key
+                     : read_curve_key_file(options.server_key_file, "server public key", false);
   return k;
 }
 

@@ -26,6 +26,7 @@ struct CurveServerKeys {
   std::string public_key;  ///< of secret_key (for messages: what daemons must be given)
   std::vector<std::string> authorized;
   std::string authorized_file;
+  bool authorize_later = false;  ///< CurveOptions::authorize_later
 };
 
 /// A daemon's keys, read from their files.

@@ -60,7 +60,7 @@ Router::Router(std::string_view endpoint, const SocketOptions& options)
 
 void Router::Impl::secure(const Endpoint& parsed, const CurveServerKeys& keys) {
   require_curve(fmt::format("the coordinator's endpoint {}", parsed.text));
-  zap = std::make_unique<ZapDomain>(keys.authorized, keys.authorized_file);
+  zap = std::make_unique<ZapDomain>(keys.authorized, keys.authorized_file, keys.authorize_later);
   public_key = keys.public_key;
   socket.set(zmq::sockopt::curve_server, true);
   socket.set(zmq::sockopt::curve_secretkey, keys.secret_key);
@@ -74,6 +74,14 @@ Router& Router::operator=(Router&&) noexcept = default;
 
 const std::string& Router::endpoint() const {
   return impl_->endpoint;
+}
+
+const std::string& Router::curve_public_key() const {
+  return impl_->public_key;
+}
+
+void Router::authorize(std::vector<std::string> keys) {
+  if (impl_->zap) impl_->zap->authorize(std::move(keys));
 }
 
 bool Router::curve() const {

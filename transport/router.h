@@ -42,6 +42,11 @@ class Router {
 
   /// Whether this Router is a CURVE server.
   bool curve() const;
+  /// CURVE server: its public key (Z85), "" otherwise.
+  const std::string& curve_public_key() const;
+  /// CURVE server bound with CurveOptions::authorize_later: the clients' keys it accepts from now
+  /// (a daemon's lane: its partners', from the Setup). No effect without CURVE.
+  void authorize(std::vector<std::string> keys);
   /// The CURVE clients refused since the last call (unauthorised key, wrong server key, no
   /// CURVE), each with a text naming the key or the endpoint and the fix; never waits.
   std::vector<CurveRefusal> take_refusals();

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <iterator>
 #include <mutex>
@@ -21,7 +23,10 @@ namespace crashlink::transport {
 
 struct ZapDomain::State {
   std::string name;
-  std::unordered_set<std::string> authorized;
+  std::unordered_set<std::string> authorized;  ///< guarded by m once built
+  bool pending = false;                        ///< keys to come (authorize); guarded by m
+  bool later = false;                          ///< built to be authorized later (a lane)
+  std::condition_variable ready;
   std::string keys_file;
   std::atomic<std::uint64_t> accepted{0};
   std::mutex m;
@@ -180,7 +185,18 @@ class Handler {
       answer("400", "unknown ZAP domain", "");
       return;
     }
-    if (state->authorized.contains(key)) {
+    bool known = false;
+    std::size_t n_keys = 0;
+    bool later = false;
+    {
+      // A lane's keys come with the coordinator's Setup, which its partner may have before it.
+      std::unique_lock lock(state->m);
+      later = state->later;
+      state->ready.wait_for(lock, std::chrono::seconds{10}, [&] { return !state->pending; });
+      known = state->authorized.contains(key);
+      n_keys = state->authorized.size();
+    }
+    if (known) {
       ++state->accepted;
       answer("200", "OK", key);
       return;
@@ -189,10 +205,13 @@ class Handler {
     r.address = address;
     r.client_key = key;
     r.text = fmt::format(
-        "refused a CURVE connection from {}: client public key {} is not in the authorized keys "
-        "file {} ({} keys); fix: if it is a daemon of this run, append its PREFIX.pub to that "
-        "file and restart the coordinator",
-        peer_name(address), key, state->keys_file, state->authorized.size());
+        "refused a CURVE connection from {}: client public key {} is not in {} ({} keys); {}",
+        peer_name(address), key,
+        later ? state->keys_file : fmt::format("the authorized keys file {}", state->keys_file),
+        n_keys,
+        later ? "this lane takes only its partners' vectors: is another process connecting to it?"
+              : "fix: if it is a daemon of this run, append its PREFIX.pub to that file and "
+                "restart the coordinator");
     {
       // Recorded before the answer: once the client knows, the coordinator's log can say it.
       std::lock_guard lock(state->m);
@@ -212,11 +231,22 @@ class Handler {
 
 }  // namespace
 
-ZapDomain::ZapDomain(std::vector<std::string> authorized, std::string keys_file)
+ZapDomain::ZapDomain(std::vector<std::string> authorized, std::string keys_file, bool later)
     : state_(std::make_shared<State>()) {
   state_->authorized.insert(authorized.begin(), authorized.end());
   state_->keys_file = std::move(keys_file);
+  state_->pending = later;
+  state_->later = later;
   state_->name = Handler::instance().add(state_);
+}
+
+void ZapDomain::authorize(std::vector<std::string> keys) {
+  {
+    std::lock_guard lock(state_->m);
+    state_->authorized = {keys.begin(), keys.end()};
+    state_->pending = false;
+  }
+  state_->ready.notify_all();
 }
 
 ZapDomain::~ZapDomain() {

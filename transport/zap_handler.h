@@ -24,7 +24,11 @@ struct CurveRefusal {
 class ZapDomain {
  public:
   /// `authorized`: Z85 public keys; `keys_file`: where they come from (for messages).
-  ZapDomain(std::vector<std::string> authorized, std::string keys_file);
+  /// `later`: the keys come with authorize(); a client asking before then waits for them (up to
+  /// 10 s, then refused).
+  ZapDomain(std::vector<std::string> authorized, std::string keys_file, bool later = false);
+  /// Sets the authorized keys (and ends the wait of a `later` domain).
+  void authorize(std::vector<std::string> keys);
   ~ZapDomain();
   ZapDomain(const ZapDomain&) = delete;
   ZapDomain& operator=(const ZapDomain&) = delete;

@@ -488,6 +488,7 @@ class Coordinator {
       auto* lane = setup.add_lanes();
       lane->set_domain(cut_.names[static_cast<std::size_t>(p)]);
       lane->set_endpoint(regs_[static_cast<std::size_t>(p)].lane_endpoint());
+      lane->set_public_key(regs_[static_cast<std::size_t>(p)].lane_public_key());
     }
   }
 

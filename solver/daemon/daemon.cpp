@@ -256,16 +256,7 @@ class Daemon {
                                      "expected >= 1",
                                      tps_));
     }
-    // Our lane (docs/processes.md "Lanes"), bound before the Register that announces it.
-    if (const auto lane =
-            transport::lane_endpoint_for(o_.endpoint, o_.domain, o_.session.socket.curve);
-        lane.rfind(transport::kShmScheme, 0) == 0) {
-      shm_in_ = std::make_unique<transport::ShmLaneIn>(lane.substr(transport::kShmScheme.size()));
-      lane_endpoint_ = shm_in_->endpoint();
-    } else if (!lane.empty()) {
-      lane_in_ = std::make_unique<transport::Router>(lane, o_.session.socket);
-      lane_endpoint_ = lane_in_->endpoint();
-    }
+    open_own_lane();
     link_->send(register_message());
     const wire::Setup setup = await_setup();
     apply_setup(setup);
@@ -316,6 +307,7 @@ class Daemon {
     r->set_elements(elements_);
     for (const auto t : checkpoints_) r->add_checkpoint_ticks(t);
     r->set_lane_endpoint(lane_endpoint_);
+    if (lane_in_) r->set_lane_public_key(lane_in_->curve_public_key());
     for (const auto& port : dom_->ports) {
       auto* li = r->add_layer_interfaces();
       li->set_index(port.index);
@@ -345,6 +337,34 @@ class Daemon {
     daemon::apply_setup(setup, tps_, o_.domain, dom_->ports);  // solver/daemon/apply_setup.h
   }
 
+  /// Our lane (docs/processes.md "Lanes"), bound before the Register that announces it. A lane
+  /// that cannot be bound is not offered (the coordinator then routes this domain's vectors).
+  void open_own_lane() {
+    if (!o_.offer_lane) return;
+    const auto lane = transport::lane_endpoint_for(o_.endpoint, o_.domain, o_.session.socket.curve);
+    try {
+      if (lane.rfind(transport::kShmScheme, 0) == 0) {
+        shm_in_ = std::make_unique<transport::ShmLaneIn>(lane.substr(transport::kShmScheme.size()));
+        lane_endpoint_ = shm_in_->endpoint();
+      } else if (!lane.empty()) {
+        // Across hosts a CURVE server with this daemon's own key; the partners' keys come with
+        // the Setup (Router::authorize), a partner connecting earlier waits for them.
+        auto options = o_.session.socket;
+        options.curve.authorize_later = true;
+        lane_in_ = std::make_unique<transport::Router>(lane, options);
+        lane_endpoint_ = lane_in_->endpoint();
+      }
+    } catch (const transport::TransportError& e) {
+      std::fprintf(stderr,
+                   "crashlink-solver: domain '%s': no lane (%s); the coordinator routes this "
+                   "domain's layer vectors\n",
+                   o_.domain.c_str(), e.what());
+      shm_in_.reset();
+      lane_in_.reset();
+      lane_endpoint_.clear();
+    }
+  }
+
   /// The Setup's lanes: a Dealer to each partner's lane, named by our domain; every interface's
   /// vectors then leave on its partner's lane. No lanes: they go to the coordinator.
   void open_lanes(const wire::Setup& setup) {
@@ -355,6 +375,7 @@ class Daemon {
                                      "offered none",
                                      o_.domain, setup.lanes_size()));
     }
+    std::vector<std::string> partner_keys;  // the clients our CURVE lane accepts
     for (const auto& lane : setup.lanes()) {
       LaneOut out;
       if (lane.endpoint().rfind(transport::kShmScheme, 0) == 0) {
@@ -374,11 +395,14 @@ class Daemon {
         out.shm = std::make_unique<transport::ShmLaneOut>(lane.endpoint(), o_.domain,
                                                           o_.session.peer_timeout);
       } else {
-        out.zmq =
-            std::make_unique<transport::Dealer>(lane.endpoint(), o_.domain, o_.session.socket);
+        auto options = o_.session.socket;
+        options.curve.server_key = lane.public_key();  // used when CURVE is on for that endpoint
+        out.zmq = std::make_unique<transport::Dealer>(lane.endpoint(), o_.domain, options);
+        partner_keys.push_back(lane.public_key());
       }
       lanes_out_.emplace(lane.domain(), std::move(out));
     }
+    if (lane_in_) lane_in_->authorize(std::move(partner_keys));
     for (const auto& port : dom_->ports) {
       const auto it = lanes_out_.find(port.partner);
       if (it == lanes_out_.end()) {

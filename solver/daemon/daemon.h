@@ -43,6 +43,9 @@ struct DaemonOptions {
   double max_step_s = 0.0;  ///< > 0: caps the proposal (how tests and studies impose a ratio)
   /// Run as a thread of a bigger process (crashlink run --transport inproc): CPU time is this
   /// thread's, not the process's.
+  /// Offer a lane to the partners (docs/processes.md "Lanes"); false: --no-lane, this domain's
+  /// layer vectors (and so every domain's) go through the coordinator.
+  bool offer_lane = true;
   bool in_process = false;
   /// Set from outside (signal handler) to stop: checked every cycle; the coordinator is told.
   const std::atomic<bool>* stop = nullptr;

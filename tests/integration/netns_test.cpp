@@ -381,6 +381,10 @@ TEST_P(AcrossNamespaces, MultiRunEqualsLoopbackRunToTheBit) {
     EXPECT_TRUE(has(p.endpoint, kCoordinatorAddress)) << p.endpoint;
     ASSERT_TRUE(finish(p, std::chrono::seconds(50)));
     wall_net = seconds_since(t0, Clock::now());
+    // The daemons reach each other's lanes on their own addresses, CURVE on (docs/processes.md
+    // "Lanes"): the vectors skip the coordinator across namespaces too.
+    EXPECT_TRUE(has(p.coordinator->output(), "layer vectors daemon to daemon (lanes)"))
+        << p.coordinator->output();
     for (std::size_t k = 0; k < c.domains.size(); ++k) {
       const auto [rx, tx] = net.traffic(k);
       std::printf(

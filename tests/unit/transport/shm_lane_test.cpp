@@ -155,7 +155,13 @@ TEST(LaneEndpoint, FollowsTheSession) {
   const CurveOptions plain;
   EXPECT_EQ(lane_endpoint_for("inproc://run", "wiper", plain), "inproc://run.lane.wiper");
   EXPECT_EQ(lane_endpoint_for("tcp://127.0.0.1:5555", "wiper", plain), "tcp://127.0.0.1:*");
-  EXPECT_EQ(lane_endpoint_for("tcp://10.1.2.3:5555", "wiper", plain), "");  // beyond loopback
+  // Beyond loopback: this host's address on the route there (none without a route), never
+  // loopback, an ephemeral port.
+  const auto far = lane_endpoint_for("tcp://10.1.2.3:5555", "wiper", plain);
+  EXPECT_TRUE(far.empty() ||
+              (far.rfind("tcp://", 0) == 0 && far.find("127.") == std::string::npos &&
+               far.substr(far.size() - 2) == ":*"))
+      << far;
   const auto ipc = lane_endpoint_for("ipc:///tmp/run/coordinator.sock", "wiper", plain);
   EXPECT_EQ(ipc.rfind("shm://", 0), 0u) << ipc;
   EXPECT_NE(ipc.find(".wiper"), std::string::npos) << ipc;
