@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/core/errors.h"
@@ -67,6 +68,28 @@ cosim::PaperOptions ratio(int r) {
   return o;
 }
 
+/// Both initialised: `steps` coarse steps of the runner (r = 1) and as many of mono at the same
+/// step; returns {max |u - u_mono|, max |u_mono|} over every global dof.
+std::pair<double, double> run_against_mono(cosim::PaperRunner& pr, integration::Solver& mono,
+                                           int steps) {
+  const double h = pr.fine_dt_s();
+  mono.impose_step(h);
+  for (int n = 0; n < steps; ++n) {
+    pr.advance();
+    mono.begin_cycle();
+    mono.end_cycle();
+    mono.impose_step(h);
+  }
+  const auto u = pr.global_displacement();
+  const auto& um = mono.displacement();
+  double scale = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    scale = std::max(scale, std::abs(um[i]));
+    worst = std::max(worst, std::abs(u[i] - um[i]));
+  }
+  return {worst, scale};
+}
+
 bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
@@ -100,22 +123,8 @@ TEST(PaperScheme, ShellNodesWeldedToSolidsCoupleByTheirTranslations) {
   pr.initialize();
   mono.initialize();
   ASSERT_EQ(pr.coupled_nodes().size(), 9u);  // the pad's 3 x 3 bottom nodes on the plate
-  const double h = pr.fine_dt_s();
-  mono.impose_step(h);
   constexpr int kSteps = 3000;
-  for (int n = 0; n < kSteps; ++n) {
-    pr.advance();
-    mono.begin_cycle();
-    mono.end_cycle();
-    mono.impose_step(h);
-  }
-  const auto u = pr.global_displacement();
-  const auto& um = mono.displacement();
-  double scale = 0.0, worst = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    scale = std::max(scale, std::abs(um[i]));
-    worst = std::max(worst, std::abs(u[i] - um[i]));
-  }
+  const auto [worst, scale] = run_against_mono(pr, mono, kSteps);
   std::printf(
       "[measured] paper r = 1, hex pad welded on a shell plate, %d steps: max|du|/max|u| "
       "= %.3e\n",
@@ -149,21 +158,8 @@ TEST(PaperScheme, RatioOneReproducesMono) {
   ASSERT_EQ(pr.ratio(), 1);
   ASSERT_EQ(pr.coupled_nodes().size(), 4u);  // the shared node plane x = 0.2
   const double h = pr.fine_dt_s();
-  mono.impose_step(h);
   constexpr int kSteps = 10000;
-  for (int n = 0; n < kSteps; ++n) {
-    pr.advance();
-    mono.begin_cycle();
-    mono.end_cycle();
-    mono.impose_step(h);
-  }
-  const auto u = pr.global_displacement();
-  const auto& um = mono.displacement();
-  double scale = 0.0, worst = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    scale = std::max(scale, std::abs(um[i]));
-    worst = std::max(worst, std::abs(u[i] - um[i]));
-  }
+  const auto [worst, scale] = run_against_mono(pr, mono, kSteps);
   std::printf(
       "[measured] paper r = 1 vs mono, %d steps of %.3e s: max|du|/max|u| = %.3e; link gap max "
       "%.3e m; net coupling work %.3e J of input %.3e J\n",
