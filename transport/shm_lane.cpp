@@ -31,33 +31,41 @@ void ShmLaneIn::add_partner(const std::string& domain, std::size_t capacity) {
   queues_.emplace_back(domain, ShmQueue::create(prefix_ + ".from." + domain, cap));
 }
 
-std::optional<std::pair<std::string, std::string>> ShmLaneIn::poll_once() {
+bool ShmLaneIn::poll_once(std::string& from, std::string& bytes) {
   for (std::size_t k = 0; k < queues_.size(); ++k) {
-    auto& [from, q] = queues_[(next_ + k) % queues_.size()];
-    if (auto m = q.pop()) {
+    auto& [partner, q] = queues_[(next_ + k) % queues_.size()];
+    if (q.pop_into(bytes)) {
       next_ = (next_ + k + 1) % queues_.size();
-      return std::make_pair(from, std::move(*m));
+      from = partner;
+      return true;
     }
   }
-  return std::nullopt;
+  return false;
 }
 
-std::optional<std::pair<std::string, std::string>> ShmLaneIn::receive(
-    std::chrono::microseconds timeout) {
+bool ShmLaneIn::receive_into(std::chrono::microseconds timeout, std::string& from,
+                             std::string& bytes) {
   if (queues_.empty()) {
     std::this_thread::sleep_for(timeout);
-    return std::nullopt;
+    return false;
   }
   const auto t0 = Clock::now();
   const auto deadline = t0 + timeout;
   for (;;) {
     const std::uint32_t seen = bell_.count();
-    if (auto m = poll_once()) return m;
+    if (poll_once(from, bytes)) return true;
     const auto now = Clock::now();
-    if (now >= deadline) return std::nullopt;
+    if (now >= deadline) return false;
     if (now - t0 < spin_) continue;  // poll a little before sleeping: a wake-up costs more
     bell_.sleep(seen, std::chrono::duration_cast<std::chrono::microseconds>(deadline - now));
   }
+}
+
+std::optional<std::pair<std::string, std::string>> ShmLaneIn::receive(
+    std::chrono::microseconds timeout) {
+  std::pair<std::string, std::string> m;
+  if (!receive_into(timeout, m.first, m.second)) return std::nullopt;
+  return m;
 }
 
 ShmLaneOut::ShmLaneOut(std::string_view endpoint, std::string self,

@@ -34,9 +34,13 @@ class ShmLaneIn {
   void add_partner(const std::string& domain, std::size_t capacity = 0);
   /// The next message (sender's domain, bytes), or nullopt after `timeout`.
   std::optional<std::pair<std::string, std::string>> receive(std::chrono::microseconds timeout);
+  /// The same into `from` and `bytes`, whose capacities are reused (no allocation per message:
+  /// a fresh buffer of a large vector would be fresh pages, a page fault each); false after
+  /// `timeout`.
+  bool receive_into(std::chrono::microseconds timeout, std::string& from, std::string& bytes);
 
  private:
-  std::optional<std::pair<std::string, std::string>> poll_once();
+  bool poll_once(std::string& from, std::string& bytes);
   std::string prefix_, endpoint_;
   std::chrono::microseconds spin_;
   ShmDoorbell bell_;
@@ -50,8 +54,15 @@ class ShmLaneOut {
   /// wait for the partner's files and for room in its ring.
   ShmLaneOut(std::string_view endpoint, std::string self, std::chrono::milliseconds timeout);
   void send(std::string_view bytes);
+  /// Serialises `message` into a buffer kept for the next one, then send().
+  template <class Message>
+  void send_message(const Message& message) {
+    message.SerializeToString(&buffer_);
+    send(buffer_);
+  }
 
  private:
+  std::string buffer_;
   std::string prefix_, self_;
   std::chrono::milliseconds timeout_;
   std::optional<ShmQueue> queue_;

@@ -243,9 +243,15 @@ bool ShmQueue::empty() const {
 }
 
 std::optional<std::string> ShmQueue::pop() {
+  std::string out;
+  if (!pop_into(out)) return std::nullopt;
+  return out;
+}
+
+bool ShmQueue::pop_into(std::string& out) {
   const std::uint64_t tail = h().tail.load(std::memory_order_relaxed);
   const std::uint64_t head = h().head.load(std::memory_order_acquire);
-  if (head == tail) return std::nullopt;
+  if (head == tail) return false;
   std::uint64_t n = 0;
   copy_out(tail, &n, sizeof n);
   if (n > head - tail - sizeof n) {
@@ -254,10 +260,10 @@ std::optional<std::string> ShmQueue::pop() {
                                      "bytes written",
                                      n, head - tail - sizeof n));
   }
-  std::string out(static_cast<std::size_t>(n), '\0');
+  out.resize(static_cast<std::size_t>(n));
   copy_out(tail + sizeof n, out.data(), out.size());
   h().tail.store(tail + sizeof n + n, std::memory_order_release);
-  return out;
+  return true;
 }
 
 }  // namespace crashlink::transport

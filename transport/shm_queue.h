@@ -85,6 +85,9 @@ class ShmQueue {
   void push(std::string_view bytes, std::chrono::milliseconds timeout);
   /// Receiver: the next message, or nullopt if none is there now.
   std::optional<std::string> pop();
+  /// The same into `out` (its capacity reused: no allocation per message once it is large
+  /// enough); false if none is there now.
+  bool pop_into(std::string& out);
   bool empty() const;
   const std::string& path() const { return map_.path(); }
 

@@ -61,7 +61,7 @@ struct LaneOut {
     if (zmq) {
       zmq->send(e);
     } else {
-      shm->send(e.SerializeAsString());
+      shm->send_message(e);
     }
   }
 };
@@ -507,11 +507,9 @@ class Daemon {
     wire::Envelope e;
     bool ok = false;
     if (shm_in_) {
-      auto r = shm_in_->receive(20ms);
-      if (!r) return std::nullopt;
-      peer = r->first;
-      ok = e.ParseFromString(r->second);
-      if (!ok) what = fmt::format("{} bytes that are not an Envelope", r->second.size());
+      if (!shm_in_->receive_into(20ms, peer, lane_bytes_)) return std::nullopt;
+      ok = e.ParseFromString(lane_bytes_);
+      if (!ok) what = fmt::format("{} bytes that are not an Envelope", lane_bytes_.size());
     } else {
       auto r = lane_in_->receive(20ms);
       if (!r) return std::nullopt;
@@ -637,6 +635,7 @@ class Daemon {
   std::unique_ptr<transport::ShmLaneIn> shm_in_;  ///< our shared-memory lane (ipc sessions)
   std::map<std::string, LaneOut> lanes_out_;      ///< partner -> its lane
   std::vector<LaneOut*> lane_of_;  ///< [interface index] the lane its vectors leave on
+  std::string lane_bytes_;         ///< the last message from the shared-memory lane (reused)
   std::deque<wire::Envelope> pending_;
   std::vector<std::int64_t> checkpoints_;  ///< instants of our complete checkpoints (Register)
   cosim::Tick checkpoint_every_ = 0;       ///< the coordinator's interval, ticks (0: none)
