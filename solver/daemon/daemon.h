@@ -6,14 +6,21 @@
 //   cut it (partition::decompose, Layer), build this domain (cosim::build_layer_domain),
 //   Solver::initialize(), open DIR/domains/<domain>.h5,
 //   connect: Hello (protocol version, scenario hash, domain) -> the coordinator's Hello,
+//   open this daemon's lane (transport/lane_endpoint.h: shared memory beside an ipc session, a
+//     ZeroMQ ROUTER otherwise, CURVE across hosts; docs/processes.md "Lanes"),
 //   Register: per interface its J node ids, masses (owner: J's natural summed mass, ghost
-//     holder: 0) and positions; the initial stable step floor(min(dt, max_step) * safety * tps),
-//   Setup: this domain's fixed step and every partner's step,
+//     holder: 0) and positions; the initial stable step floor(min(dt, max_step) * safety * tps);
+//     the lane,
+//   Setup: this domain's fixed step, every partner's step and, when every daemon offered one,
+//     the partners' lanes,
 //   cosim::LayerStepper: advance(); each message it produces leaves as soon as it is queued
 //     (LayerStepper::set_on_outbox: u_J(T + H) before the coarse side's forces, so the domains
-//     compute at the same time) as LayerDisplacement / LayerForce; when it waits, block on the
-//     link and deliver(); keep_alive() every cycle,
-//   at the end: a last field state, /timing, Bye with a DomainReport (CPU, wait, cycles).
+//     compute at the same time) as LayerDisplacement / LayerForce, on the partner's lane or to
+//     the coordinator; when it waits, block on its lane (polling the session every 20 ms) or on
+//     the link, and deliver(); keep_alive() every cycle; a LayerReport (the instant, the fine
+//     side's interface history rows) every quarter heartbeat interval and before a checkpoint,
+//   at the end: a last field state, /timing, a LayerReport, Bye with a DomainReport (CPU, wait,
+//     cycles).
 //
 // Output: DIR/domains/<domain>.h5 and .xdmf (io::ResultWriter layout, the domain's sub-model,
 // sampled at the instants a mono run samples: run/domain_recorder.h), what solver/gather reads.
