@@ -4,6 +4,8 @@
 //   mono         the reference (global minimum step);
 //   split        `layer`, every domain at the common step (processes);
 //   multi        `layer`, each domain at its own step (processes);
+//   paper, paper_no_drift  the seed's scheme with drift correction [11] on and off, in this
+//                process at multi's ratio (apps/sweep_paper.h);
 //   mass_scaled  mono with conventional mass scaling of the fine domain's parts: each part whose
 //                smallest element step is below the coarse domains' is given the density that
 //                brings it there (its mass grows by the square of the step ratio; the added mass
@@ -16,8 +18,9 @@
 // `divisions: N` (its length divisions: the fine part's elements shorter, the step ratio larger),
 // run mono_N and multi_N; multi_N's CPU and errors are against mono_N (the same mesh), and the
 // CSV's step_ratio column says how far apart the domains' steps are.
-// Not yet in the sweep: `paper` (it runs in one process, for two domains, and refuses links that
-// carry rotations, as the cowl's shell nodes do here).
+// A configuration the solver's guard stops (`paper` going unstable, mass scaling blowing up) is a
+// row saying when and why, and named under the chart: the configuration's result, not a failure
+// of the sweep (exit 0). A reference run that fails, or a file that cannot be written, is one.
 #include <CLI/CLI.hpp>
 #include <string>
 
