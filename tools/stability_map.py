@@ -41,7 +41,7 @@ def main():
     ax.set_xlabel("step ratio H/h")
     ax.set_ylabel("max energy rise above running minimum [% of E0]")
     steps = rows[0]["fine_steps"] if rows else "?"
-    ax.set_title(f"layer and paper couplings, free vibration, {steps} fine steps "
+    ax.set_title(f"layer and paper couplings, energy rise over {steps} fine steps "
                  f"(x: stopped by the guard)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
