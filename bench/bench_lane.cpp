@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/round_trip_stats.h"
 #include "proto/crashlink.pb.h"
 #include "transport/dealer.h"
 #include "transport/endpoint.h"
@@ -44,13 +45,6 @@ wire::Envelope vector_message(std::size_t n, bool force) {
     }
   }
   return e;
-}
-
-void report(benchmark::State& state, std::vector<double>& us) {
-  if (us.empty()) return;
-  std::sort(us.begin(), us.end());
-  state.counters["median_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
 }
 
 void BM_ShmLane(benchmark::State& state) {
@@ -93,7 +87,7 @@ void BM_ShmLane(benchmark::State& state) {
   stop = true;
   partner.join();
   std::filesystem::remove_all(dir);
-  report(state, us);
+  crashlink::bench::report_round_trips(state, us);
 }
 
 void BM_ZmqLane(benchmark::State& state, tr::Scheme scheme) {
@@ -124,27 +118,12 @@ void BM_ZmqLane(benchmark::State& state, tr::Scheme scheme) {
   }
   stop = true;
   partner.join();
-  report(state, us);
+  crashlink::bench::report_round_trips(state, us);
 }
 
-BENCHMARK(BM_ShmLane)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_ZmqLane, ipc, tr::Scheme::ipc)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_ZmqLane, tcp, tr::Scheme::tcp)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
+BENCHMARK(BM_ShmLane)->Apply(crashlink::bench::interface_sizes);
+BENCHMARK_CAPTURE(BM_ZmqLane, ipc, tr::Scheme::ipc)->Apply(crashlink::bench::interface_sizes);
+BENCHMARK_CAPTURE(BM_ZmqLane, tcp, tr::Scheme::tcp)->Apply(crashlink::bench::interface_sizes);
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/round_trip_stats.h"
 #include "transport/coordinator_link.h"
 #include "transport/daemon_link.h"
 #include "transport/endpoint.h"
@@ -82,11 +83,7 @@ void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
           std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
     }
     daemon.bye("benchmark done");
-    if (!us.empty()) {
-      std::sort(us.begin(), us.end());
-      state.counters["median_us"] = us[us.size() / 2];
-      state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-    }
+    crashlink::bench::report_round_trips(state, us);
     const double bytes_per_trip = 8.0 * 9.0 * static_cast<double>(n);  // 6N + 3N doubles
     state.counters["MB_per_s"] =
         benchmark::Counter(bytes_per_trip * 1e-6 * static_cast<double>(state.iterations()),
@@ -95,24 +92,9 @@ void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
   server.join();
 }
 
-BENCHMARK_CAPTURE(BM_RoundTrip, tcp, Scheme::tcp)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_RoundTrip, ipc, Scheme::ipc)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_RoundTrip, inproc, Scheme::inproc)
-    ->Arg(100)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Unit(benchmark::kMicrosecond)
-    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_RoundTrip, tcp, Scheme::tcp)->Apply(crashlink::bench::interface_sizes);
+BENCHMARK_CAPTURE(BM_RoundTrip, ipc, Scheme::ipc)->Apply(crashlink::bench::interface_sizes);
+BENCHMARK_CAPTURE(BM_RoundTrip, inproc, Scheme::inproc)->Apply(crashlink::bench::interface_sizes);
 
 }  // namespace
 
