@@ -70,24 +70,19 @@ void BM_ShmLane(benchmark::State& state) {
   });
   tr::ShmLaneOut to_fine(fine_in.endpoint(), "coarse", 5000ms);
   const wire::Envelope d = vector_message(n, false);
-  std::vector<double> us;
   std::string from, bytes;
   wire::Envelope e;
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    to_fine.send_message(d);
-    if (!coarse_in.receive_into(5000ms, from, bytes) || !e.ParseFromString(bytes) ||
-        !e.has_layer_force()) {
-      state.SkipWithError("no LayerForce within 5 s");
-      break;
-    }
-    us.push_back(
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-  }
+  crashlink::bench::time_round_trips(
+      state,
+      [&] {
+        to_fine.send_message(d);
+        return coarse_in.receive_into(5000ms, from, bytes) && e.ParseFromString(bytes) &&
+               e.has_layer_force();
+      },
+      "no LayerForce within 5 s");
   stop = true;
   partner.join();
   std::filesystem::remove_all(dir);
-  crashlink::bench::report_round_trips(state, us);
 }
 
 void BM_ZmqLane(benchmark::State& state, tr::Scheme scheme) {
@@ -104,21 +99,16 @@ void BM_ZmqLane(benchmark::State& state, tr::Scheme scheme) {
   });
   tr::Dealer to_fine(fine_in.endpoint(), "coarse");
   const wire::Envelope d = vector_message(n, false);
-  std::vector<double> us;
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    to_fine.send(d);
-    auto m = coarse_in.receive(5000ms);
-    if (!m || !m->ok() || !m->envelope.has_layer_force()) {
-      state.SkipWithError("no LayerForce within 5 s");
-      break;
-    }
-    us.push_back(
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-  }
+  crashlink::bench::time_round_trips(
+      state,
+      [&] {
+        to_fine.send(d);
+        const auto m = coarse_in.receive(5000ms);
+        return m && m->ok() && m->envelope.has_layer_force();
+      },
+      "no LayerForce within 5 s");
   stop = true;
   partner.join();
-  crashlink::bench::report_round_trips(state, us);
 }
 
 BENCHMARK(BM_ShmLane)->Apply(crashlink::bench::interface_sizes);

@@ -67,23 +67,18 @@ void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
       f->add_displacements_m(1e-4 * static_cast<double>(i) / 3.0);
     }
     f->set_stable_step_ticks(1'000'000'000);
-    std::vector<double> us;
     std::int64_t t = 0;
-    for (auto _ : state) {
-      const auto t0 = std::chrono::steady_clock::now();
-      f->set_time_ticks(++t);
-      daemon.send(e);
-      const auto answer = daemon.receive(5s);
-      if (!answer || !answer->has_correction() ||
-          answer->correction().accelerations_m_s2_size() != static_cast<int>(3 * n)) {
-        state.SkipWithError("no Correction of the right size within 5 s");
-        break;
-      }
-      us.push_back(
-          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    }
+    crashlink::bench::time_round_trips(
+        state,
+        [&] {
+          f->set_time_ticks(++t);
+          daemon.send(e);
+          const auto answer = daemon.receive(5s);
+          return answer && answer->has_correction() &&
+                 answer->correction().accelerations_m_s2_size() == static_cast<int>(3 * n);
+        },
+        "no Correction of the right size within 5 s");
     daemon.bye("benchmark done");
-    crashlink::bench::report_round_trips(state, us);
     const double bytes_per_trip = 8.0 * 9.0 * static_cast<double>(n);  // 6N + 3N doubles
     state.counters["MB_per_s"] =
         benchmark::Counter(bytes_per_trip * 1e-6 * static_cast<double>(state.iterations()),

@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 namespace crashlink::bench {
@@ -19,6 +20,23 @@ inline void report_round_trips(benchmark::State& state, std::vector<double>& us)
   std::sort(us.begin(), us.end());
   state.counters["median_us"] = us[us.size() / 2];
   state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+}
+
+/// One call of `trip` (a round trip; false when it failed) per benchmark iteration, each timed;
+/// a failed one ends the run with `error`. Then the counters.
+template <class Trip>
+void time_round_trips(benchmark::State& state, Trip&& trip, const char* error) {
+  std::vector<double> us;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!trip()) {
+      state.SkipWithError(error);
+      break;
+    }
+    us.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+  }
+  report_round_trips(state, us);
 }
 
 }  // namespace crashlink::bench
