@@ -18,6 +18,73 @@ bool is_rigid(const model::Model& m, const model::Part& p) {
   return m.materials[static_cast<std::size_t>(p.material)].kind == MaterialKind::Rigid;
 }
 
+/// The nodal arrays of Solver::compute_accelerations.
+struct AccelerationArrays {
+  const double *f_ext, *f_cont, *f_coup, *f_int, *m_coup, *m_int, *inv_mass, *inv_inertia;
+  double *f_load, *a, *alpha;
+  std::size_t n;
+};
+
+/// One pass over the nodes: the driving load f_load = f_ext + f_cont + f_coup, a = (f_load -
+/// f_int) / m ([1], lumped mass; inv_mass 0 for rigid, ghost and massless nodes) and the
+/// rotational alpha = (m_coup - m_int) / I. Memory-bound (bench/bench_cycle.cpp), so the arrays
+/// known to be zero are not read: f_ext without gravity or loads (kExt false), f_coup and m_coup
+/// when no coupling load was added since they were cleared (kCoup false). The sums are those of
+/// the full expression ((f_ext + f_cont) + f_coup): adding an exact zero changes no value.
+template <bool kExt, bool kCoup>
+void acceleration_pass(const AccelerationArrays& s) {
+  const double* __restrict fe = s.f_ext;
+  const double* __restrict fc = s.f_cont;
+  const double* __restrict fk = s.f_coup;
+  const double* __restrict fi = s.f_int;
+  const double* __restrict mk = s.m_coup;
+  const double* __restrict mi = s.m_int;
+  const double* __restrict wm = s.inv_mass;
+  const double* __restrict wi = s.inv_inertia;
+  double* __restrict fl = s.f_load;
+  double* __restrict a = s.a;
+  double* __restrict al = s.alpha;
+  for (std::size_t i = 0; i < s.n; ++i) {
+    const double w = wm[i], wr = wi[i];
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      double f = fc[k];
+      if constexpr (kExt) f = fe[k] + f;
+      if constexpr (kCoup) f = f + fk[k];
+      fl[k] = f;
+      a[k] = (f - fi[k]) * w;
+      if constexpr (kCoup)
+        al[k] = (mk[k] - mi[k]) * wr;
+      else
+        al[k] = -mi[k] * wr;
+    }
+  }
+}
+
+/// The F^n halves of a step's work (Solver::positions_and_work) in one pass with x = x0 + u and
+/// the coupling loads cleared; the zero arrays skipped as in acceleration_pass.
+template <bool kExt, bool kCoup>
+void positions_pass(const double* __restrict x0, const double* __restrict u,
+                    const double* __restrict du, const double* __restrict dth,
+                    const double* __restrict fe, const double* __restrict fc, double* __restrict x,
+                    double* __restrict fk, double* __restrict mk, std::size_t len, double w[4]) {
+  double ext = 0.0, cont = 0.0, coup = 0.0, mom = 0.0;  // each in index order
+  for (std::size_t k = 0; k < len; ++k) {
+    x[k] = x0[k] + u[k];
+    if constexpr (kExt) ext += fe[k] * du[k];
+    cont += fc[k] * du[k];
+    if constexpr (kCoup) {
+      coup += fk[k] * du[k];
+      mom += mk[k] * dth[k];
+      fk[k] = 0.0;
+      mk[k] = 0.0;
+    }
+  }
+  w[0] = ext;
+  w[1] = cont;
+  w[2] = coup;
+  w[3] = mom;
+}
+
 double dot3n(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
@@ -160,6 +227,10 @@ void Solver::initialize() {
                     &m_int_, &du_, &f_cont_, &f_load_, &f_coup_, &m_coup_, &dtheta_})
     vec->assign(n3, 0.0);
   x_ = model_.nodes.x0;
+  const Vec3& gravity = model_.controls.gravity_m_s2;
+  external_loads_ =
+      gravity[0] != 0.0 || gravity[1] != 0.0 || gravity[2] != 0.0 || !model_.loads.empty();
+  coupling_loads_ = false;
   assemble_masses();
   if (!mass_override_.empty()) {
     if (mass_override_.size() != n_)
@@ -270,6 +341,7 @@ void Solver::compute_contact_forces(double dt) {
 }
 
 void Solver::compute_external_forces(double t) {
+  if (!external_loads_) return;  // f_ext stays the zeros initialize() made
   std::fill(f_ext_.begin(), f_ext_.end(), 0.0);
   const Vec3& g = model_.controls.gravity_m_s2;
   if (g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0)
@@ -287,11 +359,17 @@ void Solver::compute_external_forces(double t) {
 }
 
 void Solver::compute_accelerations() {
-  for (std::size_t i = 0; i < f_load_.size(); ++i) f_load_[i] = f_ext_[i] + f_cont_[i] + f_coup_[i];
+  const AccelerationArrays arrays{f_ext_.data(),    f_cont_.data(),      f_coup_.data(),
+                                  f_int_.data(),    m_coup_.data(),      m_int_.data(),
+                                  inv_mass_.data(), inv_inertia_.data(), f_load_.data(),
+                                  a_.data(),        alpha_.data(),       n_};
+  if (external_loads_)
+    coupling_loads_ ? acceleration_pass<true, true>(arrays)
+                    : acceleration_pass<true, false>(arrays);
+  else
+    coupling_loads_ ? acceleration_pass<false, true>(arrays)
+                    : acceleration_pass<false, false>(arrays);
   const double* f_drive = f_load_.data();
-  compute_acceleration(a_.data(), f_drive, f_int_.data(), inv_mass_.data(), n_);
-  for (std::size_t i = 0; i < 3 * n_; ++i)
-    alpha_[i] = (m_coup_[i] - m_int_[i]) * inv_inertia_[i / 3];
   for (auto& b : bodies_)
     gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
   if (!model_.fixed.empty())
@@ -351,8 +429,54 @@ double Solver::kinetic_energy() const {
                        omega_prev_[3 * i + 2] * omega_[3 * i + 2];
     ke += mass_[i] * tr + inertia_[i] * rot;
   }
-  ke *= 0.5;
+  return kinetic_energy_from(ke);
+}
+
+double Solver::kinetic_energy_from(double node_sum) const {
+  double ke = 0.5 * node_sum;
   for (const auto& b : bodies_) ke += rigid_kinetic_energy(b);
+  return ke;
+}
+
+double Solver::velocity_pass(double dt_mid) {
+  // Per block of nodes (in L1 for the second and third loops): v^{n-1/2} kept, v^{n+1/2} =
+  // v^{n-1/2} + dt^{n-1/2} a^n ([2]) (omega alike; vectorised), held dofs zeroed, then
+  // m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in node order over the
+  // nodes kinetic_energy() counts: the same bits as those separate passes over all nodes.
+  constexpr std::size_t kBlock = 256;  // nodes
+  const std::uint8_t* fixed = model_.fixed.empty() ? nullptr : model_.fixed.data();
+  double* __restrict v = v_.data();
+  double* __restrict vp = v_prev_.data();
+  double* __restrict w = omega_.data();
+  double* __restrict wp = omega_prev_.data();
+  const double* __restrict a = a_.data();
+  const double* __restrict al = alpha_.data();
+  double ke = 0.0;
+  for (std::size_t i0 = 0; i0 < n_; i0 += kBlock) {
+    const std::size_t i1 = std::min(n_, i0 + kBlock);
+    for (std::size_t k = 3 * i0; k < 3 * i1; ++k) {
+      vp[k] = v[k];
+      v[k] += dt_mid * a[k];
+      wp[k] = w[k];
+      w[k] += dt_mid * al[k];
+    }
+    if (fixed)
+      for (std::size_t i = i0; i < i1; ++i) {
+        const std::uint8_t mask = fixed[i];
+        if (mask == 0) continue;
+        for (std::size_t d = 0; d < 3; ++d) {
+          if (mask & (1u << d)) v[3 * i + d] = 0.0;
+          if (mask & (8u << d)) w[3 * i + d] = 0.0;
+        }
+      }
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (rigid_node_[i] || ghost_[i]) continue;
+      const std::size_t k = 3 * i;
+      const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
+      const double rot = wp[k] * w[k] + wp[k + 1] * w[k + 1] + wp[k + 2] * w[k + 2];
+      ke += mass_[i] * tr + inertia_[i] * rot;
+    }
+  }
   return ke;
 }
 
@@ -362,11 +486,20 @@ GuardContext Solver::guard_context() const {
 
 void Solver::begin_cycle() {
   const double dt_mid = mid_step(dt_prev_, dt_);  // dt^{n-1/2}, [2]
-  v_prev_ = v_;
-  omega_prev_ = omega_;
-  update_velocity(v_.data(), a_.data(), dt_mid, v_.size());  // [2]
-  update_velocity(omega_.data(), alpha_.data(), dt_mid, omega_.size());
-  for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+  // Without prescribed velocities and after the start, one pass does it all: velocities,
+  // held dofs and the nodes' kinetic energy (velocity_pass).
+  const bool one_pass = cycle_ > 0 && prescribed_.empty();
+  if (one_pass) {
+    const double ke_nodes = velocity_pass(dt_mid);
+    for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+    energy_.kinetic_J = kinetic_energy_from(ke_nodes);
+  } else {
+    // v^{n-1/2} kept for the kinetic energy's product form, then v^{n+1/2} = v^{n-1/2} +
+    // dt^{n-1/2} a^n ([2]), in one pass per field.
+    advance_velocity(v_.data(), v_prev_.data(), a_.data(), dt_mid, v_.size());
+    advance_velocity(omega_.data(), omega_prev_.data(), alpha_.data(), dt_mid, omega_.size());
+    for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+  }
   if (cycle_ == 0) {
     // The start v^{1/2} = v^0 + dt^0/2 a^0 is a half step; the kinetic energy's product form
     // needs the full-step partner v^{-1/2} = v^0 - dt^0/2 a^0 = 2 v^0 - v^{1/2} so that
@@ -380,7 +513,7 @@ void Solver::begin_cycle() {
       b.omega_prev = 2.0 * b.omega_prev - b.omega;
     }
   }
-  if (!model_.fixed.empty())
+  if (!one_pass && !model_.fixed.empty())
     for (std::size_t i = 0; i < n_; ++i) {
       const std::uint8_t mask = model_.fixed[i];
       if (mask == 0) continue;
@@ -409,7 +542,7 @@ void Solver::begin_cycle() {
     if (cycle_ > 0) energy_.external_work_J += 0.5 * (p.reaction_prev + reaction) * increment;
     p.reaction_prev = reaction;
   }
-  energy_.kinetic_J = kinetic_energy();
+  if (!one_pass) energy_.kinetic_J = kinetic_energy();
   const GuardContext ctx = guard_context();
   if (!std::isfinite(energy_.kinetic_J)) check_finite_velocities(model_, v_.data(), ctx);
   if (cycle_ == 0) energy_.initial_total_J = energy_.total_J();
@@ -461,9 +594,8 @@ void Solver::end_cycle_positions() {
       for (std::size_t d = 0; d < 3; ++d)
         omega_[3 * static_cast<std::size_t>(ghost_list_[k]) + d] = ghost_omega_[3 * k + d];
   ghost_omega_set_ = false;
-  for (std::size_t i = 0; i < du_.size(); ++i) du_[i] = dt * v_[i];
-  for (std::size_t i = 0; i < dtheta_.size(); ++i) dtheta_[i] = dt * omega_[i];
-  update_displacement(u_.data(), v_.data(), dt, u_.size());  // [2]
+  advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
+                       u_.size());  // [2]
   for (std::size_t k = 0; k < ghost_list_.size(); ++k)
     for (std::size_t d = 0; d < 3; ++d) {
       const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
@@ -482,19 +614,34 @@ void Solver::end_cycle_positions() {
       }
     rigid_gravity_work += b.mass_kg * dot(g, dt * b.velocity);
   }
-  for (std::size_t i = 0; i < x_.size(); ++i) x_[i] = model_.nodes.x0[i] + u_[i];
   time_s_ += dt;
   // Every work term by the trapezoid rule 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) (energy.h):
-  // first the F^n halves, then the forces at t^{n+1}, then their halves.
-  energy_.external_work_J += 0.5 * dot3n(f_ext_, du_) + rigid_gravity_work;
+  // first the F^n halves, then the forces at t^{n+1}, then their halves. One pass: x^{n+1}, the
+  // F^n halves, and the coupling loads of t^n cleared.
+  const double ghost_work = ghost_reaction_work(0.5);
+  const StepWork w = positions_and_work();
+  energy_.external_work_J += 0.5 * w.external + rigid_gravity_work;
   // Contact energy = minus the work of the contact forces (penalty spring energy + friction
   // dissipation).
-  if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
-  energy_.coupling_work_J +=
-      0.5 * dot3n(f_coup_, du_) + 0.5 * dot3n(m_coup_, dtheta_) + ghost_reaction_work(0.5);
-  std::fill(f_coup_.begin(), f_coup_.end(), 0.0);
-  std::fill(m_coup_.begin(), m_coup_.end(), 0.0);
+  if (!contacts_.empty()) energy_.contact_J -= 0.5 * w.contact;
+  energy_.coupling_work_J += 0.5 * w.coupling + 0.5 * w.coupling_moment + ghost_work;
   positions_done_ = true;
+}
+
+Solver::StepWork Solver::positions_and_work() {
+  double w[4];
+  const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(),
+               *dth = dtheta_.data(), *fe = f_ext_.data(), *fc = f_cont_.data();
+  double *x = x_.data(), *fk = f_coup_.data(), *mk = m_coup_.data();
+  const std::size_t len = x_.size();
+  if (external_loads_)
+    coupling_loads_ ? positions_pass<true, true>(x0, u, du, dth, fe, fc, x, fk, mk, len, w)
+                    : positions_pass<true, false>(x0, u, du, dth, fe, fc, x, fk, mk, len, w);
+  else
+    coupling_loads_ ? positions_pass<false, true>(x0, u, du, dth, fe, fc, x, fk, mk, len, w)
+                    : positions_pass<false, false>(x0, u, du, dth, fe, fc, x, fk, mk, len, w);
+  coupling_loads_ = false;
+  return {w[0], w[1], w[2], w[3]};
 }
 
 void Solver::end_cycle_compute() {
@@ -504,7 +651,7 @@ void Solver::end_cycle_compute() {
   compute_forces(dt);
   compute_contact_forces(dt);
   compute_external_forces(time_s_);
-  energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
+  if (external_loads_) energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
   if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
   energy_.coupling_work_J += ghost_reaction_work(0.5);
 }
@@ -545,6 +692,7 @@ Vec3 Solver::net_moment(std::size_t i) const {
 }
 
 void Solver::add_coupling_moment(std::size_t i, const Vec3& m) {
+  coupling_loads_ = true;
   for (std::size_t d = 0; d < 3; ++d) {
     m_coup_[3 * i + d] += m[d];
     energy_.coupling_work_J += 0.5 * m[d] * dtheta_[3 * i + d];
@@ -558,6 +706,7 @@ Vec3 Solver::net_force(std::size_t i) const {
 }
 
 void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
+  coupling_loads_ = true;
   for (std::size_t d = 0; d < 3; ++d) {
     f_coup_[3 * i + d] += f[d];
     energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
@@ -565,6 +714,7 @@ void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
 }
 
 void Solver::set_acceleration(std::size_t i, const Vec3& a) {
+  coupling_loads_ = true;
   for (std::size_t d = 0; d < 3; ++d) {
     const double f = mass_[i] * (a[d] - a_[3 * i + d]);  // the link force that makes a
     f_coup_[3 * i + d] += f;

@@ -160,7 +160,20 @@ class Solver {
   void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
   double kinetic_energy() const;
+  /// 1/2 node_sum plus the rigid bodies' kinetic energy.
+  double kinetic_energy_from(double node_sum) const;
+  /// begin_cycle's velocity update, held dofs and nodal kinetic-energy sum in one pass (no
+  /// prescribed velocities, not the first cycle); returns the sum.
+  double velocity_pass(double dt_mid);
   double ghost_reaction_work(double weight) const;  // weight * sum_g R_g . du_g
+  /// Dot products of the F^n halves of the step's work (energy.h): f_ext, f_cont, f_coup with
+  /// du and m_coup with dtheta.
+  struct StepWork {
+    double external = 0.0, contact = 0.0, coupling = 0.0, coupling_moment = 0.0;
+  };
+  /// One pass after the displacement update: x = x0 + u, the StepWork sums, f_coup and m_coup
+  /// cleared.
+  StepWork positions_and_work();
   void propose_step();
   GuardContext guard_context() const;
   /// The one list of evolving members behind save_state / restore_state (solver_state.cpp);
@@ -216,6 +229,9 @@ class Solver {
   std::int64_t critical_local_ = -1;
   bool begun_ = false;
   bool positions_done_ = false;  // end_cycle_positions() done, end_cycle_compute() not yet
+  // Arrays known to hold zeros, not read by the nodal passes (they are memory-bound):
+  bool external_loads_ = false;  // gravity or loads: f_ext may be non-zero
+  bool coupling_loads_ = false;  // f_coup / m_coup written since they were last cleared
 };
 
 }  // namespace crashlink::integration
