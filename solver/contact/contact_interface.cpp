@@ -92,6 +92,32 @@ struct ContactInterface::Impl {
   std::vector<std::int8_t> side;   // [ns] shell side while in contact (+1, -1; 0 = none)
   std::vector<std::int32_t> last;  // [ns] segment in contact last cycle (-1: none)
   std::vector<double> seg_size_m;  // [nseg] sqrt of the reference area
+  // min m_eff / k over the candidate pairs (the step bound): it changes only with the candidate
+  // list (a sort) and, for soft stiffness, with dt; cached for those.
+  double min_ratio = 0.0;
+  std::int64_t min_ratio_sorts = -1;
+  double min_ratio_dt_s = -1.0;
+
+  double candidate_min_ratio() {
+    if (min_ratio_sorts == sorts && (!soft || min_ratio_dt_s == dt_last_s)) return min_ratio;
+    double r = kInf;
+    for (std::size_t k = 0; k < slave.size(); ++k) {
+      const std::int32_t sn = slave[k];
+      for (auto c = static_cast<std::size_t>(cand.offset[k]);
+           c < static_cast<std::size_t>(cand.offset[k + 1]); ++c) {
+        const auto i = static_cast<std::size_t>(cand.segment[c]);
+        const std::int32_t* q = &seg.nodes[4 * i];
+        if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
+        const double meff = reduced_mass(slave_mass_kg[k], seg_mass_kg[i]);
+        const double kp = pair_stiffness(k, i, meff);
+        if (kp > 0.0 && meff > 0.0) r = std::min(r, meff / kp);
+      }
+    }
+    min_ratio = r;
+    min_ratio_sorts = sorts;
+    min_ratio_dt_s = dt_last_s;
+    return r;
+  }
 
   double pair_stiffness(std::size_t k, std::size_t i, double m_eff) const {
     double kp = seg.rigid[i] ? (slave_k_N_m[k] > 0.0 ? slave_k_N_m[k] : seg.rigid_stiffness_N_m[i])
@@ -274,7 +300,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     ++s.sorts;
   }
 
-  double min_ratio = kInf;  // min m_eff / k over candidate pairs
+  const double min_ratio = s.candidate_min_ratio();
   double res[3] = {0.0, 0.0, 0.0};
   const std::size_t ns = s.slave.size();
   for (std::size_t k = 0; k < ns; ++k) {
@@ -290,7 +316,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     const std::int32_t sn = s.slave[k];
     const double* p = x + 3 * static_cast<std::size_t>(sn);
     // best candidate so far
-    double best_dist = kInf, best_g = 0.0, best_k = 0.0;
+    double best_dist = kInf, best_g = 0.0;
     double best_dir[3] = {0.0, 0.0, 0.0};
     Projection best_pr;
     std::size_t best_i = 0;
@@ -300,9 +326,6 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       const auto i = static_cast<std::size_t>(s.cand.segment[c]);
       const std::int32_t* q = &s.seg.nodes[4 * i];
       if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
-      const double meff = reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[i]);
-      const double kp = s.pair_stiffness(k, i, meff);
-      if (kp > 0.0 && meff > 0.0) min_ratio = std::min(min_ratio, meff / kp);
       // Quick reject: outside the node box inflated by the contact reach.
       const double reach = s.contact_reach_m[i];
       bool out_box = false;
@@ -356,7 +379,6 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       found = true;
       best_dist = dist;
       best_g = g;
-      best_k = kp;
       best_i = i;
       best_pr = pr;
       best_side = two ? sgn : 0;
@@ -372,6 +394,8 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     s.side[k] = static_cast<std::int8_t>(best_side);
     s.last[k] = static_cast<std::int32_t>(best_i);
     const std::int32_t* q = &s.seg.nodes[4 * best_i];
+    const double best_k =
+        s.pair_stiffness(k, best_i, reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[best_i]));
     const double fn = best_k * best_g;
     double F[3];
     for (int a = 0; a < 3; ++a) F[a] = fn * best_dir[a];

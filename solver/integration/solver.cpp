@@ -28,16 +28,14 @@ struct AccelerationArrays {
 /// One pass over the nodes: the driving load f_load = f_ext + f_cont + f_coup, a = (f_load -
 /// f_int) / m ([1], lumped mass; inv_mass 0 for rigid, ghost and massless nodes) and the
 /// rotational alpha = (m_coup - m_int) / I. Memory-bound (bench/bench_cycle.cpp), so the arrays
-/// known to be zero are not read: f_ext without gravity or loads (kExt false), f_coup and m_coup
-/// when no coupling load was added since they were cleared (kCoup false). The sums are those of
-/// the full expression ((f_ext + f_cont) + f_coup): adding an exact zero changes no value.
-template <bool kExt, bool kCoup>
+/// known to be zero are not read: f_ext without gravity or loads (kExt false), and f_coup and
+/// m_coup everywhere (coupling_pass redoes the few nodes that carry coupling loads). Adding an
+/// exact zero changes no value, so the results are those of the full expression.
+template <bool kExt>
 void acceleration_pass(const AccelerationArrays& s) {
   const double* __restrict fe = s.f_ext;
   const double* __restrict fc = s.f_cont;
-  const double* __restrict fk = s.f_coup;
   const double* __restrict fi = s.f_int;
-  const double* __restrict mk = s.m_coup;
   const double* __restrict mi = s.m_int;
   const double* __restrict wm = s.inv_mass;
   const double* __restrict wi = s.inv_inertia;
@@ -49,40 +47,41 @@ void acceleration_pass(const AccelerationArrays& s) {
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
       double f = fc[k];
       if constexpr (kExt) f = fe[k] + f;
-      if constexpr (kCoup) f = f + fk[k];
       fl[k] = f;
       a[k] = (f - fi[k]) * w;
-      if constexpr (kCoup)
-        al[k] = (mk[k] - mi[k]) * wr;
-      else
-        al[k] = -mi[k] * wr;
+      al[k] = -mi[k] * wr;
     }
   }
 }
 
-/// The F^n halves of a step's work (Solver::positions_and_work) in one pass with x = x0 + u and
-/// the coupling loads cleared; the zero arrays skipped as in acceleration_pass.
-template <bool kExt, bool kCoup>
+/// acceleration_pass's full expressions at the nodes that carry coupling loads.
+void coupling_pass(const AccelerationArrays& s, const std::vector<std::int32_t>& nodes) {
+  for (const auto node : nodes) {
+    const auto i = static_cast<std::size_t>(node);
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      const double f = s.f_ext[k] + s.f_cont[k] + s.f_coup[k];
+      s.f_load[k] = f;
+      s.a[k] = (f - s.f_int[k]) * s.inv_mass[i];
+      s.alpha[k] = (s.m_coup[k] - s.m_int[k]) * s.inv_inertia[i];
+    }
+  }
+}
+
+/// The F^n halves of the external and contact work (Solver::positions_and_work) in one pass
+/// with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass.
+template <bool kExt>
 void positions_pass(const double* __restrict x0, const double* __restrict u,
-                    const double* __restrict du, const double* __restrict dth,
-                    const double* __restrict fe, const double* __restrict fc, double* __restrict x,
-                    double* __restrict fk, double* __restrict mk, std::size_t len, double w[4]) {
-  double ext = 0.0, cont = 0.0, coup = 0.0, mom = 0.0;  // each in index order
+                    const double* __restrict du, const double* __restrict fe,
+                    const double* __restrict fc, double* __restrict x, std::size_t len,
+                    double& external, double& contact) {
+  double ext = 0.0, cont = 0.0;  // each in index order
   for (std::size_t k = 0; k < len; ++k) {
     x[k] = x0[k] + u[k];
     if constexpr (kExt) ext += fe[k] * du[k];
     cont += fc[k] * du[k];
-    if constexpr (kCoup) {
-      coup += fk[k] * du[k];
-      mom += mk[k] * dth[k];
-      fk[k] = 0.0;
-      mk[k] = 0.0;
-    }
   }
-  w[0] = ext;
-  w[1] = cont;
-  w[2] = coup;
-  w[3] = mom;
+  external = ext;
+  contact = cont;
 }
 
 double dot3n(const std::vector<double>& a, const std::vector<double>& b) {
@@ -230,7 +229,8 @@ void Solver::initialize() {
   const Vec3& gravity = model_.controls.gravity_m_s2;
   external_loads_ =
       gravity[0] != 0.0 || gravity[1] != 0.0 || gravity[2] != 0.0 || !model_.loads.empty();
-  coupling_loads_ = false;
+  coupled_mark_.assign(n_, 0);
+  coupled_nodes_.clear();
   assemble_masses();
   if (!mass_override_.empty()) {
     if (mass_override_.size() != n_)
@@ -364,11 +364,10 @@ void Solver::compute_accelerations() {
                                   inv_mass_.data(), inv_inertia_.data(), f_load_.data(),
                                   a_.data(),        alpha_.data(),       n_};
   if (external_loads_)
-    coupling_loads_ ? acceleration_pass<true, true>(arrays)
-                    : acceleration_pass<true, false>(arrays);
+    acceleration_pass<true>(arrays);
   else
-    coupling_loads_ ? acceleration_pass<false, true>(arrays)
-                    : acceleration_pass<false, false>(arrays);
+    acceleration_pass<false>(arrays);
+  coupling_pass(arrays, coupled_nodes_);
   const double* f_drive = f_load_.data();
   for (auto& b : bodies_)
     gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
@@ -629,19 +628,50 @@ void Solver::end_cycle_positions() {
 }
 
 Solver::StepWork Solver::positions_and_work() {
-  double w[4];
-  const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(),
-               *dth = dtheta_.data(), *fe = f_ext_.data(), *fc = f_cont_.data();
-  double *x = x_.data(), *fk = f_coup_.data(), *mk = m_coup_.data();
-  const std::size_t len = x_.size();
+  StepWork w;
+  const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(), *fe = f_ext_.data(),
+               *fc = f_cont_.data();
   if (external_loads_)
-    coupling_loads_ ? positions_pass<true, true>(x0, u, du, dth, fe, fc, x, fk, mk, len, w)
-                    : positions_pass<true, false>(x0, u, du, dth, fe, fc, x, fk, mk, len, w);
+    positions_pass<true>(x0, u, du, fe, fc, x_.data(), x_.size(), w.external, w.contact);
   else
-    coupling_loads_ ? positions_pass<false, true>(x0, u, du, dth, fe, fc, x, fk, mk, len, w)
-                    : positions_pass<false, false>(x0, u, du, dth, fe, fc, x, fk, mk, len, w);
-  coupling_loads_ = false;
-  return {w[0], w[1], w[2], w[3]};
+    positions_pass<false>(x0, u, du, fe, fc, x_.data(), x_.size(), w.external, w.contact);
+  // The coupling loads live on few nodes: their work in index order (the sums over all dofs,
+  // which add exact zeros elsewhere), then cleared.
+  std::sort(coupled_nodes_.begin(), coupled_nodes_.end());
+  double coup = 0.0, mom = 0.0;
+  double* __restrict fk = f_coup_.data();
+  double* __restrict mk = m_coup_.data();
+  for (const auto node : coupled_nodes_) {
+    const auto i = static_cast<std::size_t>(node);
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      coup += fk[k] * du[k];
+      mom += mk[k] * dtheta_[k];
+      fk[k] = 0.0;
+      mk[k] = 0.0;
+    }
+    coupled_mark_[i] = 0;
+  }
+  w.coupling = coup;
+  w.coupling_moment = mom;
+  coupled_nodes_.clear();
+  return w;
+}
+
+void Solver::mark_coupled(std::size_t i) {
+  if (coupled_mark_[i]) return;
+  coupled_mark_[i] = 1;
+  coupled_nodes_.push_back(static_cast<std::int32_t>(i));
+}
+
+void Solver::rebuild_coupled_nodes() {
+  std::fill(coupled_mark_.begin(), coupled_mark_.end(), 0);
+  coupled_nodes_.clear();
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
+      if (f_coup_[k] != 0.0 || m_coup_[k] != 0.0) {
+        mark_coupled(i);
+        break;
+      }
 }
 
 void Solver::end_cycle_compute() {
@@ -692,7 +722,7 @@ Vec3 Solver::net_moment(std::size_t i) const {
 }
 
 void Solver::add_coupling_moment(std::size_t i, const Vec3& m) {
-  coupling_loads_ = true;
+  mark_coupled(i);
   for (std::size_t d = 0; d < 3; ++d) {
     m_coup_[3 * i + d] += m[d];
     energy_.coupling_work_J += 0.5 * m[d] * dtheta_[3 * i + d];
@@ -706,7 +736,7 @@ Vec3 Solver::net_force(std::size_t i) const {
 }
 
 void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
-  coupling_loads_ = true;
+  mark_coupled(i);
   for (std::size_t d = 0; d < 3; ++d) {
     f_coup_[3 * i + d] += f[d];
     energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
@@ -714,7 +744,7 @@ void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
 }
 
 void Solver::set_acceleration(std::size_t i, const Vec3& a) {
-  coupling_loads_ = true;
+  mark_coupled(i);
   for (std::size_t d = 0; d < 3; ++d) {
     const double f = mass_[i] * (a[d] - a_[3 * i + d]);  // the link force that makes a
     f_coup_[3 * i + d] += f;

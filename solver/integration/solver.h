@@ -231,7 +231,13 @@ class Solver {
   bool positions_done_ = false;  // end_cycle_positions() done, end_cycle_compute() not yet
   // Arrays known to hold zeros, not read by the nodal passes (they are memory-bound):
   bool external_loads_ = false;  // gravity or loads: f_ext may be non-zero
-  bool coupling_loads_ = false;  // f_coup / m_coup written since they were last cleared
+  // The nodes whose f_coup / m_coup were written since they were last cleared (f_coup and m_coup
+  // are zero elsewhere): the passes over all nodes leave them out and treat these few apart.
+  std::vector<std::uint8_t> coupled_mark_;  // [n]
+  std::vector<std::int32_t> coupled_nodes_;
+  void mark_coupled(std::size_t i);
+  /// After f_coup / m_coup were restored from a checkpoint: the nodes that carry them.
+  void rebuild_coupled_nodes();
 };
 
 }  // namespace crashlink::integration

@@ -73,7 +73,7 @@ void Solver::visit_state(V& v, Self& s) {
   v.sized("f_load", s.f_load_);
   v.sized("f_coup", s.f_coup_);
   v.sized("m_coup", s.m_coup_);
-  if constexpr (V::loading) s.coupling_loads_ = true;  // what was saved may be non-zero
+  if constexpr (V::loading) s.rebuild_coupled_nodes();
   v.sized("dtheta", s.dtheta_);
   v.sized("du", s.du_);
   v.vec("ghost_omega", s.ghost_omega_);
