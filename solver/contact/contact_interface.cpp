@@ -322,10 +322,11 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     std::size_t best_i = 0;
     int best_side = 0;
     bool found = false;
-    for (std::size_t c = b0; c < b1; ++c) {
-      const auto i = static_cast<std::size_t>(s.cand.segment[c]);
+    // One candidate segment i under the rules below (best_* updated); true when it is last
+    // cycle's segment and keeps the node, which no later candidate can then take from it.
+    auto consider = [&](std::size_t i) -> bool {
       const std::int32_t* q = &s.seg.nodes[4 * i];
-      if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
+      if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) return false;  // own segment
       // Quick reject: outside the node box inflated by the contact reach.
       const double reach = s.contact_reach_m[i];
       bool out_box = false;
@@ -338,7 +339,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
         const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
         out_box = p[d] < lo - reach || p[d] > hi + reach;
       }
-      if (out_box) continue;
+      if (out_box) return false;
       const Projection pr = s.seg.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
       const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
       const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
@@ -355,13 +356,13 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
           sgn = s.side[k] != 0 ? s.side[k] : (dn >= 0.0 ? 1 : -1);
           if (sgn * dn < -h) sgn = -sgn;  // crossed by more than h: take the nearer side
         } else if (dn < -s.seg.depth_m[i]) {
-          continue;  // deeper than half the element: not this face
+          return false;  // deeper than half the element: not this face
         }
         d = sgn * dn;
         dist = std::fabs(dn);
         for (int a = 0; a < 3; ++a) dir[a] = sgn * pr.normal[a];
       } else {
-        if (!two && dn <= 0.0) continue;  // behind a one-sided face, off its edge
+        if (!two && dn <= 0.0) return false;  // behind a one-sided face, off its edge
         sgn = dn >= 0.0 ? 1 : -1;
         d = rl;
         dist = rl;
@@ -370,12 +371,12 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       const double g = h - d;
       // Penetrations of the order of round-off are no contact (flush surfaces sliding on each
       // other's edges must not pick a side face by the sign of a round-off error).
-      if (!(g > 1e-10 * s.seg_size_m[i])) continue;
+      if (!(g > 1e-10 * s.seg_size_m[i])) return false;
       // The segment in contact last cycle keeps the node while its projection stays inside it
       // (the face a node came in through is the one that pushes it out); otherwise the nearest.
       const bool keep = use_normal && s.last[k] == static_cast<std::int32_t>(i);
-      if (!keep && !(dist < best_dist)) continue;
-      if (found && s.last[k] == static_cast<std::int32_t>(best_i) && !keep) continue;
+      if (!keep && !(dist < best_dist)) return false;
+      if (found && s.last[k] == static_cast<std::int32_t>(best_i) && !keep) return false;
       found = true;
       best_dist = dist;
       best_g = g;
@@ -383,6 +384,24 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       best_pr = pr;
       best_side = two ? sgn : 0;
       for (int a = 0; a < 3; ++a) best_dir[a] = dir[a];
+      return keep;
+    };
+    // Last cycle's segment first: when it keeps the node, the others cannot take it, so they
+    // need no projection. Otherwise every candidate in list order, as if it had not been tried.
+    bool kept = false;
+    if (s.last[k] >= 0)
+      for (std::size_t c = b0; c < b1; ++c)
+        if (s.cand.segment[c] == s.last[k]) {
+          kept = consider(static_cast<std::size_t>(s.last[k]));
+          break;
+        }
+    if (!kept) {
+      found = false;
+      best_dist = kInf;
+      best_g = 0.0;
+      best_i = 0;
+      best_side = 0;
+      for (std::size_t c = b0; c < b1; ++c) consider(static_cast<std::size_t>(s.cand.segment[c]));
     }
     if (!found) {
       ft[0] = ft[1] = ft[2] = 0.0;
