@@ -65,6 +65,34 @@ bool is_rigid(const model::Model& m, const model::Part& p) {
   return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
 }
 
+/// True when p is farther than `reach` from every point of the segment xa (4 nodes; a triangle
+/// repeats its third): the segment, a convex combination of its nodes, lies between the planes
+/// n . x = min_a n . x_a and max_a n . x_a for n its diagonals' normal, so a node farther than
+/// the reach from that slab can be in contact with no point of it (the contact tests need
+/// distance <= reach). Exact up to round-off of eps * segment size (values relative to node 0),
+/// far below the contact tests' own 1e-10 * size; a cheap reject before the Newton projection.
+bool beyond_slab(const double* xa, const double* p, double reach) {
+  double d1[3], d2[3];
+  for (int d = 0; d < 3; ++d) {
+    d1[d] = xa[6 + d] - xa[d];
+    d2[d] = xa[9 + d] - xa[3 + d];
+  }
+  const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                       d1[0] * d2[1] - d1[1] * d2[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 0.0)) return false;  // degenerate: let the projection decide
+  double lo = 0.0, hi = 0.0;       // node 0 is the origin
+  for (int a = 1; a < 4; ++a) {
+    const double s = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
+                     n[2] * (xa[3 * a + 2] - xa[2]);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  const double sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
+  const double margin = reach * len;
+  return sp < lo - margin || sp > hi + margin;
+}
+
 }  // namespace
 
 struct ContactInterface::Impl {
@@ -340,6 +368,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
         out_box = p[d] < lo - reach || p[d] > hi + reach;
       }
       if (out_box) return false;
+      if (beyond_slab(xa, p, reach)) return false;
       const Projection pr = s.seg.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
       const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
       const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
