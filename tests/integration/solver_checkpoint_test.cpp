@@ -3,6 +3,7 @@
 // contact history and candidates), ends in the same state as the solver that went on, to the bit.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -82,6 +83,42 @@ TEST(SolverCheckpoint, RestoredSolverEndsBitIdenticalToTheOneThatWentOn) {
   EXPECT_EQ(restored.head_v, went_on.head_v);
   // and the run did change after the checkpoint (the comparison is not of two frozen states)
   EXPECT_GT(went_on.cycle, saved_cycle + 10);
+}
+
+// Coupling loads (Solver::add_coupling_force, as a coupled domain receives them) live only on the
+// nodes that were given one (solver.h coupled_nodes_); a checkpoint taken after the accelerations
+// and before the next positions still holds them (their F^n half of the work is not yet counted)
+// and the restored solver must find them again: same bits to the end, coupling work included.
+TEST(SolverCheckpoint, PendingCouplingLoadsAreRestored) {
+  const auto model = crashlink::io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) +
+                                                  "/scenarios/plate_impact_small.yaml");
+  const std::size_t node = model.nodes.count() / 2;
+  auto cycle = [node](Solver& s) {
+    s.begin_cycle();
+    s.end_cycle_forces();
+    const double f = 50.0 * std::sin(1e4 * s.time_s());  // N
+    s.add_coupling_force(node, {0.0, 0.0, f});
+    s.end_cycle_accelerations();
+  };
+  Solver a(model);
+  a.initialize();
+  ASSERT_GT(a.mass()[node], 0.0);
+  for (int k = 0; k < 200; ++k) cycle(a);
+  crashlink::core::StateWriter w;
+  a.save_state(w);
+  w.save(checkpoint_path());
+  Solver b(model);
+  b.initialize();
+  b.restore_state(crashlink::core::StateReader(checkpoint_path()));
+  for (int k = 0; k < 300; ++k) {
+    cycle(a);
+    cycle(b);
+  }
+  EXPECT_NE(a.energy().coupling_work_J, 0.0) << "the loads should have done work";
+  EXPECT_EQ(b.energy().coupling_work_J, a.energy().coupling_work_J);
+  EXPECT_EQ(b.displacement(), a.displacement());
+  EXPECT_EQ(b.velocity_mid(), a.velocity_mid());
+  EXPECT_EQ(b.acceleration(), a.acceleration());
 }
 
 TEST(SolverCheckpoint, CheckpointOfAnotherModelIsRefused) {
