@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""Can the `layer` coupling conserve energy exactly? A 1-D experiment (issue #4, the long-run 0.1 %
+criterion; docs/multirate.md "Long-run stability").
+
+The coarse side applies a layer force F^n on J at its instants T_n. crashlink samples it,
+F^n = f_J(T_n) ('sample'). The coupling's net work over [T_n, T_{n+1}] is then
+H v_J^{n+1/2} ((F^n + F^{n+1})/2 - ftilde_{n+1/2}), with ftilde the trapezoid time average of the
+fine side's f_J over its instants in [T_n, T_{n+1}]. It vanishes exactly for
+F^{n+1} = 2 ftilde_{n+1/2} - F^n ('conserve'), which is causal: ftilde is known once the fine side
+reaches T_{n+1}. 'bX' blends the two: F = f_J + X (2 ftilde - F^n - f_J); 'average' applies the
+last step's average, F^{n+1} = ftilde_{n+1/2} (impulse-consistent, lagged half a step).
+
+Set-up: a bar with E = rho = A = 1; a fine part [0, 1], dx = 0.01; a coarse part of elements r dx
+(the first one is the layer, integrated by the fine side with J prescribed linear in time);
+ends fixed; h = 0.9 dx, H = r h; no damping. Free vibration: a velocity band over x in
+[0.3, 0.5] plus 1e-4 noise. The energy is the central-difference-conserved one (product-form
+kinetic energy + 1/2 u K u, both domains).
+
+Measured (2026-11-22), `tools/layer_force_conservation.py 100000 sample,conserve`:
+  r = 1: both equal to mono, rise ~1e-14.
+  r = 2, 3, 4, 6: 'sample' blows up after 46 616-55 794 fine steps without damping. These are the
+    weak multirate resonances that crashlink's interface damping removes.
+  'conserve' blows up after 1 374 / 2 181 / 2 828 steps at r = 2 / 3 / 4: the recurrence
+    carries a neutral (-1)^n mode, and the conserved quantity (whose kinetic part is a product
+    v^{n-1/2} . v^{n+1/2}) is not a norm.
+  r = 6, 8, 16: 'conserve' is stable and conserves to 2e-14; 'sample' rises by 7-9 % of E0.
+  Blends b0.5 and b0.8 (2 10^4 steps): worse than both at every r >= 2.
+  'average' (2 10^4 steps) blows up at every r, 1 included, after 3 276-4 160 steps (the lag).
+So exact conservation this way is not a remedy at r = 2-4. Usage: layer_force_conservation.py
+[fine steps] [modes, comma-separated].
+"""
+import sys
+import numpy as np
+
+def run(r, nsteps, mode, bv=0.0):
+    dx = 0.01
+    nf = 100
+    nc = max(4, int(round(2.0 / (r * dx))))
+    # nodes: fine 0..nf (node nf = I at x=1), layer element I -> J (length r dx), coarse J .. end
+    xf = np.arange(nf + 1) * dx
+    L = r * dx
+    nB = nc  # coarse nodes J=0 .. nc-1 (+ fixed end at nc)
+    # A' : nodes 0..nf plus J (index nf+1, prescribed); elements: nf fine + 1 layer
+    kA = np.r_[np.full(nf, 1.0 / dx), 1.0 / L]          # element stiffnesses
+    mA = np.zeros(nf + 2)
+    for e in range(nf + 1):
+        le = dx if e < nf else L
+        mA[e] += 0.5 * le; mA[e + 1] += 0.5 * le
+    # B' : nodes J(0) .. nc (fixed end), elements between them all length L (nc elements)
+    kB = np.full(nc, 1.0 / L)
+    mB = np.zeros(nc + 1)
+    for e in range(nc):
+        mB[e] += 0.5 * L; mB[e + 1] += 0.5 * L
+    MJ = mA[nf + 1] + mB[0]   # natural summed mass of J
+    mB[0] = MJ
+    def force(u, k):   # internal force vector (f = -K u) for a chain
+        d = np.diff(u) * k
+        f = np.zeros_like(u); f[:-1] += d; f[1:] -= d
+        return f
+    h = 0.9 * dx; H = r * h
+    rng = np.random.default_rng(1)
+    uA = np.zeros(nf + 2); vA = np.where((xf >= 0.3) & (xf <= 0.5), 1.0, 0.0)
+    vA = np.r_[vA, 0.0] + 1e-4 * rng.standard_normal(nf + 2)
+    vA[0] = 0.0
+    uB = np.zeros(nc + 1); vB = 1e-4 * rng.standard_normal(nc + 1); vB[-1] = 0.0
+    vB[0] = vA[-1] = 0.5 * (vA[-1] + vB[0])  # J one velocity
+    fixA = np.zeros(nf + 2, bool); fixA[0] = True
+    fixB = np.zeros(nc + 1, bool); fixB[-1] = True
+    # start: accelerations at 0; half-step velocities
+    fA = force(uA, kA); fB = force(uB, kB)
+    fJ = fA[-1]                                    # layer force on J at t
+    F = fJ                                         # F^0
+    aB = fB / mB; aB[0] = (fB[0] + F) / MJ; aB[fixB] = 0
+    vBm = vB - 0.5 * H * aB; vBp = vB + 0.5 * H * aB   # v^{-1/2}, v^{1/2}
+    aA = np.zeros(nf + 2); aA[:-1] = fA[:-1] / mA[:-1]; aA[fixA] = 0
+    vAm = vA - 0.5 * h * aA; vAp = vA + 0.5 * h * aA
+    def energy(uA, vAm, vAp, uB, vBm, vBp):
+        # A' : KE of nodes 0..nf (J's KE counted in B), strain of all A' elements
+        ke = 0.5 * np.sum(mA[:-1] * vAm[:-1] * vAp[:-1]) + 0.5 * np.sum(mB * vBm * vBp)
+        se = 0.5 * np.sum(kA * np.diff(uA) ** 2) + 0.5 * np.sum(kB * np.diff(uB) ** 2)
+        return ke + se
+    E0 = energy(uA, vAm, vAp, uB, vBm, vBp)
+    Emin = E0; rise = 0.0
+    ncoarse = nsteps // r
+    for n in range(ncoarse):
+        # coarse step T -> T+H with F^n
+        uJ0 = uB[0]
+        uB = uB + H * vBp
+        fB = force(uB, kB)
+        # fine steps over [T, T+H], J linear
+        uJ1 = uB[0]
+        fsum = 0.5 * fJ
+        for k in range(1, r + 1):
+            uA = uA + h * vAp
+            uA[-1] = uJ0 + (k / r) * (uJ1 - uJ0)
+            fA = force(uA, kA)
+            fJ = fA[-1]
+            fsum += fJ if k < r else 0.5 * fJ
+            aA = np.zeros(nf + 2); aA[:-1] = fA[:-1] / mA[:-1]; aA[fixA] = 0
+            vAm = vAp; vAp = vAp + h * aA
+            vAm[-1] = vAp[-1] = (uJ1 - uJ0) / H
+        ftil = fsum / r
+        if mode == 'sample':
+            F = fJ
+        elif mode == 'conserve':
+            F = 2.0 * ftil - F
+        elif mode == 'average':
+            F = ftil
+        else:
+            F = fJ + float(mode[1:]) * (2.0 * ftil - F - fJ)
+        aB = fB / mB; aB[0] = (fB[0] + F) / MJ; aB[fixB] = 0
+        vBm = vBp; vBp = vBp + H * aB
+        E = energy(uA, vAm, vAp, uB, vBm, vBp)
+        if not np.isfinite(E) or E > 1e6 * E0:
+            return dict(r=r, mode=mode, rise=np.inf, end=np.inf, blowup=(n + 1) * r)
+        Emin = min(Emin, E); rise = max(rise, (E - Emin) / E0)
+    return dict(r=r, mode=mode, rise=rise, end=E / E0, blowup=None)
+
+if __name__ == '__main__':
+    n = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
+    modes = sys.argv[2].split(',') if len(sys.argv) > 2 else ['sample', 'conserve']
+    for r in (1, 2, 3, 4, 6, 8, 16):
+        for mode in modes:
+            o = run(r, n, mode)
+            print(f"r={r:2d} {mode:8s} rise={o['rise']:.3e} E_end/E0={o['end']:.6f} blowup={o['blowup']}", flush=True)
