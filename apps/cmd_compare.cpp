@@ -44,12 +44,14 @@ std::int64_t elements_of(const TimingRecord& t) {
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& options) {
   auto* cmd = app.add_subcommand(
-      "compare", "the paper's Table 1 for two runs of a scene: CPU, gain, HIC difference");
-  cmd->add_option("reference", options.reference, "result.h5 of the reference (mono) run")
+      "compare",
+      "the paper's Table 1 for two runs of a scene (or several pairs, with their medians): CPU, "
+      "gain, HIC difference");
+  cmd->add_option("files", options.files,
+                  "result.h5 of the reference (mono) run, then of the run to compare (split / "
+                  "multi); more such pairs (repeated runs) add a line each and their medians")
       ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("run", options.run, "result.h5 of the run to compare (split / multi)")
-      ->required()
+      ->expected(2, 1 << 20)
       ->check(CLI::ExistingFile);
   cmd->add_option("--probe", options.probe,
                   "head probe (default: the reference's first rigid-body probe)");
@@ -150,6 +152,75 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   }
   std::fflush(out);
   return c;
+}
+
+namespace {
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const std::size_t n = x.size();
+  return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+}  // namespace
+
+Comparison print_medians(const std::vector<Comparison>& pairs, std::FILE* out) {
+  auto med = [&](double Comparison::*field) {
+    std::vector<double> x;
+    for (const auto& c : pairs) x.push_back(c.*field);
+    return median(x);
+  };
+  std::vector<double> of_ideal;
+  for (const auto& c : pairs) of_ideal.push_back(c.ideal_gain > 0.0 ? c.gain / c.ideal_gain : 0.0);
+  Comparison m;
+  m.cpu_reference_s = med(&Comparison::cpu_reference_s);
+  m.cpu_run_s = med(&Comparison::cpu_run_s);
+  m.coordinator_cpu_s = med(&Comparison::coordinator_cpu_s);
+  m.wall_reference_s = med(&Comparison::wall_reference_s);
+  m.wall_run_s = med(&Comparison::wall_run_s);
+  m.gain = med(&Comparison::gain);
+  m.ideal_gain = med(&Comparison::ideal_gain);
+  m.wall_gain = med(&Comparison::wall_gain);
+  m.coordinator_share = med(&Comparison::coordinator_share);
+  m.has_head = std::all_of(pairs.begin(), pairs.end(), [](const auto& c) { return c.has_head; });
+  m.hic15_difference = med(&Comparison::hic15_difference);
+  std::fprintf(out,
+               "\nTable 1 over %zu pairs (medians: the mean of the middle two for an even count)\n"
+               "%-8s %12s %12s %9s %10s %12s %11s %10s %10s\n",
+               pairs.size(), "pair", "ref CPU [s]", "run CPU [s]", "CPU gain", "of ideal",
+               "coordinator", "run wall", "wall gain", "HIC15");
+  auto line = [&](const std::string& name, const Comparison& c, double ideal_fraction) {
+    const std::string hic =
+        c.has_head ? fmt::format("{:+.2f} %", 100.0 * c.hic15_difference) : std::string("-");
+    std::fprintf(out, "%-8s %12.2f %12.2f %9.3f %8.1f %% %10.2f %% %9.2f s %10.3f %10s\n",
+                 name.c_str(), c.cpu_reference_s, c.cpu_run_s, c.gain, 100.0 * ideal_fraction,
+                 100.0 * c.coordinator_share, c.wall_run_s, c.wall_gain, hic.c_str());
+  };
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    line(fmt::format("{}", i + 1), pairs[i], of_ideal[i]);
+  line("median", m, median(of_ideal));
+  std::fprintf(out, "ideal gain from element counts and steps: %.3f (median)\n", m.ideal_gain);
+  std::fflush(out);
+  return m;
+}
+
+int run_compare(const CompareOptions& options) {
+  if (options.files.size() % 2 != 0) {
+    throw InputError(fmt::format(
+        "compare: {} files given; give them in pairs, each reference (mono) result.h5 followed "
+        "by the run compared with it",
+        options.files.size()));
+  }
+  std::vector<Comparison> pairs;
+  for (std::size_t i = 0; i < options.files.size(); i += 2) {
+    CompareOptions one = options;
+    one.reference = options.files[i];
+    one.run = options.files[i + 1];
+    if (i > 0) std::printf("\n");
+    pairs.push_back(compare_runs(one));
+  }
+  if (pairs.size() > 1) print_medians(pairs);
+  return 0;
 }
 
 }  // namespace crashlink::apps
