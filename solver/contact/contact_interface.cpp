@@ -343,13 +343,14 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     }
     const std::int32_t sn = s.slave[k];
     const double* p = x + 3 * static_cast<std::size_t>(sn);
-    // best candidate so far
-    double best_dist = kInf, best_g = 0.0;
-    double best_dir[3] = {0.0, 0.0, 0.0};
-    Projection best_pr;
-    std::size_t best_i = 0;
-    int best_side = 0;
-    bool found = false;
+    struct Best {  // the best candidate so far
+      double dist = kInf, g = 0.0;
+      double dir[3] = {0.0, 0.0, 0.0};
+      Projection pr;
+      std::size_t i = 0;
+      int side = 0;
+      bool found = false;
+    } best;
     // One candidate segment i under the rules below (best_* updated); true when it is last
     // cycle's segment and keeps the node, which no later candidate can then take from it.
     auto consider = [&](std::size_t i) -> bool {
@@ -404,15 +405,15 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       // The segment in contact last cycle keeps the node while its projection stays inside it
       // (the face a node came in through is the one that pushes it out); otherwise the nearest.
       const bool keep = use_normal && s.last[k] == static_cast<std::int32_t>(i);
-      if (!keep && !(dist < best_dist)) return false;
-      if (found && s.last[k] == static_cast<std::int32_t>(best_i) && !keep) return false;
-      found = true;
-      best_dist = dist;
-      best_g = g;
-      best_i = i;
-      best_pr = pr;
-      best_side = two ? sgn : 0;
-      for (int a = 0; a < 3; ++a) best_dir[a] = dir[a];
+      if (!keep && !(dist < best.dist)) return false;
+      if (best.found && s.last[k] == static_cast<std::int32_t>(best.i) && !keep) return false;
+      best.found = true;
+      best.dist = dist;
+      best.g = g;
+      best.i = i;
+      best.pr = pr;
+      best.side = two ? sgn : 0;
+      for (int a = 0; a < 3; ++a) best.dir[a] = dir[a];
       return keep;
     };
     // Last cycle's segment first: when it keeps the node, the others cannot take it, so they
@@ -425,38 +426,34 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
           break;
         }
     if (!kept) {
-      found = false;
-      best_dist = kInf;
-      best_g = 0.0;
-      best_i = 0;
-      best_side = 0;
+      best = Best{};
       for (std::size_t c = b0; c < b1; ++c) consider(static_cast<std::size_t>(s.cand.segment[c]));
     }
-    if (!found) {
+    if (!best.found) {
       ft[0] = ft[1] = ft[2] = 0.0;
       s.side[k] = 0;
       s.last[k] = -1;
       continue;
     }
     ++out.active_pairs;
-    s.side[k] = static_cast<std::int8_t>(best_side);
-    s.last[k] = static_cast<std::int32_t>(best_i);
-    const std::int32_t* q = &s.seg.nodes[4 * best_i];
+    s.side[k] = static_cast<std::int8_t>(best.side);
+    s.last[k] = static_cast<std::int32_t>(best.i);
+    const std::int32_t* q = &s.seg.nodes[4 * best.i];
     const double best_k =
-        s.pair_stiffness(k, best_i, reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[best_i]));
-    const double fn = best_k * best_g;
+        s.pair_stiffness(k, best.i, reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[best.i]));
+    const double fn = best_k * best.g;
     double F[3];
-    for (int a = 0; a < 3; ++a) F[a] = fn * best_dir[a];
+    for (int a = 0; a < 3; ++a) F[a] = fn * best.dir[a];
     if (s.friction.active()) {
       double vrel[3];
       const double* vs = v + 3 * static_cast<std::size_t>(sn);
       for (int a = 0; a < 3; ++a) {
         double vm = 0.0;
         for (int b = 0; b < 4; ++b)
-          vm += best_pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
+          vm += best.pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
         vrel[a] = vs[a] - vm;
       }
-      friction_update(s.friction, best_dir, vrel, best_k, dt, fn, ft);
+      friction_update(s.friction, best.dir, vrel, best_k, dt, fn, ft);
       for (int a = 0; a < 3; ++a) F[a] += ft[a];
     } else {
       ft[0] = ft[1] = ft[2] = 0.0;
@@ -467,9 +464,9 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       res[a] += F[a];
     }
     for (int b = 0; b < 4; ++b) {
-      if (best_pr.N[b] == 0.0) continue;
+      if (best.pr.N[b] == 0.0) continue;
       double* fm = f + 3 * static_cast<std::size_t>(q[b]);
-      for (int a = 0; a < 3; ++a) fm[a] -= best_pr.N[b] * F[a];
+      for (int a = 0; a < 3; ++a) fm[a] -= best.pr.N[b] * F[a];
     }
   }
   for (int a = 0; a < 3; ++a) out.resultant_N[a] = res[a];

@@ -18,6 +18,21 @@ bool is_rigid(const model::Model& m, const model::Part& p) {
   return m.materials[static_cast<std::size_t>(p.material)].kind == MaterialKind::Rigid;
 }
 
+/// Zeroes the held dofs of nodes [i0, i1): translations (bits 0-2 of fixed[i]) in t, rotations
+/// (bits 3-5) in r; fixed empty: none held.
+void zero_held(const std::vector<std::uint8_t>& fixed, double* t, double* r, std::size_t i0,
+               std::size_t i1) {
+  if (fixed.empty()) return;
+  for (std::size_t i = i0; i < i1; ++i) {
+    const std::uint8_t mask = fixed[i];
+    if (mask == 0) continue;
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (mask & (1u << d)) t[3 * i + d] = 0.0;
+      if (mask & (8u << d)) r[3 * i + d] = 0.0;
+    }
+  }
+}
+
 /// The nodal arrays of Solver::compute_accelerations.
 struct AccelerationArrays {
   const double *f_ext, *f_cont, *f_coup, *f_int, *m_coup, *m_int, *inv_mass, *inv_inertia;
@@ -371,15 +386,7 @@ void Solver::compute_accelerations() {
   const double* f_drive = f_load_.data();
   for (auto& b : bodies_)
     gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
-  if (!model_.fixed.empty())
-    for (std::size_t i = 0; i < n_; ++i) {
-      const std::uint8_t mask = model_.fixed[i];
-      if (mask == 0) continue;
-      for (std::size_t d = 0; d < 3; ++d) {
-        if (mask & (1u << d)) a_[3 * i + d] = 0.0;
-        if (mask & (8u << d)) alpha_[3 * i + d] = 0.0;
-      }
-    }
+  zero_held(model_.fixed, a_.data(), alpha_.data(), 0, n_);
 }
 
 void Solver::propose_step() {
@@ -418,17 +425,22 @@ std::string Solver::critical_element() const {
 
 double Solver::kinetic_energy() const {
   // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h)
-  double ke = 0.0;
-  for (std::size_t i = 0; i < n_; ++i) {
+  return kinetic_energy_from(kinetic_sum(0, n_, 0.0));
+}
+
+double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {
+  const double* __restrict v = v_.data();
+  const double* __restrict vp = v_prev_.data();
+  const double* __restrict w = omega_.data();
+  const double* __restrict wp = omega_prev_.data();
+  for (std::size_t i = i0; i < i1; ++i) {
     if (rigid_node_[i] || ghost_[i]) continue;
-    const double tr = v_prev_[3 * i] * v_[3 * i] + v_prev_[3 * i + 1] * v_[3 * i + 1] +
-                      v_prev_[3 * i + 2] * v_[3 * i + 2];
-    const double rot = omega_prev_[3 * i] * omega_[3 * i] +
-                       omega_prev_[3 * i + 1] * omega_[3 * i + 1] +
-                       omega_prev_[3 * i + 2] * omega_[3 * i + 2];
-    ke += mass_[i] * tr + inertia_[i] * rot;
+    const std::size_t k = 3 * i;
+    const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
+    const double rot = wp[k] * w[k] + wp[k + 1] * w[k + 1] + wp[k + 2] * w[k + 2];
+    sum += mass_[i] * tr + inertia_[i] * rot;
   }
-  return kinetic_energy_from(ke);
+  return sum;
 }
 
 double Solver::kinetic_energy_from(double node_sum) const {
@@ -443,7 +455,6 @@ double Solver::velocity_pass(double dt_mid) {
   // m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in node order over the
   // nodes kinetic_energy() counts: the same bits as those separate passes over all nodes.
   constexpr std::size_t kBlock = 256;  // nodes
-  const std::uint8_t* fixed = model_.fixed.empty() ? nullptr : model_.fixed.data();
   double* __restrict v = v_.data();
   double* __restrict vp = v_prev_.data();
   double* __restrict w = omega_.data();
@@ -459,22 +470,8 @@ double Solver::velocity_pass(double dt_mid) {
       wp[k] = w[k];
       w[k] += dt_mid * al[k];
     }
-    if (fixed)
-      for (std::size_t i = i0; i < i1; ++i) {
-        const std::uint8_t mask = fixed[i];
-        if (mask == 0) continue;
-        for (std::size_t d = 0; d < 3; ++d) {
-          if (mask & (1u << d)) v[3 * i + d] = 0.0;
-          if (mask & (8u << d)) w[3 * i + d] = 0.0;
-        }
-      }
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (rigid_node_[i] || ghost_[i]) continue;
-      const std::size_t k = 3 * i;
-      const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
-      const double rot = wp[k] * w[k] + wp[k + 1] * w[k + 1] + wp[k + 2] * w[k + 2];
-      ke += mass_[i] * tr + inertia_[i] * rot;
-    }
+    zero_held(model_.fixed, v, w, i0, i1);
+    ke = kinetic_sum(i0, i1, ke);
   }
   return ke;
 }
@@ -512,15 +509,7 @@ void Solver::begin_cycle() {
       b.omega_prev = 2.0 * b.omega_prev - b.omega;
     }
   }
-  if (!one_pass && !model_.fixed.empty())
-    for (std::size_t i = 0; i < n_; ++i) {
-      const std::uint8_t mask = model_.fixed[i];
-      if (mask == 0) continue;
-      for (std::size_t d = 0; d < 3; ++d) {
-        if (mask & (1u << d)) v_[3 * i + d] = 0.0;
-        if (mask & (8u << d)) omega_[3 * i + d] = 0.0;
-      }
-    }
+  if (!one_pass) zero_held(model_.fixed, v_.data(), omega_.data(), 0, n_);
   // Prescribed velocities and the work of their reactions R^n = m a^n - (f_ext - f_int)^n,
   // trapezoid rule over [t^{n-1}, t^n] (energy.h).
   const double t_mid = time_s_ + 0.5 * dt_;

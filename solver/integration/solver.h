@@ -160,6 +160,9 @@ class Solver {
   void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
   double kinetic_energy() const;
+  /// sum + m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} of nodes [i0, i1), in node
+  /// order, over the nodes the kinetic energy counts (not rigid, not ghosts).
+  double kinetic_sum(std::size_t i0, std::size_t i1, double sum) const;
   /// 1/2 node_sum plus the rigid bodies' kinetic energy.
   double kinetic_energy_from(double node_sum) const;
   /// begin_cycle's velocity update, held dofs and nodal kinetic-energy sum in one pass (no
