@@ -46,15 +46,25 @@ int run_stability_map(const StabilityMapOptions& o) {
   struct Configuration {
     std::string name;
     bool paper;
-    double damping;  ///< layer: interface damping ratio over 3 element layers
-    bool drift;      ///< paper: [11] on
-    double penalty;  ///< contact: penalty scale
+    double damping;                    ///< layer: interface damping ratio over 3 element layers
+    bool drift;                        ///< paper: [11] on
+    double penalty;                    ///< contact: penalty scale
+    bool linear_in_expansion = false;  ///< bulk viscosity's Q1 term in expansion too
+    bool uniaxial = false;             ///< bar, block: lateral dofs held (the study's 1-D bar)
+    double q_linear = 0.06;            ///< bulk viscosity's Q1
   };
   const std::vector<Configuration> linked = {
       {"layer", false, 0.0, false, 0.0},
       {"layer + interface damping 0.06 x 3 layers", false, 0.06, false, 0.0},
       {"paper + drift correction [11]", true, 0.0, true, 0.0},
-      {"paper without drift correction", true, 0.0, false, 0.0}};
+      {"paper without drift correction", true, 0.0, false, 0.0},
+      // Does a linear viscosity acting in expansion too (the study's, Abaqus's) make `paper`
+      // stable at r = 2 as in the study's 1-D bar? (docs/paper-scheme.md "Bulk viscosity")
+      {"paper + [11] + uniaxial", true, 0.0, true, 0.0, false, true},
+      {"paper + [11] + Q1 in expansion", true, 0.0, true, 0.0, true},
+      {"paper + [11] + Q1 in expansion + uniaxial", true, 0.0, true, 0.0, true, true},
+      {"paper + [11] + Q1 = 0.5 in expansion", true, 0.0, true, 0.0, true, false, 0.5},
+      {"paper + [11] + Q1 = 0.5 in expansion + uniaxial", true, 0.0, true, 0.0, true, true, 0.5}};
   std::vector<Configuration> contact;
   for (const double k : o.penalties) {
     contact.push_back({fmt::format("layer penalty x{:g}", k), false, 0.0, false, k});
@@ -70,6 +80,9 @@ int run_stability_map(const StabilityMapOptions& o) {
       for (double r : o.ratios) {
         cosim::FreeVibrationConfig cfg;
         cfg.damping = {c.damping, 3};
+        cfg.bulk_linear_in_expansion = c.linear_in_expansion;
+        cfg.uniaxial = c.uniaxial;
+        cfg.bulk_q_linear = c.q_linear;
         const auto res =
             is_contact ? (c.paper ? cosim::run_paper_contact_drop(r, c.penalty, o.steps, c.drift)
                                   : cosim::run_layer_contact_drop(r, c.penalty, o.steps))
@@ -88,7 +101,7 @@ int run_stability_map(const StabilityMapOptions& o) {
                                      : fmt::format("  STOPPED after {} fine steps: {}",
                                                    res.fine_steps_run, res.error.substr(0, 160));
         std::printf(
-            "%-6s %-42s r = %-5g (nested %-3g): max rise %.3e of E0, after 20 %% %.3e, "
+            "%-6s %-50s r = %-5g (nested %-3g): max rise %.3e of E0, after 20 %% %.3e, "
             "E_end/E0 %.4f%s\n",
             shape_key.c_str(), c.name.c_str(), r, res.ratio, res.rise, res.late_rise, e_ratio,
             tail.c_str());

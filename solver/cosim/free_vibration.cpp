@@ -71,18 +71,31 @@ model::Model free_vibration_model(FreeVibrationShape s, double r, const FreeVibr
     seed = seed * 6364136223846793005ull + 1442695040888963407ull;
     return static_cast<double>(seed >> 11) / 9007199254740992.0 - 0.5;
   };
+  auto section_noise = [](double x) {  // a hash of the section's position: same x, same value
+    std::uint64_t h = static_cast<std::uint64_t>(std::llround(x * 1e6)) * 0x9E3779B97F4A7C15ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 32;
+    return static_cast<double>(h >> 11) / 9007199254740992.0 - 0.5;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const double x = m.nodes.x0[3 * i];
     if (x < 1e-9 || x > xe - 1e-9) m.fixed[i] = s == FreeVibrationShape::Plate ? 63 : 7;
+    const bool lateral = !(cfg.uniaxial && s != FreeVibrationShape::Plate);
+    if (!lateral) m.fixed[i] |= 6;                                  // y, z held
     const double v = (x / lf >= 0.3 && x / lf <= 0.5) ? 1.0 : 0.0;  // m/s
+    // uniaxial: one noise value per cross-section (x), so no shear mode is seeded
+    const double nx = lateral ? noise() : section_noise(x);
+    const double vx = v + 1e-4 * nx, vy = 0.3 * v + 1e-4 * noise(),
+                 vz = (s == FreeVibrationShape::Plate ? 0.3 * v : 0.0) + 1e-4 * noise();
     m.initial_velocities.push_back(
-        {{static_cast<std::int32_t>(i)},
-         {v + 1e-4 * noise(), 0.3 * v + 1e-4 * noise(),
-          (s == FreeVibrationShape::Plate ? 0.3 * v : 0.0) + 1e-4 * noise()}});
+        {{static_cast<std::int32_t>(i)}, {vx, lateral ? vy : 0.0, lateral ? vz : 0.0}});
   }
   m.controls.end_time_s = 100.0;
   m.controls.bulk_viscosity = true;
   m.controls.shell_bulk_viscosity = cfg.shell_bulk_viscosity;
+  m.controls.bulk_linear_in_expansion = cfg.bulk_linear_in_expansion;
+  m.controls.bulk_q_linear = cfg.bulk_q_linear;
   m.domains = {{"fine", {0}}, {"coarse", {1}}};
   m.coupling.interface_damping = cfg.damping;
   return m;

@@ -30,6 +30,11 @@ struct FreeVibrationConfig {
   model::InterfaceDamping damping{0.06, 3};
   int fine_elements = 20;
   bool shell_bulk_viscosity = true;
+  double bulk_q_linear = 0.06;            ///< Controls::bulk_q_linear, Q1 [-]
+  bool bulk_linear_in_expansion = false;  ///< Controls::bulk_linear_in_expansion
+  /// Bar and block: every node held in y and z, no lateral velocity: the study's 1-D bar in 3-D
+  /// (a row of hexes in uniaxial strain, wave speed sqrt((lambda + 2 mu) / rho)).
+  bool uniaxial = false;
 };
 
 /// The model for a step ratio r >= 1 (the coarse elements r times the fine ones).

@@ -181,7 +181,8 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
   const vd lambda_v(lambda), two_mu(2.0 * mu), lambda_pos(std::max(lambda, 0.0));
   const vd rho_v(rho), c_v(c), inv_c(1.0 / c), bulk_v(step.bulk_viscosity ? 1.0 : 0.0);
   const vd q1_v(step.q_linear), q2_v(step.q_quadratic);
-  const vd k_hg_coef(kappa * m_mod / 8.0);  // k = kappa (lambda + 2 mu) b.b / (8 V)
+  const bool linear_both = step.linear_in_expansion;  // Q1 term in expansion too (hex8.h)
+  const vd k_hg_coef(kappa * m_mod / 8.0);            // k = kappa (lambda + 2 mu) b.b / (8 V)
   const vd lane([](auto l) { return static_cast<double>(l); });
 
   vd e_int_sum = zero, e_hg_sum = zero;
@@ -370,7 +371,8 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     const vd len = V * sqrt(vd(1.5) / sumb2);  // L = sqrt(3 / (2 B_iI B_iI))
 
     // ---- stress work and bulk viscosity (hex8.h)
-    const vd em = min(d[0] + d[1] + d[2], zero);  // eps_v_dot in compression, else 0
+    const vd em = min(d[0] + d[1] + d[2], zero);          // eps_v_dot in compression, else 0
+    const vd el = linear_both ? d[0] + d[1] + d[2] : em;  // the Q1 term's rate
     vd q;
     {
       vd sd = zero;  // 1/2 (sigma_r + sigma^{n+1}) : D
@@ -379,7 +381,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       CRASHLINK_HEX8_UNROLL
       for (int k = 3; k < 6; ++k) sd = madd(sr[k] + sn[k], d[k], sd);
       const vd rho_cur = rho_v * V0 * inv_v;
-      q = bulk_v * rho_cur * len * (q2_v * len * em * em - q1_v * c_v * em);
+      q = bulk_v * rho_cur * len * (q2_v * len * em * em - q1_v * c_v * el);
       // The viscous pressure acts in the force at t^n (q^n) and at t^{n+1} (q): its work over
       // the step is 1/2 (q^n + q) (-tr D) V dt, the trapezoid rule every work term uses
       // (docs/energy-balance.md). Counting q alone leaves a 1 % imbalance under a shock.
@@ -530,8 +532,8 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     // (bulk viscosity and, for a damped part, beta omega_max / 2; BLM section 6.3)
     if constexpr (!kDamped) two_over_omega = stable_bound();
     {
-      vd xi = q1_v - q2_v * len * em * inv_c;  // damping ratio of the bulk viscosity
-      where(!(em < zero), xi) = zero;
+      vd xi = q1_v - q2_v * len * em * inv_c;            // damping ratio of the bulk viscosity
+      if (!linear_both) where(!(em < zero), xi) = zero;  // else Q1 in expansion (em = 0)
       xi *= bulk_v;
       if constexpr (kDamped) xi += beta / two_over_omega;  // beta omega_max / 2
       const vd dte = two_over_omega * (sqrt(madd(xi, xi, one)) - xi);
@@ -549,8 +551,11 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
           store(qn[al][i], q_all + static_cast<std::size_t>(3 * al + i) * ne);
       }
       if (j2) store(ep, ep_all);
-      if (viscous) store(q, bq_all);
     }
+    // q^n is kept at the initial call too: the force at t^0 carries the viscous pressure of the
+    // initial velocities, and the first step's trapezoid work 1/2 (q^0 + q^1) needs it (without
+    // it the balance of a model started with a velocity field is off by the q^0 half).
+    if (viscous) store(q, bq_all);
     for (int l = 0; l < nl; ++l) {
       if (step.element_dt_s) step.element_dt_s[eid[l]] = dt_e[l];
       if (dt_e[l] < res.dt_stable_s) {

@@ -26,11 +26,13 @@
 //    viscosity"): for eps_v_dot = tr D < 0
 //        q = rho L (Q2 L eps_v_dot^2 - Q1 c eps_v_dot),   Q2 = StepInfo::q_quadratic (1.5),
 //                                                          Q1 = StepInfo::q_linear (0.06),
-//    q = 0 in expansion; rho = current density, c = dilatational wave speed, and L = sqrt(3 / (2
-//    B_iI B_iI)) (= the edge for a cube, the smallest dimension of a flat brick; LS-DYNA uses
-//    V^(1/3), which is larger for flat elements and needs a cube root per element). q is added to
-//    the pressure in the force only, not stored in sigma; its work -q tr(D) V dt is part of the
-//    internal energy increment.
+//    q = 0 in expansion (with StepInfo::linear_in_expansion, Abaqus/Explicit's linear bulk
+//    viscosity, Abaqus Analysis User's Guide 6.3.3: the linear term -rho L Q1 c eps_v_dot in
+//    expansion too, and Q1 in the step's xi always); rho = current density, c = dilatational wave
+//    speed, and L = sqrt(3 / (2 B_iI B_iI)) (= the edge for a cube, the smallest dimension of a
+//    flat brick; LS-DYNA uses V^(1/3), which is larger for flat elements and needs a cube root per
+//    element). q is added to the pressure in the force only, not stored in sigma; its work -q tr(D)
+//    V dt is part of the internal energy increment.
 //  * Stable step (no safety factor): with lumped mass m = rho V0 / 8 at every node, the highest
 //    frequency of the free element satisfies (derivation in hex8.cpp)
 //        omega^2 <= 8 / (rho V0) [ V (max(lambda,0) B_iI B_iI + 2 mu lmax(B B^T))  + k lmax(G) ]
@@ -54,7 +56,9 @@
 //    Undamped parts run a separate instance of the kernel without this code.
 //  * Energies: internal = 1/2 (R sigma^n R^T + sigma^{n+1}) : D V^{n+1/2} dt + bulk viscosity
 //    work + damping work; hourglass = 1/2 (R Q^n + Q^{n+1}) . qdot dt.
-//  * At the initial call (dt = 0) nothing is updated: forces from the current history, dt_stable.
+//  * At the initial call (dt = 0) nothing is updated but the viscous pressure q^0 (the force at
+//    t^0 carries it; the first step's trapezoid work needs it): forces from the current history,
+//    dt_stable.
 //
 // Performance: one element per SIMD lane (hex8_simd.h: 4 lanes with AVX2), every intermediate a
 // lane vector in one fused pass per batch: gather x and v, take their Walsh-Hadamard modes,

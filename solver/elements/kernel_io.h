@@ -26,6 +26,9 @@ struct StepInfo {
   bool bulk_viscosity = true;  ///< artificial bulk viscosity on (linear + quadratic)
   double q_linear = 0.06;      ///< Q1 [-]
   double q_quadratic = 1.5;    ///< Q2 [-]
+  /// The linear (Q1) term in expansion too, as Abaqus/Explicit's linear bulk viscosity; the
+  /// quadratic term stays compression-only. Off: LS-DYNA's convention, q = 0 in expansion.
+  bool linear_in_expansion = false;
   /// If set: [ne] each element's stable step written (the value whose minimum is
   /// KernelResult::dt_stable_s; `crashlink advise`). Null in runs.
   double* element_dt_s = nullptr;

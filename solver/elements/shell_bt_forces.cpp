@@ -57,7 +57,9 @@
 // work -q tr A h_mid dt is part of the internal energy, and it reduces the step as in the hex:
 //   dt_e = (L_e / c) (sqrt(1 + xi^2) - xi),  xi = Q1 - Q2 L_e tr / c
 // (Belytschko, Liu, Moran 2000, section 6.3, critical step with damping; = LS-DYNA's
-// L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|).
+// L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|). With StepInfo::linear_in_expansion
+// (Abaqus/Explicit's linear bulk viscosity) the linear term acts in expansion too:
+// q = -rho L_e Q1 c tr and xi = Q1 for tr >= 0.
 // Stiffness-proportional damping (parts with Part::damping_ratio; the hex's form, hex8.h): a
 // viscous stress beta_e C (d + z k) at every point through the thickness (C the plane-stress
 // moduli c11, c12, G) and beta_e kappa G gamma in transverse shear, i.e. a membrane stress
@@ -162,6 +164,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   const bool bulk = step.bulk_viscosity && update;
   const double bulk_on = bulk ? 1.0 : 0.0;
   const double q1 = step.q_linear, q2 = step.q_quadratic, rho = mat.density_kg_m3;
+  const double linear_on = bulk && step.linear_in_expansion ? 1.0 : 0.0;  // Q1 in expansion
   // Hourglass stiffness factors [LSTM]/[BT83] (header comment): k = factor * h (h^3) A BB.
   const double km_f = K.r_hg * E / 8.0, kw_f = K.r_hg * kG / 12.0, kt_f = K.r_hg * E / 192.0;
   const std::int32_t* conn = part.connectivity.data();
@@ -550,8 +553,12 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
       const double on = tr_m < 0.0 ? bulk_on : 0.0;
       const double tr = on * tr_m;
-      const double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
+      double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
       xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c);
+      if (on == 0.0 && linear_on != 0.0) {  // expansion, linear term kept (header comment)
+        q = -linear_on * rho * Le[l] * q1 * K.c_plate * tr_m;
+        xi[l] = linear_on * q1;
+      }
       q_new[0][l] = q;
       // The pressure acts in the forces at t^n (q^n) and t^{n+1} (q): trapezoid work with the full
       // area rate (q^n still acts when a compressed element expands), as in the hex kernel.

@@ -315,7 +315,8 @@ void Solver::compute_forces(double dt) {
     const auto& part = model_.parts[p];
     auto& rt = parts_[p];
     const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
-    elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic};
+    elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic,
+                            c.bulk_linear_in_expansion};
     if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
       rt.element_dt_s.assign(part.element_count(), 0.0);
       step.element_dt_s = rt.element_dt_s.data();

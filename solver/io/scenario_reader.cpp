@@ -57,11 +57,12 @@ void read_controls(const YamlNode& c, model::Controls& out) {
   out.history_interval_s = c.non_negative_or("history_interval", 0.0);
   out.field_interval_s = c.non_negative_or("field_interval", 0.0);
   if (auto bv = c.optional("bulk_viscosity")) {
-    bv->expect_keys({"enabled", "q_linear", "q_quadratic", "shells"});
+    bv->expect_keys({"enabled", "q_linear", "q_quadratic", "shells", "linear_in_expansion"});
     out.bulk_viscosity = bv->boolean_or("enabled", true);
     out.bulk_q_linear = bv->non_negative_or("q_linear", 0.06);
     out.bulk_q_quadratic = bv->non_negative_or("q_quadratic", 1.5);
     out.shell_bulk_viscosity = bv->boolean_or("shells", false);
+    out.bulk_linear_in_expansion = bv->boolean_or("linear_in_expansion", false);
   }
   out.energy_tolerance = c.positive_or("energy_tolerance", 0.05);
   out.gravity_m_s2 = c.vec3_or("gravity", {0.0, 0.0, 0.0});

@@ -135,8 +135,11 @@ struct Controls {
   double bulk_q_linear = 0.06;        ///< Q1 [-] (crash-code default)
   double bulk_q_quadratic = 1.5;      ///< Q2 [-] (crash-code default)
   bool shell_bulk_viscosity = false;  ///< apply it to shells too (membrane)
-  double energy_tolerance = 0.05;     ///< guard: |balance error| / reference energy
-  Vec3 gravity_m_s2{};                ///< body acceleration
+  /// Q1 term in expansion too (Abaqus/Explicit's linear bulk viscosity; Q2 stays compression
+  /// only). Off by default: LS-DYNA's convention, no viscous pressure in expansion.
+  bool bulk_linear_in_expansion = false;
+  double energy_tolerance = 0.05;  ///< guard: |balance error| / reference energy
+  Vec3 gravity_m_s2{};             ///< body acceleration
 };
 
 /// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds

@@ -123,9 +123,11 @@ TEST(LayerStability, FreeVibrationAllRatios) {
       if (!defaults) continue;  // a sweep: the [measured] lines are the result
       // Measured (docs/multirate.md "Long-run stability"): rise 0.14-2.7 % (r = 1: <= 5e-5),
       // within 5.5e-5 of E0 at 2 10^4 and 10^5 steps; after the first 20 % <= 0.25 % (2 10^4) /
-      // 0.12 % (10^5); E_end/E0 <= 1.012. The 0.1 % on `rise` is NOT met (header).
+      // 0.12 % (10^5); E_end/E0 <= 1.022 (bar, r = 8; 1.012 before the hex kept the initial
+      // call's viscous pressure q^0: the first step missed 1/2 q^0 of work, 1 % of E0 there). The
+      // issue's 0.1 % on `rise` is NOT met (header).
       EXPECT_LT(st.rise, r == 1.0 ? 1e-4 : 0.035) << cosim::shape_name(s) << " r = " << r;
       EXPECT_LT(st.late_rise, n >= 100000 ? 2e-3 : 4e-3) << cosim::shape_name(s) << " r = " << r;
-      EXPECT_LT(st.e_end_J, 1.02 * st.e0_J) << cosim::shape_name(s) << " r = " << r;
+      EXPECT_LT(st.e_end_J, 1.03 * st.e0_J) << cosim::shape_name(s) << " r = " << r;
     }
 }

@@ -121,8 +121,9 @@ RefResult reference(const double (&x)[8][3], const double (&v)[8][3], const Mate
   const double len = std::sqrt(1.5 * V * V / sumb2);
   const double trd = d[0] + d[1] + d[2], em = std::min(trd, 0.0);
   const double bulk = step.bulk_viscosity ? 1.0 : 0.0;
-  const double q =
-      bulk * rho * h.vol0 / V * len * (step.q_quadratic * len * em * em - step.q_linear * c * em);
+  const double rate_linear = step.linear_in_expansion ? trd : em;  // Abaqus: Q1 both ways
+  const double q = bulk * rho * h.vol0 / V * len *
+                   (step.q_quadratic * len * em * em - step.q_linear * c * rate_linear);
   double sd = 0.0;
   for (int k = 0; k < 6; ++k) sd += (k < 3 ? 0.5 : 1.0) * (sr[k] + sn[k]) * d[k];
   RefResult r;
@@ -156,12 +157,14 @@ RefResult reference(const double (&x)[8][3], const double (&v)[8][3], const Mate
       for (int I = 0; I < 8; ++I) G[a][bb] += gamma[a][I][0] * gamma[bb][I][0];
   const double k1 = (std::max(lambda, 0.0) * sumb2 + 2 * mu * lmax_bound(M)) / V;
   const double omega = std::sqrt(8 * (k1 + k_hg * lmax_bound(G)) / (rho * h.vol0));
-  const double xi = em < 0.0 ? bulk * (step.q_linear - step.q_quadratic * len * em / c) : 0.0;
+  const double xi = em < 0.0 || step.linear_in_expansion
+                        ? bulk * (step.q_linear - step.q_quadratic * len * em / c)
+                        : 0.0;
   r.dt = 2 / omega * (std::sqrt(1 + xi * xi) - xi);
 
+  if (step.bulk_viscosity) h.q_bulk = q;  // q^0 too: the first step's trapezoid work needs it
   if (dt > 0.0) {
     h.sigma = sn;
-    if (step.bulk_viscosity) h.q_bulk = q;
     for (int al = 0; al < 4; ++al)
       for (int i = 0; i < 3; ++i) h.q[al][i] = qn[al][i];
   }
@@ -206,60 +209,69 @@ TEST(Hex8Reference, OptimisedKernelEqualsNaiveReference) {
       }
   const std::size_t ne = part.element_count(), n = x0.size() / 3;
 
-  for (const Material& mat : mats) {
-    auto st = el::make_hex8_state(part);
-    std::vector<RefState> ref(ne);
-    std::vector<double> x = x0;
-    el::StepInfo step;
-    double max_ep = 0.0;
-    for (int s = 0; s < 6; ++s) {
-      std::vector<double> f(3 * n, 0.0), fr(3 * n, 0.0);
-      const auto r = el::hex8_internal_forces(
-          part, mat, st, {x.data(), v.data(), nullptr, f.data(), nullptr}, step);
-      double e_int = 0.0, e_hg = 0.0, dt_min = 1e300;
-      for (std::size_t e = 0; e < ne; ++e) {
-        double xe[8][3], ve[8][3];
-        for (int I = 0; I < 8; ++I)
-          for (int i = 0; i < 3; ++i) {
-            const auto a = static_cast<std::size_t>(part.connectivity[8 * e + I]);
-            xe[I][i] = x[3 * a + i];
-            ve[I][i] = v[3 * a + i];
-          }
-        const auto re = reference(xe, ve, mat, part.hourglass_coefficient, step, s == 0, ref[e]);
-        for (int I = 0; I < 8; ++I)
-          for (int i = 0; i < 3; ++i)
-            fr[3 * static_cast<std::size_t>(part.connectivity[8 * e + I]) + i] += re.f[I][i];
-        e_int += re.e_int;
-        e_hg += re.e_hg;
-        dt_min = std::min(dt_min, re.dt);
+  for (const bool linear_in_expansion : {false, true})
+    for (const Material& mat : mats) {
+      SCOPED_TRACE(linear_in_expansion ? "Q1 in expansion too" : "LS-DYNA bulk viscosity");
+      auto st = el::make_hex8_state(part);
+      std::vector<RefState> ref(ne);
+      std::vector<double> x = x0;
+      el::StepInfo step;
+      step.linear_in_expansion = linear_in_expansion;
+      double max_ep = 0.0;
+      bool expansion_q = false;  // a negative viscous pressure seen: the expansion branch ran
+      for (int s = 0; s < 6; ++s) {
+        std::vector<double> f(3 * n, 0.0), fr(3 * n, 0.0);
+        const auto r = el::hex8_internal_forces(
+            part, mat, st, {x.data(), v.data(), nullptr, f.data(), nullptr}, step);
+        double e_int = 0.0, e_hg = 0.0, dt_min = 1e300;
+        for (std::size_t e = 0; e < ne; ++e) {
+          double xe[8][3], ve[8][3];
+          for (int I = 0; I < 8; ++I)
+            for (int i = 0; i < 3; ++i) {
+              const auto a = static_cast<std::size_t>(part.connectivity[8 * e + I]);
+              xe[I][i] = x[3 * a + i];
+              ve[I][i] = v[3 * a + i];
+            }
+          const auto re = reference(xe, ve, mat, part.hourglass_coefficient, step, s == 0, ref[e]);
+          for (int I = 0; I < 8; ++I)
+            for (int i = 0; i < 3; ++i)
+              fr[3 * static_cast<std::size_t>(part.connectivity[8 * e + I]) + i] += re.f[I][i];
+          e_int += re.e_int;
+          e_hg += re.e_hg;
+          dt_min = std::min(dt_min, re.dt);
+        }
+        double fmax = 0.0, smax = 0.0, qmax = 0.0, qbmax = 0.0;
+        for (double fi : fr) fmax = std::max(fmax, std::abs(fi));
+        for (const auto& h : ref) {
+          for (double sk : h.sigma) smax = std::max(smax, std::abs(sk));
+          qbmax = std::max(qbmax, std::abs(h.q_bulk));
+          for (const auto& qa : h.q)
+            for (double qk : qa) qmax = std::max(qmax, std::abs(qk));
+        }
+        for (std::size_t k = 0; k < 3 * n; ++k)
+          EXPECT_NEAR(f[k], fr[k], 1e-10 * fmax) << mat.name << " step " << s << " dof " << k;
+        for (std::size_t e = 0; e < ne; ++e) {
+          for (std::size_t k = 0; k < 6; ++k)
+            EXPECT_NEAR(st.stress[k * ne + e], ref[e].sigma[k], 1e-10 * smax)
+                << mat.name << " step " << s << " element " << e;
+          for (std::size_t k = 0; k < 12; ++k)
+            EXPECT_NEAR(st.hourglass_force[k * ne + e], ref[e].q[k / 3][k % 3],
+                        1e-10 * qmax + 1e-300)
+                << mat.name << " step " << s << " element " << e;
+          EXPECT_NEAR(st.eps_p[e], ref[e].eps_p, 1e-10 * ref[e].eps_p);
+          max_ep = std::max(max_ep, ref[e].eps_p);
+          EXPECT_NEAR(st.bulk_q_Pa[e], ref[e].q_bulk, 1e-10 * qbmax + 1e-300);
+          if (ref[e].q_bulk < 0.0) expansion_q = true;
+        }
+        EXPECT_NEAR(r.internal_energy_increment_J, e_int, 1e-9 * std::abs(e_int));
+        EXPECT_NEAR(r.hourglass_energy_increment_J, e_hg, 1e-9 * std::abs(e_hg));
+        EXPECT_NEAR(r.dt_stable_s, dt_min, 1e-12 * dt_min);
+        step.dt_s = 2e-5;  // strain increments ~1e-3: J2 elements yield
+        for (std::size_t k = 0; k < 3 * n; ++k) x[k] += step.dt_s * v[k];
       }
-      double fmax = 0.0, smax = 0.0, qmax = 0.0;
-      for (double fi : fr) fmax = std::max(fmax, std::abs(fi));
-      for (const auto& h : ref) {
-        for (double sk : h.sigma) smax = std::max(smax, std::abs(sk));
-        for (const auto& qa : h.q)
-          for (double qk : qa) qmax = std::max(qmax, std::abs(qk));
+      if (mat.kind == MaterialKind::J2Plastic) {
+        EXPECT_GT(max_ep, 0.002);  // some elements are past the first kink of the curve
       }
-      for (std::size_t k = 0; k < 3 * n; ++k)
-        EXPECT_NEAR(f[k], fr[k], 1e-10 * fmax) << mat.name << " step " << s << " dof " << k;
-      for (std::size_t e = 0; e < ne; ++e) {
-        for (std::size_t k = 0; k < 6; ++k)
-          EXPECT_NEAR(st.stress[k * ne + e], ref[e].sigma[k], 1e-10 * smax)
-              << mat.name << " step " << s << " element " << e;
-        for (std::size_t k = 0; k < 12; ++k)
-          EXPECT_NEAR(st.hourglass_force[k * ne + e], ref[e].q[k / 3][k % 3], 1e-10 * qmax + 1e-300)
-              << mat.name << " step " << s << " element " << e;
-        EXPECT_NEAR(st.eps_p[e], ref[e].eps_p, 1e-10 * ref[e].eps_p);
-        max_ep = std::max(max_ep, ref[e].eps_p);
-      }
-      EXPECT_NEAR(r.internal_energy_increment_J, e_int, 1e-9 * std::abs(e_int));
-      EXPECT_NEAR(r.hourglass_energy_increment_J, e_hg, 1e-9 * std::abs(e_hg));
-      EXPECT_NEAR(r.dt_stable_s, dt_min, 1e-12 * dt_min);
-      step.dt_s = 2e-5;  // strain increments ~1e-3: J2 elements yield
-      for (std::size_t k = 0; k < 3 * n; ++k) x[k] += step.dt_s * v[k];
+      EXPECT_EQ(expansion_q, linear_in_expansion);  // q < 0 only with the Q1 term in expansion
     }
-    if (mat.kind == MaterialKind::J2Plastic) {
-      EXPECT_GT(max_ep, 0.002);  // some elements are past the first kink of the curve
-    }
-  }
 }

@@ -31,8 +31,9 @@ struct StepRun {
   double h1 = 0.0, sxx = 0.0;
 };
 
-/// One step of dt on the rectangle [0, a] x [0, b] rotated by Q, velocity Q L X.
-StepRun run(const double (&Lg)[2][2], bool bulk, const Mat3& Q) {
+/// One step of dt on the rectangle [0, a] x [0, b] rotated by Q, velocity Q L X. `linear`:
+/// StepInfo::linear_in_expansion.
+StepRun run(const double (&Lg)[2][2], bool bulk, const Mat3& Q, bool linear = false) {
   model::Part part;
   part.name = "rect";
   part.kind = model::ElementKind::Shell4;
@@ -58,6 +59,7 @@ StepRun run(const double (&Lg)[2][2], bool bulk, const Mat3& Q) {
   }
   el::ShellState st = el::make_shell_state(part);
   el::StepInfo step{1e-7, bulk};
+  step.linear_in_expansion = linear;
   r.res = el::shell_internal_forces(part, mat, st,
                                     {x.data(), v.data(), w.data(), r.f.data(), r.m.data()}, step);
   r.h1 = st.thickness_m[0];
@@ -123,4 +125,37 @@ TEST(ShellBtBulkViscosity, OffInExpansionAndShear) {
     EXPECT_EQ(on.res.internal_energy_increment_J, off.res.internal_energy_increment_J);
     EXPECT_EQ(on.res.dt_stable_s, off.res.dt_stable_s);
   }
+}
+
+// Abaqus/Explicit's linear bulk viscosity (StepInfo::linear_in_expansion): in expansion the Q1
+// term alone, q = -rho L_e Q1 c tr < 0 (a viscous tension), its work 1/2 (0 + q)(-tr) A h_mid dt
+// > 0 dissipated, and xi = Q1 in the step; in compression the same q as without it.
+TEST(ShellBtBulkViscosity, LinearTermInExpansionWhenAsked) {
+  const double expand[2][2] = {{800.0, 150.0}, {-50.0, 300.0}};  // tr = 1100 /s
+  const double compress[2][2] = {{-800.0, 150.0}, {150.0, -300.0}};
+  const Mat3 Q = tilt();
+  const StepRun on = run(expand, true, Q, true), off = run(expand, false, Q, true);
+  const double tr = expand[0][0] + expand[1][1];
+  const double c = std::sqrt(kE / (kRho * (1 - kNu * kNu)));
+  const double Le = kA * kB / std::hypot(kA, kB);
+  const double Q1 = 0.06;
+  const double q = -kRho * Le * Q1 * c * tr;
+  const double h1 = on.h1;
+  const double s1[4] = {-1, 1, 1, -1}, s2[4] = {-1, -1, 1, 1};
+  const double fscale = std::abs(q) * h1 * std::max(kA, kB);
+  for (std::size_t n = 0; n < 4; ++n) {
+    const Vec3 dl{-q * h1 * kA * kB * s1[n] / (2 * kA), -q * h1 * kA * kB * s2[n] / (2 * kB), 0.0};
+    const Vec3 dg = crashlink::mul(Q, dl);
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(on.f[3 * n + k] - off.f[3 * n + k], dg[k], 1e-10 * fscale) << "node " << n;
+  }
+  const double dW = -0.5 * q * tr * kA * kB * 0.5 * (kH + h1) * 1e-7;
+  ASSERT_GT(dW, 0.0);
+  EXPECT_NEAR(on.res.internal_energy_increment_J - off.res.internal_energy_increment_J, dW,
+              1e-10 * dW);
+  EXPECT_NEAR(on.res.dt_stable_s, Le / c * (std::sqrt(1 + Q1 * Q1) - Q1), 1e-12 * Le / c);
+  // compression: the option changes nothing
+  const StepRun a = run(compress, true, Q, true), b = run(compress, true, Q, false);
+  for (std::size_t i = 0; i < 12; ++i) EXPECT_EQ(a.f[i], b.f[i]);
+  EXPECT_EQ(a.res.dt_stable_s, b.res.dt_stable_s);
 }

@@ -111,7 +111,7 @@ TEST(ScenarioReader, PlateImpact) {
 const char* kTwoBlocks = R"(name: merged
 controls:
   end_time: 1.0e-3
-  bulk_viscosity: {enabled: false}
+  bulk_viscosity: {enabled: false, q_linear: 0.1, linear_in_expansion: true}
   gravity: [0, 0, -9.81]
 materials:
   steel:
@@ -154,6 +154,9 @@ TEST(ScenarioReader, MergedPartsShorthandsAndInlineSelections) {
   EXPECT_EQ(m.nodes.count(), 27u + 18u);  // the shared 3 x 3 face is merged
   EXPECT_DOUBLE_EQ(m.parts[1].hourglass_coefficient, 0.05);
   EXPECT_FALSE(m.controls.bulk_viscosity);
+  EXPECT_DOUBLE_EQ(m.controls.bulk_q_linear, 0.1);
+  EXPECT_TRUE(m.controls.bulk_linear_in_expansion);
+  EXPECT_FALSE(read_scenario(scenario_path("bar_wave.yaml")).controls.bulk_linear_in_expansion);
   EXPECT_DOUBLE_EQ(m.controls.gravity_m_s2[2], -9.81);
   // Bilinear shorthand: H = E Et / (E - Et).
   const auto& h = m.materials[0].hardening;
