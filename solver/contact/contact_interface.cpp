@@ -37,6 +37,11 @@
 // every node has moved at most D = sum_cycles dt^n max_j |v_j^{n+1/2}| (exact: x^{n+1} - x^n =
 // dt^n v^{n+1/2}); the node box of a segment grows by at most D and x_s moves by at most D, so
 // the candidate list is complete while 2 D <= margin. We re-sort when 2 D > margin.
+// Sleeping slave nodes: the same bound lets a node that is out of reach of every candidate skip
+// the candidate loop. When all of node s's candidates were rejected by the box or slab test, G =
+// min over them of (a lower bound of its distance to the segment) - reach > 0; the distance shrinks
+// by at most 2 D' after a further travel D', so no candidate can reach it while D' < G / 2 and
+// the node is skipped until then (state as for "no contact": the same bits as testing it).
 #include "solver/contact/contact_interface.h"
 
 #include <algorithm>
@@ -93,6 +98,39 @@ bool beyond_slab(const double* xa, const double* p, double reach) {
   return sp < lo - margin || sp > hi + margin;
 }
 
+/// A lower bound of (distance from p to the segment xa) - reach, from the node box and the slab
+/// of beyond_slab (the segment lies in both); <= 0 when neither separates them. For a node the
+/// box or slab test rejected: how far it may come before the candidate needs a test again.
+double gap_beyond_reach(const double* xa, const double* p, double reach) {
+  double gap = -kInf;
+  for (int d = 0; d < 3; ++d) {
+    const double lo = std::min(std::min(xa[d], xa[3 + d]), std::min(xa[6 + d], xa[9 + d]));
+    const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
+    gap = std::max(gap, std::max(lo - p[d], p[d] - hi));
+  }
+  double d1[3], d2[3];
+  for (int d = 0; d < 3; ++d) {
+    d1[d] = xa[6 + d] - xa[d];
+    d2[d] = xa[9 + d] - xa[3 + d];
+  }
+  const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                       d1[0] * d2[1] - d1[1] * d2[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (len > 0.0) {
+    double lo = 0.0, hi = 0.0;
+    for (int a = 1; a < 4; ++a) {
+      const double s = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
+                       n[2] * (xa[3 * a + 2] - xa[2]);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+    const double sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
+    gap = std::max(gap, std::max(lo - sp, sp - hi) / len);
+  }
+  // 1e-9 of the gap's scale for the round-off of these sums (the tests above use exact reach)
+  return gap - reach - 1e-9 * (std::fabs(gap) + reach);
+}
+
 }  // namespace
 
 struct ContactInterface::Impl {
@@ -119,6 +157,8 @@ struct ContactInterface::Impl {
   std::vector<double> ft_N;        // [3 ns] friction history on the slave nodes
   std::vector<std::int8_t> side;   // [ns] shell side while in contact (+1, -1; 0 = none)
   std::vector<std::int32_t> last;  // [ns] segment in contact last cycle (-1: none)
+  std::vector<double> wake_m;      // [ns] sleeping until travelled_m reaches this (header)
+  std::int64_t slept = 0;          // node tests skipped (diagnostics)
   std::vector<double> seg_size_m;  // [nseg] sqrt of the reference area
   // min m_eff / k over the candidate pairs (the step bound): it changes only with the candidate
   // list (a sort) and, for soft stiffness, with dt; cached for those.
@@ -284,6 +324,7 @@ ContactInterface::ContactInterface(const model::Model& m, const model::Contact& 
   s.ft_N.assign(3 * ns, 0.0);
   s.side.assign(ns, 0);
   s.last.assign(ns, -1);
+  s.wake_m.assign(ns, 0.0);
   s.seg_size_m.resize(nseg);
   for (std::size_t i = 0; i < nseg; ++i)
     s.seg_size_m[i] = std::sqrt(segment_area(x0, &s.seg.nodes[4 * i]));
@@ -305,6 +346,9 @@ std::size_t ContactInterface::candidate_pairs() const {
 std::size_t ContactInterface::segment_count() const {
   return impl_->seg.size();
 }
+std::int64_t ContactInterface::slept_node_cycles() const {
+  return impl_->slept;
+}
 
 ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
   Impl& s = *impl_;
@@ -324,6 +368,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
         x, s.slave.data(), s.slave.size(), s.seg.nodes.data(), s.reach_m.data(), s.seg.size()};
     bucket_search(in, s.cand, s.work);
     s.travelled_m = 0.0;
+    std::fill(s.wake_m.begin(), s.wake_m.end(), 0.0);
     s.need_sort = false;
     ++s.sorts;
   }
@@ -335,7 +380,9 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     const auto b0 = static_cast<std::size_t>(s.cand.offset[k]);
     const auto b1 = static_cast<std::size_t>(s.cand.offset[k + 1]);
     double* ft = &s.ft_N[3 * k];
-    if (b0 == b1) {
+    const bool asleep = s.travelled_m < s.wake_m[k];
+    s.slept += asleep ? 1 : 0;
+    if (b0 == b1 || asleep) {
       ft[0] = ft[1] = ft[2] = 0.0;
       s.side[k] = 0;
       s.last[k] = -1;
@@ -351,6 +398,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       int side = 0;
       bool found = false;
     } best;
+    double sleep_gap = kInf;  // min over the rejected candidates of gap_beyond_reach
     // One candidate segment i under the rules below (best_* updated); true when it is last
     // cycle's segment and keeps the node, which no later candidate can then take from it.
     auto consider = [&](std::size_t i) -> bool {
@@ -368,8 +416,11 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
         const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
         out_box = p[d] < lo - reach || p[d] > hi + reach;
       }
-      if (out_box) return false;
-      if (beyond_slab(xa, p, reach)) return false;
+      if (out_box || beyond_slab(xa, p, reach)) {
+        sleep_gap = std::min(sleep_gap, gap_beyond_reach(xa, p, reach));
+        return false;
+      }
+      sleep_gap = 0.0;  // tested closer: no sleep
       const Projection pr = s.seg.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
       const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
       const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
@@ -433,6 +484,8 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
       ft[0] = ft[1] = ft[2] = 0.0;
       s.side[k] = 0;
       s.last[k] = -1;
+      if (sleep_gap > 0.0 && std::isfinite(sleep_gap))
+        s.wake_m[k] = s.travelled_m + 0.5 * sleep_gap;
       continue;
     }
     ++out.active_pairs;
@@ -508,6 +561,7 @@ void ContactInterface::restore_state(const core::StateReader& r, const std::stri
   r.get_exact(prefix + "ft_N", s.ft_N);
   r.get_exact(prefix + "side", s.side);
   r.get_exact(prefix + "last", s.last);
+  std::fill(s.wake_m.begin(), s.wake_m.end(), 0.0);  // every node tested again: same results
 }
 
 }  // namespace crashlink::contact

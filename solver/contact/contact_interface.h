@@ -43,6 +43,8 @@ class ContactInterface {
   std::int64_t sort_count() const;
   std::size_t candidate_pairs() const;
   std::size_t segment_count() const;
+  /// Diagnostics: slave-node tests skipped so far by sleeping nodes (contact_interface.cpp).
+  std::int64_t slept_node_cycles() const;
 
  private:
   struct Impl;

@@ -553,12 +553,8 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
       const double on = tr_m < 0.0 ? bulk_on : 0.0;
       const double tr = on * tr_m;
-      double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
+      const double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
       xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c);
-      if (on == 0.0 && linear_on != 0.0) {  // expansion, linear term kept (header comment)
-        q = -linear_on * rho * Le[l] * q1 * K.c_plate * tr_m;
-        xi[l] = linear_on * q1;
-      }
       q_new[0][l] = q;
       // The pressure acts in the forces at t^n (q^n) and t^{n+1} (q): trapezoid work with the full
       // area rate (q^n still acts when a compressed element expands), as in the hex kernel.
@@ -584,6 +580,19 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       ehg[l] = eh;
     }
+    if (linear_on != 0.0)  // the linear term in expansion (header comment), where q was 0 above
+      for (std::size_t l = 0; l < L; ++l) {  // (a loop of its own: the one above stays vectorised)
+        const double tr_m = dm[0][l] + dm[1][l];
+        if (tr_m < 0.0) continue;
+        const double h1 = h_new[0][l];
+        const double vol_mid = 0.5 * (h[0][l] + h1) * A[l];
+        const double q = -linear_on * rho * Le[l] * q1 * K.c_plate * tr_m;
+        xi[l] = linear_on * q1;
+        q_new[0][l] = q;
+        ework[l] -= 0.5 * q * tr_m * vol_mid * dt;
+        Nn[0][l] -= h1 * q;
+        Nn[1][l] -= h1 * q;
+      }
     // Nodal forces and moments, local frame -> global (header comment).
     for (int I = 0; I < 4; ++I)
       for (std::size_t l = 0; l < L; ++l) {
