@@ -316,7 +316,8 @@ void PaperRunner::unstable(const std::string& what) const {
       "(h = {:.4e} s, H = {:.4e} s); it is stable only up to a ratio of about 2.3, and only with "
       "bulk viscosity (DESIGN.md §2.7; measured in crashlink: r = 2 too can go unstable, "
       "docs/paper-scheme.md). Fix: use the `layer` scheme (the default), or a ratio below about "
-      "2.3 with bulk viscosity on (controls.bulk_viscosity)",
+      "2.3 with bulk viscosity on (controls.bulk_viscosity; with its linear_in_expansion a run at "
+      "r = 2 lasts far longer)",
       seconds(std::max(tF_, tC_)), coarse_steps_, fine_steps_, what,
       options_.drift == paper::Drift::on ? "on" : "off", ratio(), fine_dt_s(), coarse_dt_s()));
 }
