@@ -195,8 +195,9 @@ struct Viscosity {
   bool uniaxial = false;  ///< every node held in y and z: the study's 1-D bar exactly
 };
 
-PulseCase pulse_case(int r, Viscosity visc = {}) {
+PulseCase pulse_case(int r, Viscosity visc = {}, const Bar& shape = {}) {
   PulseCase pc;
+  pc.b = shape;
   pc.b.r = r;
   pc.m = paper_bar(pc.b);
   auto& m = pc.m;
@@ -300,10 +301,20 @@ Accuracy pulse_vs_mono(int r, coordinator::paper::Drift drift = coordinator::pap
   return a;
 }
 
+/// h / (dx / c_d): the fine step against the 1-D critical step of a uniaxial-strain bar element
+/// (c_d = sqrt((lambda + 2 mu) / rho)), the Courant number of the study's 1-D analysis.
+double one_d_cfl(const PulseCase& pc, double h) {
+  const auto& mat = pc.m.materials[0];
+  const double E = mat.youngs_modulus_Pa, nu = mat.poisson_ratio;
+  const double c_d = std::sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / mat.density_kg_m3);
+  return h / (pc.b.dx / c_d);
+}
+
 /// Runs the pulse case at ratio r until the guard stops it or t_end; returns the message ("" if it
 /// ran through) and checks that no state holds a non-finite value.
-std::string run_until_guard(int r, double t_end_units, double& t_stop_units, Viscosity visc = {}) {
-  const PulseCase pc = pulse_case(r, visc);
+std::string run_until_guard(int r, double t_end_units, double& t_stop_units, Viscosity visc = {},
+                            const Bar& shape = {}) {
+  const PulseCase pc = pulse_case(r, visc, shape);
   cosim::PaperRunner pr(pc.m, ratio(r));
   pr.initialize();
   std::string msg;
@@ -318,11 +329,13 @@ std::string run_until_guard(int r, double t_end_units, double& t_stop_units, Vis
     finite = finite && all_finite(s->displacement()) && all_finite(s->velocity_mid()) &&
              all_finite(s->acceleration());
   std::printf(
-      "[measured] paper Hann pulse r = %d, Q1 %.2f%s%s, run to %.0f L/c: %s at t = %.3f L/c (%lld "
+      "[measured] paper Hann pulse r = %d, nu %.1f, section %.0f mm, 1-D CFL %.3f, Q1 %.2f%s%s, "
+      "run "
+      "to %.0f L/c: %s at t = %.3f L/c (%lld "
       "fine steps), "
       "all states finite: %s; max link gap %.3e m; message: %s\n",
-      r, visc.q_linear, visc.in_expansion ? " in expansion too" : "",
-      visc.uniaxial ? ", uniaxial" : "", t_end_units,
+      r, pc.b.nu, 1e3 * pc.b.w, one_d_cfl(pc, pr.fine_dt_s()), visc.q_linear,
+      visc.in_expansion ? " in expansion too" : "", visc.uniaxial ? ", uniaxial" : "", t_end_units,
       msg.empty() ? "ran through" : "stopped by the guard", t_stop_units,
       static_cast<long long>(pr.fine_steps()), finite ? "yes" : "NO", pr.max_gap().link_m,
       msg.c_str());
@@ -401,6 +414,27 @@ TEST(PaperScheme, RatioTwoStableInOneDimensionWithTheStudysViscosity) {
   const std::string crash = run_until_guard(2, 720.0, t_stop, {0.06, false, true});
   expect_guard_message(crash, 2);
   EXPECT_LT(t_stop, 10.0);
+}
+
+// (b4) ... but only at a high enough Courant number, as in the study. Its period map (one-off,
+// coupling-study/stability.py, S1, r = 2, bv = 0.06, 0.2 + 0.2 m bar) grows at 1-D CFL 0.3-0.6
+// (spectral radius - 1: 3.8e-4 at 0.3, 2.9e-3 at 0.47, 4.0e-3 at 0.6) and is neutral at 0.7 and
+// 0.9. crashlink's hex step bound counts the lateral modes, so near-cubic elements run at a
+// lower 1-D CFL: the same 1-D bar with nu = 0.3 and a 20 mm section (CFL 0.52) is stopped by the
+// guard (measured: 40 L/c), the 50 mm one (CFL 0.68) runs through. This is why the map's
+// free-vibration bars, held to uniaxial strain, still fail at Q1 = 0.06 (docs/paper-scheme.md).
+TEST(PaperScheme, RatioTwoOneDimensionalStabilityNeedsTheStudysCourantNumber) {
+  const Viscosity study{0.06, true, true};
+  Bar narrow;
+  narrow.nu = 0.3;
+  narrow.w = 0.02;
+  double t_stop = 0.0;
+  const std::string msg = run_until_guard(2, 200.0, t_stop, study, narrow);
+  expect_guard_message(msg, 2);
+  Bar wide;
+  wide.nu = 0.3;
+  const std::string ok = run_until_guard(2, 200.0, t_stop, study, wide);
+  EXPECT_TRUE(ok.empty()) << ok;
 }
 
 // (c) r = 3: the drift spring's 6-step period resonates with the coarse sampling (study: growth
