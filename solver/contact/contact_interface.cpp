@@ -70,13 +70,13 @@ bool is_rigid(const model::Model& m, const model::Part& p) {
   return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
 }
 
-/// True when p is farther than `reach` from every point of the segment xa (4 nodes; a triangle
-/// repeats its third): the segment, a convex combination of its nodes, lies between the planes
-/// n . x = min_a n . x_a and max_a n . x_a for n its diagonals' normal, so a node farther than
-/// the reach from that slab can be in contact with no point of it (the contact tests need
-/// distance <= reach). Exact up to round-off of eps * segment size (values relative to node 0),
-/// far below the contact tests' own 1e-10 * size; a cheap reject before the Newton projection.
-bool beyond_slab(const double* xa, const double* p, double reach) {
+/// The slab between the planes n . x = lo and hi (n the diagonals' normal, values relative to
+/// node 0) that holds the segment xa (4 nodes; a triangle repeats its third), and sp = n . p.
+struct Slab {
+  double lo = 0.0, hi = 0.0, sp = 0.0, len = 0.0;  ///< len = |n|; 0: degenerate
+};
+
+Slab slab_of(const double* xa, const double* p) {
   double d1[3], d2[3];
   for (int d = 0; d < 3; ++d) {
     d1[d] = xa[6 + d] - xa[d];
@@ -84,18 +84,29 @@ bool beyond_slab(const double* xa, const double* p, double reach) {
   }
   const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
                        d1[0] * d2[1] - d1[1] * d2[0]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 0.0)) return false;  // degenerate: let the projection decide
-  double lo = 0.0, hi = 0.0;       // node 0 is the origin
+  Slab s;
+  s.len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(s.len > 0.0)) return s;
   for (int a = 1; a < 4; ++a) {
-    const double s = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
+    const double v = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
                      n[2] * (xa[3 * a + 2] - xa[2]);
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
+    s.lo = std::min(s.lo, v);
+    s.hi = std::max(s.hi, v);
   }
-  const double sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
-  const double margin = reach * len;
-  return sp < lo - margin || sp > hi + margin;
+  s.sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
+  return s;
+}
+
+/// True when p is farther than `reach` from every point of the segment xa: the segment, a
+/// convex combination of its nodes, lies in its slab (slab_of), so a node farther than the reach
+/// from that slab can be in contact with no point of it (the contact tests need distance <=
+/// reach). Exact up to round-off of eps * segment size (values relative to node 0), far below the
+/// contact tests' own 1e-10 * size; a cheap reject before the Newton projection.
+bool beyond_slab(const double* xa, const double* p, double reach) {
+  const Slab s = slab_of(xa, p);
+  if (!(s.len > 0.0)) return false;  // degenerate: let the projection decide
+  const double margin = reach * s.len;
+  return s.sp < s.lo - margin || s.sp > s.hi + margin;
 }
 
 /// A lower bound of (distance from p to the segment xa) - reach, from the node box and the slab
@@ -108,25 +119,8 @@ double gap_beyond_reach(const double* xa, const double* p, double reach) {
     const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
     gap = std::max(gap, std::max(lo - p[d], p[d] - hi));
   }
-  double d1[3], d2[3];
-  for (int d = 0; d < 3; ++d) {
-    d1[d] = xa[6 + d] - xa[d];
-    d2[d] = xa[9 + d] - xa[3 + d];
-  }
-  const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
-                       d1[0] * d2[1] - d1[1] * d2[0]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (len > 0.0) {
-    double lo = 0.0, hi = 0.0;
-    for (int a = 1; a < 4; ++a) {
-      const double s = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
-                       n[2] * (xa[3 * a + 2] - xa[2]);
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-    }
-    const double sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
-    gap = std::max(gap, std::max(lo - sp, sp - hi) / len);
-  }
+  const Slab s = slab_of(xa, p);
+  if (s.len > 0.0) gap = std::max(gap, std::max(s.lo - s.sp, s.sp - s.hi) / s.len);
   // 1e-9 of the gap's scale for the round-off of these sums (the tests above use exact reach)
   return gap - reach - 1e-9 * (std::fabs(gap) + reach);
 }

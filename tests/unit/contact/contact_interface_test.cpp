@@ -27,18 +27,26 @@ struct Scene {
   std::vector<std::int32_t> hex_nodes;
 };
 
+/// A part of material 0 (steel) with this name and shell thickness (0 for solids).
+model::Part steel_part(const std::string& name, double thickness_m) {
+  model::Part p;
+  p.name = name;
+  p.material = 0;
+  p.thickness_m = thickness_m;
+  return p;
+}
+
+void add_steel(model::Model& m) {
+  m.materials.push_back({"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
+}
+
 Scene make_scene() {
   Scene s;
-  s.m.materials.push_back({"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
-  model::Part plate;
-  plate.name = "plate";
-  plate.material = 0;
-  plate.thickness_m = kT;
-  model::generate_plate(s.m, plate, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {4, 4}, 0.0});
+  add_steel(s.m);
+  model::generate_plate(s.m, steel_part("plate", kT),
+                        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {4, 4}, 0.0});
   const std::size_t before = s.m.nodes.count();
-  model::Part hex;
-  hex.name = "block";
-  hex.material = 0;
+  const model::Part hex = steel_part("block", 0.0);
   model::generate_box(s.m, hex, {{0.3, 0.3, 0.5 * kT}, {0.2, 0.2, 0.2}, {1, 1, 1}});
   for (std::size_t i = before; i < s.m.nodes.count(); ++i)
     s.hex_nodes.push_back(static_cast<std::int32_t>(i));
@@ -123,11 +131,8 @@ TEST(ContactInterface, ForceContinuousAcrossSegmentEdges) {
 TEST(ContactInterface, ShellSlaveUsesBothOffsets) {
   // A second plate (t2 = 4 mm) above the first: contact at distance (t + t2) / 2.
   model::Model m;
-  m.materials.push_back({"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
-  model::Part a;
-  a.name = "lower";
-  a.material = 0;
-  a.thickness_m = kT;
+  add_steel(m);
+  const model::Part a = steel_part("lower", kT);
   model::generate_plate(m, a, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {4, 4}, 0.0});
   const std::size_t before = m.nodes.count();
   model::Part b = a;
@@ -182,17 +187,11 @@ TEST(Friction, ElasticPredictorThenCone) {
 // their first contact and fails the equality.
 TEST(ContactInterface, SleepingNodesGiveTheSameForces) {
   model::Model m;
-  m.materials.push_back({"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
-  model::Part plate;
-  plate.name = "plate";
-  plate.material = 0;
-  plate.thickness_m = kT;
-  model::generate_plate(m, plate, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {10, 10}, 0.0});
+  add_steel(m);
+  model::generate_plate(m, steel_part("plate", kT),
+                        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {10, 10}, 0.0});
   const std::size_t first = m.nodes.count();
-  model::Part block;
-  block.name = "block";
-  block.material = 0;
-  model::generate_box(m, block, {{0.2, 0.2, 0.02}, {0.6, 0.6, 0.3}, {6, 6, 3}});
+  model::generate_box(m, steel_part("block", 0.0), {{0.2, 0.2, 0.02}, {0.6, 0.6, 0.3}, {6, 6, 3}});
   model::Contact c;
   c.name = "block-plate";
   for (std::size_t i = first; i < m.nodes.count(); ++i) {
