@@ -132,6 +132,31 @@ inline void store_block(double* a, const double (&in)[R][L]) {
 
 /// The kernel; kDamped adds the stiffness-proportional damping (header comment). The undamped
 /// instance is the kernel without any damping code, so an undamped part pays nothing for it.
+/// One lane block's arrays that the expansion term touches (shell_forces below).
+struct ExpansionLanes {
+  const double *dxx, *dyy, *h0, *h1, *area, *le;
+  double *xi, *q, *ework, *nxx, *nyy;
+};
+
+/// The bulk viscosity's linear term in expansion (header comment) on the lanes where the main
+/// loop left q = 0: q = -rho Le Q1 c tr (rho_q1_c = rho Q1 c), xi = Q1, its work and the
+/// membrane resultants. Out of line and cold: off by default, it must not weigh on that loop.
+[[gnu::noinline, gnu::cold]] void linear_in_expansion(const ExpansionLanes& s, double rho_q1_c,
+                                                      double xi_q1, double dt) {
+  for (std::size_t l = 0; l < L; ++l) {
+    const double tr_m = s.dxx[l] + s.dyy[l];
+    if (tr_m < 0.0) continue;
+    const double h1 = s.h1[l];
+    const double vol_mid = 0.5 * (s.h0[l] + h1) * s.area[l];
+    const double q = -rho_q1_c * s.le[l] * tr_m;
+    s.xi[l] = xi_q1;
+    s.q[l] = q;
+    s.ework[l] -= 0.5 * q * tr_m * vol_mid * dt;
+    s.nxx[l] -= h1 * q;
+    s.nyy[l] -= h1 * q;
+  }
+}
+
 template <bool kDamped>
 KernelResult shell_forces(const model::Part& part, const materials::Material& mat, ShellState& st,
                           const NodalView& nv, const StepInfo& step) {
@@ -581,18 +606,8 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       ehg[l] = eh;
     }
     if (linear_on != 0.0)  // the linear term in expansion (header comment), where q was 0 above
-      for (std::size_t l = 0; l < L; ++l) {  // (a loop of its own: the one above stays vectorised)
-        const double tr_m = dm[0][l] + dm[1][l];
-        if (tr_m < 0.0) continue;
-        const double h1 = h_new[0][l];
-        const double vol_mid = 0.5 * (h[0][l] + h1) * A[l];
-        const double q = -linear_on * rho * Le[l] * q1 * K.c_plate * tr_m;
-        xi[l] = linear_on * q1;
-        q_new[0][l] = q;
-        ework[l] -= 0.5 * q * tr_m * vol_mid * dt;
-        Nn[0][l] -= h1 * q;
-        Nn[1][l] -= h1 * q;
-      }
+      linear_in_expansion({dm[0], dm[1], h[0], h_new[0], A, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
+                          linear_on * rho * q1 * K.c_plate, linear_on * q1, dt);
     // Nodal forces and moments, local frame -> global (header comment).
     for (int I = 0; I < 4; ++I)
       for (std::size_t l = 0; l < L; ++l) {
