@@ -77,6 +77,8 @@ int run_stability_map(const StabilityMapOptions& o) {
                        : shape_key == "plate" ? cosim::FreeVibrationShape::Plate
                                               : cosim::FreeVibrationShape::Block;
     for (const auto& c : is_contact ? contact : linked) {
+      // uniaxial strain holds a bar's or block's lateral dofs; the plate has no such variant
+      if (c.uniaxial && shape == cosim::FreeVibrationShape::Plate && !is_contact) continue;
       for (double r : o.ratios) {
         cosim::FreeVibrationConfig cfg;
         cfg.damping = {c.damping, 3};

@@ -130,8 +130,6 @@ inline void store_block(double* a, const double (&in)[R][L]) {
   std::memcpy(a, in, sizeof in);
 }
 
-/// The kernel; kDamped adds the stiffness-proportional damping (header comment). The undamped
-/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
 /// One lane block's arrays that the expansion term touches (shell_forces below).
 struct ExpansionLanes {
   const double *dxx, *dyy, *h0, *h1, *area, *le;
@@ -157,6 +155,8 @@ struct ExpansionLanes {
   }
 }
 
+/// The kernel; kDamped adds the stiffness-proportional damping (header comment). The undamped
+/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
 template <bool kDamped>
 KernelResult shell_forces(const model::Part& part, const materials::Material& mat, ShellState& st,
                           const NodalView& nv, const StepInfo& step) {
@@ -189,7 +189,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   const bool bulk = step.bulk_viscosity && update;
   const double bulk_on = bulk ? 1.0 : 0.0;
   const double q1 = step.q_linear, q2 = step.q_quadratic, rho = mat.density_kg_m3;
-  const double linear_on = bulk && step.linear_in_expansion ? 1.0 : 0.0;  // Q1 in expansion
+  const bool linear_in_expansion_on = bulk && step.linear_in_expansion;  // Q1 in expansion
   // Hourglass stiffness factors [LSTM]/[BT83] (header comment): k = factor * h (h^3) A BB.
   const double km_f = K.r_hg * E / 8.0, kw_f = K.r_hg * kG / 12.0, kt_f = K.r_hg * E / 192.0;
   const std::int32_t* conn = part.connectivity.data();
@@ -605,9 +605,9 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       ehg[l] = eh;
     }
-    if (linear_on != 0.0)  // the linear term in expansion (header comment), where q was 0 above
+    if (linear_in_expansion_on)  // the linear term in expansion (header comment), q = 0 above
       linear_in_expansion({dm[0], dm[1], h[0], h_new[0], A, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
-                          linear_on * rho * q1 * K.c_plate, linear_on * q1, dt);
+                          rho * q1 * K.c_plate, q1, dt);
     // Nodal forces and moments, local frame -> global (header comment).
     for (int I = 0; I < 4; ++I)
       for (std::size_t l = 0; l < L; ++l) {

@@ -65,7 +65,8 @@ TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
       EXPECT_LT(std::stod(cell[5]), 1e-3) << line;
     }
   }
-  EXPECT_EQ(rows, 2 * 9 * 2 + 2 * 2);  // linked shapes x configurations x ratios + contact
-  EXPECT_EQ(paper_rows, 2 * 7 * 2);
+  // linked: bar 9 configurations, plate 6 (no uniaxial variant), x ratios; + contact
+  EXPECT_EQ(rows, (9 + 6) * 2 + 2 * 2);
+  EXPECT_EQ(paper_rows, (7 + 4) * 2);
   EXPECT_EQ(contact_rows, 2 * 2);  // (layer, paper) x ratios at one penalty
 }
