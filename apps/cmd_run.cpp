@@ -18,8 +18,11 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)");
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
-  run->add_option("--coupling", o.coupling, "layer | paper")
+  run->add_option("--coupling", o.coupling,
+                  "split/multi: layer (default) | paper (Bourel 2005 [8]-[11]: stable only up to "
+                  "a step ratio of about 2; its guard stops it beyond, docs/paper-scheme.md)")
       ->check(CLI::IsMember({"layer", "paper"}));
+  run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");

@@ -40,6 +40,7 @@ struct RunCommandOptions {
   /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
   bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
+  bool no_drift = false;  ///< `paper`: drift correction [11] off
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

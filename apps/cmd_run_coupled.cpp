@@ -107,15 +107,18 @@ void print_energy(std::FILE* f, const std::string& h5, bool complete) {
 }  // namespace
 
 int run_coupled(const RunCommandOptions& o) {
-  if (o.coupling != "layer") {
+  const bool paper = o.coupling == "paper";
+  if (paper && (o.checkpoint_interval_s > 0.0 || !o.restart.empty()))
     throw InputError(
-        fmt::format("--coupling {} --mode {}: the daemons and the coordinator run "
-                    "the `layer` scheme only; `paper` runs in one process (use "
-                    "--coupling layer)",
-                    o.coupling, o.mode));
-  }
+        "--coupling paper: --checkpoint-interval and --restart are features of "
+        "`layer` runs; run `paper` without them");
+  if (!paper && o.no_drift)
+    throw InputError(
+        "--no-drift switches the drift correction [11] of --coupling paper off; "
+        "`layer` has none");
   const auto model = io::read_scenario(o.scenario);
-  const auto dec = partition::decompose(model, partition::Scheme::Layer);
+  const auto dec =
+      partition::decompose(model, paper ? partition::Scheme::Paper : partition::Scheme::Layer);
   std::vector<std::string> domains;
   for (const auto& d : dec.domains) {
     if (!d.empty()) domains.push_back(d.name);
@@ -127,10 +130,10 @@ int run_coupled(const RunCommandOptions& o) {
         o.mode, o.scenario, domains.size(), fmt::join(domains, "', '")));
   }
   std::printf(
-      "crashlink run: %s (%zu nodes, %zu elements, end time %.4g s), --mode %s over %s: "
-      "coordinator + %zu daemons ('%s') -> %s\n",
+      "crashlink run: %s (%zu nodes, %zu elements, end time %.4g s), --mode %s --coupling %s "
+      "over %s: coordinator + %zu daemons ('%s') -> %s\n",
       model.name.c_str(), model.nodes.count(), model.element_count(), model.controls.end_time_s,
-      o.mode.c_str(), o.transport.c_str(), domains.size(),
+      o.mode.c_str(), o.coupling.c_str(), o.transport.c_str(), domains.size(),
       fmt::format("{}", fmt::join(domains, "', '")).c_str(), o.out.c_str());
   std::fflush(stdout);
 
@@ -146,6 +149,8 @@ int run_coupled(const RunCommandOptions& o) {
   lo.checkpoint_interval_s = o.checkpoint_interval_s;
   lo.restart = !o.restart.empty();
   lo.lanes = !o.no_lanes;
+  lo.paper = paper;
+  lo.drift = !o.no_drift;
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

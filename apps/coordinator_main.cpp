@@ -52,6 +52,14 @@ int main(int argc, char** argv) {
   app.add_flag("--restart", o.restart,
                "resume from the newest checkpoint in --out that every domain has (the daemons "
                "list theirs when they register)");
+  std::string coupling = "layer";
+  app.add_option("--coupling", coupling,
+                 "layer (default) | paper (Bourel 2005 [8]-[11]; every daemon with --coupling "
+                 "paper too; no checkpoints)")
+      ->check(CLI::IsMember({"layer", "paper"}))
+      ->capture_default_str();
+  bool no_drift = false;
+  app.add_flag("--no-drift", no_drift, "`paper`: drift correction [11] off (the study's S2)");
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);
@@ -60,6 +68,8 @@ int main(int argc, char** argv) {
   }
   o.common_step = mode == "split";
   o.lanes = !no_lanes;
+  o.paper = coupling == "paper";
+  o.drift = !no_drift;
   o.session = session.options();
   o.join_timeout = std::chrono::milliseconds{join_timeout_ms};
   apps::install_stop_handlers();

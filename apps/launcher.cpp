@@ -144,6 +144,11 @@ class ProcessRun {
     }
     if (o_.restart) args.emplace_back("--restart");
     if (!o_.lanes) args.emplace_back("--no-lanes");
+    if (o_.paper) {
+      args.emplace_back("--coupling");
+      args.emplace_back("paper");
+      if (!o_.drift) args.emplace_back("--no-drift");
+    }
     add("coordinator", spawn(coordinator_exe, args));
 
     LaunchResult r;
@@ -155,6 +160,10 @@ class ProcessRun {
         for (const auto& s : o_.session.arguments()) a.push_back(s);
         a.emplace_back("--step-safety");
         a.push_back(fmt::format("{:.17g}", o_.step_safety));
+        if (o_.paper) {
+          a.emplace_back("--coupling");
+          a.emplace_back("paper");
+        }
         add(d, spawn(solver_exe, a));
       }
     }
@@ -264,6 +273,8 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.checkpoint_interval_s = o.checkpoint_interval_s;
   co.restart = o.restart;
   co.lanes = o.lanes;
+  co.paper = o.paper;
+  co.drift = o.drift;
   std::promise<std::string> bound;
   std::atomic<bool> bound_set{false};
   co.on_bound = [&](const std::string& ep) {
@@ -295,6 +306,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
         d.session = o.session.options();
         d.in_process = true;
         d.step_safety = o.step_safety;
+        d.paper = o.paper;
         d.stop = &stop_flag();
         dr[k] = daemon::run_daemon(d);
       });

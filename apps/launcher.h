@@ -33,6 +33,8 @@ struct LaunchOptions {
   double checkpoint_interval_s = 0.0;  ///< CoordinatorOptions::checkpoint_interval_s
   bool restart = false;                ///< CoordinatorOptions::restart (out_dir holds the run)
   bool lanes = true;                   ///< CoordinatorOptions::lanes
+  bool paper = false;                  ///< --coupling paper for the coordinator and every daemon
+  bool drift = true;                   ///< `paper`: drift correction [11] (--no-drift otherwise)
 };
 
 /// How one piece of the run ended.

@@ -36,6 +36,11 @@ int main(int argc, char** argv) {
   app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  std::string coupling = "layer";
+  app.add_option("--coupling", coupling,
+                 "layer (default) | paper: the coupling scheme; the coordinator's must be the same")
+      ->check(CLI::IsMember({"layer", "paper"}))
+      ->capture_default_str();
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);
@@ -44,6 +49,7 @@ int main(int argc, char** argv) {
   }
   o.session = session.options();
   o.offer_lane = !no_lane;
+  o.paper = coupling == "paper";
   apps::install_stop_handlers();
   o.stop = &apps::stop_flag();
   const auto r = daemon::run_daemon(o);

@@ -11,7 +11,10 @@ namespace crashlink::wire {
 // History: 1 first version; 2 `layer` processes: Setup.step_ticks,
 // LayerInterface.partner_step_ticks, Register.layer_interfaces, the rotational vectors of
 // LayerForce / LayerDisplacement, Bye.report; 3 checkpoints and restart: Register.checkpoint_ticks,
-// Setup.restart / restart_ticks (a version-2 daemon would start from t = 0 in a restarted run).
-inline constexpr std::uint32_t kProtocolVersion = 4;
+// Setup.restart / restart_ticks (a version-2 daemon would start from t = 0 in a restarted run);
+// 4 lanes: Register.lane_endpoint / lane_public_key, Setup.lanes; 5 `paper` over processes:
+// FreeState.velocities_m_s / energy_time_ticks, EnergyTerms.coupled_kinetic_j (a version-4 daemon
+// would cut the scenario for `layer` and misread a `paper` Setup).
+inline constexpr std::uint32_t kProtocolVersion = 5;
 
 }  // namespace crashlink::wire

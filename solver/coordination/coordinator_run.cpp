@@ -23,6 +23,8 @@
 #include "coordinator/protocol_error.h"
 #include "solver/coordination/coupling_history.h"
 #include "solver/coordination/layer_cut.h"
+#include "solver/coordination/paper_cut.h"
+#include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
 #include "solver/core/state_archive.h"
 #include "solver/io/scenario_hash.h"
@@ -96,6 +98,11 @@ class Coordinator {
     } catch (const transport::TransportError& e) {
       stop = Stop{
           run::kExitPeer, wire::ERROR_CODE_INTERNAL, {}, fmt::format("coordinator: {}", e.what())};
+    } catch (const NumericalError& e) {
+      stop = Stop{run::kExitNumerical,
+                  wire::ERROR_CODE_NUMERICAL,
+                  {},
+                  fmt::format("coordinator: {}", e.what())};
     } catch (const InputError& e) {
       stop = Stop{run::kExitInput,
                   wire::ERROR_CODE_MODEL,
@@ -142,8 +149,18 @@ class Coordinator {
   void prepare() {
     const std::string hash = io::scenario_hash(o_.scenario);
     model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
-    const auto dec = partition::decompose(*model_, partition::Scheme::Layer);
-    cut_ = layer_cut(*model_, dec);
+    const auto dec = partition::decompose(
+        *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer);
+    if (o_.paper) {
+      if (o_.checkpoint_interval_s > 0.0 || o_.restart)
+        throw InputError(
+            "--coupling paper: checkpoints and --restart are features of `layer` "
+            "runs; run `paper` without them");
+      paper_cut_ = std::make_unique<PaperCut>(paper_cut(*model_, dec));
+      cut_ = paper_cut_->cut;
+    } else {
+      cut_ = layer_cut(*model_, dec);
+    }
     outcomes_.resize(cut_.names.size());
     for (std::size_t k = 0; k < cut_.names.size(); ++k) outcomes_[k].name = cut_.names[k];
     regs_.resize(cut_.names.size());
@@ -153,7 +170,8 @@ class Coordinator {
     hash_ = hash;
     if (!o_.restart) run::remove_checkpoints(o_.out_dir, kSelf);
     history_ = std::make_unique<CouplingHistory>(
-        (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut_);
+        (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut_,
+        o_.paper ? "paper" : "layer");
 
     transport::CoordinatorConfig config;
     config.scenario_hash = hash;
@@ -220,7 +238,11 @@ class Coordinator {
                                               in->domain, body_name(e)));
       }
       try {
-        check_register(cut_, k, e.registration());
+        if (paper_cut_) {
+          check_paper_register(*paper_cut_, k, e.registration());
+        } else {
+          check_register(cut_, k, e.registration());
+        }
       } catch (const ModelError& x) {
         throw StopRun(Stop{run::kExitInput,
                            wire::ERROR_CODE_MODEL,
@@ -231,8 +253,13 @@ class Coordinator {
       registered_[static_cast<std::size_t>(k)] = true;
       ++count;
     }
+    coordinator::InterfaceTable table;
     try {
-      match_sides(cut_, regs_);
+      if (paper_cut_) {
+        table = match_paper(*paper_cut_, regs_);
+      } else {
+        match_sides(cut_, regs_);
+      }
     } catch (const coordinator::InterfaceError& x) {
       throw StopRun(Stop{run::kExitInput, wire::ERROR_CODE_MODEL, x.domains(),
                          fmt::format("coordinator: {}", x.what())});
@@ -242,6 +269,11 @@ class Coordinator {
     options.set_heartbeat_interval_ms(
         static_cast<std::uint32_t>(o_.session.heartbeat_interval.count()));
     options.set_peer_timeout_ms(static_cast<std::uint32_t>(o_.session.peer_timeout.count()));
+    latest_.assign(cut_.names.size(), 0);
+    if (paper_cut_) {
+      start_paper(table, plan, options);
+      return;
+    }
     std::vector<coordinator::LayerRoute> routes;
     for (const auto& c : cut_.interfaces) {
       const auto H = plan.step[static_cast<std::size_t>(c.coarse)];
@@ -249,7 +281,6 @@ class Coordinator {
                         static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
-    latest_.assign(cut_.names.size(), 0);
     lanes_ = o_.lanes && std::all_of(regs_.begin(), regs_.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
@@ -281,6 +312,42 @@ class Coordinator {
     }
   }
 
+  /// `paper`: the exchange, the Setups (summed masses, roles, step) and the log line.
+  void start_paper(const coordinator::InterfaceTable& table, const coordinator::StepPlan& plan,
+                   wire::Options options) {
+    options.set_drift_correction(o_.drift);
+    exchange_ = std::make_unique<PaperExchange>(
+        *paper_cut_, table, plan.step,
+        o_.drift ? coordinator::paper::Drift::on : coordinator::paper::Drift::off, o_.guard_rise,
+        o_.ticks_per_second);
+    std::string steps;
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+      outcomes_[k].step_ticks = plan.step[k];
+      link_->send(cut_.names[k], paper_setup(*paper_cut_, table, plan, static_cast<int>(k),
+                                             o_.common_step, options, o_.ticks_per_second));
+      steps +=
+          fmt::format("{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
+                      static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
+    }
+    if (o_.log != nullptr) {
+      std::fprintf(o_.log,
+                   "crashlink-coordinator: %s run, scheme `paper` (drift correction [11] %s, "
+                   "%zu coupled nodes), steps: %s\n",
+                   o_.common_step ? "split" : "multi", o_.drift ? "on" : "off", table.nodes.size(),
+                   steps.c_str());
+      std::fflush(o_.log);
+    }
+  }
+
+  /// `paper`: domain k's free state in, the corrections it allows out, the rows it completes.
+  void free_state(int k, const wire::FreeState& f) {
+    exchange_->submit(k, f);
+    latest_[static_cast<std::size_t>(k)] = f.time_ticks();
+    while (auto c = exchange_->next())
+      link_->send(cut_.names[static_cast<std::size_t>(c->first)], c->second);
+    history_->append(exchange_->take_rows(), o_.ticks_per_second);
+  }
+
   void route() {
     std::size_t done = 0;
     const double end_s = cut_.end_time_s;
@@ -292,7 +359,13 @@ class Coordinator {
         const int k = index_of(in->domain);
         auto& e = in->envelope;
         try {
-          if (e.has_layer_report()) {
+          if (exchange_ &&
+              (e.has_layer_report() || e.has_layer_force() || e.has_layer_displacement())) {
+            protocol_stop(in->domain, fmt::format("domain '{}' sent a {} in a `paper` run",
+                                                  in->domain, body_name(e)));
+          } else if (e.has_free_state() && exchange_) {
+            free_state(k, e.free_state());
+          } else if (e.has_layer_report()) {
             report(k, e.layer_report());
           } else if (e.has_layer_force()) {
             const auto& f = e.layer_force();
@@ -602,6 +675,8 @@ class Coordinator {
   std::vector<DomainOutcome> outcomes_;
   std::unique_ptr<CouplingHistory> history_;
   std::unique_ptr<coordinator::LayerRouter> router_;
+  std::unique_ptr<PaperCut> paper_cut_;      ///< `paper` only
+  std::unique_ptr<PaperExchange> exchange_;  ///< `paper` only
   std::unique_ptr<transport::CoordinatorLink> link_;
   std::int64_t notices_ = 0;
   std::set<std::string> logged_;

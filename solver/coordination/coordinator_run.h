@@ -1,5 +1,8 @@
 #pragma once
-// crashlink-coordinator for the `layer` scheme (DESIGN.md §1, §2.6, §2.7, §3): binds a
+// crashlink-coordinator (DESIGN.md §1, §2.6, §2.7, §3). `paper` (CoordinatorOptions::paper): the
+// same start-up on its `paper` cut (paper_cut.h), then every FreeState goes to a PaperExchange and
+// the Corrections it allows go back (the schedule of §2.6), its interface rows to coordinator.h5;
+// a guard stop ends the run with exit 3 and "the coupling went unstable". `layer`: binds a
 // CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario, checks
 // their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends the
 // Setups, then, until every daemon has said Bye: records the interface history rows the fine
@@ -35,7 +38,12 @@ struct CoordinatorOptions {
   std::string bind;  ///< endpoint to bind: tcp://127.0.0.1:* (port read back), ipc://, inproc://
   std::string scenario;  ///< scenario file (daemons must run the same content: hash checked)
   std::string out_dir = "out";
-  bool common_step = true;    ///< split (true) or multi (false)
+  bool common_step = true;  ///< split (true) or multi (false)
+  /// The `paper` scheme (paper_cut.h, paper_exchange.h): the coordinator answers every free state
+  /// with its correction ([8]-[11]); false: `layer`. No checkpoints, no restart, no lanes.
+  bool paper = false;
+  bool drift = true;          ///< `paper`: drift correction [11] on
+  double guard_rise = 0.05;   ///< `paper`: energy guard (coordinator/paper_guard.h)
   std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
   transport::SessionOptions session;
   std::chrono::milliseconds join_timeout{60000};  ///< every domain joined and registered by then

@@ -13,12 +13,12 @@ struct CouplingHistory::Impl {
   std::vector<std::size_t> slot;  // [interfaces] the writer's index
 };
 
-CouplingHistory::CouplingHistory(std::string path, const LayerCut& cut)
+CouplingHistory::CouplingHistory(std::string path, const LayerCut& cut, const std::string& scheme)
     : path_(std::move(path)), impl_(std::make_unique<Impl>(path_)) {
   for (const auto& c : cut.interfaces) {
     impl_->slot.push_back(
         impl_->writer.add_interface(c.name, c.kind, cut.names[static_cast<std::size_t>(c.fine)],
-                                    cut.names[static_cast<std::size_t>(c.coarse)], "layer",
+                                    cut.names[static_cast<std::size_t>(c.coarse)], scheme,
                                     static_cast<std::int64_t>(c.j_node_ids.size())));
   }
 }
@@ -35,6 +35,19 @@ void CouplingHistory::append(std::uint32_t interface,
     s.drift_work_J = 0.0;
     for (std::size_t d = 0; d < 3; ++d) s.force_N[d] = r.force_N[d];
     if (impl_) impl_->writer.append(impl_->slot[interface], s);
+  }
+}
+
+void CouplingHistory::append(const std::vector<PaperRow>& rows, std::int64_t ticks_per_second) {
+  for (const auto& r : rows) {
+    io::CouplingSample s;
+    s.time_s = static_cast<double>(r.time) / static_cast<double>(ticks_per_second);
+    s.velocity_jump_m_s = r.velocity_jump_m_s;
+    s.displacement_gap_m = r.displacement_gap_m;
+    s.link_work_J = r.link_work_J;
+    s.drift_work_J = r.drift_work_J;
+    for (std::size_t d = 0; d < 3; ++d) s.force_N[d] = r.force_N[d];
+    if (impl_) impl_->writer.append(impl_->slot[r.interface], s);
   }
 }
 

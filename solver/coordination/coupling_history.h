@@ -1,5 +1,6 @@
 #pragma once
-// The coordinator's record of a `layer` run: per interface the rows the fine side reports
+// The coordinator's record of a coupled run. `paper`: per interface the rows of its own exchange
+// (paper_exchange.h). `layer`: per interface the rows the fine side reports
 // (LayerReport, coordinator/layer_work.h: velocity jump and displacement gap 0 by construction,
 // link work, drift work 0, resultant layer force) and, at the end, /timing (wall, the coordinator's
 // CPU, each daemon's time spent waiting), written through io::CouplingHistoryWriter to
@@ -12,19 +13,23 @@
 #include "coordinator/layer_work.h"
 #include "solver/coordination/coordinator_run.h"
 #include "solver/coordination/layer_cut.h"
+#include "solver/coordination/paper_exchange.h"
 
 namespace crashlink::coordination {
 
 class CouplingHistory {
  public:
-  /// Creates the file and one group per interface of the cut. Throws io::ResultFileError.
-  CouplingHistory(std::string path, const LayerCut& cut);
+  /// Creates the file and one group per interface of the cut, marked with the scheme ("layer" or
+  /// "paper"). Throws io::ResultFileError.
+  CouplingHistory(std::string path, const LayerCut& cut, const std::string& scheme = "layer");
   ~CouplingHistory();
   CouplingHistory(const CouplingHistory&) = delete;
   CouplingHistory& operator=(const CouplingHistory&) = delete;
 
   void append(std::uint32_t interface, const std::vector<coordinator::LayerSample>& rows,
               std::int64_t ticks_per_second);
+  /// `paper`: rows of the coordinator's own exchange (gap, jump, link and drift work, force).
+  void append(const std::vector<PaperRow>& rows, std::int64_t ticks_per_second);
   /// Restart: copies every interface's rows with time <= until_s from `from` (the checkpoint's
   /// copy of coordinator.h5, same cut), then flushes. Returns the rows copied.
   std::size_t replay(const std::string& from, double until_s);

@@ -12,27 +12,13 @@
 
 #include "coordinator/interpolation.h"
 #include "solver/core/errors.h"
-#include "solver/elements/hex8.h"
-#include "solver/elements/shell_bt.h"
+#include "solver/cosim/paper_nodes.h"
 
 namespace crashlink::cosim {
 
 namespace paper = coordinator::paper;
 
 namespace {
-
-/// Partial lumped masses and rotary inertias of a (sub-)model, as Solver::assemble_masses.
-void lumped(const model::Model& m, std::vector<double>& mass, std::vector<double>& inertia) {
-  mass.assign(m.nodes.count(), 0.0);
-  inertia.assign(m.nodes.count(), 0.0);
-  for (const auto& p : m.parts) {
-    const auto& mat = m.materials[static_cast<std::size_t>(p.material)];
-    if (p.kind == model::ElementKind::Hex8)
-      elements::hex8_lumped_mass(p, mat, m.nodes.x0.data(), mass.data());
-    else
-      elements::shell_lumped_mass(p, mat, m.nodes.x0.data(), mass.data(), inertia.data());
-  }
-}
 
 double norm3(const double* a, const double* b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -69,7 +55,7 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
     g2l_[s].assign(ng, kAbsent);
     for (std::size_t l = 0; l < dm.global_node.size(); ++l)
       g2l_[s][static_cast<std::size_t>(dm.global_node[l])] = l;
-    lumped(dm.model, partial_mass[s], partial_inertia[s]);
+    partial_masses(dm.model, partial_mass[s], partial_inertia[s]);
   }
 
   // The coupled nodes: every link node and every copy, once, in interface order.
@@ -138,7 +124,10 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
     const auto& dm = dec_.domains[static_cast<std::size_t>(domain_[s])];
     solvers_[s] = std::make_unique<integration::Solver>(dm.model, dm.name);
     std::vector<double> override(dm.global_node.size(), 0.0);
-    for (const auto& pn : nodes_) override[pn.local[s]] = pn.mass_kg;
+    for (const auto& pn : nodes_) {
+      override[pn.local[s]] = pn.mass_kg;
+      if (pn.reference == s) reference_nodes_[s].push_back(pn.local[s]);
+    }
     solvers_[s]->set_mass_override(std::move(override));
   }
   for (auto* v :
@@ -195,8 +184,7 @@ void PaperRunner::initialize() {
   fine_steps_ = coarse_steps_ = 0;
   energy_ = integration::EnergyAccount{};
   ke_twice0_ = 0.0;
-  e_min_ = e_peak_ = 0.0;
-  e_first_ = true;
+  guard_ = paper::EnergyGuard(options_.guard_rise);
   drift_work_J_ = 0.0;
   gap_ = max_gap_ = PaperGap{};
   for (int s = 0; s < 2; ++s) {
@@ -271,20 +259,9 @@ void PaperRunner::sample_energy() {
   // side's, in the Solver's product form 1/2 M v^{n-1/2} . v^{n+1/2}. The non-reference presence
   // (fine side of a link, a copy) is the one [11] acts on: keeping its kinetic energy keeps an
   // oscillation of it relative to the reference in the guard's energy.
-  double twice = 0.0;
-  for (const auto& pn : nodes_) {
-    const int s = pn.reference;
-    const auto& S = *solvers_[s];
-    const std::size_t l = pn.local[s];
-    const Vec3 vn = S.node_velocity(l);
-    double p = 0.0;
-    for (std::size_t d = 0; d < 3; ++d) {
-      const double v = S.velocity_mid()[3 * l + d];
-      p += (2.0 * vn[d] - v) * v;
-    }
-    twice += 0.5 * pn.mass_kg * p;
-  }
-  if (e_first_) ke_twice0_ = twice;
+  const double twice = product_kinetic_energy(*solvers_[0], reference_nodes_[0]) +
+                       product_kinetic_energy(*solvers_[1], reference_nodes_[1]);
+  if (!guard_.started()) ke_twice0_ = twice;
   e.kinetic_J -= twice;
   e.initial_total_J -= ke_twice0_;
   e.coupling_work_J -= twice - ke_twice0_;  // net work of the corrections
@@ -293,33 +270,20 @@ void PaperRunner::sample_energy() {
   energy_ = e;
 
   // Guard: the energy not explained by the loads = initial energy + net coupling work.
-  const double E = e.total_J() - e.external_work_J;
-  if (!std::isfinite(E)) unstable(fmt::format("the coupled energy is {} J", E));
-  e_peak_ =
-      std::max({e_peak_, std::abs(e.total_J()), std::abs(e.initial_total_J + e.external_work_J)});
-  if (e_first_) e_min_ = E;
-  e_first_ = false;
-  e_min_ = std::min(e_min_, E);
-  if (options_.guard_rise > 0.0 && e_peak_ > 0.0 && E - e_min_ > options_.guard_rise * e_peak_)
-    unstable(fmt::format(
-        "the coupled energy (kinetic + internal - external work) rose {:.3g} % of the peak energy "
-        "({:.4e} J) above its running minimum (guard: {:.3g} %); net work of the link and drift "
-        "corrections {:.4e} J, of which drift [11] {:.4e} J",
-        100.0 * (E - e_min_) / e_peak_, e_peak_, 100.0 * options_.guard_rise, e.coupling_work_J,
-        drift_work_J_));
+  if (auto why = guard_.sample(e.total_J() - e.external_work_J, e.total_J(),
+                               e.initial_total_J + e.external_work_J))
+    unstable(
+        fmt::format("{}; net work of the link and drift corrections {:.4e} J, of which "
+                    "drift [11] {:.4e} J",
+                    *why, e.coupling_work_J, drift_work_J_));
 }
 
 void PaperRunner::unstable(const std::string& what) const {
-  throw NumericalError(fmt::format(
-      "paper coupling: the coupling went unstable at t = {:.6e} s (coarse step {}, fine step {}): "
-      "{}. Scheme `paper` (Bourel 2005 [8]-[11], drift correction [11] {}), step ratio H/h = {} "
-      "(h = {:.4e} s, H = {:.4e} s); it is stable only up to a ratio of about 2.3, and only with "
-      "bulk viscosity (DESIGN.md §2.7; measured in crashlink: r = 2 too can go unstable, "
-      "docs/paper-scheme.md). Fix: use the `layer` scheme (the default), or a ratio below about "
-      "2.3 with bulk viscosity on (controls.bulk_viscosity; with its linear_in_expansion a run at "
-      "r = 2 lasts far longer)",
-      seconds(std::max(tF_, tC_)), coarse_steps_, fine_steps_, what,
-      options_.drift == paper::Drift::on ? "on" : "off", ratio(), fine_dt_s(), coarse_dt_s()));
+  throw NumericalError(paper::unstable_message(
+      fmt::format("at t = {:.6e} s (coarse step {}, fine step {})", seconds(std::max(tF_, tC_)),
+                  coarse_steps_, fine_steps_),
+      what, options_.drift,
+      fmt::format("H/h = {} (h = {:.4e} s, H = {:.4e} s)", ratio(), fine_dt_s(), coarse_dt_s())));
 }
 
 void PaperRunner::advance(const std::function<void()>& on_fine) {

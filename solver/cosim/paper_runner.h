@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "coordinator/paper_coupling.h"
+#include "coordinator/paper_guard.h"
 #include "coordinator/ticks.h"
 #include "solver/integration/energy.h"
 #include "solver/integration/solver.h"
@@ -172,9 +173,9 @@ class PaperRunner {
   std::vector<double> u_last_[2], fd_last_[2];         // drift work bookkeeping per side
 
   integration::EnergyAccount energy_;
-  double ke_twice0_ = 0.0;  // kinetic energy counted twice at t = 0
-  double e_min_ = 0.0, e_peak_ = 0.0;
-  bool e_first_ = true;
+  double ke_twice0_ = 0.0;                       // kinetic energy counted twice at t = 0
+  std::vector<std::size_t> reference_nodes_[2];  // local indices of the reference presences
+  coordinator::paper::EnergyGuard guard_;
   double drift_work_J_ = 0.0;
   PaperGap gap_, max_gap_;
 };

@@ -19,6 +19,7 @@
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/apply_setup.h"
 #include "solver/daemon/layer_wire.h"
+#include "solver/daemon/paper_port.h"
 #include "solver/io/result_replay.h"
 #include "solver/io/result_writer.h"
 #include "solver/io/scenario_hash.h"
@@ -141,7 +142,12 @@ class Daemon {
   }
 
  private:
-  integration::Solver* solver() const { return dom_ ? dom_->solver.get() : nullptr; }
+  integration::Solver* solver() const {
+    return paper_ ? paper_->solver.get() : dom_ ? dom_->solver.get() : nullptr;
+  }
+
+  /// The instant reached, in ticks.
+  cosim::Tick time_ticks() const { return paper_ ? paper_time_ : stepper_ ? stepper_->time() : 0; }
 
   double cpu_seconds() const {
     return o_.in_process ? thread_cpu_seconds() : run::process_cpu_seconds();
@@ -225,10 +231,14 @@ class Daemon {
   void prepare() {
     hash_ = io::scenario_hash(o_.scenario);
     model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
-    dec_ = std::make_unique<partition::Decomposition>(
-        partition::decompose(*model_, partition::Scheme::Layer));
-    dom_ =
-        std::make_unique<cosim::LayerDomain>(cosim::build_layer_domain(*dec_, *model_, o_.domain));
+    dec_ = std::make_unique<partition::Decomposition>(partition::decompose(
+        *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer));
+    if (o_.paper) {
+      paper_ = std::make_unique<PaperPort>(build_paper_port(*dec_, o_.domain));
+    } else {
+      dom_ = std::make_unique<cosim::LayerDomain>(
+          cosim::build_layer_domain(*dec_, *model_, o_.domain));
+    }
     const auto& sub = solver()->model();
     elements_ = static_cast<std::int64_t>(sub.element_count());
 
@@ -256,9 +266,14 @@ class Daemon {
                                      "expected >= 1",
                                      tps_));
     }
-    open_own_lane();
+    if (!o_.paper) open_own_lane();
     link_->send(register_message());
     const wire::Setup setup = await_setup();
+    check_coupling(setup);
+    if (o_.paper) {
+      start_paper(setup);
+      return;
+    }
     apply_setup(setup);
     open_lanes(setup);
     stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
@@ -305,6 +320,15 @@ class Daemon {
     r->set_end_time_ticks(static_cast<std::int64_t>(
         std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
     r->set_elements(elements_);
+    if (paper_) {
+      for (std::size_t j = 0; j < paper_->nodes.size(); ++j) {
+        const auto l = paper_->nodes[j].local;
+        r->add_node_ids(sub.nodes.id[l]);
+        r->add_masses_kg(paper_->own_mass_kg[j]);
+        for (std::size_t d = 0; d < 3; ++d) r->add_positions_m(sub.nodes.x0[3 * l + d]);
+      }
+      return e;
+    }
     for (const auto t : checkpoints_) r->add_checkpoint_ticks(t);
     r->set_lane_endpoint(lane_endpoint_);
     if (lane_in_) r->set_lane_public_key(lane_in_->curve_public_key());
@@ -330,6 +354,89 @@ class Daemon {
           "coordinator", fmt::format("expected the Setup answering the Register of domain '{}', "
                                      "got a {}",
                                      o_.domain, body_name(*m)));
+    }
+  }
+
+  /// Both sides must run the same scheme: a `layer` daemon cannot serve a `paper` coordinator.
+  void check_coupling(const wire::Setup& setup) const {
+    const auto want = o_.paper ? wire::COUPLING_PAPER : wire::COUPLING_LAYER;
+    if (setup.coupling() == want) return;
+    throw transport::ProtocolError(
+        "coordinator",
+        fmt::format("the coordinator runs the {} scheme, but domain '{}' was started for {}: "
+                    "start crashlink-solver and crashlink-coordinator with the same --coupling",
+                    wire::Coupling_Name(setup.coupling()), o_.domain, wire::Coupling_Name(want)));
+  }
+
+  /// `paper`: the Setup's summed masses ([5]; the solver is rebuilt if they differ in any bit
+  /// from the cut's), no checkpoints, no restart.
+  void start_paper(const wire::Setup& setup) {
+    if (setup.ticks_per_second() != tps_ || setup.step_ticks() < 1)
+      throw transport::ProtocolError(
+          "coordinator",
+          fmt::format("`paper` Setup for domain '{}' with step {} ticks at {} ticks "
+                      "per second (Hello: {})",
+                      o_.domain, setup.step_ticks(), setup.ticks_per_second(), tps_));
+    if (setup.restart() || setup.options().checkpoint_interval_ticks() > 0)
+      throw transport::ProtocolError(
+          "coordinator", fmt::format("the `paper` Setup of domain '{}' asks for checkpoints or a "
+                                     "restart; `paper` runs have neither (use `layer`)",
+                                     o_.domain));
+    if (use_summed_masses(*paper_, setup, o_.domain)) {
+      solver()->initialize();
+      recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *solver());
+    }
+    run::remove_checkpoints(o_.out_dir, o_.domain);
+    paper_step_ = setup.step_ticks();
+    run_wall0_ = Clock::now();
+  }
+
+  /// `paper` (DESIGN.md §2.6): send the free state at t, wait for its Correction, apply it,
+  /// begin the cycle (energies at t, guard, output), take the imposed step; the next free state
+  /// carries the energies at t. Every wait is bounded by the peer timeout.
+  void paper_loop() {
+    auto& s = *solver();
+    wire::EnergyTerms energy;
+    cosim::Tick energy_time = -1;
+    for (;;) {
+      link_->send(free_state(*paper_, paper_time_, paper_step_, energy, energy_time));
+      const wire::Correction c = await_correction();
+      apply_correction(*paper_, c, o_.domain);
+      // At the end no step follows; the fixed one keeps the last kinetic energy (product form,
+      // v^{n+1/2} over dt^{n+1/2}) on the steps the run took, as in every cycle before.
+      s.impose_step(static_cast<double>(c.stop() ? paper_step_ : c.imposed_step_ticks()) /
+                    static_cast<double>(tps_));
+      s.begin_cycle();
+      if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
+      recorder_->sample();
+      energy = energy_terms(*paper_);
+      energy_time = paper_time_;
+      if (c.stop()) return;
+      s.end_cycle_forces();
+      s.end_cycle_accelerations();
+      paper_time_ += c.imposed_step_ticks();
+    }
+  }
+
+  /// The Correction of the free state at paper_time_ (heartbeats are swallowed by the link; an
+  /// Error from the coordinator is thrown by it).
+  wire::Correction await_correction() {
+    const auto t0 = Clock::now();
+    for (;;) {
+      auto m = link_->receive(o_.session.peer_timeout);
+      if (!m) continue;  // receive() itself throws when the coordinator is silent
+      if (!m->has_correction())
+        throw transport::ProtocolError(
+            "coordinator", fmt::format("domain '{}' expected the Correction of its free state at "
+                                       "tick {}, got a {}",
+                                       o_.domain, paper_time_, body_name(*m)));
+      if (m->correction().time_ticks() != paper_time_)
+        throw transport::ProtocolError(
+            "coordinator", fmt::format("domain '{}' got a Correction for tick {}; its free state "
+                                       "is at tick {}",
+                                       o_.domain, m->correction().time_ticks(), paper_time_));
+      wait_s_ += seconds_since(t0);
+      return m->correction();
     }
   }
 
@@ -456,6 +563,10 @@ class Daemon {
   }
 
   void loop() {
+    if (paper_) {
+      paper_loop();
+      return;
+    }
     using Wait = cosim::LayerStepper::Wait;
     const auto service_every = std::max(o_.session.heartbeat_interval / 4, 1ms);
     auto next_service = Clock::now() + service_every;
@@ -559,7 +670,7 @@ class Daemon {
   }
 
   void finish() {
-    send_report();
+    if (stepper_) send_report();
     recorder_->finish();
     write_timing();
     writer_->close();
@@ -572,7 +683,7 @@ class Daemon {
     rep->set_cycles(s.cycle());
     rep->set_dt_min_s(s.dt_min_s());
     rep->set_elements(elements_);
-    rep->set_time_ticks(stepper_->time());
+    rep->set_time_ticks(time_ticks());
     link_->send(bye);
   }
 
@@ -626,6 +737,9 @@ class Daemon {
   std::unique_ptr<model::Model> model_;
   std::unique_ptr<partition::Decomposition> dec_;
   std::unique_ptr<cosim::LayerDomain> dom_;
+  std::unique_ptr<PaperPort> paper_;  ///< `paper`: this domain (instead of dom_ and stepper_)
+  cosim::Tick paper_time_ = 0;        ///< `paper`: the instant of the next free state
+  cosim::Tick paper_step_ = 0;        ///< `paper`: the Setup's step (the free states' proposal)
   std::unique_ptr<io::ResultWriter> writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::unique_ptr<cosim::LayerStepper> stepper_;

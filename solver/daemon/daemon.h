@@ -1,6 +1,8 @@
 #pragma once
 // crashlink-solver: one domain of a `layer` run (DESIGN.md §1, §2.7 "How to distribute layer",
-// §3) as a daemon talking to the coordinator over a DaemonLink (transport/daemon_link.h).
+// §3) as a daemon talking to the coordinator over a DaemonLink (transport/daemon_link.h); with
+// DaemonOptions::paper, one domain of a `paper` run instead (paper_port.h: Register of the coupled
+// nodes, then per cycle FreeState -> Correction, DESIGN.md §2.6; no lanes, no checkpoints).
 //
 //   read the scenario, hash it (io::scenario_hash: the coordinator refuses another file),
 //   cut it (partition::decompose, Layer), build this domain (cosim::build_layer_domain),
@@ -53,6 +55,10 @@ struct DaemonOptions {
   /// Offer a lane to the partners (docs/processes.md "Lanes"); false: --no-lane, this domain's
   /// layer vectors (and so every domain's) go through the coordinator.
   bool offer_lane = true;
+  /// The `paper` scheme (crashlink-solver --coupling paper; solver/daemon/paper_port.h): cut the
+  /// scenario with partition::Scheme::Paper, register the coupled nodes, then send a FreeState
+  /// and apply its Correction every cycle. false: `layer`.
+  bool paper = false;
   bool in_process = false;
   /// Set from outside (signal handler) to stop: checked every cycle; the coordinator is told.
   const std::atomic<bool>* stop = nullptr;

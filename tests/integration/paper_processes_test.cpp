@@ -1,0 +1,220 @@
+// The `paper` scheme over real processes and sockets (crashlink-coordinator --coupling paper +
+// crashlink-solver --coupling paper, or crashlink run --coupling paper) and over inproc threads.
+// The coordinator's exchange (solver/coordination/paper_exchange.h) applies [8]-[11] with the same
+// functions in the same order as the in-process cosim::PaperRunner, and the numbers travel as
+// packed doubles, so every domain's displacements must be identical to the runner's, bit for bit;
+// where the runner's guard stops a run, the coordinator's stops it at the same instant. Every
+// suite runs over tcp (ephemeral port read back), ipc and inproc.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "process_test_support.h"
+#include "solver/coordination/coordinator_run.h"
+#include "solver/core/errors.h"
+#include "solver/cosim/paper_runner.h"
+#include "solver/daemon/daemon.h"
+#include "solver/io/scenario_reader.h"
+#include "solver/run/exit_codes.h"
+
+using namespace crashlink;
+using namespace crashlink::proc_test;
+using transport::Scheme;
+
+namespace {
+
+constexpr double kFineStep = 1.0e-6;  // s; the bar's fine part allows ~1.1e-6 s
+
+/// Runs the coordinator and the two daemons of bar_yaml with fixed steps (the proposals capped:
+/// fine kFineStep, coarse ratio x kFineStep). Returns the coordinator's exit code and its message
+/// (or output) in `log`.
+int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem::path& out,
+              int ratio, std::string& log) {
+  const std::map<std::string, double> cap{{"fine", kFineStep}, {"coarse", ratio * kFineStep}};
+  if (scheme == Scheme::inproc) {
+    coordination::CoordinatorOptions co;
+    co.bind = transport::local_endpoint(Scheme::inproc, "paper");
+    co.scenario = scenario;
+    co.out_dir = out.string();
+    co.common_step = false;
+    co.paper = true;
+    co.in_process = true;
+    co.log = nullptr;
+    coordination::CoordinatorResult cr;
+    std::thread c([&] { cr = coordination::run_coordinator(co); });
+    std::vector<daemon::DaemonResult> dr(cap.size());
+    std::vector<std::thread> ds;
+    std::size_t k = 0;
+    for (const auto& [name, step] : cap) {
+      ds.emplace_back([&, k, name = name, step = step] {
+        daemon::DaemonOptions d;
+        d.endpoint = co.bind;
+        d.domain = name;
+        d.scenario = scenario;
+        d.out_dir = out.string();
+        d.in_process = true;
+        d.paper = true;
+        d.max_step_s = step;
+        dr[k] = daemon::run_daemon(d);
+      });
+      ++k;
+    }
+    for (auto& t : ds) t.join();
+    c.join();
+    log = cr.message;
+    for (const auto& d : dr) log += "\n" + d.message;
+    return cr.exit_code;
+  }
+  std::string endpoint;
+  auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, "multi", endpoint,
+                             {"--coupling", "paper"});
+  std::vector<std::unique_ptr<Child>> ds;
+  for (const auto& [name, step] : cap)
+    ds.push_back(start_solver(endpoint, name, scenario, out,
+                              {"--coupling", "paper", "--max-step", fmt::format("{:.17g}", step)}));
+  for (auto& d : ds) EXPECT_TRUE(d->wait(60s).has_value()) << d->output();
+  const auto st = c->wait(20s);
+  log = c->output();
+  for (auto& d : ds) log += "\n" + d->output();
+  return st ? exit_code(*st) : -999;
+}
+
+/// The in-process runner at the same steps: `coarse_steps` advances (or until its guard stops it:
+/// its message in `stopped`).
+std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, int ratio,
+                                              std::int64_t coarse_steps, std::string& stopped) {
+  cosim::PaperOptions o;
+  o.fine_dt_s = kFineStep;
+  o.coarse_dt_s = ratio * kFineStep;
+  auto r = std::make_unique<cosim::PaperRunner>(m, o);
+  r->initialize();
+  try {
+    for (std::int64_t n = 0; n < coarse_steps; ++n) r->advance();
+  } catch (const NumericalError& e) {
+    stopped = e.what();
+  }
+  return r;
+}
+
+/// max |u_file - u_solver| over the nodes of a domain's result file (the solver's local order is
+/// its sub-model's, matched by node id); -1 when nothing could be compared.
+double max_difference(const LastState& s, const integration::Solver& solver) {
+  if (!s.ok()) return -1.0;
+  const auto& ids = solver.model().nodes.id;
+  std::map<std::int64_t, std::size_t> local;
+  for (std::size_t i = 0; i < ids.size(); ++i) local[ids[i]] = i;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < s.node_ids.size(); ++i) {
+    const auto it = local.find(s.node_ids[i]);
+    if (it == local.end()) return -1.0;
+    for (std::size_t d = 0; d < 3; ++d)
+      worst = std::max(worst, std::abs(s.u[3 * i + d] - solver.displacement()[3 * it->second + d]));
+  }
+  return worst;
+}
+
+/// The "at t = ... s" of a guard message.
+std::string stop_instant(const std::string& message) {
+  const auto a = message.find("went unstable at t = ");
+  if (a == std::string::npos) return "(none)";
+  const auto b = message.find(' ', a + 21);
+  return message.substr(a + 21, b - a - 21);
+}
+
+class PaperProcesses : public ::testing::TestWithParam<Scheme> {};
+
+TEST_P(PaperProcesses, ReproduceThePaperRunnerBitForBit) {
+  const std::string t(transport::scheme_name(GetParam()));
+  const auto dir = fresh_dir("paper-r2-" + t);
+  const RemoveIfPassed cleanup{dir};
+  // 1e-4 s = 50 coarse steps at r = 2: about one wave transit of the 0.6 m bar, before `paper`'s
+  // slow growth at r = 2 (docs/paper-scheme.md) reaches the guard.
+  const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(1.0e-4));
+  const auto out = dir / "out";
+  std::string log;
+  ASSERT_EQ(run_paper(GetParam(), scenario, out, 2, log), 0) << log;
+
+  const auto m = io::read_scenario(scenario);
+  std::string stopped;
+  const auto ref = reference(m, 2, 50, stopped);
+  ASSERT_TRUE(stopped.empty()) << stopped;
+  ASSERT_EQ(ref->coarse_steps(), 50);
+  for (const auto& [name, solver] :
+       {std::pair<std::string, const integration::Solver*>{"fine", &ref->fine()},
+        {"coarse", &ref->coarse()}}) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    EXPECT_NEAR(s.time_s, 1.0e-4, 1e-12) << name;
+    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
+  }
+  // The interface history: one row per coarse instant, the gap of the runner's, drift work.
+  const std::string h5 = (out / "coordinator.h5").string();
+  const auto time = read_doubles(h5, "/coupling/fine-coarse/time");
+  const auto gap = read_doubles(h5, "/coupling/fine-coarse/displacement_gap");
+  const auto drift = read_doubles(h5, "/coupling/fine-coarse/drift_work");
+  ASSERT_EQ(time.size(), 51u);
+  ASSERT_EQ(gap.size(), 51u);
+  double worst = 0.0;
+  for (std::size_t i = 0; i + 1 < gap.size(); ++i) worst = std::max(worst, gap[i]);
+  EXPECT_NEAR(worst, ref->max_gap().link_m, 1e-12 * ref->max_gap().link_m);
+  EXPECT_GT(worst, 0.0);  // the two presences do drift apart between corrections ...
+  ASSERT_FALSE(drift.empty());
+  EXPECT_NE(drift.back(), 0.0);  // ... and [11] works on them
+}
+
+TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
+  const std::string t(transport::scheme_name(GetParam()));
+  const auto dir = fresh_dir("paper-r4-" + t);
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(2.0e-4));
+  const auto out = dir / "out";
+  std::string log;
+  EXPECT_EQ(run_paper(GetParam(), scenario, out, 4, log), run::kExitNumerical) << log;
+  EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
+
+  std::string stopped;
+  reference(io::read_scenario(scenario), 4, 50, stopped);
+  ASSERT_FALSE(stopped.empty()) << "the runner was expected to stop at r = 4";
+  EXPECT_EQ(stop_instant(log), stop_instant(stopped)) << log << "\n" << stopped;
+  // What was written stays readable and finite.
+  for (const std::string name : {"fine", "coarse"}) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    for (const double x : s.u) ASSERT_TRUE(std::isfinite(x)) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Transports, PaperProcesses,
+                         ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
+                         scheme_test_name);
+
+/// `crashlink run --coupling paper`: split at r = 1 closes the energy balance (the daemons'
+/// accounts, gathered), and the run's history is marked `paper`.
+TEST(PaperRun, SplitRunClosesTheEnergyBalance) {
+  const auto dir = fresh_dir("paper-run");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(1.0e-4));
+  const auto out = dir / "out";
+  std::vector<std::string> argv{bin("crashlink"), "run",   scenario, "--mode",     "split",
+                                "--coupling",     "paper", "--out",  out.string(), "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  ASSERT_TRUE(st.has_value()) << run.output();
+  ASSERT_EQ(exit_code(*st), 0) << run.output();
+  const auto err =
+      read_doubles((out / "result.h5").string(), "/history/glstat/energy_balance_error");
+  ASSERT_FALSE(err.empty());
+  double worst = 0.0;
+  for (const double e : err) worst = std::max(worst, std::abs(e));
+  // Each domain's balance closes to round-off at a constant step (the link and drift work are
+  // counted with the Solver's trapezoid rule); 1e-5 leaves room for the summing.
+  EXPECT_LT(worst, 1e-5) << run.output();
+  EXPECT_NE(run.output().find("--coupling paper"), std::string::npos) << run.output();
+}
+
+}  // namespace
