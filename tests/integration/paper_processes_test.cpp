@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <thread>
@@ -29,12 +31,12 @@ namespace {
 
 constexpr double kFineStep = 1.0e-6;  // s; the bar's fine part allows ~1.1e-6 s
 
-/// Runs the coordinator and the two daemons of bar_yaml with fixed steps (the proposals capped:
-/// fine kFineStep, coarse ratio x kFineStep). Returns the coordinator's exit code and its message
-/// (or output) in `log`.
+/// Runs the coordinator and one daemon per entry of `cap` (domain -> cap on its proposed step, s;
+/// 0: its own). Returns the coordinator's exit code, its message (or output) in `log` and, inproc,
+/// each domain's fixed step in `steps`.
 int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem::path& out,
-              int ratio, std::string& log) {
-  const std::map<std::string, double> cap{{"fine", kFineStep}, {"coarse", ratio * kFineStep}};
+              const std::map<std::string, double>& cap, std::string& log,
+              std::map<std::string, double>* steps = nullptr) {
   if (scheme == Scheme::inproc) {
     coordination::CoordinatorOptions co;
     co.bind = transport::local_endpoint(Scheme::inproc, "paper");
@@ -58,7 +60,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
         d.out_dir = out.string();
         d.in_process = true;
         d.paper = true;
-        d.max_step_s = step;
+        d.max_step_s = step;  // 0: none
         dr[k] = daemon::run_daemon(d);
       });
       ++k;
@@ -66,6 +68,10 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
     for (auto& t : ds) t.join();
     c.join();
     log = cr.message;
+    if (steps != nullptr)
+      for (const auto& d : cr.domains)
+        (*steps)[d.name] =
+            static_cast<double>(d.step_ticks) / static_cast<double>(co.ticks_per_second);
     for (const auto& d : dr) log += "\n" + d.message;
     return cr.exit_code;
   }
@@ -76,6 +82,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
   for (const auto& [name, step] : cap)
     ds.push_back(start_solver(endpoint, name, scenario, out,
                               {"--coupling", "paper", "--max-step", fmt::format("{:.17g}", step)}));
+  EXPECT_EQ(steps, nullptr) << "the fixed steps are read back from threads only";
   for (auto& d : ds) EXPECT_TRUE(d->wait(60s).has_value()) << d->output();
   const auto st = c->wait(20s);
   log = c->output();
@@ -83,13 +90,17 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
   return st ? exit_code(*st) : -999;
 }
 
-/// The in-process runner at the same steps: `coarse_steps` advances (or until its guard stops it:
-/// its message in `stopped`).
-std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, int ratio,
+std::map<std::string, double> bar_caps(int ratio) {
+  return {{"fine", kFineStep}, {"coarse", ratio * kFineStep}};
+}
+
+/// The in-process runner at the steps h and H: `coarse_steps` advances (or until its guard stops
+/// it: its message in `stopped`).
+std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, double h, double H,
                                               std::int64_t coarse_steps, std::string& stopped) {
   cosim::PaperOptions o;
-  o.fine_dt_s = kFineStep;
-  o.coarse_dt_s = ratio * kFineStep;
+  o.fine_dt_s = h;
+  o.coarse_dt_s = H;
   auto r = std::make_unique<cosim::PaperRunner>(m, o);
   r->initialize();
   try {
@@ -136,11 +147,11 @@ TEST_P(PaperProcesses, ReproduceThePaperRunnerBitForBit) {
   const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(1.0e-4));
   const auto out = dir / "out";
   std::string log;
-  ASSERT_EQ(run_paper(GetParam(), scenario, out, 2, log), 0) << log;
+  ASSERT_EQ(run_paper(GetParam(), scenario, out, bar_caps(2), log), 0) << log;
 
   const auto m = io::read_scenario(scenario);
   std::string stopped;
-  const auto ref = reference(m, 2, 50, stopped);
+  const auto ref = reference(m, kFineStep, 2 * kFineStep, 50, stopped);
   ASSERT_TRUE(stopped.empty()) << stopped;
   ASSERT_EQ(ref->coarse_steps(), 50);
   for (const auto& [name, solver] :
@@ -173,11 +184,11 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
   const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(2.0e-4));
   const auto out = dir / "out";
   std::string log;
-  EXPECT_EQ(run_paper(GetParam(), scenario, out, 4, log), run::kExitNumerical) << log;
+  EXPECT_EQ(run_paper(GetParam(), scenario, out, bar_caps(4), log), run::kExitNumerical) << log;
   EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
 
   std::string stopped;
-  reference(io::read_scenario(scenario), 4, 50, stopped);
+  reference(io::read_scenario(scenario), kFineStep, 4 * kFineStep, 50, stopped);
   ASSERT_FALSE(stopped.empty()) << "the runner was expected to stop at r = 4";
   EXPECT_EQ(stop_instant(log), stop_instant(stopped)) << log << "\n" << stopped;
   // What was written stays readable and finite.
@@ -191,6 +202,46 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
 INSTANTIATE_TEST_SUITE_P(Transports, PaperProcesses,
                          ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
                          scheme_test_name);
+
+/// Contact across domains (§3.1 of Bourel 2005): scenarios/plate_impact_small.yaml cut into the
+/// rigid headform and the plate, 1 ms (the impact starts at 0.2 ms). The headform's domain holds
+/// copies of the plate's 441 nodes and computes the contact on them; over threads the run must be
+/// PaperRunner's, bit for bit, at the steps the coordinator planned.
+TEST(PaperProcessesContact, CopiesReproduceThePaperRunnerBitForBit) {
+  const auto dir = fresh_dir("paper-contact");
+  const RemoveIfPassed cleanup{dir};
+  std::ifstream in(std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/plate_impact_small.yaml");
+  std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = yaml.find("end_time: 0.008");
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, 15, "end_time: 0.001");
+  yaml += "domains:\n  head: {parts: [headform]}\n  plate: {parts: [plate]}\n";
+  const std::string scenario = write_file(dir / "pis.yaml", yaml);
+  const auto out = dir / "out";
+  std::string log;
+  std::map<std::string, double> steps;
+  ASSERT_EQ(run_paper(Scheme::inproc, scenario, out, {{"head", 0.0}, {"plate", 0.0}}, log, &steps),
+            0)
+      << log;
+  ASSERT_GT(steps["plate"], 0.0);
+  ASSERT_GE(steps["head"], steps["plate"]);
+  const auto m = io::read_scenario(scenario);
+  std::string stopped;
+  const auto coarse = static_cast<std::int64_t>(std::ceil(1.0e-3 / steps["head"] - 1e-9));
+  const auto ref = reference(m, steps["plate"], steps["head"], coarse, stopped);
+  ASSERT_TRUE(stopped.empty()) << stopped;
+  EXPECT_EQ(ref->coupled_nodes().size(), 441u);
+  for (const auto& [name, solver] :
+       {std::pair<std::string, const integration::Solver*>{"plate", &ref->fine()},
+        {"head", &ref->coarse()}}) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    EXPECT_NEAR(s.time_s, ref->seconds(ref->coarse_time_ticks()), 1e-12) << name;
+    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
+  }
+  // The copies touched: the plate moved under the headform.
+  EXPECT_GT(ref->max_gap().copy_m, 0.0);
+}
 
 /// `crashlink run --coupling paper`: split at r = 1 closes the energy balance (the daemons'
 /// accounts, gathered), and the run's history is marked `paper`.
