@@ -409,6 +409,7 @@ class Daemon {
       s.begin_cycle();
       if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
       recorder_->sample();
+      link_->keep_alive();
       energy = energy_terms(*paper_);
       energy_time = paper_time_;
       if (c.stop()) return;

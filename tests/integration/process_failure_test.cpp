@@ -1,4 +1,4 @@
-// Failure handling of a `layer` run over real processes (DESIGN.md §3, issue 4 "Failure
+// Failure handling of a `layer` or `paper` run over real processes (DESIGN.md §3, issue 4 "Failure
 // handling"): a daemon killed (SIGKILL) or frozen (SIGSTOP) mid-run, or the coordinator killed.
 // Everyone else must exit non-zero within 5 s with a message naming the culprit, and the output
 // written so far must open (each daemon's DIR/domains/<domain>.h5 and the gathered result.h5).
@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <vector>
 
 #include "process_test_support.h"
 #include "solver/gather/gather_results.h"
@@ -23,18 +25,35 @@ using transport::Scheme;
 
 namespace {
 
-class ProcessFailure : public ::testing::TestWithParam<Scheme> {
+/// (transport, `paper` instead of `layer`)
+using FailureCase = std::tuple<Scheme, bool>;
+
+std::string failure_case_name(const ::testing::TestParamInfo<FailureCase>& info) {
+  return std::string(transport::scheme_name(std::get<0>(info.param))) +
+         (std::get<1>(info.param) ? "_paper" : "_layer");
+}
+
+class ProcessFailure : public ::testing::TestWithParam<FailureCase> {
  protected:
+  Scheme scheme() const { return std::get<0>(GetParam()); }
+  bool paper() const { return std::get<1>(GetParam()); }
+
   /// Coordinator + daemons 'fine' and 'coarse' on a bar that would run for minutes, started and
-  /// past their Setup.
+  /// past their Setup. `paper` runs split (one common step: stable for minutes; at the bar's
+  /// ratio of 4 its guard would stop it within microseconds of simulated time).
   void start(const std::string& label) {
-    dir_ = fresh_dir(label + "-" + std::string(transport::scheme_name(GetParam())));
+    dir_ = fresh_dir(label + "-" + std::string(transport::scheme_name(scheme())) +
+                     (paper() ? "-paper" : ""));
     scenario_ = write_file(dir_ / "bar.yaml", bar_yaml(10.0));
     out_ = dir_ / "out";
-    coordinator_ =
-        start_coordinator(bind_endpoint(GetParam(), dir_), scenario_, out_, "multi", endpoint_);
-    fine_ = start_solver(endpoint_, "fine", scenario_, out_, {"--step-safety", "0.9"});
-    coarse_ = start_solver(endpoint_, "coarse", scenario_, out_, {"--step-safety", "0.9"});
+    std::vector<std::string> coupling;
+    if (paper()) coupling = {"--coupling", "paper"};
+    coordinator_ = start_coordinator(bind_endpoint(scheme(), dir_), scenario_, out_,
+                                     paper() ? "split" : "multi", endpoint_, coupling);
+    auto solver_args = coupling;
+    solver_args.insert(solver_args.end(), {"--step-safety", "0.9"});
+    fine_ = start_solver(endpoint_, "fine", scenario_, out_, solver_args);
+    coarse_ = start_solver(endpoint_, "coarse", scenario_, out_, solver_args);
     ASSERT_TRUE(coordinator_->wait_for_output("steps:", 20s)) << coordinator_->output();
     // Mid-run: both daemons have been stepping (and flushing history) for a while.
     std::this_thread::sleep_for(500ms);
@@ -53,7 +72,8 @@ class ProcessFailure : public ::testing::TestWithParam<Scheme> {
     io::ResultReader own((out_ / "domains" / (survivor + ".h5")).string());
     EXPECT_FALSE(own.glstat().empty()) << survivor;
     const auto model = io::read_scenario(scenario_);
-    const auto dec = partition::decompose(model, partition::Scheme::Layer);
+    const auto dec =
+        partition::decompose(model, paper() ? partition::Scheme::Paper : partition::Scheme::Layer);
     const auto report = gather::gather_results(model, dec, out_.string());
     io::ResultReader gathered((out_ / "result.h5").string());
     EXPECT_FALSE(gathered.glstat().empty());
@@ -92,7 +112,7 @@ TEST_P(ProcessFailure, KilledDaemonStopsEveryoneWithinFiveSeconds) {
   std::printf(
       "[measured] %s: daemon 'fine' SIGKILLed: coordinator exit %d after %.3f s, daemon "
       "'coarse' exit %d after %.3f s (peer timeout 1 s)\n",
-      transport::scheme_name(GetParam()).data(), cc, ct, dc, dt);
+      transport::scheme_name(scheme()).data(), cc, ct, dc, dt);
   EXPECT_NE(cc, 0);
   EXPECT_NE(dc, 0);
   EXPECT_LE(ct, 5.0);
@@ -111,7 +131,7 @@ TEST_P(ProcessFailure, FrozenDaemonIsDetectedAsSilent) {
   std::printf(
       "[measured] %s: daemon 'coarse' SIGSTOPped: coordinator exit %d after %.3f s, "
       "daemon 'fine' exit %d after %.3f s (peer timeout 1 s)\n",
-      transport::scheme_name(GetParam()).data(), cc, ct, dc, dt);
+      transport::scheme_name(scheme()).data(), cc, ct, dc, dt);
   EXPECT_EQ(cc, run::kExitPeer);
   EXPECT_EQ(dc, run::kExitPeer);
   EXPECT_GE(ct, 0.9);  // not before the peer timeout
@@ -137,7 +157,7 @@ TEST_P(ProcessFailure, KilledCoordinatorStopsTheDaemons) {
   std::printf(
       "[measured] %s: coordinator SIGKILLed: daemon 'fine' exit %d after %.3f s, daemon "
       "'coarse' exit %d after %.3f s (peer timeout 1 s)\n",
-      transport::scheme_name(GetParam()).data(), fc, ft, dc, dt);
+      transport::scheme_name(scheme()).data(), fc, ft, dc, dt);
   EXPECT_EQ(fc, run::kExitPeer);
   EXPECT_EQ(dc, run::kExitPeer);
   EXPECT_LE(ft, 5.0);
@@ -150,5 +170,7 @@ TEST_P(ProcessFailure, KilledCoordinatorStopsTheDaemons) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Transports, ProcessFailure, ::testing::Values(Scheme::tcp, Scheme::ipc),
-                         scheme_test_name);
+INSTANTIATE_TEST_SUITE_P(Transports, ProcessFailure,
+                         ::testing::Combine(::testing::Values(Scheme::tcp, Scheme::ipc),
+                                            ::testing::Bool()),
+                         failure_case_name);
