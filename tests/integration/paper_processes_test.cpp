@@ -17,6 +17,7 @@
 
 #include "process_test_support.h"
 #include "solver/coordination/coordinator_run.h"
+#include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
 #include "solver/cosim/paper_runner.h"
 #include "solver/daemon/daemon.h"
@@ -241,6 +242,116 @@ TEST(PaperProcessesContact, CopiesReproduceThePaperRunnerBitForBit) {
   }
   // The copies touched: the plate moved under the headform.
   EXPECT_GT(ref->max_gap().copy_m, 0.0);
+}
+
+/// A steel bar of hexes in three parts and domains: fine [0, 0.2] m (10 mm), mid [0.2, 0.4] m
+/// (20 mm), coarse [0.4, 0.6] m (40 mm); far end fixed, a force pulse on x = 0.
+std::string bar3_yaml(double end_time_s) {
+  return "name: bar3\ncontrols:\n  end_time: " + std::to_string(end_time_s) + R"(
+materials:
+  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
+parts:
+  fine:
+    material: steel
+    mesh: {generator: bar, origin: [0.0, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 20}
+  mid:
+    material: steel
+    merge_nodes: true
+    mesh: {generator: bar, origin: [0.2, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 10}
+  coarse:
+    material: steel
+    merge_nodes: true
+    mesh: {generator: bar, origin: [0.4, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 5}
+node_sets:
+  far_end: {box: {min: [0.5999, -1.0, -1.0], max: [0.7, 1.0, 1.0]}}
+  loaded_end: {box: {min: [-1.0, -1.0, -1.0], max: [1.0e-4, 1.0, 1.0]}}
+boundary:
+  - {nodes: far_end, fix: all}
+loads:
+  - nodes: loaded_end
+    dof: x
+    curve: {t: [0.0, 2.0e-5, 2.1e-5], v: [1.0e+4, 1.0e+4, 0.0]}
+domains:
+  fine: {parts: [fine]}
+  mid: {parts: [mid]}
+  coarse: {parts: [coarse]}
+)";
+}
+
+/// Three domains (two interfaces, the middle domain in both): split at one common step sums the
+/// free accelerations of [8] into the single-domain acceleration, so it reproduces mono at that
+/// step to round-off (DESIGN.md §4: <= 1e-10 relative).
+TEST(PaperProcessesThreeDomains, SplitReproducesMono) {
+  const auto dir = fresh_dir("paper-3");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar3.yaml", bar3_yaml(2.0e-4));
+  const auto out = dir / "out";
+  coordination::CoordinatorOptions co;
+  co.bind = transport::local_endpoint(Scheme::inproc, "paper3");
+  co.scenario = scenario;
+  co.out_dir = out.string();
+  co.common_step = true;
+  co.paper = true;
+  co.in_process = true;
+  co.log = nullptr;
+  coordination::CoordinatorResult cr;
+  std::thread c([&] { cr = coordination::run_coordinator(co); });
+  std::vector<daemon::DaemonResult> dr(3);
+  std::vector<std::thread> ds;
+  const std::vector<std::string> names{"fine", "mid", "coarse"};
+  for (std::size_t k = 0; k < 3; ++k)
+    ds.emplace_back([&, k] {
+      daemon::DaemonOptions d;
+      d.endpoint = co.bind;
+      d.domain = names[k];
+      d.scenario = scenario;
+      d.out_dir = out.string();
+      d.in_process = true;
+      d.paper = true;
+      d.step_safety = 0.9;  // the fine part's stable step shrinks under the pulse
+      dr[k] = daemon::run_daemon(d);
+    });
+  for (auto& t : ds) t.join();
+  c.join();
+  ASSERT_EQ(cr.exit_code, 0) << cr.message;
+  for (const auto& d : dr) ASSERT_EQ(d.exit_code, 0) << d.message;
+  ASSERT_EQ(cr.domains.size(), 3u);
+  const auto step = cr.domains[0].step_ticks;
+  for (const auto& d : cr.domains) ASSERT_EQ(d.step_ticks, step) << d.name;
+  const double h = static_cast<double>(step) / static_cast<double>(co.ticks_per_second);
+
+  const auto m = io::read_scenario(scenario);
+  integration::Solver mono(m, "mono");
+  mono.initialize();
+  mono.impose_step(h);
+  const auto T = coordination::paper_end_ticks(2.0e-4, {step}, co.ticks_per_second);
+  for (std::int64_t n = 0; n < T / step; ++n) {
+    mono.begin_cycle();
+    mono.end_cycle();
+    mono.impose_step(h);
+  }
+  double worst = 0.0, scale = 0.0;
+  for (const auto& name : names) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    EXPECT_NEAR(s.time_s, mono.time_s(), 1e-12) << name;
+    const double d = max_difference(s, mono);
+    ASSERT_GE(d, 0.0) << name;
+    worst = std::max(worst, d);
+  }
+  for (const double u : mono.displacement()) scale = std::max(scale, std::abs(u));
+  ASSERT_GT(scale, 0.0);
+  std::printf(
+      "[measured] paper split, three domains, %lld steps of %.4e s: max |u - u_mono| = "
+      "%.3e m of max |u| = %.3e m (%.2e relative)\n",
+      static_cast<long long>(T / step), h, worst, scale, worst / scale);
+  EXPECT_LE(worst / scale, 1e-10);
+  // The two interfaces each have their history, marked `paper`.
+  const std::string h5 = (out / "coordinator.h5").string();
+  EXPECT_EQ(read_doubles(h5, "/coupling/fine-mid/time").size(),
+            static_cast<std::size_t>(T / step) + 1);
+  EXPECT_EQ(read_doubles(h5, "/coupling/mid-coarse/time").size(),
+            static_cast<std::size_t>(T / step) + 1);
 }
 
 /// `crashlink run --coupling paper`: split at r = 1 closes the energy balance (the daemons'
