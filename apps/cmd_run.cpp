@@ -23,6 +23,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "a step ratio of about 2; its guard stops it beyond, docs/paper-scheme.md)")
       ->check(CLI::IsMember({"layer", "paper"}));
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
+  run->add_flag("--variable-steps", o.variable_steps,
+                "--coupling paper: each domain's step follows its stable step as the mesh "
+                "deforms (split: the smallest of all at every instant) instead of being fixed");
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");

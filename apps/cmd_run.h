@@ -39,8 +39,9 @@ struct RunCommandOptions {
   double checkpoint_interval_s = 0.0;
   /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
-  bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
-  bool no_drift = false;  ///< `paper`: drift correction [11] off
+  bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
+  bool no_drift = false;        ///< `paper`: drift correction [11] off
+  bool variable_steps = false;  ///< `paper`: each free state's own step (DESIGN.md §2.6)
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

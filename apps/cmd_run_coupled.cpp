@@ -112,6 +112,10 @@ int run_coupled(const RunCommandOptions& o) {
     throw InputError(
         "--coupling paper: --checkpoint-interval and --restart are features of "
         "`layer` runs; run `paper` without them");
+  if (!paper && o.variable_steps)
+    throw InputError(
+        "--variable-steps is a --coupling paper option; `layer` runs at fixed nested "
+        "steps");
   if (!paper && o.no_drift)
     throw InputError(
         "--no-drift switches the drift correction [11] of --coupling paper off; "
@@ -151,6 +155,7 @@ int run_coupled(const RunCommandOptions& o) {
   lo.lanes = !o.no_lanes;
   lo.paper = paper;
   lo.drift = !o.no_drift;
+  lo.variable_steps = o.variable_steps;
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

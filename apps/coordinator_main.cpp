@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bool no_drift = false;
   app.add_flag("--no-drift", no_drift, "`paper`: drift correction [11] off (the study's S2)");
+  app.add_flag(
+      "--variable-steps", o.variable_steps,
+      "`paper`: impose each free state's own step proposal (split: the smallest of all "
+      "at every instant; multi: each its own) instead of fixed steps planned at the start");
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);

@@ -148,6 +148,7 @@ class ProcessRun {
       args.emplace_back("--coupling");
       args.emplace_back("paper");
       if (!o_.drift) args.emplace_back("--no-drift");
+      if (o_.variable_steps) args.emplace_back("--variable-steps");
     }
     add("coordinator", spawn(coordinator_exe, args));
 
@@ -275,6 +276,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.lanes = o.lanes;
   co.paper = o.paper;
   co.drift = o.drift;
+  co.variable_steps = o.variable_steps;
   std::promise<std::string> bound;
   std::atomic<bool> bound_set{false};
   co.on_bound = [&](const std::string& ep) {

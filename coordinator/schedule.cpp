@@ -16,11 +16,17 @@ double Weight::upper_factor() const {
 }
 
 Schedule::Schedule(int n_domains, std::span<const std::pair<int, int>> partners, StepPolicy policy,
-                   Tick end_time)
+                   Tick end_time, bool clip_last_step)
     : domains_(static_cast<std::size_t>(std::max(n_domains, 0))),
       partners_(domains_.size()),
       policy_(policy),
-      end_(end_time) {
+      end_(end_time),
+      clip_(clip_last_step) {
+  if (!clip_last_step && policy != StepPolicy::common) {
+    // Under `own`, a domain that stopped past the end would leave a partner whose state lies
+    // beyond it unanswerable.
+    throw ModelError("schedule: an unclipped last step needs the `common` step policy");
+  }
   if (n_domains < 1) {
     throw ModelError(fmt::format("schedule: {} domains; a run needs at least one", n_domains));
   }
@@ -154,7 +160,7 @@ std::optional<Answer> Schedule::pop() {
     step = common_step_;
   }
   a.stop = t >= end_;
-  a.imposed_step = a.stop ? 0 : std::min(step, end_ - t);
+  a.imposed_step = a.stop ? 0 : clip_ ? std::min(step, end_ - t) : step;
   a.partners.reserve(partners_[k].size());
   for (int l : partners_[k]) a.partners.push_back(bracket(l, t));
 

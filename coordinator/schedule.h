@@ -76,8 +76,10 @@ class Schedule {
   /// n_domains domains 0..n-1; `partners`: undirected pairs (k, l) of domains sharing an
   /// interface. Every domain's first free state is at tick 0; the run ends at `end_time`.
   /// Throws crashlink::ModelError for a bad pair or a negative end time.
+  /// clip_last_step = false (policy `common` only): the last step is not shortened; the run stops
+  /// at the first common instant at or after the end time, as a single-domain Solver does.
   Schedule(int n_domains, std::span<const std::pair<int, int>> partners, StepPolicy policy,
-           Tick end_time);
+           Tick end_time, bool clip_last_step = true);
 
   /// Domain k sends its free state at `time` with its stable step (whole ticks, rounded down).
   /// Returns the slot (0 or 1) where the caller keeps the payload; it stays valid until k's
@@ -122,6 +124,7 @@ class Schedule {
   Tick end_;
   Tick common_time_ = -1;  // `common`: the instant whose imposed step is cached
   Tick common_step_ = 0;
+  bool clip_ = true;
 };
 
 }  // namespace crashlink::coordinator

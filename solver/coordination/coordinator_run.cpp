@@ -151,6 +151,10 @@ class Coordinator {
     model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
     const auto dec = partition::decompose(
         *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer);
+    if (o_.variable_steps && !o_.paper)
+      throw InputError(
+          "--variable-steps: `layer` runs at fixed nested steps; variable steps are "
+          "a `paper` option (--coupling paper)");
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -319,7 +323,10 @@ class Coordinator {
     exchange_ = std::make_unique<PaperExchange>(
         *paper_cut_, table, plan.step,
         o_.drift ? coordinator::paper::Drift::on : coordinator::paper::Drift::off, o_.guard_rise,
-        o_.ticks_per_second);
+        o_.ticks_per_second,
+        !o_.variable_steps ? PaperExchange::Steps::fixed
+        : o_.common_step   ? PaperExchange::Steps::variable_common
+                           : PaperExchange::Steps::variable_own);
     std::string steps;
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       outcomes_[k].step_ticks = plan.step[k];
@@ -330,11 +337,13 @@ class Coordinator {
                       static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
     }
     if (o_.log != nullptr) {
-      std::fprintf(o_.log,
-                   "crashlink-coordinator: %s run, scheme `paper` (drift correction [11] %s, "
-                   "%zu coupled nodes), steps: %s\n",
-                   o_.common_step ? "split" : "multi", o_.drift ? "on" : "off", table.nodes.size(),
-                   steps.c_str());
+      std::fprintf(
+          o_.log,
+          "crashlink-coordinator: %s run, scheme `paper` (drift correction [11] %s, "
+          "%zu coupled nodes), %s: %s\n",
+          o_.common_step ? "split" : "multi", o_.drift ? "on" : "off", table.nodes.size(),
+          o_.variable_steps ? "variable steps (each state's proposal), initially" : "steps",
+          steps.c_str());
       std::fflush(o_.log);
     }
   }

@@ -42,8 +42,11 @@ struct CoordinatorOptions {
   /// The `paper` scheme (paper_cut.h, paper_exchange.h): the coordinator answers every free state
   /// with its correction ([8]-[11]); false: `layer`. No checkpoints, no restart, no lanes.
   bool paper = false;
-  bool drift = true;          ///< `paper`: drift correction [11] on
-  double guard_rise = 0.05;   ///< `paper`: energy guard (coordinator/paper_guard.h)
+  bool drift = true;         ///< `paper`: drift correction [11] on
+  double guard_rise = 0.05;  ///< `paper`: energy guard (coordinator/paper_guard.h)
+  /// `paper`: each free state's own step proposal instead of the fixed plan (DESIGN.md §2.6:
+  /// split imposes the smallest of all at every instant, multi each its own).
+  bool variable_steps = false;
   std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
   transport::SessionOptions session;
   std::chrono::milliseconds join_timeout{60000};  ///< every domain joined and registered by then

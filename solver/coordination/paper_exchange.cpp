@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <span>
 #include <string>
@@ -60,13 +61,20 @@ Tick paper_end_ticks(double end_time_s, const std::vector<Tick>& steps, std::int
 
 PaperExchange::PaperExchange(const PaperCut& cut, const coordinator::InterfaceTable& table,
                              std::vector<Tick> steps, paper::Drift drift, double guard_rise,
-                             std::int64_t ticks_per_second)
+                             std::int64_t ticks_per_second, Steps policy)
     : cut_(cut),
       steps_(std::move(steps)),
+      policy_(policy),
       drift_(drift),
       tps_(ticks_per_second),
-      schedule_(static_cast<int>(cut.cut.names.size()), partner_pairs(cut.cut),
-                coordinator::StepPolicy::own, paper_end_ticks(cut.cut.end_time_s, steps_, tps_)),
+      schedule_(
+          static_cast<int>(cut.cut.names.size()), partner_pairs(cut.cut),
+          policy == Steps::variable_common ? coordinator::StepPolicy::common
+                                           : coordinator::StepPolicy::own,
+          policy == Steps::fixed
+              ? paper_end_ticks(cut.cut.end_time_s, steps_, tps_)
+              : static_cast<Tick>(std::llround(cut.cut.end_time_s * static_cast<double>(tps_))),
+          policy != Steps::variable_common),
       domains_(cut.cut.names.size()),
       interfaces_(cut.cut.interfaces.size()),
       guard_(guard_rise) {
@@ -127,8 +135,9 @@ void PaperExchange::unstable(Tick t, const std::string& what) const {
   const auto [lo, hi] = std::minmax_element(steps_.begin(), steps_.end());
   throw NumericalError(paper::unstable_message(
       fmt::format("at t = {:.6e} s", seconds(t)), what, drift_,
-      fmt::format("{:.4g} (steps: {})",
-                  *lo > 0 ? static_cast<double>(*hi) / static_cast<double>(*lo) : 0.0, steps)));
+      fmt::format("{:.4g} ({}: {})",
+                  *lo > 0 ? static_cast<double>(*hi) / static_cast<double>(*lo) : 0.0,
+                  policy_ == Steps::fixed ? "steps" : "variable steps, initially", steps)));
 }
 
 void PaperExchange::submit(int k, const wire::FreeState& s) {
@@ -150,7 +159,10 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
                       "(nothing was sent back)",
                       cut_.node_ids[static_cast<std::size_t>(k)][static_cast<std::size_t>(i / 3)],
                       name, s.accelerations_m_s2(i)));
-  const int slot = schedule_.submit(k, s.time_ticks(), steps_[static_cast<std::size_t>(k)]);
+  const Tick plan = steps_[static_cast<std::size_t>(k)];
+  const Tick step =
+      policy_ == Steps::fixed || s.stable_step_ticks() < 1 ? plan : s.stable_step_ticks();
+  const int slot = schedule_.submit(k, s.time_ticks(), step);
   auto& S = D.slot[slot];
   S.time = s.time_ticks();
   S.a.assign(s.accelerations_m_s2().begin(), s.accelerations_m_s2().end());
@@ -164,23 +176,41 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
 }
 
 void PaperExchange::check_energies() {
-  // Instants every domain has reported its energy at, oldest first.
+  // Instants every domain has reported its energy at, oldest first; variable multi steps rarely
+  // share one: there, each domain's latest energy, once the oldest of them has advanced.
   for (;;) {
-    auto& first = domains_.front().energy;
-    auto it = std::find_if(first.begin(), first.end(), [&](const auto& e) {
-      return std::all_of(domains_.begin(), domains_.end(),
-                         [&](const Domain& D) { return D.energy.count(e.first) != 0; });
-    });
-    if (it == first.end()) return;
-    const Tick T = it->first;
+    Tick T = -1;
+    if (policy_ == Steps::variable_own) {
+      Tick oldest = -1;
+      for (const auto& D : domains_) {
+        if (D.energy.empty()) return;
+        const Tick t = D.energy.rbegin()->first;
+        oldest = oldest < 0 ? t : std::min(oldest, t);
+      }
+      if (oldest <= guard_time_) return;
+      guard_time_ = oldest;
+      T = oldest;
+    } else {
+      auto& first = domains_.front().energy;
+      auto it = std::find_if(first.begin(), first.end(), [&](const auto& e) {
+        return std::all_of(domains_.begin(), domains_.end(),
+                           [&](const Domain& D) { return D.energy.count(e.first) != 0; });
+      });
+      if (it == first.end()) return;
+      T = it->first;
+    }
     double total = 0.0, external = 0.0, work = 0.0, twice = 0.0;
     for (auto& D : domains_) {
-      const auto& e = D.energy.at(T);
+      const auto e = policy_ == Steps::variable_own ? D.energy.rbegin()->second : D.energy.at(T);
       total += e.kinetic_j() + e.internal_j() + e.hourglass_j() + e.contact_j();
       external += e.external_work_j();
       work += e.coupling_work_j();
       twice += e.coupled_kinetic_j();
-      D.energy.erase(D.energy.begin(), D.energy.upper_bound(T));
+      if (policy_ == Steps::variable_own) {
+        D.energy.erase(D.energy.begin(), std::prev(D.energy.end()));  // keep the latest
+      } else {
+        D.energy.erase(D.energy.begin(), D.energy.upper_bound(T));
+      }
     }
     total -= twice;
     if (!have_initial_) {
@@ -191,6 +221,7 @@ void PaperExchange::check_energies() {
     if (auto why = guard_.sample(total - external, total, initial_J_ + external))
       unstable(T, fmt::format("{}; net work of the link and drift corrections {:.4e} J", *why,
                               work - (twice - twice0_J_)));
+    if (policy_ == Steps::variable_own) return;
   }
 }
 

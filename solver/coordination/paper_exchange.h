@@ -9,8 +9,14 @@
 // with u_ref the reference side's displacement interpolated by [10] - the same functions, in the
 // same order, as cosim::PaperRunner, so a run over processes reproduces it bit for bit.
 //
+// Steps: the plan's, fixed (default), or variable (DESIGN.md §2.6: each free state carries its
+// domain's proposal; split imposes the smallest of all at every instant and, like a single-domain
+// run, stops at the first instant at or after the end time; multi each its own, the last step
+// clipped to the end time).
+//
 // At every instant where all domains stand together (their energies arrive with their next free
-// state) the energy guard (coordinator/paper_guard.h) checks the coupled energy; a rise, or a
+// state; with variable multi steps, whenever the oldest of the domains' latest energies advances,
+// their sum) the energy guard (coordinator/paper_guard.h) checks the coupled energy; a rise, or a
 // non-finite free or corrected acceleration, throws NumericalError "the coupling went unstable"
 // (nothing non-finite is ever sent). Per interface, at every instant both sides were answered, a
 // history row: displacement gap and velocity jump (max over the nodes, from the free states),
@@ -56,10 +62,18 @@ struct PaperRow {
 
 class PaperExchange {
  public:
-  /// steps: [daemons] each domain's fixed step (the plan). Throws ModelError on bad sizes.
+  /// How the steps are chosen.
+  enum class Steps {
+    fixed,            ///< the plan's `steps` for the whole run (cosim::PaperRunner's way)
+    variable_common,  ///< split: at every instant the smallest proposal of all (DESIGN.md §2.6)
+    variable_own,     ///< multi: each state's own proposal (FreeState.stable_step_ticks)
+  };
+
+  /// steps: [daemons] each domain's step of the plan (fixed; variable: the fallback of a domain
+  /// that proposes no limit). Throws ModelError on bad sizes.
   PaperExchange(const PaperCut& cut, const coordinator::InterfaceTable& table,
                 std::vector<coordinator::Tick> steps, coordinator::paper::Drift drift,
-                double guard_rise, std::int64_t ticks_per_second);
+                double guard_rise, std::int64_t ticks_per_second, Steps policy = Steps::fixed);
 
   /// Domain k's free state. Throws coordinator::ProtocolError (wrong time, sizes) and
   /// NumericalError (the coupling went unstable).
@@ -109,6 +123,8 @@ class PaperExchange {
 
   const PaperCut& cut_;
   std::vector<coordinator::Tick> steps_;
+  Steps policy_;
+  coordinator::Tick guard_time_ = -1;  // variable_own: the last instant the guard sampled
   coordinator::paper::Drift drift_;
   std::int64_t tps_;
   coordinator::Schedule schedule_;

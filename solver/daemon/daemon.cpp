@@ -295,25 +295,30 @@ class Daemon {
     run_wall0_ = Clock::now();
   }
 
+  /// This domain's step proposal in whole ticks: floor(step_safety * min(dt, max_step_s) * tps),
+  /// dt the solver's own stable step (LayerNetworkOptions' rule, layer_network.cpp, so both plan
+  /// the same steps); 0: no limit (no deformable element).
+  std::int64_t proposal_ticks() const {
+    const auto& s = *solver();
+    double dt = s.dt_s();
+    if (o_.max_step_s > 0.0) dt = std::min(dt, o_.max_step_s);
+    if (!std::isfinite(dt)) return 0;
+    const double x = std::floor(o_.step_safety * dt * static_cast<double>(tps_));
+    if (!(x >= 1.0) || x > 4.0e18) {
+      throw ModelError(
+          fmt::format("the stable step {:.6e} s is not a whole number of ticks of 1/{} s (at "
+                      "least one)",
+                      dt, tps_));
+    }
+    return static_cast<std::int64_t>(x);
+  }
+
   wire::Envelope register_message() const {
     const auto& s = *solver();
     const auto& sub = s.model();
     wire::Envelope e;
     auto* r = e.mutable_registration();
-    double dt = s.dt_s();
-    if (o_.max_step_s > 0.0) dt = std::min(dt, o_.max_step_s);
-    std::int64_t proposal = 0;  // 0: no limit (no deformable element)
-    if (std::isfinite(dt)) {
-      // LayerNetworkOptions' rule (layer_network.cpp), so both plan the same steps.
-      const double x = std::floor(o_.step_safety * dt * static_cast<double>(tps_));
-      if (!(x >= 1.0) || x > 4.0e18) {
-        throw ModelError(
-            fmt::format("the initial stable step {:.6e} s is not a whole number of "
-                        "ticks of 1/{} s (at least one)",
-                        dt, tps_));
-      }
-      proposal = static_cast<std::int64_t>(x);
-    }
+    const std::int64_t proposal = proposal_ticks();
     r->set_stable_step_ticks(proposal);
     r->set_stable_step_s(s.dt_s());
     r->set_end_time_s(sub.controls.end_time_s);
@@ -399,13 +404,16 @@ class Daemon {
     wire::EnergyTerms energy;
     cosim::Tick energy_time = -1;
     for (;;) {
-      link_->send(free_state(*paper_, paper_time_, paper_step_, energy, energy_time));
+      // Our own proposal: the coordinator imposes it (variable steps) or its plan (fixed).
+      link_->send(free_state(*paper_, paper_time_, proposal_ticks(), energy, energy_time));
       const wire::Correction c = await_correction();
       apply_correction(*paper_, c, o_.domain);
-      // At the end no step follows; the fixed one keeps the last kinetic energy (product form,
-      // v^{n+1/2} over dt^{n+1/2}) on the steps the run took, as in every cycle before.
-      s.impose_step(static_cast<double>(c.stop() ? paper_step_ : c.imposed_step_ticks()) /
-                    static_cast<double>(tps_));
+      // At the end no step follows; the last one (or the stable step, if it shrank below it)
+      // keeps the last kinetic energy (product form, v^{n+1/2} over dt^{n+1/2}) on the steps the
+      // run took, as in every cycle before.
+      if (!c.stop()) paper_step_ = c.imposed_step_ticks();
+      const double step_s = static_cast<double>(paper_step_) / static_cast<double>(tps_);
+      s.impose_step(c.stop() ? std::min(step_s, s.dt_s()) : step_s);
       s.begin_cycle();
       if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
       recorder_->sample();
@@ -740,7 +748,7 @@ class Daemon {
   std::unique_ptr<cosim::LayerDomain> dom_;
   std::unique_ptr<PaperPort> paper_;  ///< `paper`: this domain (instead of dom_ and stepper_)
   cosim::Tick paper_time_ = 0;        ///< `paper`: the instant of the next free state
-  cosim::Tick paper_step_ = 0;        ///< `paper`: the Setup's step (the free states' proposal)
+  cosim::Tick paper_step_ = 0;        ///< `paper`: the last imposed step (first: the Setup's)
   std::unique_ptr<io::ResultWriter> writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::unique_ptr<cosim::LayerStepper> stepper_;

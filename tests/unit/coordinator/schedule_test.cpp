@@ -17,6 +17,7 @@
 #include "coordinator/interpolation.h"
 #include "coordinator/protocol_error.h"
 #include "coordinator/ticks.h"
+#include "solver/core/errors.h"
 
 using crashlink::coordinator::Answer;
 using crashlink::coordinator::Schedule;
@@ -304,6 +305,30 @@ TEST(Schedule, LastStepLandsOnTheEndTime) {
   a = s.pop();
   ASSERT_TRUE(a && a->domain == 1 && a->time == 7 && a->stop);
   EXPECT_TRUE(s.all_finished());
+}
+
+// Unclipped (`common` only): everyone keeps the common step and stops at the first instant at or
+// after the end time, as a single-domain Solver does.
+TEST(Schedule, UnclippedCommonRunStopsAtTheFirstInstantPastTheEnd) {
+  Schedule s(2, Pairs{{0, 1}}, StepPolicy::common, 7, /*clip_last_step=*/false);
+  Tick t = 0;
+  for (;;) {
+    s.submit(0, t, 3);
+    s.submit(1, t, 4);
+    const auto a = s.pop();
+    const auto b = s.pop();
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->stop, t >= 7);
+    EXPECT_EQ(b->stop, t >= 7);
+    if (a->stop) break;
+    EXPECT_EQ(a->imposed_step, 3);  // never clipped, 6 -> 9 included
+    EXPECT_EQ(b->imposed_step, 3);
+    t += 3;
+  }
+  EXPECT_EQ(t, 9);
+  EXPECT_TRUE(s.all_finished());
+  // Under `own` a domain stopped past the end could leave its partner unanswerable: refused.
+  EXPECT_THROW(Schedule(2, Pairs{{0, 1}}, StepPolicy::own, 7, false), crashlink::ModelError);
 }
 
 TEST(Schedule, RejectsProtocolViolations) {
