@@ -63,6 +63,12 @@ void check_register(const LayerCut& cut, int k, const wire::Register& reg) {
   for (const auto& c : cut.interfaces) {
     if (c.fine == k || c.coarse == k) mine.push_back(&c);
   }
+  if (reg.node_ids_size() > 0) {
+    throw ModelError(fmt::format(
+        "domain '{}' registered {} `paper` coupled nodes, but this coordinator runs `layer`: start "
+        "crashlink-solver and crashlink-coordinator with the same --coupling",
+        name, reg.node_ids_size()));
+  }
   if (static_cast<std::size_t>(reg.layer_interfaces_size()) != mine.size()) {
     throw ModelError(
         fmt::format("domain '{}' registered {} layer interfaces; the coordinator's "

@@ -210,6 +210,36 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
   }
 }
 
+// A daemon started for the other scheme is refused at its Register, both ways round, with the
+// fix (the same --coupling everywhere); the coordinator exits 2 (input), the daemon non-zero.
+// Processes only (the flags are the command lines').
+TEST(PaperProcessesCli, MismatchedCouplingIsRefusedWithTheFix) {
+  for (const auto& [scheme, coordinator_paper] : {std::pair{Scheme::tcp, true},
+                                                  {Scheme::tcp, false},
+                                                  {Scheme::ipc, true},
+                                                  {Scheme::ipc, false}}) {
+    const std::string t(transport::scheme_name(scheme));
+    const auto dir = fresh_dir(std::string("paper-mix-") + t + (coordinator_paper ? "-c" : "-d"));
+    const RemoveIfPassed cleanup{dir};
+    const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(1.0e-4));
+    const auto out = dir / "out";
+    const std::vector<std::string> paper{"--coupling", "paper"};
+    std::string endpoint;
+    auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, "multi", endpoint,
+                               coordinator_paper ? paper : std::vector<std::string>{});
+    auto d = start_solver(endpoint, "fine", scenario, out,
+                          coordinator_paper ? std::vector<std::string>{} : paper);
+    const auto cs = c->wait(20s);
+    const auto ds = d->wait(20s);
+    ASSERT_TRUE(cs.has_value()) << c->output();
+    ASSERT_TRUE(ds.has_value()) << d->output();
+    EXPECT_EQ(exit_code(*cs), run::kExitInput) << c->output();
+    EXPECT_NE(exit_code(*ds), 0) << d->output();
+    EXPECT_NE(c->output().find("--coupling"), std::string::npos) << c->output();
+    EXPECT_NE(c->output().find("'fine'"), std::string::npos) << c->output();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Transports, PaperProcesses,
                          ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
                          scheme_test_name);
