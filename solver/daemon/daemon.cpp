@@ -683,6 +683,10 @@ class Daemon {
     recorder_->finish();
     write_timing();
     writer_->close();
+    // An Error the coordinator sent meanwhile (another domain failed at the end) is read now, not
+    // after a Bye that a coordinator already gone would leave blocked for the send timeout.
+    while (link_->receive(std::chrono::milliseconds{0})) {
+    }
     wire::Envelope bye = transport::make_bye("end time reached");
     auto* rep = bye.mutable_bye()->mutable_report();
     const auto& s = *solver();
