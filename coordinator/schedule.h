@@ -22,7 +22,9 @@
 // - Step policy: `common` (modes mono and split) imposes the minimum stable step over all domains
 //   and gates every state on all domains; `own` (mode multi) lets each domain keep its own step.
 //   Both clip the last step so every domain lands on the end time exactly (a single shorter final
-//   step; DESIGN.md §2.7's warning is about shortening every coarse step, not this one).
+//   step; DESIGN.md §2.7's warning is about shortening every coarse step, not this one), unless
+//   `common` is built unclipped: then every domain stops at the first common instant at or after
+//   the end time, as a single-domain run does.
 #include <array>
 #include <cstdint>
 #include <optional>

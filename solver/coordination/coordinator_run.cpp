@@ -151,10 +151,11 @@ class Coordinator {
     model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
     const auto dec = partition::decompose(
         *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer);
-    if (o_.variable_steps && !o_.paper)
-      throw InputError(
-          "--variable-steps: `layer` runs at fixed nested steps; variable steps are "
-          "a `paper` option (--coupling paper)");
+    if ((o_.variable_steps || !o_.drift) && !o_.paper)
+      throw InputError(fmt::format(
+          "{}: a `paper` option; `layer` runs at fixed nested steps and has no drift correction "
+          "(add --coupling paper, or drop the option)",
+          o_.variable_steps ? "--variable-steps" : "--no-drift"));
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -330,8 +331,9 @@ class Coordinator {
     std::string steps;
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       outcomes_[k].step_ticks = plan.step[k];
-      link_->send(cut_.names[k], paper_setup(*paper_cut_, table, plan, static_cast<int>(k),
-                                             o_.common_step, options, o_.ticks_per_second));
+      link_->send(cut_.names[k],
+                  paper_setup(*paper_cut_, table, plan, static_cast<int>(k), o_.common_step,
+                              options, o_.ticks_per_second, exchange_->end_ticks()));
       steps +=
           fmt::format("{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
                       static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
@@ -350,10 +352,15 @@ class Coordinator {
 
   /// `paper`: domain k's free state in, the corrections it allows out, the rows it completes.
   void free_state(int k, const wire::FreeState& f) {
-    exchange_->submit(k, f);
-    latest_[static_cast<std::size_t>(k)] = f.time_ticks();
-    while (auto c = exchange_->next())
-      link_->send(cut_.names[static_cast<std::size_t>(c->first)], c->second);
+    try {
+      exchange_->submit(k, f);
+      latest_[static_cast<std::size_t>(k)] = f.time_ticks();
+      while (auto c = exchange_->next())
+        link_->send(cut_.names[static_cast<std::size_t>(c->first)], c->second);
+    } catch (...) {
+      history_->append(exchange_->take_rows(), o_.ticks_per_second);  // what was complete
+      throw;
+    }
     history_->append(exchange_->take_rows(), o_.ticks_per_second);
   }
 
@@ -388,6 +395,15 @@ class Coordinator {
                                                 view(d.angular_velocities_rad_s()));
             forward(routed.to, *in);
           } else if (e.has_bye()) {
+            if (exchange_) {
+              // A Bye before the stop would leave its partners waiting for its states.
+              if (!exchange_->finished(k))
+                protocol_stop(in->domain,
+                              fmt::format("domain '{}' said Bye ({}) at tick {} before the end "
+                                          "of the `paper` run",
+                                          in->domain, e.bye().reason(), exchange_->latest(k)));
+              exchange_->final_energy(k, e.bye().report().energy(), e.bye().report().time_ticks());
+            }
             bye(k, e.bye());
             ++done;
           } else if (e.has_error()) {

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
 
 namespace crashlink::coordination {
@@ -76,14 +75,15 @@ coordinator::InterfaceTable match_paper(const PaperCut& cut,
 
 wire::Envelope paper_setup(const PaperCut& cut, const coordinator::InterfaceTable& table,
                            const coordinator::StepPlan& plan, int k, bool common,
-                           const wire::Options& options, std::int64_t ticks_per_second) {
+                           const wire::Options& options, std::int64_t ticks_per_second,
+                           coordinator::Tick end_ticks) {
   wire::Envelope e;
   auto* s = e.mutable_setup();
   s->set_mode(common ? wire::MODE_SPLIT : wire::MODE_MULTI);
   s->set_coupling(wire::COUPLING_PAPER);
   *s->mutable_options() = options;
   s->set_ticks_per_second(ticks_per_second);
-  s->set_end_time_ticks(paper_end_ticks(cut.cut.end_time_s, plan.step, ticks_per_second));
+  s->set_end_time_ticks(end_ticks);
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
   const auto M = table.summed_masses(k);
   s->mutable_summed_masses_kg()->Add(M.begin(), M.end());

@@ -40,8 +40,10 @@ coordinator::InterfaceTable match_paper(const PaperCut& cut,
                                         const std::vector<wire::Register>& regs);
 
 /// Daemon k's Setup: summed masses and roles in its Register order, its step.
+/// end_ticks: the run's end instant (PaperExchange::end_ticks).
 wire::Envelope paper_setup(const PaperCut& cut, const coordinator::InterfaceTable& table,
                            const coordinator::StepPlan& plan, int k, bool common,
-                           const wire::Options& options, std::int64_t ticks_per_second);
+                           const wire::Options& options, std::int64_t ticks_per_second,
+                           coordinator::Tick end_ticks);
 
 }  // namespace crashlink::coordination

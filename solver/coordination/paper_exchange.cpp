@@ -2,6 +2,7 @@
 #include "solver/coordination/paper_exchange.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,10 +53,19 @@ void scatter(const std::vector<double>& from, const std::vector<std::size_t>& no
 Tick paper_end_ticks(double end_time_s, const std::vector<Tick>& steps, std::int64_t tps) {
   const auto end = static_cast<Tick>(std::llround(end_time_s * static_cast<double>(tps)));
   Tick period = 1;
-  for (const Tick h : steps)
-    if (h > 0) period = std::lcm(period, h);
-  if (period > (Tick{1} << 60))
-    throw ModelError("paper: the domains' steps have no common multiple that fits a tick count");
+  for (const Tick h : steps) {
+    if (h <= 0) continue;
+    // lcm(period, h) = period / gcd * h: check before it can overflow.
+    const Tick g = std::gcd(period, h);
+    if (period / g > (Tick{1} << 60) / h)
+      throw ModelError(fmt::format(
+          "paper: the domains' fixed steps ({} ticks) have no common multiple below 2^60 ticks, "
+          "where every domain would land at the end; fix: --variable-steps, or steps that nest "
+          "(--mode multi plans them so)",
+          fmt::join(steps, ", ")));
+    period = period / g * h;
+  }
+
   return (end + period - 1) / period * period;
 }
 
@@ -151,6 +161,18 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
         "velocities; its {} coupled nodes need {} of each",
         name, s.time_ticks(), s.accelerations_m_s2_size(), s.displacements_m_size(),
         s.velocities_m_s_size(), D.n, n3));
+  // The energies of the previous instant first (cosim::PaperRunner samples them before it reads
+  // the next free state), each state's exactly once: its previous state's instant, -1 first.
+  const Tick expected_energy = D.submitted == 0 ? -1 : D.latest;
+  if (s.energy_time_ticks() != expected_energy)
+    throw coordinator::ProtocolError(fmt::format(
+        "domain '{}' sent, with its free state at tick {}, energies of tick {}; expected those of "
+        "its previous state (tick {}; -1 with the first)",
+        name, s.time_ticks(), s.energy_time_ticks(), expected_energy));
+  if (expected_energy >= 0) {
+    D.energy[expected_energy] = s.energy();
+    check_energies();
+  }
   for (int i = 0; i < n3; ++i)
     if (!std::isfinite(s.accelerations_m_s2(i)))
       unstable(
@@ -169,10 +191,17 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
   S.u.assign(s.displacements_m().begin(), s.displacements_m().end());
   S.v.assign(s.velocities_m_s().begin(), s.velocities_m_s().end());
   D.latest = s.time_ticks();
-  if (s.energy_time_ticks() >= 0) {
-    D.energy[s.energy_time_ticks()] = s.energy();
-    check_energies();
-  }
+  ++D.submitted;
+}
+
+void PaperExchange::final_energy(int k, const wire::EnergyTerms& e, Tick time) {
+  auto& D = domains_[static_cast<std::size_t>(k)];
+  if (time != D.latest)
+    throw coordinator::ProtocolError(
+        fmt::format("domain '{}' ended with the energies of tick {}; its last state is at tick {}",
+                    cut_.cut.names[static_cast<std::size_t>(k)], time, D.latest));
+  D.energy[time] = e;
+  check_energies();
 }
 
 void PaperExchange::check_energies() {

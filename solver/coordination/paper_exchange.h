@@ -24,9 +24,8 @@
 // presences (trapezoid rule, as the Solver counts work), and the resultant link force on the
 // coarse side's presences.
 //
-// Limits (each refused where it is found): every coupled node in exactly two domains; fixed
-// steps (the plan's; the run ends at paper_end_ticks); translations only (cosim::PaperRunner's
-// rule, checked by the daemons).
+// Limits (each refused where it is found): every coupled node in exactly two domains;
+// translations only (cosim::PaperRunner's rule, checked by the daemons).
 #include <array>
 #include <cstdint>
 #include <map>
@@ -84,9 +83,17 @@ class PaperExchange {
   /// History rows completed since the last call.
   std::vector<PaperRow> take_rows();
 
+  /// Domain k's energies at its last instant (they come with its Bye: no free state follows).
+  /// Throws ProtocolError unless `time` is its last state's, NumericalError as submit().
+  void final_energy(int k, const wire::EnergyTerms& e, coordinator::Tick time);
+
   /// The instant of domain k's latest free state (0 before the first).
   coordinator::Tick latest(int k) const { return domains_[static_cast<std::size_t>(k)].latest; }
   bool all_finished() const { return schedule_.all_finished(); }
+  /// Domain k was answered with stop (it may say Bye now).
+  bool finished(int k) const { return schedule_.finished(k); }
+  /// The run's end instant: paper_end_ticks (fixed steps) or the end time in ticks (variable).
+  coordinator::Tick end_ticks() const { return schedule_.end_time(); }
 
  private:
   struct Slot {
@@ -104,8 +111,9 @@ class PaperExchange {
     std::vector<std::uint32_t> interface;  // [n]
     std::vector<Group> groups;
     Slot slot[2];
-    coordinator::Tick prev_step = 0, latest = 0, answered = -1;
-    std::vector<double> f_link, f_drift, u_last;  // [3n] work bookkeeping
+    coordinator::Tick prev_step = 0, latest = 0, answered = -1;  // ticks
+    std::int64_t submitted = 0;                                  // free states so far
+    std::vector<double> f_link, f_drift, u_last;                 // [3n] work bookkeeping
     std::map<coordinator::Tick, wire::EnergyTerms> energy;
   };
   struct Itf {

@@ -295,6 +295,19 @@ class Daemon {
     run_wall0_ = Clock::now();
   }
 
+  /// `paper`, every cycle: proposal_ticks(), with a stable step that collapsed (NaN, or below one
+  /// tick) ending the run as the numerical failure it is.
+  std::int64_t paper_proposal() const {
+    const double dt = solver()->dt_s();
+    if (std::isnan(dt) ||
+        (std::isfinite(dt) && !(o_.step_safety * dt * static_cast<double>(tps_) >= 1.0)))
+      throw NumericalError(fmt::format(
+          "the stable step is {:.6e} s (set by {}), below one tick of 1/{} s: the mesh has "
+          "collapsed there; fix: check that element's material, contact and loading",
+          dt, solver()->critical_element(), tps_));
+    return proposal_ticks();
+  }
+
   /// This domain's step proposal in whole ticks: floor(step_safety * min(dt, max_step_s) * tps),
   /// dt the solver's own stable step (LayerNetworkOptions' rule, layer_network.cpp, so both plan
   /// the same steps); 0: no limit (no deformable element).
@@ -387,9 +400,11 @@ class Daemon {
           "coordinator", fmt::format("the `paper` Setup of domain '{}' asks for checkpoints or a "
                                      "restart; `paper` runs have neither (use `layer`)",
                                      o_.domain));
-    if (use_summed_masses(*paper_, setup, o_.domain)) {
-      solver()->initialize();
-      recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *solver());
+    if (auto fresh = use_summed_masses(*paper_, setup, o_.domain)) {
+      // The recorder moves to the new solver before the old one is destroyed.
+      fresh->initialize();
+      recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *fresh);
+      paper_->solver = std::move(fresh);
     }
     run::remove_checkpoints(o_.out_dir, o_.domain);
     paper_step_ = setup.step_ticks();
@@ -401,11 +416,12 @@ class Daemon {
   /// carries the energies at t. Every wait is bounded by the peer timeout.
   void paper_loop() {
     auto& s = *solver();
-    wire::EnergyTerms energy;
+    wire::Envelope out;  // reused: its arrays keep their capacity
     cosim::Tick energy_time = -1;
     for (;;) {
       // Our own proposal: the coordinator imposes it (variable steps) or its plan (fixed).
-      link_->send(free_state(*paper_, paper_time_, proposal_ticks(), energy, energy_time));
+      fill_free_state(*paper_, paper_time_, paper_proposal(), paper_energy_, energy_time, out);
+      link_->send(out);
       const wire::Correction c = await_correction();
       apply_correction(*paper_, c, o_.domain);
       // At the end no step follows; the last one (or the stable step, if it shrank below it)
@@ -418,7 +434,7 @@ class Daemon {
       if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
       recorder_->sample();
       link_->keep_alive();
-      energy = energy_terms(*paper_);
+      paper_energy_ = energy_terms(*paper_);
       energy_time = paper_time_;
       if (c.stop()) return;
       s.end_cycle_forces();
@@ -432,7 +448,10 @@ class Daemon {
   wire::Correction await_correction() {
     const auto t0 = Clock::now();
     for (;;) {
-      auto m = link_->receive(o_.session.peer_timeout);
+      // A heartbeat interval at a time, to honour a stop request while waiting.
+      auto m =
+          link_->receive(std::max(o_.session.heartbeat_interval, std::chrono::milliseconds{1}));
+      if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
       if (!m) continue;  // receive() itself throws when the coordinator is silent
       if (!m->has_correction())
         throw transport::ProtocolError(
@@ -445,7 +464,7 @@ class Daemon {
                                        "is at tick {}",
                                        o_.domain, m->correction().time_ticks(), paper_time_));
       wait_s_ += seconds_since(t0);
-      return m->correction();
+      return std::move(*m->mutable_correction());
     }
   }
 
@@ -685,8 +704,8 @@ class Daemon {
     writer_->close();
     // An Error the coordinator sent meanwhile (another domain failed at the end) is read now, not
     // after a Bye that a coordinator already gone would leave blocked for the send timeout.
-    while (link_->receive(std::chrono::milliseconds{0})) {
-    }
+    while (auto m = link_->receive(std::chrono::milliseconds{0}))
+      if (m->has_bye()) break;
     wire::Envelope bye = transport::make_bye("end time reached");
     auto* rep = bye.mutable_bye()->mutable_report();
     const auto& s = *solver();
@@ -697,6 +716,7 @@ class Daemon {
     rep->set_dt_min_s(s.dt_min_s());
     rep->set_elements(elements_);
     rep->set_time_ticks(time_ticks());
+    if (paper_) *rep->mutable_energy() = paper_energy_;  // the guard's last sample
     link_->send(bye);
   }
 
@@ -753,6 +773,7 @@ class Daemon {
   std::unique_ptr<PaperPort> paper_;  ///< `paper`: this domain (instead of dom_ and stepper_)
   cosim::Tick paper_time_ = 0;        ///< `paper`: the instant of the next free state
   cosim::Tick paper_step_ = 0;        ///< `paper`: the last imposed step (first: the Setup's)
+  wire::EnergyTerms paper_energy_;    ///< `paper`: the energies at the last begun instant
   std::unique_ptr<io::ResultWriter> writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::unique_ptr<cosim::LayerStepper> stepper_;

@@ -53,7 +53,8 @@ PaperPort build_paper_port(const partition::Decomposition& dec, const std::strin
   return p;
 }
 
-bool use_summed_masses(PaperPort& port, const wire::Setup& setup, const std::string& domain) {
+std::unique_ptr<integration::Solver> use_summed_masses(PaperPort& port, const wire::Setup& setup,
+                                                       const std::string& domain) {
   const auto n = port.nodes.size();
   if (static_cast<std::size_t>(setup.summed_masses_kg_size()) != n ||
       static_cast<std::size_t>(setup.node_roles_size()) != n)
@@ -87,26 +88,28 @@ bool use_summed_masses(PaperPort& port, const wire::Setup& setup, const std::str
     differs = differs || M != natural;
     port.summed_mass_kg[j] = M;
   }
-  if (!differs) return false;
+  if (!differs) return nullptr;
   std::vector<double> override(port.domain->global_node.size(), 0.0);
   for (std::size_t j = 0; j < n; ++j) override[port.nodes[j].local] = port.summed_mass_kg[j];
-  port.solver = std::make_unique<integration::Solver>(port.domain->model, domain);
-  port.solver->set_mass_override(std::move(override));
-  return true;
+  auto fresh = std::make_unique<integration::Solver>(port.domain->model, domain);
+  fresh->set_mass_override(std::move(override));
+  return fresh;
 }
 
-wire::Envelope free_state(const PaperPort& port, std::int64_t time_ticks,
-                          std::int64_t stable_step_ticks, const wire::EnergyTerms& energy,
-                          std::int64_t energy_time_ticks) {
+void fill_free_state(const PaperPort& port, std::int64_t time_ticks, std::int64_t stable_step_ticks,
+                     const wire::EnergyTerms& energy, std::int64_t energy_time_ticks,
+                     wire::Envelope& out) {
   const auto& s = *port.solver;
-  wire::Envelope e;
-  auto* f = e.mutable_free_state();
+  auto* f = out.mutable_free_state();
   f->set_time_ticks(time_ticks);
   f->set_cycle(s.cycle());
   const std::size_t n3 = 3 * port.nodes.size();
   auto* a = f->mutable_accelerations_m_s2();
   auto* u = f->mutable_displacements_m();
   auto* v = f->mutable_velocities_m_s();
+  a->Clear();  // keeps the capacity
+  u->Clear();
+  v->Clear();
   a->Reserve(static_cast<int>(n3));
   u->Reserve(static_cast<int>(n3));
   v->Reserve(static_cast<int>(n3));
@@ -121,7 +124,6 @@ wire::Envelope free_state(const PaperPort& port, std::int64_t time_ticks,
   f->set_stable_step_s(s.dt_s());
   *f->mutable_energy() = energy;
   f->set_energy_time_ticks(energy_time_ticks);
-  return e;
 }
 
 wire::EnergyTerms energy_terms(const PaperPort& port) {

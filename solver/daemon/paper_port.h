@@ -36,16 +36,19 @@ struct PaperPort {
 PaperPort build_paper_port(const partition::Decomposition& dec, const std::string& name);
 
 /// The Setup's summed masses and roles, checked against this domain's cut (sizes, roles, masses
-/// within 1e-12 of the cut's natural sums). Returns true when the masses differ in any bit from
-/// the ones the solver was built with: the solver is then rebuilt with them (not initialized).
-/// Throws transport::ProtocolError naming the domain and the node.
-bool use_summed_masses(PaperPort& port, const wire::Setup& setup, const std::string& domain);
+/// within 1e-12 of the cut's natural sums), kept in port.summed_mass_kg. When they differ in any
+/// bit from the ones port.solver was built with, returns a new solver built with them (not
+/// initialized) for the caller to swap in; else nullptr. Throws transport::ProtocolError naming
+/// the domain and the node.
+std::unique_ptr<integration::Solver> use_summed_masses(PaperPort& port, const wire::Setup& setup,
+                                                       const std::string& domain);
 
-/// After initialize() or end_cycle_accelerations(): the free state at `time_ticks`. energy:
-/// the terms at energy_time_ticks (-1: none yet).
-wire::Envelope free_state(const PaperPort& port, std::int64_t time_ticks,
-                          std::int64_t stable_step_ticks, const wire::EnergyTerms& energy,
-                          std::int64_t energy_time_ticks);
+/// After initialize() or end_cycle_accelerations(): the free state at `time_ticks` into `out`
+/// (reused: its arrays keep their capacity). energy: the terms at energy_time_ticks (-1: none
+/// yet).
+void fill_free_state(const PaperPort& port, std::int64_t time_ticks, std::int64_t stable_step_ticks,
+                     const wire::EnergyTerms& energy, std::int64_t energy_time_ticks,
+                     wire::Envelope& out);
 
 /// After begin_cycle(): this domain's energy terms at its instant (wire form).
 wire::EnergyTerms energy_terms(const PaperPort& port);

@@ -38,6 +38,8 @@ struct PaperRunOptions {
   bool variable_steps = false;                     ///< CoordinatorOptions::variable_steps
   double step_safety = 1.0;                        ///< every daemon's
   std::map<std::string, double>* steps = nullptr;  ///< inproc: each domain's planned step [s]
+  std::map<std::string, std::int64_t>* cycles = nullptr;  ///< inproc: each daemon's cycles
+  std::vector<int>* daemon_exit = nullptr;                ///< each daemon's exit code
 };
 
 /// Runs the coordinator and one daemon per entry of `cap` (domain -> cap on its proposed step, s;
@@ -82,6 +84,12 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
       for (const auto& d : cr.domains)
         (*ro.steps)[d.name] =
             static_cast<double>(d.step_ticks) / static_cast<double>(co.ticks_per_second);
+    k = 0;
+    for (const auto& [name, step] : cap) {
+      if (ro.cycles != nullptr) (*ro.cycles)[name] = dr[k].cycles;
+      if (ro.daemon_exit != nullptr) ro.daemon_exit->push_back(dr[k].exit_code);
+      ++k;
+    }
     for (const auto& d : dr) log += "\n" + d.message;
     return cr.exit_code;
   }
@@ -92,9 +100,14 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
   for (const auto& [name, step] : cap)
     ds.push_back(start_solver(endpoint, name, scenario, out,
                               {"--coupling", "paper", "--max-step", fmt::format("{:.17g}", step)}));
-  EXPECT_TRUE(ro.steps == nullptr && !ro.split && !ro.variable_steps && ro.step_safety == 1.0)
+  EXPECT_TRUE(ro.steps == nullptr && ro.cycles == nullptr && !ro.split && !ro.variable_steps &&
+              ro.step_safety == 1.0)
       << "processes run multi at fixed steps here";
-  for (auto& d : ds) EXPECT_TRUE(d->wait(60s).has_value()) << d->output();
+  for (auto& d : ds) {
+    const auto st = d->wait(60s);
+    EXPECT_TRUE(st.has_value()) << d->output();
+    if (ro.daemon_exit != nullptr) ro.daemon_exit->push_back(st ? exit_code(*st) : -999);
+  }
   const auto st = c->wait(20s);
   log = c->output();
   for (auto& d : ds) log += "\n" + d->output();
@@ -120,6 +133,31 @@ std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, double h, d
     stopped = e.what();
   }
   return r;
+}
+
+/// A string attribute of an HDF5 object ("" if absent).
+std::string string_attribute(const std::string& h5, const std::string& object,
+                             const std::string& name) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  std::string out;
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return out;
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0) {
+    const hid_t t = H5Aget_type(a);
+    if (H5Tis_variable_str(t) > 0) {
+      char* s = nullptr;
+      if (H5Aread(a, t, &s) >= 0 && s != nullptr) out = s;
+      if (s != nullptr) H5free_memory(s);
+    } else {
+      std::string buf(H5Tget_size(t), '\0');
+      if (H5Aread(a, t, buf.data()) >= 0) out = buf.substr(0, buf.find('\0'));
+    }
+    H5Tclose(t);
+    H5Aclose(a);
+  }
+  H5Fclose(f);
+  return out;
 }
 
 /// max |u_file - u_solver| over the nodes of a domain's result file (the solver's local order is
@@ -195,8 +233,13 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
   const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(2.0e-4));
   const auto out = dir / "out";
   std::string log;
-  EXPECT_EQ(run_paper(GetParam(), scenario, out, bar_caps(4), log), run::kExitNumerical) << log;
+  std::vector<int> daemon_exit;
+  EXPECT_EQ(run_paper(GetParam(), scenario, out, bar_caps(4), log, {.daemon_exit = &daemon_exit}),
+            run::kExitNumerical)
+      << log;
   EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
+  ASSERT_EQ(daemon_exit.size(), 2u);
+  for (const int c : daemon_exit) EXPECT_EQ(c, run::kExitPeer) << log;  // stopped by it
 
   std::string stopped;
   reference(io::read_scenario(scenario), kFineStep, 4 * kFineStep, 50, stopped);
@@ -331,11 +374,16 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
   const auto out = dir / "out";
   std::string log;
   std::map<std::string, double> steps;
+  std::map<std::string, std::int64_t> cycles;
   // Fixed steps need a margin: the fine part's stable step shrinks under the pulse.
   const double safety = variable ? 1.0 : 0.9;
-  const int rc = run_paper(
-      Scheme::inproc, scenario, out, {{"fine", 0.0}, {"mid", 0.0}, {"coarse", 0.0}}, log,
-      {.split = true, .variable_steps = variable, .step_safety = safety, .steps = &steps});
+  const int rc =
+      run_paper(Scheme::inproc, scenario, out, {{"fine", 0.0}, {"mid", 0.0}, {"coarse", 0.0}}, log,
+                {.split = true,
+                 .variable_steps = variable,
+                 .step_safety = safety,
+                 .steps = &steps,
+                 .cycles = &cycles});
   EXPECT_EQ(rc, 0) << log;
   if (rc != 0) return 1.0;
   const auto tps = coordinator::kDefaultTicksPerSecond;
@@ -371,6 +419,7 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
     worst = std::max(worst, d);
   }
   for (const double u : mono.displacement()) scale = std::max(scale, std::abs(u));
+  for (const auto& [name, c] : cycles) EXPECT_EQ(c, n) << name << ": the steps imposed differ";
   EXPECT_GT(scale, 0.0);
   std::printf(
       "[measured] paper split, three domains, %s steps, %lld cycles to t = %.4e s: max "
@@ -420,7 +469,30 @@ TEST(PaperRun, SplitRunClosesTheEnergyBalance) {
   // Each domain's balance closes to round-off at a constant step (the link and drift work are
   // counted with the Solver's trapezoid rule); 1e-5 leaves room for the summing.
   EXPECT_LT(worst, 1e-5) << run.output();
-  EXPECT_NE(run.output().find("--coupling paper"), std::string::npos) << run.output();
+  // The interface history is marked `paper` (the attribute io::CouplingHistoryWriter writes).
+  const std::string h5 = (out / "coordinator.h5").string();
+  EXPECT_EQ(string_attribute(h5, "/coupling/fine-coarse", "scheme"), "paper");
+  EXPECT_EQ(read_doubles(h5, "/coupling/fine-coarse/time").size(),
+            read_doubles(h5, "/coupling/fine-coarse/velocity_jump").size());
+}
+
+/// Variable steps in multi (each domain its own proposal: the three-domain bar runs at ratios
+/// of about 1.9 and 1.7, not whole): `paper` goes unstable and its guard, sampling the domains'
+/// latest energies, stops the run with its message; the daemons are stopped by it.
+TEST(PaperProcessesThreeDomains, VariableMultiIsStoppedByTheGuard) {
+  const auto dir = fresh_dir("paper-3vm");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar3.yaml", bar3_yaml(4.0e-4));
+  std::string log;
+  std::vector<int> daemon_exit;
+  EXPECT_EQ(run_paper(Scheme::inproc, scenario, dir / "out",
+                      {{"fine", 0.0}, {"mid", 0.0}, {"coarse", 0.0}}, log,
+                      {.variable_steps = true, .daemon_exit = &daemon_exit}),
+            run::kExitNumerical)
+      << log;
+  EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
+  EXPECT_NE(log.find("variable steps, initially"), std::string::npos) << log;
+  for (const int c : daemon_exit) EXPECT_NE(c, 0) << log;
 }
 
 }  // namespace
