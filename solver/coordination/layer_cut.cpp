@@ -147,17 +147,25 @@ coordinator::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Re
   return coordinator::nested_steps(proposal, links, common, cut.names);
 }
 
-wire::Envelope setup_message(const LayerCut& cut, const coordinator::StepPlan& plan, int k,
-                             bool common, const wire::Options& options,
-                             std::int64_t ticks_per_second) {
+wire::Envelope setup_envelope(bool common, wire::Coupling coupling, const wire::Options& options,
+                              std::int64_t ticks_per_second, coordinator::Tick end_ticks) {
   wire::Envelope e;
   auto* s = e.mutable_setup();
   s->set_mode(common ? wire::MODE_SPLIT : wire::MODE_MULTI);
-  s->set_coupling(wire::COUPLING_LAYER);
+  s->set_coupling(coupling);
   *s->mutable_options() = options;
   s->set_ticks_per_second(ticks_per_second);
-  s->set_end_time_ticks(static_cast<std::int64_t>(
-      std::llround(cut.end_time_s * static_cast<double>(ticks_per_second))));
+  s->set_end_time_ticks(end_ticks);
+  return e;
+}
+
+wire::Envelope setup_message(const LayerCut& cut, const coordinator::StepPlan& plan, int k,
+                             bool common, const wire::Options& options,
+                             std::int64_t ticks_per_second) {
+  wire::Envelope e = setup_envelope(common, wire::COUPLING_LAYER, options, ticks_per_second,
+                                    static_cast<std::int64_t>(std::llround(
+                                        cut.end_time_s * static_cast<double>(ticks_per_second))));
+  auto* s = e.mutable_setup();
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
   for (const auto& c : cut.interfaces) {
     if (c.fine != k && c.coarse != k) continue;

@@ -57,6 +57,10 @@ void match_sides(const LayerCut& cut, const std::vector<wire::Register>& regs);
 coordinator::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Register>& regs,
                                  bool common);
 
+/// A Setup with the fields every scheme's carries: mode, coupling, options, tick, end instant.
+wire::Envelope setup_envelope(bool common, wire::Coupling coupling, const wire::Options& options,
+                              std::int64_t ticks_per_second, coordinator::Tick end_ticks);
+
 /// Daemon k's Setup.
 wire::Envelope setup_message(const LayerCut& cut, const coordinator::StepPlan& plan, int k,
                              bool common, const wire::Options& options,

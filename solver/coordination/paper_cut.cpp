@@ -77,13 +77,9 @@ wire::Envelope paper_setup(const PaperCut& cut, const coordinator::InterfaceTabl
                            const coordinator::StepPlan& plan, int k, bool common,
                            const wire::Options& options, std::int64_t ticks_per_second,
                            coordinator::Tick end_ticks) {
-  wire::Envelope e;
+  wire::Envelope e =
+      setup_envelope(common, wire::COUPLING_PAPER, options, ticks_per_second, end_ticks);
   auto* s = e.mutable_setup();
-  s->set_mode(common ? wire::MODE_SPLIT : wire::MODE_MULTI);
-  s->set_coupling(wire::COUPLING_PAPER);
-  *s->mutable_options() = options;
-  s->set_ticks_per_second(ticks_per_second);
-  s->set_end_time_ticks(end_ticks);
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
   const auto M = table.summed_masses(k);
   s->mutable_summed_masses_kg()->Add(M.begin(), M.end());

@@ -331,40 +331,10 @@ TEST(PaperProcessesContact, CopiesReproduceThePaperRunnerBitForBit) {
 /// A steel bar of hexes in three parts and domains: fine [0, 0.2] m (10 mm), mid [0.2, 0.4] m
 /// (20 mm), coarse [0.4, 0.6] m (40 mm); far end fixed, a force pulse on x = 0.
 std::string bar3_yaml(double end_time_s) {
-  return "name: bar3\ncontrols:\n  end_time: " + std::to_string(end_time_s) + R"(
-materials:
-  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
-parts:
-  fine:
-    material: steel
-    mesh: {generator: bar, origin: [0.0, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 20}
-  mid:
-    material: steel
-    merge_nodes: true
-    mesh: {generator: bar, origin: [0.2, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 10}
-  coarse:
-    material: steel
-    merge_nodes: true
-    mesh: {generator: bar, origin: [0.4, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 5}
-node_sets:
-  far_end: {box: {min: [0.5999, -1.0, -1.0], max: [0.7, 1.0, 1.0]}}
-  loaded_end: {box: {min: [-1.0, -1.0, -1.0], max: [1.0e-4, 1.0, 1.0]}}
-boundary:
-  - {nodes: far_end, fix: all}
-loads:
-  - nodes: loaded_end
-    dof: x
-    curve: {t: [0.0, 2.0e-5, 2.1e-5], v: [1.0e+4, 1.0e+4, 0.0]}
-domains:
-  fine: {parts: [fine]}
-  mid: {parts: [mid]}
-  coarse: {parts: [coarse]}
-)";
+  return bar_parts_yaml("bar3", end_time_s,
+                        {{"fine", 0.0, 0.2, 20}, {"mid", 0.2, 0.2, 10}, {"coarse", 0.4, 0.2, 5}});
 }
 
-/// Three domains (two interfaces, the middle domain in both): split at one common step sums the
-/// free accelerations of [8] into the single-domain acceleration, so it reproduces mono at that
-/// step to round-off (DESIGN.md §4: <= 1e-10 relative).
 /// The three-domain bar run by threads at one common step (fixed, or each instant the smallest
 /// proposal), and mono stepped the same way: max |u - u_mono| / max |u| over the three domains.
 double three_domain_split_vs_mono(bool variable, const std::string& label) {

@@ -70,22 +70,35 @@ inline std::string write_file(const std::filesystem::path& path, const std::stri
   return path.string();
 }
 
-/// A steel bar of hexes along x: part "fine" [0, 0.2] m (10 mm elements), part "coarse"
-/// [0.2, 0.6] m (40 mm), far end fixed, a 20 us force pulse on x = 0, an initial velocity on the
-/// coarse part; domains fine / coarse. `extra` is appended (e.g. a probe).
-inline std::string bar_yaml(double end_time_s, const std::string& name = "bar2") {
-  return "name: " + name + "\ncontrols:\n  end_time: " + std::to_string(end_time_s) + R"(
+/// One part of a steel bar of hexes along x (50 x 50 mm section): [x0, x0 + length] m.
+struct BarPart {
+  std::string name;
+  double x0_m = 0.0;
+  double length_m = 0.0;
+  int divisions = 1;
+};
+
+/// A steel bar of hexes along x made of `parts` end to end (merged on the cuts), the end at
+/// x = 0.6 m fixed, a 20 us force pulse on x = 0, one domain per part; `extra` is more YAML (an
+/// initial velocity, probes).
+inline std::string bar_parts_yaml(const std::string& name, double end_time_s,
+                                  const std::vector<BarPart>& parts,
+                                  const std::string& extra = {}) {
+  std::string y = "name: " + name + "\ncontrols:\n  end_time: " + std::to_string(end_time_s) + R"(
 materials:
   steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
 parts:
-  fine:
-    material: steel
-    mesh: {generator: bar, origin: [0.0, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 20}
-  coarse:
-    material: steel
-    merge_nodes: true
-    mesh: {generator: bar, origin: [0.2, 0.0, 0.0], axis: x, length: 0.4, cross_section: [0.05, 0.05], divisions: 10}
-node_sets:
+)";
+  std::string domains = "domains:\n";
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto& p = parts[i];
+    y += "  " + p.name + ":\n    material: steel\n" + (i > 0 ? "    merge_nodes: true\n" : "") +
+         "    mesh: {generator: bar, origin: [" + std::to_string(p.x0_m) +
+         ", 0.0, 0.0], axis: x, length: " + std::to_string(p.length_m) +
+         ", cross_section: [0.05, 0.05], divisions: " + std::to_string(p.divisions) + "}\n";
+    domains += "  " + p.name + ": {parts: [" + p.name + "]}\n";
+  }
+  return y + R"(node_sets:
   far_end: {box: {min: [0.5999, -1.0, -1.0], max: [0.7, 1.0, 1.0]}}
   loaded_end: {box: {min: [-1.0, -1.0, -1.0], max: [1.0e-4, 1.0, 1.0]}}
 boundary:
@@ -94,14 +107,20 @@ loads:
   - nodes: loaded_end
     dof: x
     curve: {t: [0.0, 2.0e-5, 2.1e-5], v: [1.0e+4, 1.0e+4, 0.0]}
-initial_velocity:
+)" + extra +
+         domains;
+}
+
+/// A steel bar of hexes along x: part "fine" [0, 0.2] m (10 mm elements), part "coarse"
+/// [0.2, 0.6] m (40 mm), far end fixed, a 20 us force pulse on x = 0, an initial velocity on the
+/// coarse part; domains fine / coarse.
+inline std::string bar_yaml(double end_time_s, const std::string& name = "bar2") {
+  return bar_parts_yaml(name, end_time_s, {{"fine", 0.0, 0.2, 20}, {"coarse", 0.2, 0.4, 10}},
+                        R"(initial_velocity:
   - {part: coarse, velocity: [-0.2, 0.1, 0.0]}
 probes:
   tip: {node_near: [0.0, 0.025, 0.025]}
-domains:
-  fine: {parts: [fine]}
-  coarse: {parts: [coarse]}
-)";
+)");
 }
 
 /// A 1 mm steel shell plate 0.2 x 0.1 m cut along x = 0.1: part "left" and part "right" (10 mm
