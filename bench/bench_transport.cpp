@@ -1,5 +1,6 @@
 // Wire round trip (DESIGN.md §2.6, §3): a daemon sends a FreeState with N interface nodes
-// (accelerations and displacements, 3N doubles each), the coordinator answers a Correction of the
+// (accelerations, displacements and half-step velocities, 3N doubles each: what a `paper` daemon
+// sends, solver/daemon/paper_port.h), the coordinator answers a Correction of the
 // same N (3N accelerations), over the full stack (DaemonLink / CoordinatorLink: protobuf
 // serialization, ZeroMQ, session bookkeeping). Coordinator and daemon are two threads of this
 // process, each with its own socket; tcp runs on loopback (ephemeral port), ipc in the temp dir.
@@ -65,6 +66,7 @@ void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
     for (std::size_t i = 0; i < 3 * n; ++i) {
       f->add_accelerations_m_s2(1e3 * static_cast<double>(i) / 7.0);
       f->add_displacements_m(1e-4 * static_cast<double>(i) / 3.0);
+      f->add_velocities_m_s(1e-1 * static_cast<double>(i) / 5.0);
     }
     f->set_stable_step_ticks(1'000'000'000);
     std::int64_t t = 0;
@@ -79,7 +81,7 @@ void BM_RoundTrip(benchmark::State& state, Scheme scheme) {
         },
         "no Correction of the right size within 5 s");
     daemon.bye("benchmark done");
-    const double bytes_per_trip = 8.0 * 9.0 * static_cast<double>(n);  // 6N + 3N doubles
+    const double bytes_per_trip = 8.0 * 12.0 * static_cast<double>(n);  // 9N + 3N doubles
     state.counters["MB_per_s"] =
         benchmark::Counter(bytes_per_trip * 1e-6 * static_cast<double>(state.iterations()),
                            benchmark::Counter::kIsRate);
