@@ -36,6 +36,7 @@ constexpr double kFineStep = 1.0e-6;  // s; the bar's fine part allows ~1.1e-6 s
 struct PaperRunOptions {
   bool split = false;                              ///< one common step (else multi)
   bool variable_steps = false;                     ///< CoordinatorOptions::variable_steps
+  bool drift = true;                               ///< CoordinatorOptions::drift ([11])
   double step_safety = 1.0;                        ///< every daemon's
   std::map<std::string, double>* steps = nullptr;  ///< inproc: each domain's planned step [s]
   std::map<std::string, std::int64_t>* cycles = nullptr;  ///< inproc: each daemon's cycles
@@ -54,6 +55,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
     co.out_dir = out.string();
     co.common_step = ro.split;
     co.variable_steps = ro.variable_steps;
+    co.drift = ro.drift;
     co.paper = true;
     co.in_process = true;
     co.log = nullptr;
@@ -121,8 +123,10 @@ std::map<std::string, double> bar_caps(int ratio) {
 /// The in-process runner at the steps h and H: `coarse_steps` advances (or until its guard stops
 /// it: its message in `stopped`).
 std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, double h, double H,
-                                              std::int64_t coarse_steps, std::string& stopped) {
+                                              std::int64_t coarse_steps, std::string& stopped,
+                                              bool drift = true) {
   cosim::PaperOptions o;
+  o.drift = drift ? coordinator::paper::Drift::on : coordinator::paper::Drift::off;
   o.fine_dt_s = h;
   o.coarse_dt_s = H;
   auto r = std::make_unique<cosim::PaperRunner>(m, o);
@@ -251,6 +255,34 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
     ASSERT_TRUE(s.ok()) << name;
     for (const double x : s.u) ASSERT_TRUE(std::isfinite(x)) << name;
   }
+}
+
+// Drift correction [11] off (the study's S2, --no-drift): still the runner's run, bit for bit,
+// and the presences drift further apart than with [11].
+TEST(PaperProcessesNoDrift, ReproducesTheRunnerWithoutDriftCorrection) {
+  const auto dir = fresh_dir("paper-nodrift");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar2.yaml", bar_yaml(1.0e-4));
+  const auto out = dir / "out";
+  std::string log;
+  ASSERT_EQ(run_paper(Scheme::inproc, scenario, out, bar_caps(2), log, {.drift = false}), 0) << log;
+  const auto m = io::read_scenario(scenario);
+  std::string stopped;
+  const auto off = reference(m, kFineStep, 2 * kFineStep, 50, stopped, false);
+  ASSERT_TRUE(stopped.empty()) << stopped;
+  const auto on = reference(m, kFineStep, 2 * kFineStep, 50, stopped, true);
+  for (const auto& [name, solver] :
+       {std::pair<std::string, const integration::Solver*>{"fine", &off->fine()},
+        {"coarse", &off->coarse()}}) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not the runner's run without [11]";
+  }
+  const std::string h5 = (out / "coordinator.h5").string();
+  const auto drift = read_doubles(h5, "/coupling/fine-coarse/drift_work");
+  ASSERT_FALSE(drift.empty());
+  EXPECT_EQ(drift.back(), 0.0);  // no [11], no drift work
+  EXPECT_GT(off->max_gap().link_m, on->max_gap().link_m);
 }
 
 // A daemon started for the other scheme is refused at its Register, both ways round, with the
