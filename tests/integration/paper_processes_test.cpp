@@ -181,6 +181,20 @@ double max_difference(const LastState& s, const integration::Solver& solver) {
   return worst;
 }
 
+/// Each domain file's last state is the runner's at its last coarse instant, bit for bit: the
+/// fine domain's file against runner.fine(), the coarse one's against runner.coarse().
+void expect_runner_bits(const std::filesystem::path& out, const cosim::PaperRunner& runner,
+                        const std::string& fine, const std::string& coarse) {
+  for (const auto& [name, solver] :
+       {std::pair<std::string, const integration::Solver*>{fine, &runner.fine()},
+        {coarse, &runner.coarse()}}) {
+    const auto s = last_state((out / "domains" / (name + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << name;
+    EXPECT_NEAR(s.time_s, runner.seconds(runner.coarse_time_ticks()), 1e-12) << name;
+    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
+  }
+}
+
 /// The "at t = ... s" of a guard message.
 std::string stop_instant(const std::string& message) {
   const auto a = message.find("went unstable at t = ");
@@ -207,14 +221,7 @@ TEST_P(PaperProcesses, ReproduceThePaperRunnerBitForBit) {
   const auto ref = reference(m, kFineStep, 2 * kFineStep, 50, stopped);
   ASSERT_TRUE(stopped.empty()) << stopped;
   ASSERT_EQ(ref->coarse_steps(), 50);
-  for (const auto& [name, solver] :
-       {std::pair<std::string, const integration::Solver*>{"fine", &ref->fine()},
-        {"coarse", &ref->coarse()}}) {
-    const auto s = last_state((out / "domains" / (name + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << name;
-    EXPECT_NEAR(s.time_s, 1.0e-4, 1e-12) << name;
-    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
-  }
+  expect_runner_bits(out, *ref, "fine", "coarse");
   // The interface history: one row per coarse instant, the gap of the runner's, drift work.
   const std::string h5 = (out / "coordinator.h5").string();
   const auto time = read_doubles(h5, "/coupling/fine-coarse/time");
@@ -271,13 +278,7 @@ TEST(PaperProcessesNoDrift, ReproducesTheRunnerWithoutDriftCorrection) {
   const auto off = reference(m, kFineStep, 2 * kFineStep, 50, stopped, false);
   ASSERT_TRUE(stopped.empty()) << stopped;
   const auto on = reference(m, kFineStep, 2 * kFineStep, 50, stopped, true);
-  for (const auto& [name, solver] :
-       {std::pair<std::string, const integration::Solver*>{"fine", &off->fine()},
-        {"coarse", &off->coarse()}}) {
-    const auto s = last_state((out / "domains" / (name + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << name;
-    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not the runner's run without [11]";
-  }
+  expect_runner_bits(out, *off, "fine", "coarse");
   const std::string h5 = (out / "coordinator.h5").string();
   const auto drift = read_doubles(h5, "/coupling/fine-coarse/drift_work");
   ASSERT_FALSE(drift.empty());
@@ -348,14 +349,7 @@ TEST(PaperProcessesContact, CopiesReproduceThePaperRunnerBitForBit) {
   const auto ref = reference(m, steps["plate"], steps["head"], coarse, stopped);
   ASSERT_TRUE(stopped.empty()) << stopped;
   EXPECT_EQ(ref->coupled_nodes().size(), 441u);
-  for (const auto& [name, solver] :
-       {std::pair<std::string, const integration::Solver*>{"plate", &ref->fine()},
-        {"head", &ref->coarse()}}) {
-    const auto s = last_state((out / "domains" / (name + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << name;
-    EXPECT_NEAR(s.time_s, ref->seconds(ref->coarse_time_ticks()), 1e-12) << name;
-    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
-  }
+  expect_runner_bits(out, *ref, "plate", "head");
   // The copies touched: the plate moved under the headform.
   EXPECT_GT(ref->max_gap().copy_m, 0.0);
 }
