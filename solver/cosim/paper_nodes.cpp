@@ -46,6 +46,34 @@ std::vector<PaperNodeOfDomain> paper_nodes(const partition::Decomposition& dec, 
   return out;
 }
 
+void refuse_rotations_on_both_sides(const partition::Decomposition& dec, int d,
+                                    const std::vector<PaperNodeOfDomain>& nodes) {
+  const auto& dm = dec.domains.at(static_cast<std::size_t>(d));
+  std::vector<double> mass, inertia, partner_mass, partner_inertia;
+  partial_masses(dm.model, mass, inertia);
+  int loaded = -1;  // the partner whose inertia is in partner_inertia
+  std::vector<std::int64_t> partner_local;
+  for (const auto& n : nodes) {
+    if (n.copy || !(inertia[n.local] > 0.0)) continue;
+    const auto& pd = dec.domains[static_cast<std::size_t>(n.partner)];
+    if (loaded != n.partner) {
+      partial_masses(pd.model, partner_mass, partner_inertia);
+      partner_local.assign(static_cast<std::size_t>(pd.global_node.back()) + 1, -1);
+      for (std::size_t l = 0; l < pd.global_node.size(); ++l)
+        partner_local[static_cast<std::size_t>(pd.global_node[l])] = static_cast<std::int64_t>(l);
+      loaded = n.partner;
+    }
+    const auto pl = n.global < partner_local.size() ? partner_local[n.global] : -1;
+    if (pl >= 0 && partner_inertia[static_cast<std::size_t>(pl)] > 0.0)
+      throw ModelError(fmt::format(
+          "paper: link node id {} carries rotations in domains '{}' and '{}' (a shell node shared "
+          "by shells on both sides); the paper scheme couples translations only (the Solver has "
+          "no hook to impose a corrected angular acceleration). Fix: use the `layer` scheme, or "
+          "cut the model where no shell node is shared by shells of both domains",
+          dm.model.nodes.id[n.local], dm.name, pd.name));
+  }
+}
+
 void partial_masses(const model::Model& m, std::vector<double>& mass_kg,
                     std::vector<double>& inertia_kgm2) {
   mass_kg.assign(m.nodes.count(), 0.0);

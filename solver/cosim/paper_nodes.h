@@ -31,6 +31,14 @@ struct PaperNodeOfDomain {
 /// when a node of an interface is missing from d (an internal error of the cut).
 std::vector<PaperNodeOfDomain> paper_nodes(const partition::Decomposition& dec, int d);
 
+/// Translations only: throws ModelError naming the node and both domains when a link node of
+/// domain d (`nodes` = paper_nodes(dec, d)) carries rotary inertia in d and in its partner (a
+/// shell node shared by shells on both sides) - [8] would be needed on the angular accelerations
+/// too, and the Solver has no hook to impose one. A shell node welded to solids (rotations on one
+/// side only) is coupled exactly by its translations; copies carry no rotation.
+void refuse_rotations_on_both_sides(const partition::Decomposition& dec, int d,
+                                    const std::vector<PaperNodeOfDomain>& nodes);
+
 /// Partial lumped masses [n] kg and rotary inertias [n] kg m^2 of a (sub-)model, as
 /// Solver::assemble_masses computes them (a contact copy has none): the m^k of [5].
 void partial_masses(const model::Model& m, std::vector<double>& mass_kg,

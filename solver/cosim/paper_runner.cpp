@@ -49,7 +49,7 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
   if (options_.ticks_per_second < 1) throw ModelError("paper: ticks_per_second must be >= 1");
 
   const std::size_t ng = global.nodes.count();
-  std::vector<double> partial_mass[2], partial_inertia[2];
+  std::vector<double> partial_mass[2], partial_inertia[2];  // (the inertia: scratch)
   for (int s = 0; s < 2; ++s) {
     const auto& dm = dec_.domains[static_cast<std::size_t>(domain_[s])];
     g2l_[s].assign(ng, kAbsent);
@@ -58,43 +58,26 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
     partial_masses(dm.model, partial_mass[s], partial_inertia[s]);
   }
 
-  // The coupled nodes: every link node and every copy, once, in interface order.
-  std::vector<std::uint8_t> seen(ng, 0);
-  for (const auto& itf : dec_.interfaces) {
-    const int ref = itf.reference == domain_[0] ? 0 : 1;
-    for (auto gj : itf.j_nodes_global) {
-      const auto g = static_cast<std::size_t>(gj);
-      if (seen[g])
-        throw ModelError("paper: node id " + std::to_string(global.nodes.id[g]) +
-                         " belongs to two interfaces (a link node that is also copied for a "
-                         "contact); the runner couples each node once");
-      seen[g] = 1;
-      PaperNode pn;
-      pn.global = g;
-      pn.local[0] = g2l_[0][g];
-      pn.local[1] = g2l_[1][g];
-      if (pn.local[0] == kAbsent || pn.local[1] == kAbsent)
-        throw ModelError("paper: coupled node id " + std::to_string(global.nodes.id[g]) +
-                         " is missing from one of the two domains (internal error of the cut)");
-      pn.reference = ref;
-      for (int s = 0; s < 2; ++s)
-        pn.copy =
-            pn.copy || dec_.domains[static_cast<std::size_t>(domain_[s])].copy[pn.local[s]] != 0;
-      // A link node with rotations on ONE side (a shell node welded to solids: the cowl at the
-      // wiper's pads) is coupled exactly by its translations: the other side has no rotational
-      // dof there, so the rotation and its moments stay in the shell's domain alone. Rotations on
-      // both sides would need [8] on the angular accelerations too, which the Solver cannot
-      // impose.
-      if (!pn.copy &&
-          (partial_inertia[0][pn.local[0]] > 0.0 && partial_inertia[1][pn.local[1]] > 0.0))
-        throw ModelError(
-            "paper: link node id " + std::to_string(global.nodes.id[g]) +
-            " carries rotations in both domains (a shell node shared by shells on both sides); "
-            "the paper runner couples translations only (the Solver has no hook to impose a "
-            "corrected angular acceleration). Fix: use the `layer` scheme, or cut the model where "
-            "no shell node is shared by shells of both domains");
-      nodes_.push_back(pn);
-    }
+  // The coupled nodes, every link node and every copy once, in the order both domains list them
+  // (cosim::paper_nodes: every interface involves both here, so the two lists pair up).
+  const auto fine_nodes = paper_nodes(dec_, domain_[0]);
+  const auto coarse_nodes = paper_nodes(dec_, domain_[1]);
+  if (fine_nodes.size() != coarse_nodes.size())
+    throw ModelError("paper: the two domains list " + std::to_string(fine_nodes.size()) + " and " +
+                     std::to_string(coarse_nodes.size()) +
+                     " coupled nodes (internal error of the cut)");
+  refuse_rotations_on_both_sides(dec_, domain_[0], fine_nodes);
+  for (std::size_t j = 0; j < fine_nodes.size(); ++j) {
+    const auto& f = fine_nodes[j];
+    const auto& c = coarse_nodes[j];
+    CRASHLINK_ASSERT(f.global == c.global);
+    PaperNode pn;
+    pn.global = f.global;
+    pn.local[0] = f.local;
+    pn.local[1] = c.local;
+    pn.reference = f.reference ? 0 : 1;
+    pn.copy = f.copy || c.copy;
+    nodes_.push_back(pn);
   }
 
   // [5]: M = sum_k m^k over the two presences (a copy contributes 0), in side order.

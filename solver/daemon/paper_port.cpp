@@ -19,32 +19,13 @@ PaperPort build_paper_port(const partition::Decomposition& dec, const std::strin
   PaperPort p;
   p.domain = &dec.domains[static_cast<std::size_t>(d)];
   p.nodes = cosim::paper_nodes(dec, d);
-  std::vector<double> mass, inertia, partner_mass, partner_inertia;
+  cosim::refuse_rotations_on_both_sides(dec, d, p.nodes);
+  std::vector<double> mass, inertia;
   cosim::partial_masses(p.domain->model, mass, inertia);
-  int partner_loaded = -1;
-  std::vector<std::int64_t> partner_local;
   for (const auto& n : p.nodes) {
     p.own_mass_kg.push_back(n.copy ? 0.0 : mass[n.local]);
     p.summed_mass_kg.push_back(p.domain->interface_mass_kg[n.local]);
     if (n.reference) p.reference.push_back(n.local);
-    if (n.copy || !(inertia[n.local] > 0.0)) continue;
-    // A shell node of this domain: refused if the partner's elements rotate it too.
-    const auto& pd = dec.domains[static_cast<std::size_t>(n.partner)];
-    if (partner_loaded != n.partner) {
-      cosim::partial_masses(pd.model, partner_mass, partner_inertia);
-      partner_local.assign(static_cast<std::size_t>(pd.global_node.back()) + 1, -1);
-      for (std::size_t l = 0; l < pd.global_node.size(); ++l)
-        partner_local[static_cast<std::size_t>(pd.global_node[l])] = static_cast<std::int64_t>(l);
-      partner_loaded = n.partner;
-    }
-    const auto pl = n.global < partner_local.size() ? partner_local[n.global] : -1;
-    if (pl >= 0 && partner_inertia[static_cast<std::size_t>(pl)] > 0.0)
-      throw ModelError(fmt::format(
-          "paper: link node id {} carries rotations in domains '{}' and '{}' (a shell node shared "
-          "by shells on both sides); the paper scheme couples translations only (the Solver has "
-          "no hook to impose a corrected angular acceleration). Fix: use the `layer` scheme, or "
-          "cut the model where no shell node is shared by shells of both domains",
-          p.domain->model.nodes.id[n.local], name, pd.name));
   }
   std::vector<double> override(p.domain->global_node.size(), 0.0);
   for (std::size_t j = 0; j < p.nodes.size(); ++j) override[p.nodes[j].local] = p.summed_mass_kg[j];

@@ -14,6 +14,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/cosim/paper_runner.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
 #include "transport/errors.h"
@@ -24,10 +25,17 @@ namespace {
 
 /// Hex bar: part "fine" [0, 0.2] m (10 mm), "coarse" [0.2, 0.6] m (40 mm); one domain each: the
 /// four nodes at x = 0.2 are the link ([3]-[4]), the coarse domain their [11] reference.
-model::Model bar() {
+model::Model read_yaml(const std::string& yaml) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("crashlink-paper-port-" + std::to_string(::getpid()) + ".yaml");
-  std::ofstream(path) << R"(name: bar
+  std::ofstream(path) << yaml;
+  auto m = io::read_scenario(path.string());
+  std::filesystem::remove(path);
+  return m;
+}
+
+model::Model bar() {
+  return read_yaml(R"(name: bar
 controls: {end_time: 1.0e-4}
 materials:
   steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
@@ -42,10 +50,7 @@ parts:
 domains:
   fine: {parts: [fine]}
   coarse: {parts: [coarse]}
-)";
-  auto m = io::read_scenario(path.string());
-  std::filesystem::remove(path);
-  return m;
+)");
 }
 
 wire::Setup setup_for(const daemon::PaperPort& port) {
@@ -155,4 +160,43 @@ TEST(PaperPort, FreeStateAndCorrection) {
       has(thrown([&] { daemon::apply_correction(port, c, "coarse"); }), "11 accelerations"));
   c.add_accelerations_m_s2(std::numeric_limits<double>::quiet_NaN());
   EXPECT_TRUE(has(thrown([&] { daemon::apply_correction(port, c, "coarse"); }), "nan"));
+}
+
+// A shell plate cut along a line: the nodes on the cut carry rotations in both domains, which
+// `paper` cannot couple (translations only); both the daemon and the in-process runner refuse it
+// naming the node, the two domains and the fix.
+TEST(PaperPort, ShellNodesRotatingOnBothSidesAreRefused) {
+  const auto m = read_yaml(R"(name: plate
+controls: {end_time: 1.0e-4}
+materials:
+  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
+parts:
+  left:
+    material: steel
+    thickness: 1.0e-3
+    mesh: {generator: plate, origin: [0.0, 0.0, 0.0], size: [0.1, 0.1], divisions: [10, 10]}
+  right:
+    material: steel
+    thickness: 1.0e-3
+    merge_nodes: true
+    mesh: {generator: plate, origin: [0.1, 0.0, 0.0], size: [0.1, 0.1], divisions: [10, 10]}
+domains:
+  left: {parts: [left]}
+  right: {parts: [right]}
+)");
+  const auto dec = partition::decompose(m, partition::Scheme::Paper);
+  try {
+    (void)daemon::build_paper_port(dec, "left");
+    ADD_FAILURE() << "a shell node rotating on both sides was accepted";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(has(what, "carries rotations in domains 'left' and 'right'")) << what;
+    EXPECT_TRUE(has(what, "use the `layer` scheme")) << what;
+  }
+  try {
+    cosim::PaperRunner runner(m);
+    ADD_FAILURE() << "PaperRunner accepted a shell node rotating on both sides";
+  } catch (const ModelError& e) {
+    EXPECT_TRUE(has(e.what(), "carries rotations in domains")) << e.what();
+  }
 }
