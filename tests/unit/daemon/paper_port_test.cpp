@@ -17,14 +17,14 @@
 #include "solver/cosim/paper_runner.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
+#include "tests/integration/process_test_support.h"
 #include "transport/errors.h"
 
 using namespace crashlink;
 
 namespace {
 
-/// Hex bar: part "fine" [0, 0.2] m (10 mm), "coarse" [0.2, 0.6] m (40 mm); one domain each: the
-/// four nodes at x = 0.2 are the link ([3]-[4]), the coarse domain their [11] reference.
+/// The model of a scenario text (through a temporary file, as the daemon reads it).
 model::Model read_yaml(const std::string& yaml) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("crashlink-paper-port-" + std::to_string(::getpid()) + ".yaml");
@@ -34,23 +34,11 @@ model::Model read_yaml(const std::string& yaml) {
   return m;
 }
 
+/// bar2 of the process tests: hex parts "fine" [0, 0.2] m (10 mm) and "coarse" [0.2, 0.6] m
+/// (40 mm), one domain each: the four nodes at x = 0.2 are the link ([3]-[4]), the coarse domain
+/// their [11] reference.
 model::Model bar() {
-  return read_yaml(R"(name: bar
-controls: {end_time: 1.0e-4}
-materials:
-  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
-parts:
-  fine:
-    material: steel
-    mesh: {generator: bar, origin: [0.0, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], divisions: 20}
-  coarse:
-    material: steel
-    merge_nodes: true
-    mesh: {generator: bar, origin: [0.2, 0.0, 0.0], axis: x, length: 0.4, cross_section: [0.05, 0.05], divisions: 10}
-domains:
-  fine: {parts: [fine]}
-  coarse: {parts: [coarse]}
-)");
+  return read_yaml(proc_test::bar_yaml(1.0e-4));
 }
 
 wire::Setup setup_for(const daemon::PaperPort& port) {
@@ -166,24 +154,7 @@ TEST(PaperPort, FreeStateAndCorrection) {
 // `paper` cannot couple (translations only); both the daemon and the in-process runner refuse it
 // naming the node, the two domains and the fix.
 TEST(PaperPort, ShellNodesRotatingOnBothSidesAreRefused) {
-  const auto m = read_yaml(R"(name: plate
-controls: {end_time: 1.0e-4}
-materials:
-  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
-parts:
-  left:
-    material: steel
-    thickness: 1.0e-3
-    mesh: {generator: plate, origin: [0.0, 0.0, 0.0], size: [0.1, 0.1], divisions: [10, 10]}
-  right:
-    material: steel
-    thickness: 1.0e-3
-    merge_nodes: true
-    mesh: {generator: plate, origin: [0.1, 0.0, 0.0], size: [0.1, 0.1], divisions: [10, 10]}
-domains:
-  left: {parts: [left]}
-  right: {parts: [right]}
-)");
+  const auto m = read_yaml(proc_test::plate_yaml(1.0e-4));  // domains left | right
   const auto dec = partition::decompose(m, partition::Scheme::Paper);
   try {
     (void)daemon::build_paper_port(dec, "left");
