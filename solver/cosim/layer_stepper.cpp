@@ -1,10 +1,13 @@
 // LayerStepper: one domain's side of the `layer` scheme (layer_stepper.h; DESIGN.md §2.7).
 #include "solver/cosim/layer_stepper.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -228,10 +231,31 @@ bool LayerStepper::ghost_targets_ready() {
 }
 
 void LayerStepper::send_displacements() {
-  // Coarse ports: u_J(t + h) and omega_J(t + h/2), known once the positions are updated.
+  // Coarse ports: u_J(t + h) and omega_J(t + h/2), known once the positions are updated; or, if
+  // sent ahead (send_displacements_ahead), checked against them.
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     if (port.fine_side) continue;
+    auto& ps = state_[p];
+    if (ps.sent_ahead == t_ + h_) {
+      for (std::size_t j = 0; j < port.local.size(); ++j)
+        for (std::size_t d = 0; d < 3; ++d) {
+          const std::size_t k = 3 * port.local[j] + d;
+          const double u = solver_.displacement()[k];
+          const double w = solver_.angular_velocity_mid()[k];
+          const double su = ps.ahead_u[3 * j + d];
+          const double sw = ps.ahead_omega.empty() ? w : ps.ahead_omega[3 * j + d];
+          if (u != su || w != sw)
+            throw std::logic_error(fmt::format(
+                "layer stepper '{}': interface {}: node id {} dof {}: the u_J / omega_J sent "
+                "ahead to '{}' ({:.17g} m, {:.17g} rad/s) differ from the nodal passes' ({:.17g} "
+                "m, {:.17g} rad/s) at t = {} ticks; Solver::predict_next_positions no longer "
+                "mirrors them",
+                solver_.domain_name(), port.index, solver_.model().nodes.id[port.local[j]], d,
+                port.partner, su, sw, u, w, t_ + h_));
+        }
+      continue;
+    }
     LayerMessage m;
     m.kind = LayerMessage::Kind::Displacement;
     m.interface_index = port.index;
@@ -244,6 +268,32 @@ void LayerStepper::send_displacements() {
         if (!m.second.empty())
           m.second[3 * j + d] = solver_.angular_velocity_mid()[3 * port.local[j] + d];
       }
+    outbox_.push_back(std::move(m));
+  }
+}
+
+void LayerStepper::send_displacements_ahead() {
+  // After the coupling loads at t (apply_forces), before end_cycle_accelerations(): u_J(t + h)
+  // and omega_J(t + h/2) as the next cycle's passes will make them (Solver::
+  // predict_next_positions), unless the run ends at t (finished_here(): no next cycle).
+  if (finished_here()) return;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (port.fine_side) continue;
+    auto& ps = state_[p];
+    const std::size_t n3 = 3 * port.local.size();
+    ps.ahead_u.resize(n3);
+    ps.ahead_omega.resize(ps.rotates ? n3 : 0);
+    if (!solver_.predict_next_positions(port.local, seconds(h_), ps.ahead_u.data(),
+                                        ps.rotates ? ps.ahead_omega.data() : nullptr))
+      continue;  // sent after the passes (send_displacements)
+    ps.sent_ahead = t_ + h_;
+    LayerMessage m;
+    m.kind = LayerMessage::Kind::Displacement;
+    m.interface_index = port.index;
+    m.time = t_ + h_;
+    m.first = ps.ahead_u;
+    m.second = ps.ahead_omega;
     outbox_.push_back(std::move(m));
   }
 }
@@ -379,6 +429,8 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
       case Phase::Accelerations:
         if (!forces_ready()) return wait_ = Wait::Force;
         apply_forces();
+        send_displacements_ahead();
+        flush_outbox();  // u_J(t + h) leaves before this domain's nodal passes
         solver_.end_cycle_accelerations();
         solver_.impose_step(seconds(h_));
         phase_ = Phase::Begin;

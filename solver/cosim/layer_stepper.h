@@ -26,7 +26,16 @@
 //   end_cycle_compute()                                  (overlaps the partners' work)
 //   fine ports at an owner instant (t + h = k H): send g_A(t + h)    -> on_outbox
 //   coarse ports: need g_A(t + h)                                   -> Wait::Force
-//   add_coupling_force/moment, end_cycle_accelerations(), impose_step(h)
+//   add_coupling_force/moment
+//   coarse ports: send u_J(t + 2h), omega_J(t + 3h/2) predicted now  -> on_outbox
+//   end_cycle_accelerations(), impose_step(h)
+// The prediction (Solver::predict_next_positions) is the arithmetic the next cycle's nodal passes
+// will do on J: it takes the owner's whole tail (accelerations, velocities and positions of every
+// node, ~0.1 ms on the head-impact body) off the round trip the fine side waits on. The next
+// cycle checks that the passes gave the same bits and sends nothing more (a std::logic_error,
+// naming the node otherwise: a bug, exit 4). Ports whose J nodes move otherwise (rigid, prescribed)
+// send after the passes, as does the first cycle after initialize() or restore_state().
+//
 // The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
 //
 // Array shapes: Port::local [n_J] (local solver index of each J node, Interface::j_nodes_global
@@ -162,6 +171,8 @@ class LayerStepper {
     Tick T = 0;                                  ///< fine side: the owner step [T, T + H] in use
     bool have_u1 = false;                        ///< fine side: u_1 received for this owner step
     bool rotates = false;                        ///< J has rotational dofs (shell nodes)
+    Tick sent_ahead = -1;                        ///< coarse side: u_J of this instant sent early
+    std::vector<double> ahead_u, ahead_omega;    ///< coarse side: what was sent early
     coordinator::LayerWorkMeter meter;           ///< fine side: the interface history
     std::vector<coordinator::LayerSample> rows;  ///< fine side: rows not taken yet
   };
@@ -172,6 +183,7 @@ class LayerStepper {
   void apply_initial_forces();
   bool ghost_targets_ready();
   void send_displacements();
+  void send_displacements_ahead();
   void send_forces();
   bool forces_ready();
   void apply_forces();

@@ -743,6 +743,44 @@ void Solver::set_acceleration(std::size_t i, const Vec3& a) {
   }
 }
 
+bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, double dt_next,
+                                    double* u_next, double* omega_mid) const {
+  for (const auto i : nodes) {
+    if (i >= n_ || rigid_node_[i] || ghost_[i]) return false;
+    for (const auto& p : prescribed_)
+      if (p.index / 3 == i) return false;
+  }
+  // The expressions of coupling_pass, zero_held, velocity_pass (or advance_velocity, the same
+  // update) and advance_displacement, written the same way so that the compiler rounds (and
+  // contracts to FMA) alike; LayerStepper compares the result with the passes' to the bit.
+  const double dt_mid = mid_step(dt_, dt_next);
+  const auto& fixed = model_.fixed;
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const std::size_t i = nodes[j];
+    const std::uint8_t mask = fixed.empty() ? 0 : fixed[i];
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * i + d;
+      const double f = f_ext_[k] + f_cont_[k] + f_coup_[k];
+      const double a = (f - f_int_[k]) * inv_mass_[i];
+      const double al = (m_coup_[k] - m_int_[k]) * inv_inertia_[i];
+      // a held dof's a and alpha are zeroed too, which matters not here: its velocity is 0
+      double v = v_[k];
+      v += dt_mid * a;
+      double w = omega_[k];
+      w += dt_mid * al;
+      if (mask & (1u << d)) v = 0.0;
+      if (mask & (8u << d)) w = 0.0;
+#ifdef __FMA__
+      u_next[3 * j + d] = std::fma(dt_next, v, u_[k]);
+#else
+      u_next[3 * j + d] = u_[k] + dt_next * v;
+#endif
+      if (omega_mid) omega_mid[3 * j + d] = w;
+    }
+  }
+  return true;
+}
+
 void Solver::impose_step(double dt) {
   if (!(dt > 0.0) || dt > dt_ * (1.0 + 1e-9))
     throw NumericalError(fmt::format(

@@ -98,6 +98,18 @@ class Solver {
   /// After end_cycle_accelerations(): replaces a^{n+1} of node i (the `paper` scheme's corrected
   /// acceleration [8]-[11]); the implied force M (a - a_free) is counted as coupling work.
   void set_acceleration(std::size_t i, const Vec3& a);
+  /// Between the coupling loads at t^{n+1} (add_coupling_force/moment, all of them) and
+  /// end_cycle_accelerations(): what the next cycle will make of `nodes`, computed now from the
+  /// forces at hand so that a coarse `layer` daemon can send u_J(t^{n+2}) before its own nodal
+  /// passes (cosim::LayerStepper). For each node, exactly the arithmetic of those passes:
+  ///   a^{n+1} = (f_ext + f_cont + f_coup - f_int) / m,  alpha = (m_coup - m_int) / I  ([1]),
+  ///   v^{n+3/2} = v^{n+1/2} + dt^{n+1/2} a^{n+1},  held dofs 0,        dt^{n+1/2} = (dt^n +
+  ///   dt_next)/2 u^{n+2} = u^{n+1} + dt_next v^{n+3/2} ([2])
+  /// into u_next [3 nodes.size()] [m] and omega_mid (omega^{n+3/2}) [3 nodes.size()] [rad/s]
+  /// (nullptr: not wanted). Returns false, writing nothing, when some node's next values are set
+  /// otherwise (rigid, ghost or prescribed node): the caller then waits for the passes.
+  bool predict_next_positions(const std::vector<std::size_t>& nodes, double dt_next, double* u_next,
+                              double* omega_mid) const;
   /// After end_cycle(): imposes dt^{n+1} (the coordinator's choice). It may not exceed this
   /// domain's own proposal (NumericalError otherwise).
   void impose_step(double dt);
