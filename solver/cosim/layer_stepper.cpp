@@ -256,6 +256,7 @@ void LayerStepper::send_displacements() {
         }
       continue;
     }
+    ++displacements_sent_;
     LayerMessage m;
     m.kind = LayerMessage::Kind::Displacement;
     m.interface_index = port.index;
@@ -288,6 +289,8 @@ void LayerStepper::send_displacements_ahead() {
                                         ps.rotates ? ps.ahead_omega.data() : nullptr))
       continue;  // sent after the passes (send_displacements)
     ps.sent_ahead = t_ + h_;
+    ++displacements_sent_;
+    ++displacements_ahead_;
     LayerMessage m;
     m.kind = LayerMessage::Kind::Displacement;
     m.interface_index = port.index;

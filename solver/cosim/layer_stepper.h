@@ -148,6 +148,12 @@ class LayerStepper {
   /// advance() stopped between two cycles (at `until`) or has not started.
   bool at_cycle_boundary() const { return phase_ == Phase::Begin; }
 
+  /// u_J messages of the coarse ports so far, and how many of them left ahead of the nodal passes
+  /// (Solver::predict_next_positions): all but each port's first since initialize() or
+  /// restore_state(), unless one of its J nodes is rigid or prescribed.
+  std::int64_t displacements_sent() const { return displacements_sent_; }
+  std::int64_t displacements_sent_ahead() const { return displacements_ahead_; }
+
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
   Tick step() const { return h_; }
@@ -201,6 +207,7 @@ class LayerStepper {
   std::uint32_t wait_iface_ = 0;
   std::deque<LayerMessage> outbox_;
   std::function<void()> on_outbox_;
+  std::int64_t displacements_sent_ = 0, displacements_ahead_ = 0;
   std::vector<double> ghost_u_, ghost_omega_;  ///< [3 n_ghost] Solver::ghost_nodes() order
   std::vector<std::size_t> ghost_slot_;        ///< [n_local] position in the ghost list
 };

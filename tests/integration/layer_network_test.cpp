@@ -235,3 +235,49 @@ TEST(LayerNetwork, ThreeDomainsThreeStepsMatchMono) {
     EXPECT_LE(e600 / e300, 2.5);
   }
 }
+
+// The coarse sides send u_J(T + H) ahead of their nodal passes (LayerStepper, Solver::
+// predict_next_positions) at every coarse step but their first, in a chain where the middle
+// domain is the coarse side of one interface and the fine side of the other, and on shells
+// whose J nodes rotate; the passes then agree to the bit (the stepper checks it: a difference
+// would have thrown).
+TEST(LayerNetwork, CoarseSidesSendUJAheadOfTheirNodalPasses) {
+  for (int shape = 0; shape < 2; ++shape) {
+    auto m = shape == 0 ? chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}}) : quadrants3();
+    m.controls.end_time_s = shape == 0 ? 1e-3 : 5e-4;
+    m.controls.bulk_viscosity = true;
+    if (shape == 0) {
+      fix_nodes(m, where(m, [](double x, double, double) { return x < 1e-9; }), 7);
+      const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
+      m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
+    } else {
+      fix_nodes(m, where(m, [](double x, double, double) { return x < -0.5 + 1e-9; }), 63);
+      const auto edge = where(m, [](double x, double, double) { return x > 0.5 - 1e-9; });
+      m.loads.push_back({"pulse", edge, 2, model::Curve{{0.0, 5e-4, 1e-3}, {0.0, 1e3, 0.0}}});
+    }
+    cosim::LayerNetworkOptions o;
+    o.step_safety = 0.8;  // fixed steps: margin for the viscosity under the pulse
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    ASSERT_TRUE(net.run());
+    std::int64_t ahead = 0;
+    for (std::size_t k = 0; k < net.size(); ++k) {
+      const auto& st = net.stepper(k);
+      std::int64_t coarse_ports = 0;
+      bool rotates = false;
+      for (const auto& port : st.ports()) {
+        if (port.fine_side) continue;
+        ++coarse_ports;
+        for (auto l : port.local) rotates = rotates || st.solver().inertia()[l] > 0.0;
+      }
+      EXPECT_EQ(st.displacements_sent_ahead(), st.displacements_sent() - coarse_ports)
+          << "shape " << shape << ", domain " << st.solver().domain_name();
+      if (shape == 1 && coarse_ports > 0) {
+        EXPECT_TRUE(rotates);
+      }
+      ahead += st.displacements_sent_ahead();
+    }
+    EXPECT_GT(ahead, 20) << "shape " << shape;
+    std::printf("shape %d: %lld u_J messages sent ahead\n", shape, static_cast<long long>(ahead));
+  }
+}
