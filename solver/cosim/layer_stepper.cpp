@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -245,7 +247,8 @@ void LayerStepper::send_displacements() {
           const double w = solver_.angular_velocity_mid()[k];
           const double su = ps.ahead_u[3 * j + d];
           const double sw = ps.ahead_omega.empty() ? w : ps.ahead_omega[3 * j + d];
-          if (u != su || w != sw)
+          const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+          if (bits(u) != bits(su) || bits(w) != bits(sw))
             throw std::logic_error(fmt::format(
                 "layer stepper '{}': interface {}: node id {} dof {}: the u_J / omega_J sent "
                 "ahead to '{}' ({:.17g} m, {:.17g} rad/s) differ from the nodal passes' ({:.17g} "

@@ -8,9 +8,10 @@
 // Ports. Each interface is seen from one domain as a Port:
 //   coarse side (fine_side = false): this domain owns J and integrates it at its own step H with
 //     a_J = (g_B + g_A) / M_J ([8] of Bourel 2005, M_J the natural summed mass); it sends
-//     u_J(T+H) (and the rotation rate omega_J^{T+H/2} of shell nodes) as soon as its positions
-//     at T+H are known, computes its own forces at T+H, then needs the fine side's layer force
-//     g_A(T+H) (and moment) before its accelerations at T+H.
+//     u_J(T+H) (and the rotation rate omega_J^{T+H/2} of shell nodes) as soon as g_A(T) is
+//     applied (predicted; after its positions at T+H at the first step or for rigid or prescribed
+//     J), computes its own forces at T+H, then needs the fine side's layer force g_A(T+H) (and
+//     moment) before its accelerations at T+H.
 //   fine side (fine_side = true): this domain holds J as read-only ghosts moving linearly in time
 //     between the owner's positions u_J(T) and u_J(T+H) (rotation rate constant over [T, T+H]);
 //     its step h divides H (nested_steps.h), so it lands on every T; at each owner instant it
@@ -22,7 +23,8 @@
 //   begin_cycle()                                        (state at t sampled: on_sample)
 //   fine ports: need u_J(T') for the owner instant T' >= t + h      -> Wait::Displacement
 //   set_ghost_displacement / set_ghost_angular_velocity, end_cycle_positions()
-//   coarse ports: send u_J(t + h), omega_J(t + h/2)                  -> on_outbox
+//   coarse ports: send u_J(t + h), omega_J(t + h/2), unless sent ahead -> on_outbox
+//     (see below; sent ahead: checked against the passes instead)
 //   end_cycle_compute()                                  (overlaps the partners' work)
 //   fine ports at an owner instant (t + h = k H): send g_A(t + h)    -> on_outbox
 //   coarse ports: need g_A(t + h)                                   -> Wait::Force
@@ -118,7 +120,8 @@ class LayerStepper {
   /// Messages produced so far, to be sent in order; take_outbox() empties the queue.
   std::deque<LayerMessage> take_outbox();
   /// Called by advance() as soon as it has queued a message it will not wait on before its next
-  /// computation: u_J(t + h) right after the positions at t + h, before the forces at t + h, and
+  /// computation: u_J(t + h) as soon as g_A(t) is applied (predicted; or right after the positions
+  /// at t + h, see the header comment), before this domain's nodal passes and forces, and
   /// g_A(t + h) right after those forces. A daemon takes the outbox there and sends it, so that
   /// the partner computes while this domain computes its forces instead of taking turns
   /// (DESIGN.md §2.6 "Overlap"). Unset (LayerNetwork), the messages wait in the outbox until
@@ -137,10 +140,12 @@ class LayerStepper {
   /// Checkpoints (layer_stepper_state.cpp, DESIGN.md §2.6 "Checkpoints"). At a cycle boundary
   /// (advance() returned Wait::None because time() reached `until`, outbox empty): the phase, the
   /// time and every port's owner step in use, with the ghost targets. Messages already received for
-  /// later instants are left out (their senders had passed this instant and sent them after their
-  /// own checkpoint: after a restart they send them again), and the port's next expected time is
-  /// that of the first of them. Throws ModelError when not at a cycle boundary, with messages
-  /// queued to send, or holding a received message for an instant <= time() (unconsumed).
+  /// later instants are left out (their senders send them again after a restart: a faster partner
+  /// computes them again; a coarse side that sent u_J(t + h) ahead before stopping at t sends it
+  /// after its positions, since a restored stepper has sent nothing ahead), and the port's next
+  /// expected time is that of the first of them. Throws ModelError when not at a cycle boundary,
+  /// with messages queued to send, or holding a received message for an instant <= time()
+  /// (unconsumed).
   void save_state(core::StateWriter& w) const;
   /// Instead of initialize(), after the solver's own restore_state(): resumes at the saved instant.
   /// Throws CheckpointError if the saved step, tick or ports differ from this stepper's.

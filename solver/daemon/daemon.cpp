@@ -289,7 +289,7 @@ class Daemon {
     next_checkpoint_ = checkpoint_every_ > 0
                            ? (stepper_->time() / checkpoint_every_ + 1) * checkpoint_every_
                            : std::numeric_limits<cosim::Tick>::max();
-    // u_J(T + H) leaves before the coarse side's forces, g_A right after the fine side's: the
+    // u_J(T + H) leaves before the coarse side's nodal passes, g_A right after the fine side's: the
     // domains compute at the same time (LayerStepper::set_on_outbox, DESIGN.md §2.6 "Overlap").
     stepper_->set_on_outbox([this] { send_outbox(); });
     run_wall0_ = Clock::now();

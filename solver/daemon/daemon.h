@@ -16,9 +16,9 @@
 //   Setup: this domain's fixed step, every partner's step and, when every daemon offered one,
 //     the partners' lanes,
 //   cosim::LayerStepper: advance(); each message it produces leaves as soon as it is queued
-//     (LayerStepper::set_on_outbox: u_J(T + H) before the coarse side's forces, so the domains
-//     compute at the same time) as LayerDisplacement / LayerForce, on the partner's lane or to
-//     the coordinator; when it waits, block on its lane (polling the session every 20 ms) or on
+//     (LayerStepper::set_on_outbox: u_J(T + H) before the coarse side's nodal passes, so the
+//     domains compute at the same time) as LayerDisplacement / LayerForce, on the partner's lane or
+//     to the coordinator; when it waits, block on its lane (polling the session every 20 ms) or on
 //     the link, and deliver(); keep_alive() every cycle; a LayerReport (the instant, the fine
 //     side's interface history rows) every quarter heartbeat interval and before a checkpoint,
 //   at the end: a last field state, /timing, a LayerReport, Bye with a DomainReport (CPU, wait,

@@ -217,6 +217,7 @@ void Solver::apply_initial_velocities() {
       const Vec3 vi = b.velocity + cross(b.omega, r);
       for (std::size_t d = 0; d < 3; ++d) v_[3 * i + d] = vi[d];
     }
+  prescribed_node_.assign(n_, 0);
   for (const auto& pv : model_.prescribed_velocities) {
     const bool rot = pv.dof >= 3;
     for (auto c : pv.nodes) {
@@ -228,6 +229,7 @@ void Solver::apply_initial_velocities() {
                         "prescribe the body's motion instead",
                         pv.name, model_.nodes.id[static_cast<std::size_t>(c)]));
       prescribed_.push_back({idx, rot, &pv.velocity});
+      prescribed_node_[static_cast<std::size_t>(c)] = 1;
       (rot ? omega_ : v_)[idx] = pv.velocity.at(0.0);
     }
   }
@@ -745,11 +747,16 @@ void Solver::set_acceleration(std::size_t i, const Vec3& a) {
 
 bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, double dt_next,
                                     double* u_next, double* omega_mid) const {
-  for (const auto i : nodes) {
-    if (i >= n_ || rigid_node_[i] || ghost_[i]) return false;
-    for (const auto& p : prescribed_)
-      if (p.index / 3 == i) return false;
-  }
+  for (const auto i : nodes)
+    if (i >= n_ || rigid_node_[i] || ghost_[i] || prescribed_node_[i]) return false;
+  // The next step must be one impose_step() will accept (propose_step's proposal from the
+  // stable step at hand), so that a step above the stable limit stops the run before anything
+  // computed with it leaves; non-finite values are left to the passes' guard likewise.
+  const auto& c = model_.controls;
+  double proposal = c.dt_scale * dt_stable_;
+  if (c.dt_max_s > 0.0) proposal = std::min(proposal, c.dt_max_s);
+  if (!(dt_next > 0.0) || dt_next > proposal * (1.0 + 1e-9) || proposal < 1e-4 * dt_min_)
+    return false;
   // The expressions of coupling_pass, zero_held, velocity_pass (or advance_velocity, the same
   // update) and advance_displacement, written the same way so that the compiler rounds (and
   // contracts to FMA) alike; LayerStepper compares the result with the passes' to the bit.
@@ -776,6 +783,7 @@ bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, doubl
       u_next[3 * j + d] = u_[k] + dt_next * v;
 #endif
       if (omega_mid) omega_mid[3 * j + d] = w;
+      if (!std::isfinite(u_next[3 * j + d]) || !std::isfinite(w)) return false;
     }
   }
   return true;

@@ -106,8 +106,10 @@ class Solver {
   ///   v^{n+3/2} = v^{n+1/2} + dt^{n+1/2} a^{n+1},  held dofs 0,        dt^{n+1/2} = (dt^n +
   ///   dt_next)/2 u^{n+2} = u^{n+1} + dt_next v^{n+3/2} ([2])
   /// into u_next [3 nodes.size()] [m] and omega_mid (omega^{n+3/2}) [3 nodes.size()] [rad/s]
-  /// (nullptr: not wanted). Returns false, writing nothing, when some node's next values are set
-  /// otherwise (rigid, ghost or prescribed node): the caller then waits for the passes.
+  /// (nullptr: not wanted). Returns false when some node's next values are set otherwise (rigid,
+  /// ghost or prescribed node; then nothing is written), when dt_next exceeds the step the
+  /// stable step at hand allows (impose_step() would refuse it), or when a value is not finite:
+  /// the caller then waits for the passes and their checks.
   bool predict_next_positions(const std::vector<std::size_t>& nodes, double dt_next, double* u_next,
                               double* omega_mid) const;
   /// After end_cycle(): imposes dt^{n+1} (the coordinator's choice). It may not exceed this
@@ -216,6 +218,8 @@ class Solver {
   std::vector<double> ghost_omega_;                 // [3 * ghosts]
   bool ghost_omega_set_ = false;
   std::vector<std::uint8_t> ghost_;  // [n] 1: ghost node
+  std::vector<std::uint8_t>
+      prescribed_node_;  // [n] 1: some dof of the node has a prescribed velocity
   std::vector<std::int32_t> ghost_list_;
   std::vector<double> ghost_target_;  // [3 * ghosts] u^{n+1} of the ghosts
   bool ghost_target_set_ = false;

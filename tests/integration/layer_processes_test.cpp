@@ -303,8 +303,9 @@ INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,
                          scheme_test_name);
 
 // Overlap (DESIGN.md §2.6): LayerStepper::set_on_outbox offers u_J(t + h) while the stepper is
-// still at t, i.e. after the positions at t + h and before the forces there (the stepper moves to
-// t + h only after Solver::end_cycle_compute), and g_A(t + h) right after those forces. A daemon
+// still at t at the latest (predicted right after g_A(t) is applied; after the positions at t + h
+// at the first step), before the forces there (the stepper moves to t + h only after
+// Solver::end_cycle_compute), and g_A(t + h) right after those forces. A daemon
 // sends from that callback, so the partner works while this domain computes its forces. Messages
 // delivered straight from the callbacks (the earliest possible moment) give LayerNetwork's run to
 // the bit, at ratio 2.
