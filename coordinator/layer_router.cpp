@@ -132,6 +132,12 @@ std::vector<LayerSample> LayerRouter::rows(int from, std::uint32_t interface,
   return out;
 }
 
+std::int64_t LayerRouter::messages_through(Tick time) const {
+  std::int64_t n = 0;
+  for (const auto& r : routes_) n += 2 * (time / r.coarse_step) + 1;
+  return n;
+}
+
 void LayerRouter::restore_progress(Tick time, std::int64_t forwarded) {
   for (std::size_t i = 0; i < routes_.size(); ++i) {
     tracks_[i].next_force = time + routes_[i].coarse_step;

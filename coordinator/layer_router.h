@@ -67,6 +67,12 @@ class LayerRouter {
   const LayerRoute& route(std::size_t i) const { return routes_[i]; }
   /// Messages forwarded so far.
   std::int64_t forwarded() const { return forwarded_; }
+  /// Messages of every interface for the instants up to T (a multiple of every step), whoever
+  /// routed them: its forces g_A(0), g_A(H), ..., g_A(T) and displacements u_J(H), ..., u_J(T),
+  /// i.e. sum over interfaces of 2 T/H + 1. A checkpoint at T counts what the coordinator
+  /// forwarded with min(forwarded(), this): vectors for later instants sent before it (a faster
+  /// partner's, or a coarse side's u_J(T + H), sent ahead) are sent again after a restart.
+  std::int64_t messages_through(Tick time) const;
 
  private:
   struct Track {

@@ -539,7 +539,9 @@ class Coordinator {
     w.put_string("scenario_hash", hash_);
     w.put_int("time_ticks", time);
     w.put_int("interfaces", static_cast<std::int64_t>(router_->size()));
-    w.put_int("forwarded", router_->forwarded());
+    // the vectors routed for the instants up to `time` only: later ones are sent again after a
+    // restart (LayerRouter::messages_through; 0 when the daemons use lanes)
+    w.put_int("forwarded", std::min(router_->forwarded(), router_->messages_through(time)));
     w.put_double("run.cpu_seconds", cpu_before_ + cpu_seconds() - cpu0_);
     w.save((std::filesystem::path(dir) / "state.bin").string());
     run::commit_checkpoint(o_.out_dir, time, kSelf);

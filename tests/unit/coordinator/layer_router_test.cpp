@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "coordinator/protocol_error.h"
@@ -68,6 +69,22 @@ TEST(LayerRouter, ARestartExpectsEverythingOneStepAfterTheCheckpoint) {
   const std::vector<std::int64_t> t{50};
   const std::vector<double> f{0.0, 0.0, 0.0}, w{0.0};
   EXPECT_EQ(r.rows(0, 0, t, f, w).size(), 1u);
+}
+
+// A checkpoint at T counts the vectors for the instants up to T (g_A(0..T), u_J(H..T)), not
+// those a partner sent ahead (u_J(T + H)): they are routed again after the restart.
+TEST(LayerRouter, MessagesThroughAnInstantAreTheForcesFromZeroAndTheDisplacementsFromH) {
+  auto r = two_domains();  // H = 10
+  EXPECT_EQ(r.messages_through(0), 1);
+  EXPECT_EQ(r.messages_through(40), 9);
+  for (Tick t = 0; t <= 40; t += 10) {
+    r.force(0, 0, t, vec(1.0), {});
+    r.displacement(1, 0, t + 10, vec(1.0), {});  // u_J(T + H) sent before g_A(T + H)
+  }
+  EXPECT_EQ(r.forwarded(), 10);  // ... including u_J(50)
+  EXPECT_EQ(std::min(r.forwarded(), r.messages_through(40)), 9);
+  LayerRouter two({{0, 1, 2, 10, 1.0}, {2, 1, 1, 30, 1.0}}, {"fine", "coarse", "finer"});
+  EXPECT_EQ(two.messages_through(60), (2 * 6 + 1) + (2 * 2 + 1));
 }
 
 TEST(LayerRouter, RefusesOutOfOrderWrongSideAndWrongSizes) {
