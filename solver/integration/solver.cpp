@@ -392,10 +392,15 @@ void Solver::compute_accelerations() {
   zero_held(model_.fixed, a_.data(), alpha_.data(), 0, n_);
 }
 
-void Solver::propose_step() {
+double Solver::step_proposal() const {
   const auto& c = model_.controls;
   double dt = c.dt_scale * dt_stable_;
   if (c.dt_max_s > 0.0) dt = std::min(dt, c.dt_max_s);
+  return dt;
+}
+
+void Solver::propose_step() {
+  const double dt = step_proposal();
   if (!std::isfinite(dt))
     throw ModelError(
         fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
@@ -749,12 +754,11 @@ bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, doubl
                                     double* u_next, double* omega_mid) const {
   for (const auto i : nodes)
     if (i >= n_ || rigid_node_[i] || ghost_[i] || prescribed_node_[i]) return false;
-  // The next step must be one impose_step() will accept (propose_step's proposal from the
-  // stable step at hand), so that a step above the stable limit stops the run before anything
-  // computed with it leaves; non-finite values are left to the passes' guard likewise.
-  const auto& c = model_.controls;
-  double proposal = c.dt_scale * dt_stable_;
-  if (c.dt_max_s > 0.0) proposal = std::min(proposal, c.dt_max_s);
+  // The next step must be one propose_step() and impose_step() will accept (their checks on
+  // step_proposal(), the proposal from the stable step at hand), so that a step above the stable
+  // limit stops the run before anything computed with it leaves; non-finite values are left to
+  // the passes' guard likewise.
+  const double proposal = step_proposal();
   if (!(dt_next > 0.0) || dt_next > proposal * (1.0 + 1e-9) || proposal < 1e-4 * dt_min_)
     return false;
   // The expressions of coupling_pass, zero_held, velocity_pass (or advance_velocity, the same

@@ -102,9 +102,9 @@ class Solver {
   /// end_cycle_accelerations(): what the next cycle will make of `nodes`, computed now from the
   /// forces at hand so that a coarse `layer` daemon can send u_J(t^{n+2}) before its own nodal
   /// passes (cosim::LayerStepper). For each node, exactly the arithmetic of those passes:
-  ///   a^{n+1} = (f_ext + f_cont + f_coup - f_int) / m,  alpha = (m_coup - m_int) / I  ([1]),
-  ///   v^{n+3/2} = v^{n+1/2} + dt^{n+1/2} a^{n+1},  held dofs 0,        dt^{n+1/2} = (dt^n +
-  ///   dt_next)/2 u^{n+2} = u^{n+1} + dt_next v^{n+3/2} ([2])
+  ///   a^{n+1}   = (f_ext + f_cont + f_coup - f_int) / m,  alpha = (m_coup - m_int) / I   [1]
+  ///   v^{n+3/2} = v^{n+1/2} + dt^{n+1/2} a^{n+1}, held dofs 0                            [2]
+  ///   u^{n+2}   = u^{n+1} + dt_next v^{n+3/2},  dt^{n+1/2} = (dt^n + dt_next) / 2       [2]
   /// into u_next [3 nodes.size()] [m] and omega_mid (omega^{n+3/2}) [3 nodes.size()] [rad/s]
   /// (nullptr: not wanted). Returns false when some node's next values are set otherwise (rigid,
   /// ghost or prescribed node; then nothing is written), when dt_next exceeds the step the
@@ -191,6 +191,8 @@ class Solver {
   /// One pass after the displacement update: x = x0 + u, the StepWork sums, f_coup and m_coup
   /// cleared.
   StepWork positions_and_work();
+  /// dt_scale x the stable step at hand, capped by dt_max: what propose_step() checks and sets.
+  double step_proposal() const;
   void propose_step();
   GuardContext guard_context() const;
   /// The one list of evolving members behind save_state / restore_state (solver_state.cpp);
