@@ -42,6 +42,8 @@ class LayerWorkMeter {
   LayerSample add(Tick T, std::span<const double> g, std::span<const double> m,
                   std::span<const double> u, std::span<const double> omega);
 
+  /// The owner step of the next row, for variable steps (H of the row at T + H).
+  void set_coarse_step_s(double coarse_step_s) { H_s_ = coarse_step_s; }
   const LayerWorkState& state() const { return s_; }
   void restore(LayerWorkState s) { s_ = std::move(s); }
 

@@ -60,6 +60,7 @@ std::vector<LayerPort> ports_of(const partition::Decomposition& dec, int d) {
     p.fine_side = itf.fine == d;
     const int other = p.fine_side ? itf.coarse : itf.fine;
     p.partner = dec.domains[static_cast<std::size_t>(other)].name;
+    p.partner_elements = dec.domains[static_cast<std::size_t>(other)].model.element_count();
     const auto& dm = dec.domains[static_cast<std::size_t>(d)];
     for (auto g : itf.j_nodes_global) p.local.push_back(local_of(dm, g));
     ports.push_back(std::move(p));

@@ -17,6 +17,11 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
                      std::to_string(options_.step_safety));
   if (options_.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
+  if (options_.variable_steps &&
+      (options_.common_step || !options_.proposal_s.empty() || options_.step_safety != 1.0))
+    throw ModelError(
+        "layer network: variable steps are for `multi` with the solvers' own "
+        "proposals (no common_step, proposal_s or step_safety)");
   if (!options_.proposal_s.empty() && options_.proposal_s.size() != d_.solvers.size())
     throw ModelError("layer network: " + std::to_string(options_.proposal_s.size()) +
                      " step proposals for " + std::to_string(d_.solvers.size()) + " domains");
@@ -58,8 +63,9 @@ void LayerNetwork::initialize() {
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
     for (auto& p : ports[k])
       if (p.fine_side) p.partner_step = plan_.step[coarse_of_[p.index]];
-    steppers_.push_back(std::make_unique<LayerStepper>(*d_.solvers[k], std::move(ports[k]),
-                                                       plan_.step[k], options_.ticks_per_second));
+    steppers_.push_back(std::make_unique<LayerStepper>(
+        *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.ticks_per_second,
+        options_.variable_steps ? LayerSteps::Variable : LayerSteps::Fixed));
   }
   for (auto& st : steppers_) st->initialize();
   for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);

@@ -31,6 +31,9 @@ struct LayerNetworkOptions {
   /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
   std::vector<double> proposal_s;
   std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
+  /// `multi` only: every domain follows its own step proposal (layer_stepper.h "Steps"), and
+  /// proposal_s and step_safety must stay at their defaults; plan() is then not used.
+  bool variable_steps = false;
 };
 
 class LayerNetwork {

@@ -18,16 +18,39 @@
 namespace crashlink::cosim {
 
 namespace {
+/// Variable steps: a leader's step changes by at most this fraction per step (choose_step).
+constexpr double kStepChange = 0.02;
+/// Variable steps: a leader changes to a cheaper kind of step only for more than this gain.
+constexpr double kSwitchGain = 0.05;
+
 const char* kind_name(LayerMessage::Kind k) {
   return k == LayerMessage::Kind::Force ? "layer force" : "layer displacement";
 }
 }  // namespace
 
 LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> ports, Tick step,
-                           std::int64_t ticks_per_second)
-    : solver_(solver), ports_(std::move(ports)), h_(step), ticks_per_second_(ticks_per_second) {
+                           std::int64_t ticks_per_second, LayerSteps steps)
+    : solver_(solver),
+      ports_(std::move(ports)),
+      h_(step),
+      variable_(steps == LayerSteps::Variable),
+      ticks_per_second_(ticks_per_second) {
   const std::string& dom = solver_.domain_name();
-  if (h_ < 1 || ticks_per_second_ < 1)
+  if (variable_) {
+    h_ = 0;  // chosen at every instant (leader) or owner step (follower)
+    std::string owner;
+    for (const auto& port : ports_) {
+      if (!port.fine_side) continue;
+      if (follower_ && port.partner != owner)
+        throw ModelError("layer stepper '" + dom + "': variable steps need at most one coarser " +
+                         "partner per domain, but this domain holds ghosts of '" + owner +
+                         "' and of '" + port.partner +
+                         "', whose steps would have to meet; run with fixed steps");
+      follower_ = true;
+      owner = port.partner;
+    }
+  }
+  if ((!variable_ && h_ < 1) || ticks_per_second_ < 1)
     throw ModelError("layer stepper '" + dom + "': step " + std::to_string(h_) +
                      " ticks and ticks_per_second " + std::to_string(ticks_per_second_) +
                      " must both be >= 1");
@@ -58,7 +81,7 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
       }
       ps.rotates = ps.rotates || solver_.inertia()[l] > 0.0;
     }
-    if (port.fine_side) {
+    if (port.fine_side && !variable_) {
       ps.meter = coordinator::LayerWorkMeter(seconds(port.partner_step));
       if (port.partner_step < h_ || port.partner_step % h_ != 0)
         throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
@@ -96,7 +119,8 @@ void LayerStepper::initialize() {
   if (phase_ != Phase::Initial || initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() + "': initialize() called twice");
   initialized_ = true;
-  solver_.impose_step(seconds(h_));
+  if (!variable_) solver_.impose_step(seconds(h_));
+  step_pending_ = variable_ && follower_;  // a leader chooses once the g_A(0) are in
   t_ = 0;
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
@@ -109,7 +133,9 @@ void LayerStepper::initialize() {
         for (std::size_t d = 0; d < 3; ++d)
           ps.u_T[3 * j + d] = solver_.displacement()[3 * port.local[j] + d];
       ps.have_u1 = false;
-      ps.next_expected = port.partner_step;  // the owner's first message: u_J(H)
+      ps.T1 = 0;
+      // the owner's first message: u_J(H); with variable steps any later instant
+      ps.next_expected = variable_ ? 1 : port.partner_step;
     } else {
       ps.next_expected = 0;  // the holder's g_A(0)
     }
@@ -118,13 +144,134 @@ void LayerStepper::initialize() {
 }
 
 bool LayerStepper::at_owner_instant(const LayerPort& port) const {
-  return t_ % port.partner_step == 0;
+  if (!variable_) return t_ % port.partner_step == 0;
+  if (t_ == 0) return true;
+  for (std::size_t p = 0; p < ports_.size(); ++p)
+    if (&ports_[p] == &port) return state_[p].have_u1 && t_ == state_[p].T1;
+  return false;
+}
+
+Tick LayerStepper::proposal_ticks() const {
+  const double dt = solver_.step_proposal();
+  if (!std::isfinite(dt) || dt >= 1e3) return 0;  // rigid bodies only: no limit of its own
+  return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
+}
+
+Tick LayerStepper::choose_step() const {
+  // A leader's next step (header, "Steps"): H = p_own or a whole multiple of a holder's proposal
+  // below it, whichever costs least per unit time; the holders' proposals come with g_A(t).
+  Tick own = proposal_ticks();
+  struct Holder {
+    Tick p;
+    double w;
+  };
+  std::vector<Holder> holders;
+  std::vector<std::string> seen;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (port.fine_side || state_[p].inbox.empty()) continue;
+    if (std::find(seen.begin(), seen.end(), port.partner) != seen.end()) continue;
+    seen.push_back(port.partner);
+    holders.push_back({state_[p].inbox.front().proposal,
+                       static_cast<double>(std::max<std::size_t>(port.partner_elements, 1))});
+  }
+  if (own == 0)
+    for (const auto& k : holders) own = std::max(own, k.p);
+  if (own == 0)
+    throw ModelError("layer stepper '" + solver_.domain_name() +
+                     "': no domain of this coupling has a stable-step limit (rigid bodies only?); "
+                     "set controls.dt_max");
+  const double w_own =
+      static_cast<double>(std::max<std::size_t>(solver_.model().element_count(), 1));
+  auto rate = [&](Tick H) {
+    double c = w_own;
+    for (const auto& k : holders) c += k.w * static_cast<double>(k.p > 0 ? (H + k.p - 1) / k.p : 1);
+    return c / static_cast<double>(H);
+  };
+  std::vector<Tick> candidates{own};
+  for (const auto& k : holders)
+    if (k.p > 0 && k.p <= own) candidates.push_back((own / k.p) * k.p);
+  Tick best = own;
+  double best_rate = rate(own);
+  for (const Tick H : candidates) {
+    const double r = rate(H);
+    if (r < best_rate || (r == best_rate && H > best)) {
+      best = H;
+      best_rate = r;
+    }
+  }
+  // Hysteresis: the candidate nearest the last step stays unless another one is cheaper by more
+  // than kSwitchGain (two nearly equal costs must not make the step jump back and forth).
+  if (h_ > 0) {
+    Tick near = own;
+    for (const Tick H : candidates)
+      if (std::abs(H - h_) < std::abs(near - h_)) near = H;
+    if (rate(near) <= (1.0 + kSwitchGain) * best_rate) best = near;
+  }
+  // Up toward that target by at most kStepChange per step (a jump of the step by x costs the
+  // central-difference energy balance about x / 2 of that step's work, [2]); down at once: a
+  // holder's falling proposal must shrink H with it, or its substep count would jump instead.
+  if (h_ > 0) best = std::min(best, h_ + static_cast<Tick>(kStepChange * static_cast<double>(h_)));
+  return best;
+}
+
+bool LayerStepper::finishes_at(Tick t) const {
+  if (!follower_) return t >= end_;
+  return t == owner_T_ + owner_H_ && owner_last_;  // with the owner (its u_J(T + H) says so)
 }
 
 bool LayerStepper::finished_here() const {
+  if (variable_) return finishes_at(t_);
   if (t_ < end_) return false;
   for (const auto& port : ports_)
     if (port.fine_side && !at_owner_instant(port)) return false;  // land with the owner
+  return true;
+}
+
+bool LayerStepper::at_owner_end() const {
+  return owner_H_ > 0 && t_ == owner_T_ + owner_H_;
+}
+
+Tick LayerStepper::next_substep() const {
+  // Substep j of n of the owner step H: H / n whole ticks, the last H mod n of them one tick
+  // longer (no substep shorter than the others by more than a tick: DESIGN.md §2.7).
+  const Tick q = owner_H_ / substeps_, r = owner_H_ % substeps_;
+  return q + (substep_ >= substeps_ - r ? 1 : 0);
+}
+
+bool LayerStepper::start_owner_step() {
+  // A follower at the end of its owner step (or at t = 0): the owner's next u_J(T + H), the
+  // front of every fine port's inbox (the one in use was taken by ghost_targets_ready), tells H.
+  Tick T1 = -1;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (!port.fine_side) continue;
+    const auto& ps = state_[p];
+    if (ps.inbox.empty()) {
+      wait_iface_ = port.index;
+      return false;
+    }
+    const Tick t = ps.inbox.front().time;
+    if (T1 >= 0 && t != T1)
+      throw ModelError(fmt::format(
+          "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, another "
+          "of its interfaces for t = {} ticks; one owner step must end at one instant",
+          solver_.domain_name(), port.index, port.partner, t, T1));
+    T1 = t;
+    owner_last_ = ps.inbox.front().last;
+  }
+  if (T1 <= t_)
+    throw ModelError(
+        fmt::format("layer stepper '{}': the owner's u_J for t = {} ticks is not "
+                    "after this domain's instant {} ticks",
+                    solver_.domain_name(), T1, t_));
+  owner_T_ = t_;
+  owner_H_ = T1 - t_;
+  substeps_ = proposal_sent_ > 0
+                  ? std::max<Tick>(1, owner_H_ / proposal_sent_ + (owner_H_ % proposal_sent_ != 0))
+                  : 1;
+  substep_ = 0;
+  h_ = next_substep();
   return true;
 }
 
@@ -139,10 +286,10 @@ void LayerStepper::deliver(const LayerMessage& m) {
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                        ": got a " + kind_name(m.kind) + " from '" + port.partner +
                        "', expected a " + kind_name(want));
-    if (m.time != ps.next_expected)
+    if (variable_ ? m.time < ps.next_expected : m.time != ps.next_expected)
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
-                       ": " + kind_name(m.kind) + " from '" + port.partner +
-                       "' for t = " + std::to_string(m.time) + " ticks, expected t = " +
+                       ": " + kind_name(m.kind) + " from '" + port.partner + "' for t = " +
+                       std::to_string(m.time) + " ticks, expected t " + (variable_ ? ">= " : "= ") +
                        std::to_string(ps.next_expected) + " ticks (out of order or duplicated)");
     const std::size_t n3 = 3 * port.local.size();
     if (m.first.size() != n3 || !(m.second.empty() || m.second.size() == n3))
@@ -150,6 +297,14 @@ void LayerStepper::deliver(const LayerMessage& m) {
                        ": " + kind_name(m.kind) + " from '" + port.partner + "' carries " +
                        std::to_string(m.first.size()) + " + " + std::to_string(m.second.size()) +
                        " values; expected " + std::to_string(n3) + " (3 per J node)");
+    if (variable_) {  // the next one is later; its instant is not known here
+      if (m.time == std::numeric_limits<Tick>::max())
+        throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                         ": " + kind_name(m.kind) + " for the last representable tick");
+      ps.next_expected = m.time + 1;
+      ps.inbox.push_back(m);
+      return;
+    }
     const Tick every = port.fine_side ? port.partner_step : h_;
     if (ps.next_expected > std::numeric_limits<Tick>::max() - every)
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
@@ -191,13 +346,21 @@ bool LayerStepper::ghost_targets_ready() {
     const auto& port = ports_[p];
     if (!port.fine_side) continue;
     auto& ps = state_[p];
-    const Tick H = port.partner_step;
-    const Tick T = (t_ / H) * H;
-    if (T != ps.T) {  // moved on to the next owner step
-      CRASHLINK_ASSERT(T == ps.T + H && ps.have_u1);
-      ps.u_T.swap(ps.u_1);
-      ps.T = T;
-      ps.have_u1 = false;
+    if (variable_) {
+      if (ps.have_u1 && t_ == ps.T1) {  // moved on to the next owner step
+        ps.u_T.swap(ps.u_1);
+        ps.T = ps.T1;
+        ps.have_u1 = false;
+      }
+    } else {
+      const Tick H = port.partner_step;
+      const Tick T = (t_ / H) * H;
+      if (T != ps.T) {  // moved on to the next owner step
+        CRASHLINK_ASSERT(T == ps.T + H && ps.have_u1);
+        ps.u_T.swap(ps.u_1);
+        ps.T = T;
+        ps.have_u1 = false;
+      }
     }
     if (!ps.have_u1) {
       if (ps.inbox.empty()) {
@@ -205,7 +368,8 @@ bool LayerStepper::ghost_targets_ready() {
         return false;
       }
       auto& m = ps.inbox.front();
-      CRASHLINK_ASSERT(m.time == T + H);
+      CRASHLINK_ASSERT(variable_ || m.time == ps.T + port.partner_step);
+      ps.T1 = m.time;
       ps.u_1 = std::move(m.first);
       ps.omega = std::move(m.second);
       ps.inbox.pop_front();
@@ -216,7 +380,12 @@ bool LayerStepper::ghost_targets_ready() {
     const auto& port = ports_[p];
     if (!port.fine_side) continue;
     const auto& ps = state_[p];
-    const Tick H = port.partner_step;
+    const Tick H = variable_ ? ps.T1 - ps.T : port.partner_step;
+    if (t1 > ps.T + H)
+      throw ModelError(
+          fmt::format("layer stepper '{}': interface {}: the step to t = {} ticks "
+                      "passes the owner's instant {} ticks (internal error)",
+                      solver_.domain_name(), port.index, t1, ps.T + H));
     const bool lands = t1 == ps.T + H;
     const double w = static_cast<double>(t1 - ps.T) / static_cast<double>(H);
     for (std::size_t j = 0; j < port.local.size(); ++j) {
@@ -264,6 +433,7 @@ void LayerStepper::send_displacements() {
     m.kind = LayerMessage::Kind::Displacement;
     m.interface_index = port.index;
     m.time = t_ + h_;
+    m.last = variable_ && finishes_at(m.time);
     m.first.resize(3 * port.local.size());
     if (state_[p].rotates) m.second.resize(3 * port.local.size());
     for (std::size_t j = 0; j < port.local.size(); ++j)
@@ -298,6 +468,7 @@ void LayerStepper::send_displacements_ahead() {
     m.kind = LayerMessage::Kind::Displacement;
     m.interface_index = port.index;
     m.time = t_ + h_;
+    m.last = variable_ && finishes_at(m.time);
     m.first = ps.ahead_u;
     m.second = ps.ahead_omega;
     outbox_.push_back(std::move(m));
@@ -313,6 +484,7 @@ void LayerStepper::send_forces() {
     m.kind = LayerMessage::Kind::Force;
     m.interface_index = port.index;
     m.time = t_;
+    if (variable_) m.proposal = proposal_sent_ = proposal_ticks();
     m.first.resize(3 * port.local.size());
     if (state_[p].rotates) m.second.resize(3 * port.local.size());
     for (std::size_t j = 0; j < port.local.size(); ++j) {
@@ -328,6 +500,7 @@ void LayerStepper::send_forces() {
       // [T - H, T] just completed, with omega_J(T - H/2) (ghost_targets_ready).
       auto& ps = state_[p];
       const bool start = t_ == 0;
+      if (variable_ && !start) ps.meter.set_coarse_step_s(seconds(ps.T1 - ps.T));
       const std::span<const double> omega =
           start ? std::span<const double>() : std::span<const double>(ps.omega);
       ps.rows.push_back(ps.meter.add(t_, m.first, m.second, start ? ps.u_T : ps.u_1, omega));
@@ -344,6 +517,11 @@ bool LayerStepper::forces_ready() {
       wait_iface_ = ports_[p].index;
       return false;
     }
+    if (variable_ && ps.inbox.front().time != t_)
+      throw ModelError(fmt::format(
+          "layer stepper '{}': interface {}: layer force from '{}' for "
+          "t = {} ticks, but this domain is at {} ticks",
+          solver_.domain_name(), ports_[p].index, ports_[p].partner, ps.inbox.front().time, t_));
     CRASHLINK_ASSERT(ps.inbox.front().time == t_);
   }
   return true;
@@ -404,11 +582,22 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
     switch (phase_) {
       case Phase::Initial:
         if (!forces_ready()) return wait_ = Wait::Force;
+        if (variable_ && !follower_) h_ = choose_step();  // reads the g_A(0) proposals
         apply_initial_forces();
+        if (variable_ && !follower_) solver_.impose_step(seconds(h_));
         phase_ = Phase::Begin;
         break;
       case Phase::Begin:
         if (t_ >= until) return wait_ = Wait::None;
+        if (step_pending_) {  // a variable follower at the end of its owner step
+          if (finished_here()) {
+            if (h_ > 0) solver_.impose_committed_step(seconds(h_));  // for the last sample
+          } else {
+            if (!start_owner_step()) return wait_ = Wait::Displacement;
+            solver_.impose_step(seconds(h_));  // from the proposal sent with g_A(t)
+          }
+          step_pending_ = false;
+        }
         solver_.begin_cycle();  // state at t_ complete
         if (on_sample) on_sample();
         if (finished_here()) {
@@ -434,11 +623,35 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         break;
       case Phase::Accelerations:
         if (!forces_ready()) return wait_ = Wait::Force;
-        apply_forces();
-        send_displacements_ahead();
-        flush_outbox();  // u_J(t + h) leaves before this domain's nodal passes
-        solver_.end_cycle_accelerations();
-        solver_.impose_step(seconds(h_));
+        {
+          // The next step: fixed; a leader's choice (reads the g_A proposals, before
+          // apply_forces takes them); a follower's next substep, or unknown at the end of its
+          // owner step (step_pending_: the owner's next u_J tells it).
+          Tick next = h_;
+          if (variable_) {
+            if (!follower_) {
+              next = choose_step();
+            } else if (at_owner_end()) {
+              next = 0;
+            } else {
+              ++substep_;
+              next = next_substep();
+            }
+          }
+          apply_forces();
+          if (next > 0) {
+            h_ = next;
+            send_displacements_ahead();
+            flush_outbox();  // u_J(t + h) leaves before this domain's nodal passes
+          }
+          solver_.end_cycle_accelerations();
+          if (next == 0)
+            step_pending_ = true;
+          else if (variable_ && follower_)
+            solver_.impose_committed_step(seconds(h_));
+          else
+            solver_.impose_step(seconds(h_));
+        }
         phase_ = Phase::Begin;
         break;
       case Phase::Done:

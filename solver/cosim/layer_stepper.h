@@ -40,6 +40,21 @@
 //
 // The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
 //
+// Steps (LayerSteps). Fixed: every domain at the step the coordinator planned for the whole run
+// (coordinator/nested_steps.h). Variable (DESIGN.md §2.1, [2] with variable steps; every domain
+// follows its stable step as the mesh deforms, as a mono run does):
+//   - every domain has at most one coarser partner (its fine ports all name one domain);
+//   - a domain without one (a leader) chooses its next step at each of its instants t, once the
+//     holders' g_A(t) are in: each g_A carries its sender's step proposal p_k at t. Of H = p_own
+//     and H = m p_k (m = floor(p_own / p_k) >= 1, for each holder k) it takes the one with the
+//     least cost per unit time (w_own + sum_k w_k ceil(H / p_k)) / H, w = element counts
+//     (the ratio just above a whole number costs one substep more, or a shorter coarse step);
+//   - a domain with one (a follower) learns the owner step [T, T + H] from the time of u_J(T + H)
+//     before its first cycle in it, and commits n = ceil(H / p) substeps of H / n (whole ticks,
+//     the last ones a tick longer when n does not divide H), p the proposal it sent with g_A(T).
+//     The later substeps may not exceed the stable step itself (Solver::impose_committed_step).
+//   - a follower's own holders see its substeps as its steps.
+//
 // Array shapes: Port::local [n_J] (local solver index of each J node, Interface::j_nodes_global
 // order); every vector in a LayerMessage [3 n_J], xyz interleaved, the same order.
 #include <cstdint>
@@ -60,12 +75,16 @@ namespace crashlink::cosim {
 using coordinator::Tick;
 
 struct LayerPort {
-  std::uint32_t index = 0;         ///< interface index (Decomposition::interfaces)
-  bool fine_side = false;          ///< true: J are ghosts here; false: this domain owns J
-  std::string partner;             ///< the other domain's name (messages)
-  Tick partner_step = 0;           ///< the owner's step H (fine side only)
-  std::vector<std::size_t> local;  ///< [n_J] local solver index of each J node
+  std::uint32_t index = 0;           ///< interface index (Decomposition::interfaces)
+  bool fine_side = false;            ///< true: J are ghosts here; false: this domain owns J
+  std::string partner;               ///< the other domain's name (messages)
+  Tick partner_step = 0;             ///< the owner's step H (fine side only; fixed steps)
+  std::vector<std::size_t> local;    ///< [n_J] local solver index of each J node
+  std::size_t partner_elements = 0;  ///< the partner's element count (variable steps: its cost)
 };
+
+/// How a LayerStepper's steps are chosen (layer_stepper.h, "Steps").
+enum class LayerSteps : std::uint8_t { Fixed, Variable };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
 /// omega_J(time - H/2) [rad/s] (`second`, empty when no J node rotates). Force: ghost holder ->
@@ -77,6 +96,11 @@ struct LayerMessage {
   Tick time = 0;
   std::vector<double> first;
   std::vector<double> second;
+  /// Force, variable steps: the sender's step proposal at `time` [ticks] (0: no limit, a domain
+  /// of rigid bodies only). 0 and unused with fixed steps.
+  Tick proposal = 0;
+  /// Displacement, variable steps: the owner's run ends at `time` (its holder ends there too).
+  bool last = false;
 };
 
 /// History rows of one fine-side interface (coordinator/layer_work.h), for the coordinator.
@@ -95,10 +119,11 @@ class LayerStepper {
   };
 
   /// `solver` (ghosts, mass and inertia overrides set, not initialised) must outlive the stepper.
-  /// `step` is this domain's fixed step in ticks; every fine port's partner_step must be a whole
-  /// multiple of it (ModelError otherwise, with both values).
+  /// Fixed steps: `step` is this domain's step in ticks; every fine port's partner_step must be a
+  /// whole multiple of it (ModelError otherwise, with both values). Variable steps: `step` is
+  /// ignored; ModelError when the fine ports name more than one partner.
   LayerStepper(integration::Solver& solver, std::vector<LayerPort> ports, Tick step,
-               std::int64_t ticks_per_second);
+               std::int64_t ticks_per_second, LayerSteps steps = LayerSteps::Fixed);
 
   /// After Solver::initialize() (the caller's: a daemon registers the initial stable step first):
   /// imposes the step, queues g_A(0) of every fine port. Throws ModelError when the step exceeds
@@ -161,7 +186,8 @@ class LayerStepper {
 
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
-  Tick step() const { return h_; }
+  Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)
+  LayerSteps steps() const { return variable_ ? LayerSteps::Variable : LayerSteps::Fixed; }
   std::int64_t ticks_per_second() const { return ticks_per_second_; }
   double seconds(Tick n) const;
   Wait waiting() const { return wait_; }
@@ -180,6 +206,7 @@ class LayerStepper {
     std::vector<double> u_1;                     ///< fine side: u_J(T + H)
     std::vector<double> omega;                   ///< fine side: omega_J(T + H/2)
     Tick T = 0;                                  ///< fine side: the owner step [T, T + H] in use
+    Tick T1 = 0;                                 ///< fine side: T + H, once u_1 is in
     bool have_u1 = false;                        ///< fine side: u_1 received for this owner step
     bool rotates = false;                        ///< J has rotational dofs (shell nodes)
     Tick sent_ahead = -1;                        ///< coarse side: u_J of this instant sent early
@@ -199,6 +226,13 @@ class LayerStepper {
   bool forces_ready();
   void apply_forces();
   void flush_outbox();
+  // Variable steps.
+  Tick proposal_ticks() const;
+  Tick choose_step() const;        ///< a leader's next step, from the holders' g_A (inbox fronts)
+  bool at_owner_end() const;       ///< a follower at the end T + H of its owner step
+  bool finishes_at(Tick t) const;  ///< variable: this domain's run ends at instant t
+  bool start_owner_step();         ///< false: waits for the owner's next u_J
+  Tick next_substep() const;       ///< a follower's next step inside the owner step
 
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;
@@ -206,6 +240,14 @@ class LayerStepper {
   Tick h_ = 0, t_ = 0, end_ = 0;
   bool initialized_ = false;
   bool record_history_ = false;
+  bool variable_ = false;           ///< LayerSteps::Variable
+  bool follower_ = false;           ///< variable: has fine ports (its owner sets its owner steps)
+  bool step_pending_ = false;       ///< variable follower: the next step awaits the owner's u_J
+  Tick proposal_sent_ = 0;          ///< variable follower: the proposal sent with g_A(T)
+  std::int64_t substeps_ = 1;       ///< variable follower: n of the owner step in use
+  std::int64_t substep_ = 0;        ///< variable follower: index of the step about to be taken
+  Tick owner_T_ = 0, owner_H_ = 0;  ///< variable follower: the owner step [T, T + H] in use
+  bool owner_last_ = false;         ///< variable follower: the owner ends at T + H
   std::int64_t ticks_per_second_ = 0;
   Phase phase_ = Phase::Initial;
   Wait wait_ = Wait::None;

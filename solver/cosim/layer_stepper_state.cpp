@@ -8,6 +8,12 @@ namespace crashlink::cosim {
 
 void LayerStepper::save_state(core::StateWriter& w) const {
   const std::string& dom = solver_.domain_name();
+  if (variable_)
+    throw ModelError(
+        fmt::format("layer stepper '{}': checkpoints of a run with variable layer "
+                    "steps are not written yet (the owner steps in use are not "
+                    "saved); run with fixed steps to write checkpoints",
+                    dom));
   if (phase_ != Phase::Begin || !outbox_.empty()) {
     throw ModelError(
         fmt::format("layer stepper '{}': a checkpoint is taken between two cycles "

@@ -803,6 +803,19 @@ void Solver::impose_step(double dt) {
   dt_min_ = std::min(dt_min_, dt_);
 }
 
+void Solver::impose_committed_step(double dt) {
+  const double cap = model_.controls.dt_max_s;
+  const double limit = cap > 0.0 ? std::min(dt_stable_, cap) : dt_stable_;
+  if (!(dt > 0.0) || dt > limit * (1.0 + 1e-9))
+    throw NumericalError(fmt::format(
+        "{}: cycle {}, t = {:.6e} s: the step {:.6e} s committed at the start of the owner step "
+        "now exceeds this domain's stable step {:.6e} s (set by {}): the mesh stiffened faster "
+        "than one coarse step can follow; lower controls.dt_scale or run with fixed steps",
+        domain_, cycle_, time_s_, dt, limit, critical_element()));
+  dt_ = dt;
+  dt_min_ = std::min(dt_min_, dt_);
+}
+
 Vec3 Solver::node_velocity(std::size_t i) const {
   return {0.5 * (v_prev_[3 * i] + v_[3 * i]), 0.5 * (v_prev_[3 * i + 1] + v_[3 * i + 1]),
           0.5 * (v_prev_[3 * i + 2] + v_[3 * i + 2])};

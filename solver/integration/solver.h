@@ -115,6 +115,14 @@ class Solver {
   /// After end_cycle(): imposes dt^{n+1} (the coordinator's choice). It may not exceed this
   /// domain's own proposal (NumericalError otherwise).
   void impose_step(double dt);
+  /// The same for a step committed earlier (a `layer` fine domain with variable steps fixes the
+  /// substeps of a whole owner step at its start, cosim::LayerStepper): it may exceed the
+  /// proposal at hand, but not the stable step itself (the Courant limit without dt_scale, capped
+  /// by dt_max). NumericalError otherwise, naming the critical element.
+  void impose_committed_step(double dt);
+  /// dt_scale x the stable step at hand, capped by dt_max: what propose_step() checks and sets.
+  /// Known once the forces at t^{n+1} are computed (before end_cycle_accelerations()).
+  double step_proposal() const;
   /// True when t^n has reached the end time (checked after begin_cycle()).
   bool finished() const { return time_s_ >= model_.controls.end_time_s * (1.0 - 1e-12); }
 
@@ -191,8 +199,6 @@ class Solver {
   /// One pass after the displacement update: x = x0 + u, the StepWork sums, f_coup and m_coup
   /// cleared.
   StepWork positions_and_work();
-  /// dt_scale x the stable step at hand, capped by dt_max: what propose_step() checks and sets.
-  double step_proposal() const;
   void propose_step();
   GuardContext guard_context() const;
   /// The one list of evolving members behind save_state / restore_state (solver_state.cpp);
