@@ -24,8 +24,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->check(CLI::IsMember({"layer", "paper"}));
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
-                "--coupling paper: each domain's step follows its stable step as the mesh "
-                "deforms (split: the smallest of all at every instant) instead of being fixed");
+                "each domain's step follows its stable step as the mesh deforms instead of "
+                "being fixed (paper: split takes the smallest of all at every instant; layer: "
+                "multi only, no checkpoints; docs/multirate.md)");
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");

@@ -41,7 +41,7 @@ struct RunCommandOptions {
   std::string restart;
   bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
   bool no_drift = false;        ///< `paper`: drift correction [11] off
-  bool variable_steps = false;  ///< `paper`: each free state's own step (DESIGN.md §2.6)
+  bool variable_steps = false;  ///< each domain follows its own step (DESIGN.md §2.6)
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

@@ -62,8 +62,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-drift", no_drift, "`paper`: drift correction [11] off (the study's S2)");
   app.add_flag(
       "--variable-steps", o.variable_steps,
-      "`paper`: impose each free state's own step proposal (split: the smallest of all "
-      "at every instant; multi: each its own) instead of fixed steps planned at the start");
+      "variable steps instead of fixed steps planned at the start. `paper`: impose each free "
+      "state's own step proposal (split: the smallest of all at every instant; multi: each its "
+      "own); `layer` (multi, no checkpoints): each domain follows its own proposal "
+      "(docs/multirate.md)");
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);

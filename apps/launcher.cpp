@@ -148,8 +148,8 @@ class ProcessRun {
       args.emplace_back("--coupling");
       args.emplace_back("paper");
       if (!o_.drift) args.emplace_back("--no-drift");
-      if (o_.variable_steps) args.emplace_back("--variable-steps");
     }
+    if (o_.variable_steps) args.emplace_back("--variable-steps");
     add("coordinator", spawn(coordinator_exe, args));
 
     LaunchResult r;

@@ -35,7 +35,7 @@ struct LaunchOptions {
   bool lanes = true;                   ///< CoordinatorOptions::lanes
   bool paper = false;                  ///< --coupling paper for the coordinator and every daemon
   bool drift = true;                   ///< `paper`: drift correction [11] (--no-drift otherwise)
-  bool variable_steps = false;         ///< `paper`: CoordinatorOptions::variable_steps
+  bool variable_steps = false;         ///< CoordinatorOptions::variable_steps
 };
 
 /// How one piece of the run ended.

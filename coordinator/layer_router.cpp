@@ -29,6 +29,12 @@ LayerRouter::LayerRouter(std::vector<LayerRoute> routes, std::vector<std::string
   }
 }
 
+void LayerRouter::set_variable_steps(bool on) {
+  variable_ = on;
+  for (std::size_t i = 0; i < routes_.size(); ++i)
+    tracks_[i].next_displacement = on ? 1 : routes_[i].coarse_step;  // u_J after 0
+}
+
 const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool force_message,
                                        Tick time, std::size_t first_size,
                                        std::size_t second_size) const {
@@ -51,13 +57,19 @@ const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool f
   }
   const auto& t = tracks_[interface];
   const Tick expected = force_message ? t.next_force : t.next_displacement;
-  if (time != expected) {
+  if (variable_ && time < expected) {
+    throw ProtocolError(
+        fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the next one must be "
+                    "at {} ticks or later (in time order)",
+                    who, what, interface, time, expected));
+  }
+  if (!variable_ && time != expected) {
     throw ProtocolError(
         fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the next "
                     "one must be at {} ticks (every {} ticks, in time order)",
                     who, what, interface, time, expected, r.coarse_step));
   }
-  if (time > std::numeric_limits<Tick>::max() - r.coarse_step) {
+  if (time > std::numeric_limits<Tick>::max() - (variable_ ? 1 : r.coarse_step)) {
     throw ProtocolError(
         fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the one after it, {} "
                     "ticks later, would be beyond the tick range (2^63 - 1 ticks): the "
@@ -79,7 +91,7 @@ LayerRouter::Routed LayerRouter::force(int from, std::uint32_t interface, Tick t
                                        std::span<const double> force_N,
                                        std::span<const double> moment_Nm) {
   const auto& r = checked(from, interface, true, time, force_N.size(), moment_Nm.size());
-  tracks_[interface].next_force = time + r.coarse_step;
+  tracks_[interface].next_force = time + (variable_ ? 1 : r.coarse_step);
   ++forwarded_;
   return {r.coarse};
 }
@@ -89,7 +101,7 @@ LayerRouter::Routed LayerRouter::displacement(int from, std::uint32_t interface,
                                               std::span<const double> angular_velocity_rad_s) {
   const auto& r =
       checked(from, interface, false, time, displacement_m.size(), angular_velocity_rad_s.size());
-  tracks_[interface].next_displacement = time + r.coarse_step;
+  tracks_[interface].next_displacement = time + (variable_ ? 1 : r.coarse_step);
   ++forwarded_;
   return {r.fine};
 }
@@ -118,13 +130,15 @@ std::vector<LayerSample> LayerRouter::rows(int from, std::uint32_t interface,
   auto& t = tracks_[interface];
   std::vector<LayerSample> out(n);
   for (std::size_t r = 0; r < n; ++r) {
-    if (times[r] != t.next_row || times[r] > std::numeric_limits<Tick>::max() - H) {
+    const Tick every = variable_ ? 1 : H;
+    if ((variable_ ? times[r] < t.next_row : times[r] != t.next_row) ||
+        times[r] > std::numeric_limits<Tick>::max() - every) {
       throw ProtocolError(fmt::format(
           "domain '{}' reported a history row of interface {} at {} ticks; the next one must be "
           "at {} ticks (every {} ticks, in time order, within the tick range)",
           who, interface, times[r], t.next_row, H));
     }
-    t.next_row = times[r] + H;
+    t.next_row = times[r] + every;
     out[r].time = times[r];
     out[r].link_work_J = work_J[r];
     for (std::size_t d = 0; d < 3; ++d) out[r].force_N[d] = force_N[3 * r + d];

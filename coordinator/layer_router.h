@@ -34,6 +34,10 @@ class LayerRouter {
   /// `names[k]` is domain k's name (messages). Throws crashlink::ModelError for a route with a
   /// bad domain index, fine == coarse, or a step < 1.
   LayerRouter(std::vector<LayerRoute> routes, std::vector<std::string> names);
+  /// Variable steps (cosim::LayerSteps::Variable): every interface's vectors and rows only in
+  /// increasing time order, any instants (coarse_step is then the first planned one, unused).
+  /// Call before any message.
+  void set_variable_steps(bool on);
 
   /// Where a message goes.
   struct Routed {
@@ -88,6 +92,7 @@ class LayerRouter {
   std::vector<std::string> names_;
   std::vector<Track> tracks_;
   std::int64_t forwarded_ = 0;
+  bool variable_ = false;
 };
 
 }  // namespace crashlink::coordinator

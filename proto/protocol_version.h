@@ -14,7 +14,9 @@ namespace crashlink::wire {
 // Setup.restart / restart_ticks (a version-2 daemon would start from t = 0 in a restarted run);
 // 4 lanes: Register.lane_endpoint / lane_public_key, Setup.lanes; 5 `paper` over processes:
 // FreeState.velocities_m_s / energy_time_ticks, EnergyTerms.coupled_kinetic_j (a version-4 daemon
-// would cut the scenario for `layer` and misread a `paper` Setup).
-inline constexpr std::uint32_t kProtocolVersion = 5;
+// would cut the scenario for `layer` and misread a `paper` Setup); 6 variable `layer` steps:
+// Setup.variable_steps, LayerForce.step_proposal_ticks, LayerDisplacement.last (a version-5
+// daemon would run fixed steps against partners that do not).
+inline constexpr std::uint32_t kProtocolVersion = 6;
 
 }  // namespace crashlink::wire

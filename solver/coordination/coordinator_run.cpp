@@ -151,11 +151,16 @@ class Coordinator {
     model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
     const auto dec = partition::decompose(
         *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer);
-    if ((o_.variable_steps || !o_.drift) && !o_.paper)
-      throw InputError(fmt::format(
-          "{}: a `paper` option; `layer` runs at fixed nested steps and has no drift correction "
-          "(add --coupling paper, or drop the option)",
-          o_.variable_steps ? "--variable-steps" : "--no-drift"));
+    if (!o_.drift && !o_.paper)
+      throw InputError(
+          "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
+          "or drop the option)");
+    if (o_.variable_steps && !o_.paper &&
+        (o_.common_step || o_.checkpoint_interval_s > 0.0 || o_.restart))
+      throw InputError(
+          "--variable-steps with `layer`: a `multi` run without checkpoints (variable layer "
+          "steps are not planned for `split`, and their checkpoints are not written yet); drop "
+          "--checkpoint-interval / --restart, or the option");
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -286,6 +291,7 @@ class Coordinator {
                         static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
+    router_->set_variable_steps(o_.variable_steps);
     lanes_ = o_.lanes && std::all_of(regs_.begin(), regs_.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
@@ -296,6 +302,7 @@ class Coordinator {
       outcomes_[k].step_ticks = plan.step[k];
       auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.common_step, options,
                                  o_.ticks_per_second);
+      setup.mutable_setup()->set_variable_steps(o_.variable_steps);
       if (restart_from_ >= 0) {
         setup.mutable_setup()->set_restart(true);
         setup.mutable_setup()->set_restart_ticks(restart_from_);
@@ -310,9 +317,11 @@ class Coordinator {
             "{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
             static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
       }
-      std::fprintf(o_.log, "crashlink-coordinator: %s run, steps: %s; layer vectors %s\n",
-                   o_.common_step ? "split" : "multi", steps.c_str(),
-                   lanes_ ? "daemon to daemon (lanes)" : "through the coordinator");
+      std::fprintf(
+          o_.log, "crashlink-coordinator: %s run, %s: %s; layer vectors %s\n",
+          o_.common_step ? "split" : "multi",
+          o_.variable_steps ? "variable steps (each its own proposal), planned first" : "steps",
+          steps.c_str(), lanes_ ? "daemon to daemon (lanes)" : "through the coordinator");
       std::fflush(o_.log);
     }
   }

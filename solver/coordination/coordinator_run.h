@@ -45,7 +45,8 @@ struct CoordinatorOptions {
   bool drift = true;         ///< `paper`: drift correction [11] on
   double guard_rise = 0.05;  ///< `paper`: energy guard (coordinator/paper_guard.h)
   /// `paper`: each free state's own step proposal instead of the fixed plan (DESIGN.md §2.6:
-  /// split imposes the smallest of all at every instant, multi each its own).
+  /// split imposes the smallest of all at every instant, multi each its own). `layer` (multi,
+  /// no checkpoints): Setup.variable_steps, every domain follows its own proposal.
   bool variable_steps = false;
   std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
   transport::SessionOptions session;

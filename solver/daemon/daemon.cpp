@@ -276,8 +276,9 @@ class Daemon {
     }
     apply_setup(setup);
     open_lanes(setup);
-    stepper_ = std::make_unique<cosim::LayerStepper>(*solver(), std::move(dom_->ports),
-                                                     setup.step_ticks(), tps_);
+    stepper_ = std::make_unique<cosim::LayerStepper>(
+        *solver(), std::move(dom_->ports), setup.step_ticks(), tps_,
+        setup.variable_steps() ? cosim::LayerSteps::Variable : cosim::LayerSteps::Fixed);
     stepper_->set_record_history(true);
     if (setup.restart()) {
       restore(setup.restart_ticks());

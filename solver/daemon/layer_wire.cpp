@@ -21,12 +21,14 @@ wire::Envelope to_envelope(const cosim::LayerMessage& m) {
     auto* d = e.mutable_layer_displacement();
     d->set_interface_index(m.interface_index);
     d->set_time_ticks(m.time);
+    d->set_last(m.last);
     put(d->mutable_displacements_m(), m.first);
     put(d->mutable_angular_velocities_rad_s(), m.second);
   } else {
     auto* f = e.mutable_layer_force();
     f->set_interface_index(m.interface_index);
     f->set_time_ticks(m.time);
+    f->set_step_proposal_ticks(m.proposal);
     put(f->mutable_forces_n(), m.first);
     put(f->mutable_moments_n_m(), m.second);
   }
@@ -40,6 +42,7 @@ std::optional<cosim::LayerMessage> to_layer_message(const wire::Envelope& e) {
     m.kind = cosim::LayerMessage::Kind::Displacement;
     m.interface_index = d.interface_index();
     m.time = d.time_ticks();
+    m.last = d.last();
     m.first = get(d.displacements_m());
     m.second = get(d.angular_velocities_rad_s());
     return m;
@@ -49,6 +52,7 @@ std::optional<cosim::LayerMessage> to_layer_message(const wire::Envelope& e) {
     m.kind = cosim::LayerMessage::Kind::Force;
     m.interface_index = f.interface_index();
     m.time = f.time_ticks();
+    m.proposal = f.step_proposal_ticks();
     m.first = get(f.forces_n());
     m.second = get(f.moments_n_m());
     return m;

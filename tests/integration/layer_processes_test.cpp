@@ -100,7 +100,7 @@ Reference reference(const model::Model& m, const cosim::LayerNetworkOptions& o) 
 int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem::path& out,
                const std::string& mode,
                const std::vector<std::pair<std::string, std::vector<std::string>>>& daemons,
-               std::string& log, bool lanes = true) {
+               std::string& log, bool lanes = true, bool variable = false) {
   if (scheme == Scheme::inproc) {
     coordination::CoordinatorOptions co;
     co.bind = transport::local_endpoint(Scheme::inproc, "test");
@@ -110,6 +110,7 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     co.in_process = true;
     co.log = nullptr;
     co.lanes = lanes;
+    co.variable_steps = variable;
     coordination::CoordinatorResult cr;
     std::thread c([&] { cr = coordination::run_coordinator(co); });
     std::vector<daemon::DaemonResult> dr(daemons.size());
@@ -141,9 +142,11 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     return cr.exit_code;
   }
   std::string endpoint;
-  auto c = start_coordinator(
-      bind_endpoint(scheme, out), scenario, out, mode, endpoint,
-      lanes ? std::vector<std::string>{} : std::vector<std::string>{"--no-lanes"});
+  std::vector<std::string> coordinator_args;
+  if (!lanes) coordinator_args.emplace_back("--no-lanes");
+  if (variable) coordinator_args.emplace_back("--variable-steps");
+  auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, mode, endpoint,
+                             coordinator_args);
   std::vector<std::unique_ptr<Child>> ds;
   for (const auto& [name, extra] : daemons) {
     ds.push_back(start_solver(endpoint, name, scenario, out, extra));
@@ -296,6 +299,50 @@ TEST_P(LayerProcesses, MultiBarAtRatio2IsNetworkToTheBit) {
 
 TEST_P(LayerProcesses, MultiBarThroughTheCoordinatorIsNetworkToTheBit) {
   multi_bar_case(GetParam(), false);
+}
+
+// Variable steps (--variable-steps; cosim::LayerSteps::Variable): the bar's meshes make the
+// ratio (1 cm fine, 2 cm coarse elements), the coarse daemon chooses every step from its own
+// proposal and the fine one's, which rides on g_A, and the fine daemon commits its substeps from
+// the time of u_J: the same choices and the same bits as LayerNetwork, with lanes and through the
+// coordinator (whose router then only checks the time order).
+static void multi_bar_variable_case(Scheme scheme, bool lanes) {
+  const std::string t(transport::scheme_name(scheme));
+  const auto dir = fresh_dir(std::string("variable-bar-") + (lanes ? "lanes-" : "routed-") + t);
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
+  const auto out = dir / "out";
+  std::string log;
+  const int code =
+      run_pieces(scheme, scenario, out, "multi", {{"fine", {}}, {"coarse", {}}}, log, lanes, true);
+  ASSERT_EQ(code, 0) << log;
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.variable_steps = true;
+  const Reference ref = reference(m, o);
+  for (const std::string d : {"fine", "coarse"}) {
+    const auto s = last_state((out / "domains" / (d + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << d;
+    const Diff net = compare(s, m, ref.u);
+    ASSERT_GE(net.max_abs, 0.0) << d;
+    EXPECT_GT(net.scale, 0.0) << d;
+    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
+  }
+  const auto [link_work, owner_work] = interface_history(out, m, ref);
+  std::printf(
+      "[measured] multi over %s (%s), bar, variable steps: %lld fine and %lld coarse cycles, "
+      "bit-identical to LayerNetwork; link work %.6e J (owner's coupling work %.6e J)\n",
+      t.c_str(), lanes ? "lanes" : "through the coordinator",
+      static_cast<long long>(ref.cycles_of[0]), static_cast<long long>(ref.cycles_of[1]), link_work,
+      owner_work);
+}
+
+TEST_P(LayerProcesses, MultiBarVariableStepsIsNetworkToTheBit) {
+  multi_bar_variable_case(GetParam(), true);
+}
+
+TEST_P(LayerProcesses, MultiBarVariableStepsThroughTheCoordinatorIsNetworkToTheBit) {
+  multi_bar_variable_case(GetParam(), false);
 }
 
 INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,

@@ -122,3 +122,28 @@ TEST(LayerRouter, RefusesAnInstantWhoseSuccessorLeavesTheTickRange) {
   EXPECT_EQ(r.force(0, 0, 0, vec(1.0), {}).to, 1);
   EXPECT_THROW(r.displacement(1, 0, H, vec(0.5), {}), ProtocolError);
 }
+
+// Variable steps (set_variable_steps): the instants are whatever the domains choose, so only the
+// time order is checked: any later instant goes, an earlier or repeated one is refused, naming
+// the domain and both instants; the rows likewise.
+TEST(LayerRouter, WithVariableStepsAnyLaterInstantGoesAndAnEarlierOneIsRefused) {
+  auto r = two_domains();
+  r.set_variable_steps(true);
+  EXPECT_EQ(r.force(0, 0, 0, vec(1.0), {}).to, 1);
+  EXPECT_EQ(r.displacement(1, 0, 7, vec(0.5), {}).to, 0);  // H = 7, not the planned 10
+  EXPECT_EQ(r.force(0, 0, 7, vec(1.0), {}).to, 1);
+  EXPECT_EQ(r.displacement(1, 0, 19, vec(0.5), {}).to, 0);      // then 12
+  EXPECT_THROW(r.force(0, 0, 7, vec(1.0), {}), ProtocolError);  // repeated
+  try {
+    r.displacement(1, 0, 15, vec(0.5), {});
+    ADD_FAILURE() << "u_J at 15 ticks after the one at 19 was accepted";
+  } catch (const ProtocolError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'coarse'"), std::string::npos) << what;
+    EXPECT_NE(what.find("15 ticks"), std::string::npos) << what;
+    EXPECT_NE(what.find("20 ticks"), std::string::npos) << what;
+  }
+  const std::vector<double> f{1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, w{0.0, 0.25};
+  EXPECT_EQ(r.rows(0, 0, std::vector<std::int64_t>{0, 7}, f, w).size(), 2u);
+  EXPECT_THROW(r.rows(0, 0, std::vector<std::int64_t>{5, 19}, f, w), ProtocolError);
+}
