@@ -2,7 +2,9 @@
 #include "coordinator/nested_steps.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
+#include <string>
 
 #include "solver/core/errors.h"
 
@@ -112,6 +114,16 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
   // n >= base / limit, so base / n <= limit: no step exceeds its proposal.
   for (std::size_t k = 0; k < nd; ++k) plan.step[k] = plan.base / plan.n[k];
   return plan;
+}
+
+Tick aligned_end(const StepPlan& plan, Tick end) {
+  if (plan.base < 1 || end <= 0) return end;
+  const Tick k = end / plan.base + (end % plan.base != 0 ? 1 : 0);
+  if (k > std::numeric_limits<Tick>::max() / plan.base)
+    throw ModelError("nested steps: the end time " + std::to_string(end) +
+                     " ticks rounded up to the base period " + std::to_string(plan.base) +
+                     " ticks leaves the tick range");
+  return k * plan.base;
 }
 
 }  // namespace crashlink::coordinator

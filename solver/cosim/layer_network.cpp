@@ -67,6 +67,12 @@ void LayerNetwork::initialize() {
         *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.ticks_per_second,
         options_.variable_steps ? LayerSteps::Variable : LayerSteps::Fixed));
   }
+  if (!options_.variable_steps) {
+    const auto end =
+        static_cast<Tick>(std::llround(d_.solvers.front()->model().controls.end_time_s *
+                                       static_cast<double>(options_.ticks_per_second)));
+    for (auto& st : steppers_) st->set_end_time(coordinator::aligned_end(plan_, end));
+  }
   for (auto& st : steppers_) st->initialize();
   for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);
 }

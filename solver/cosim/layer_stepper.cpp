@@ -102,6 +102,15 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
   end_ = to_ticks_end(solver_.model().controls.end_time_s);
 }
 
+void LayerStepper::set_end_time(Tick end) {
+  if (end < 0 || variable_)
+    throw ModelError(
+        fmt::format("layer stepper '{}': set_end_time({}) is for fixed steps and a "
+                    "time >= 0",
+                    solver_.domain_name(), end));
+  end_ = end;
+}
+
 Tick LayerStepper::to_ticks_end(double t_s) const {
   // The end instant, rounded to the nearest tick (a run ends at its first instant >= it).
   const double x = t_s * static_cast<double>(ticks_per_second_);

@@ -184,6 +184,12 @@ class LayerStepper {
   std::int64_t displacements_sent() const { return displacements_sent_; }
   std::int64_t displacements_sent_ahead() const { return displacements_ahead_; }
 
+  /// Fixed steps: the run's end instant in ticks instead of controls.end_time, before advance():
+  /// the end rounded up to the plan's base period (coordinator::aligned_end), so that every
+  /// domain of a chain ends at the same instant (a fine domain would otherwise end at its owner's
+  /// first instant after the end time while that owner goes on to its own owner's). ModelError
+  /// for a negative value or with variable steps (their `last` flag does it).
+  void set_end_time(Tick end);
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
   Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)

@@ -236,6 +236,28 @@ TEST(LayerNetwork, ThreeDomainsThreeStepsMatchMono) {
   }
 }
 
+// A chain fine | mid | coarse whose end time is not a coarse instant: every domain ends at the
+// first coarse instant after it (the end rounded up to the base period, LayerStepper::
+// set_end_time). Before, the fine domain ended at the first mid instant after the end time while
+// mid went on to the next coarse instant and waited for the fine domain's force forever.
+TEST(LayerNetwork, AChainEndsTogetherWhateverTheEndTime) {
+  for (const double end : {1.0e-4, 1.37e-4, 2.11e-4, 3.3e-4}) {
+    auto m = chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}});
+    m.controls.end_time_s = end;
+    cosim::LayerNetworkOptions o;
+    o.step_safety = 0.8;
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    ASSERT_TRUE(net.run()) << "end " << end;
+    const coordinator::Tick t = net.stepper(0).time();
+    EXPECT_EQ(t % net.plan().base, 0) << "end " << end;
+    EXPECT_GE(net.seconds(t), end * (1.0 - 1e-12)) << "end " << end;
+    EXPECT_LT(net.seconds(t - net.plan().base), end) << "end " << end;
+    for (std::size_t k = 1; k < net.size(); ++k)
+      EXPECT_EQ(net.stepper(k).time(), t) << "end " << end << ", domain " << k;
+  }
+}
+
 // The coarse sides send u_J(T + H) ahead of their nodal passes (LayerStepper, Solver::
 // predict_next_positions) at every coarse step but their first, in a chain where the middle
 // domain is the coarse side of one interface and the fine side of the other, and on shells
