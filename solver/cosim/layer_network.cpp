@@ -17,11 +17,10 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
                      std::to_string(options_.step_safety));
   if (options_.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
-  if (options_.variable_steps &&
-      (options_.common_step || !options_.proposal_s.empty() || options_.step_safety != 1.0))
+  if (options_.variable_steps && (options_.common_step || !options_.proposal_s.empty()))
     throw ModelError(
         "layer network: variable steps are for `multi` with the solvers' own "
-        "proposals (no common_step, proposal_s or step_safety)");
+        "proposals (no common_step or proposal_s)");
   if (!options_.proposal_s.empty() && options_.proposal_s.size() != d_.solvers.size())
     throw ModelError("layer network: " + std::to_string(options_.proposal_s.size()) +
                      " step proposals for " + std::to_string(d_.solvers.size()) + " domains");
@@ -73,6 +72,8 @@ void LayerNetwork::initialize() {
                                        static_cast<double>(options_.ticks_per_second)));
     for (auto& st : steppers_) st->set_end_time(coordinator::aligned_end(plan_, end));
   }
+  if (options_.variable_steps)
+    for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);
   for (auto& st : steppers_) st->initialize();
   for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);
 }

@@ -111,6 +111,16 @@ void LayerStepper::set_end_time(Tick end) {
   end_ = end;
 }
 
+void LayerStepper::set_proposal_limits(double leader_safety, double max_step_s) {
+  if (!(leader_safety > 0.0 && leader_safety <= 1.0) || !(max_step_s >= 0.0))
+    throw ModelError(
+        fmt::format("layer stepper '{}': leader safety {} must be in (0, 1] and the "
+                    "step cap {} s >= 0",
+                    solver_.domain_name(), leader_safety, max_step_s));
+  leader_safety_ = leader_safety;
+  max_step_s_ = max_step_s;
+}
+
 Tick LayerStepper::to_ticks_end(double t_s) const {
   // The end instant, rounded to the nearest tick (a run ends at its first instant >= it).
   const double x = t_s * static_cast<double>(ticks_per_second_);
@@ -161,7 +171,8 @@ bool LayerStepper::at_owner_instant(const LayerPort& port) const {
 }
 
 Tick LayerStepper::proposal_ticks() const {
-  const double dt = solver_.step_proposal();
+  double dt = solver_.step_proposal();
+  if (max_step_s_ > 0.0) dt = std::min(dt, max_step_s_);
   if (!std::isfinite(dt) || dt >= 1e3) return 0;  // rigid bodies only: no limit of its own
   return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
 }
@@ -170,6 +181,8 @@ Tick LayerStepper::choose_step() const {
   // A leader's next step (header, "Steps"): H = p_own or a whole multiple of a holder's proposal
   // below it, whichever costs least per unit time; the holders' proposals come with g_A(t).
   Tick own = proposal_ticks();
+  if (own > 0 && leader_safety_ < 1.0)
+    own = std::max<Tick>(1, static_cast<Tick>(leader_safety_ * static_cast<double>(own)));
   struct Holder {
     Tick p;
     double w;

@@ -190,6 +190,11 @@ class LayerStepper {
   /// first instant after the end time while that owner goes on to its own owner's). ModelError
   /// for a negative value or with variable steps (their `last` flag does it).
   void set_end_time(Tick end);
+  /// Variable steps, before initialize(): proposals are min(the solver's, max_step_s) (if > 0),
+  /// and a leader takes `leader_safety` (0, 1] of its own (the margin fixed steps keep on the
+  /// coarse side: the layer coupling's error grows with the coarse Courant number). ModelError
+  /// for values out of range.
+  void set_proposal_limits(double leader_safety, double max_step_s);
   Tick time() const { return t_; }        ///< this domain's current instant
   Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
   Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)
@@ -250,6 +255,8 @@ class LayerStepper {
   bool follower_ = false;           ///< variable: has fine ports (its owner sets its owner steps)
   bool step_pending_ = false;       ///< variable follower: the next step awaits the owner's u_J
   Tick proposal_sent_ = 0;          ///< variable follower: the proposal sent with g_A(T)
+  double leader_safety_ = 1.0;      ///< variable leader: factor on its own proposal
+  double max_step_s_ = 0.0;         ///< variable: > 0 caps every proposal
   std::int64_t substeps_ = 1;       ///< variable follower: n of the owner step in use
   std::int64_t substep_ = 0;        ///< variable follower: index of the step about to be taken
   Tick owner_T_ = 0, owner_H_ = 0;  ///< variable follower: the owner step [T, T + H] in use

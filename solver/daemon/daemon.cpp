@@ -280,7 +280,10 @@ class Daemon {
         *solver(), std::move(dom_->ports), setup.step_ticks(), tps_,
         setup.variable_steps() ? cosim::LayerSteps::Variable : cosim::LayerSteps::Fixed);
     stepper_->set_record_history(true);
-    if (!setup.variable_steps()) stepper_->set_end_time(setup.end_time_ticks());
+    if (setup.variable_steps())
+      stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);
+    else
+      stepper_->set_end_time(setup.end_time_ticks());
     if (setup.restart()) {
       restore(setup.restart_ticks());
     } else {

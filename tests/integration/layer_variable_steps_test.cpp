@@ -279,3 +279,29 @@ TEST(LayerVariableSteps, RefusesADomainWithTwoCoarserPartners) {
     EXPECT_NE(what.find("'c'"), std::string::npos) << what;
   }
 }
+
+// The leaders' margin (LayerNetworkOptions::step_safety, crashlink run --step-safety, default
+// 0.9 there): with variable steps a leader takes that fraction of its own proposal at every step,
+// the margin fixed steps keep on the coarse side; the holders keep their whole proposals.
+TEST(LayerVariableSteps, LeadersKeepTheStepSafetyOfTheirProposal) {
+  const auto m = hann_bar(3.5, 100, 30.0, 0.5);  // the coarse side keeps its own step (above)
+  double largest_fraction[2] = {0.0, 0.0};
+  const double safety[2] = {1.0, 0.8};
+  for (int c = 0; c < 2; ++c) {
+    cosim::LayerNetworkOptions o;
+    o.variable_steps = true;
+    o.step_safety = safety[c];
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    ASSERT_TRUE(net.run([&](std::size_t k) {
+      const auto& st = net.stepper(k);
+      if (st.solver().domain_name() != "coarse" || st.step() == 0) return;
+      const double proposal = m.controls.dt_scale * st.solver().dt_stable_s();
+      largest_fraction[c] = std::max(largest_fraction[c], net.seconds(st.step()) / proposal);
+    }));
+  }
+  std::printf("[measured] coarse step / its proposal, largest: %.4f (step safety 1), %.4f (0.8)\n",
+              largest_fraction[0], largest_fraction[1]);
+  EXPECT_GT(largest_fraction[0], 0.95);
+  EXPECT_LE(largest_fraction[1], 0.8 * (1.0 + 1e-9));
+}
