@@ -66,7 +66,8 @@ const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool f
   if (!variable_ && time != expected) {
     throw ProtocolError(
         fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the next "
-                    "one must be at {} ticks (every {} ticks, in time order)",
+                    "one must be at {} ticks (every {} ticks, in time order; variable steps: "
+                    "any later instant)",
                     who, what, interface, time, expected, r.coarse_step));
   }
   if (time > std::numeric_limits<Tick>::max() - (variable_ ? 1 : r.coarse_step)) {

@@ -118,12 +118,17 @@ StepPlan nested_steps(const std::vector<Tick>& proposal,
 
 Tick aligned_end(const StepPlan& plan, Tick end) {
   if (plan.base < 1 || end <= 0) return end;
-  const Tick k = end / plan.base + (end % plan.base != 0 ? 1 : 0);
-  if (k > std::numeric_limits<Tick>::max() / plan.base)
+  // Every domain lands on the multiples of lcm(steps) = base / gcd(n), the first common instant
+  // (base itself only when some domain takes one step per base period).
+  std::int64_t g = 0;
+  for (const auto n : plan.n) g = std::gcd(g, n);
+  const Tick period = g > 0 ? plan.base / g : plan.base;
+  const Tick k = end / period + (end % period != 0 ? 1 : 0);
+  if (k > std::numeric_limits<Tick>::max() / period)
     throw ModelError("nested steps: the end time " + std::to_string(end) +
-                     " ticks rounded up to the base period " + std::to_string(plan.base) +
-                     " ticks leaves the tick range");
-  return k * plan.base;
+                     " ticks rounded up to the common period " + std::to_string(period) +
+                     " ticks of every step leaves the tick range");
+  return k * period;
 }
 
 }  // namespace crashlink::coordinator

@@ -50,7 +50,7 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
       owner = port.partner;
     }
   }
-  if ((!variable_ && h_ < 1) || ticks_per_second_ < 1)
+  if ((!variable_ && h_ < 1) || ticks_per_second_ < 1)  // (variable: h_ is 0 until chosen)
     throw ModelError("layer stepper '" + dom + "': step " + std::to_string(h_) +
                      " ticks and ticks_per_second " + std::to_string(ticks_per_second_) +
                      " must both be >= 1");
@@ -174,6 +174,11 @@ Tick LayerStepper::proposal_ticks() const {
   double dt = solver_.step_proposal();
   if (max_step_s_ > 0.0) dt = std::min(dt, max_step_s_);
   if (!std::isfinite(dt) || dt >= 1e3) return 0;  // rigid bodies only: no limit of its own
+  if (!(dt * static_cast<double>(ticks_per_second_) >= 1.0))
+    throw NumericalError(
+        fmt::format("{}: the stable step fell to {:.3e} s, below one tick, at "
+                    "t = {} ticks, set by {}: an element is collapsing",
+                    solver_.domain_name(), dt, t_, solver_.critical_element()));
   return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
 }
 
@@ -233,7 +238,9 @@ Tick LayerStepper::choose_step() const {
   // Up toward that target by at most kStepChange per step (a jump of the step by x costs the
   // central-difference energy balance about x / 2 of that step's work, [2]); down at once: a
   // holder's falling proposal must shrink H with it, or its substep count would jump instead.
-  if (h_ > 0) best = std::min(best, h_ + static_cast<Tick>(kStepChange * static_cast<double>(h_)));
+  if (h_ > 0)
+    best = std::min(
+        best, h_ + std::max<Tick>(1, static_cast<Tick>(kStepChange * static_cast<double>(h_))));
   return best;
 }
 
@@ -275,7 +282,7 @@ bool LayerStepper::start_owner_step() {
     }
     const Tick t = ps.inbox.front().time;
     if (T1 >= 0 && t != T1)
-      throw ModelError(fmt::format(
+      throw LayerPartnerError(fmt::format(
           "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, another "
           "of its interfaces for t = {} ticks; one owner step must end at one instant",
           solver_.domain_name(), port.index, port.partner, t, T1));
@@ -319,6 +326,10 @@ void LayerStepper::deliver(const LayerMessage& m) {
                        ": " + kind_name(m.kind) + " from '" + port.partner + "' carries " +
                        std::to_string(m.first.size()) + " + " + std::to_string(m.second.size()) +
                        " values; expected " + std::to_string(n3) + " (3 per J node)");
+    if (variable_ && m.kind == LayerMessage::Kind::Force && m.proposal < 0)
+      throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
+                       ": layer force from '" + port.partner + "' with the step proposal " +
+                       std::to_string(m.proposal) + " ticks; expected >= 0 (0: no limit)");
     if (variable_) {  // the next one is later; its instant is not known here
       if (m.time == std::numeric_limits<Tick>::max())
         throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
@@ -540,7 +551,7 @@ bool LayerStepper::forces_ready() {
       return false;
     }
     if (variable_ && ps.inbox.front().time != t_)
-      throw ModelError(fmt::format(
+      throw LayerPartnerError(fmt::format(
           "layer stepper '{}': interface {}: layer force from '{}' for "
           "t = {} ticks, but this domain is at {} ticks",
           solver_.domain_name(), ports_[p].index, ports_[p].partner, ps.inbox.front().time, t_));

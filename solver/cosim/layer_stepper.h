@@ -83,6 +83,13 @@ struct LayerPort {
   std::size_t partner_elements = 0;  ///< the partner's element count (variable steps: its cost)
 };
 
+/// A partner's messages do not fit this domain's steps (instants that disagree, a force for
+/// another instant): the partner's fault, which a daemon reports as a protocol error naming it.
+class LayerPartnerError : public ModelError {
+ public:
+  using ModelError::ModelError;
+};
+
 /// How a LayerStepper's steps are chosen (layer_stepper.h, "Steps").
 enum class LayerSteps : std::uint8_t { Fixed, Variable };
 
@@ -195,8 +202,9 @@ class LayerStepper {
   /// coarse side: the layer coupling's error grows with the coarse Courant number). ModelError
   /// for values out of range.
   void set_proposal_limits(double leader_safety, double max_step_s);
-  Tick time() const { return t_; }        ///< this domain's current instant
-  Tick end_time() const { return end_; }  ///< controls.end_time_s in ticks (nearest)
+  Tick time() const { return t_; }  ///< this domain's current instant
+  /// controls.end_time_s in ticks (nearest), or set_end_time's
+  Tick end_time() const { return end_; }
   Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)
   LayerSteps steps() const { return variable_ ? LayerSteps::Variable : LayerSteps::Fixed; }
   std::int64_t ticks_per_second() const { return ticks_per_second_; }

@@ -623,7 +623,12 @@ class Daemon {
       }
       const cosim::Tick until =
           next_checkpoint_ < stepper_->end_time() ? next_checkpoint_ : max_tick();
-      const Wait w = stepper_->advance(on_sample, until);
+      Wait w = Wait::None;
+      try {
+        w = stepper_->advance(on_sample, until);
+      } catch (const cosim::LayerPartnerError& x) {
+        throw transport::ProtocolError("partner", x.what());
+      }
       send_outbox();  // g_A(0) after initialize(); otherwise sent from advance() already
       if (w == Wait::Finished) return;
       if (w == Wait::None && stepper_->time() >= until && stepper_->at_cycle_boundary()) {

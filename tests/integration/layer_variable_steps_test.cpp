@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "solver/core/errors.h"
+#include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_network.h"
+#include "solver/cosim/layer_stepper.h"
 #include "solver/integration/solver.h"
 #include "tests/unit/partition/partition_models.h"
 
@@ -75,8 +77,6 @@ struct VariableRun {
   double disp = 0.0, vel = 0.0;  ///< interface errors against mono (relative to max)
   std::int64_t fine_cycles = 0, coarse_cycles = 0;
   double fine_dt_min = 0.0, coarse_dt_min = 0.0, coarse_dt_max = 0.0;
-  bool every_step_within_its_proposal = true;
-  bool coarse_steps_whole_multiples = true;  ///< every fine run landed on every coarse instant
 };
 
 VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
@@ -126,15 +126,15 @@ VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
     dv = std::max(dv, std::abs(net.solver(kf).node_velocity(li)[0] - vm));
     umax = std::max(umax, std::abs(um));
     vmax = std::max(vmax, std::abs(vm));
-    // the step about to be taken against the proposal it was chosen under (a committed substep
-    // may exceed the later proposal by the dt_scale margin, never the stable step)
-    if (st.step() > 0 && net.seconds(st.step()) > st.solver().dt_stable_s() * (1.0 + 1e-9))
-      r.every_step_within_its_proposal = false;
   };
+  // The run completing is itself a check: a step above a domain's stable step stops it
+  // (Solver::impose_step / impose_committed_step), and so does a fine step passing a coarse
+  // instant (LayerStepper::ghost_targets_ready).
   EXPECT_TRUE(net.run(sample));
+  std::size_t landed = 0;
   for (auto T : coarse_instants)
-    if (!std::binary_search(fine_instants.begin(), fine_instants.end(), T))
-      r.coarse_steps_whole_multiples = false;
+    landed += std::binary_search(fine_instants.begin(), fine_instants.end(), T) ? 1 : 0;
+  EXPECT_EQ(landed, coarse_instants.size());
   r.disp = du / umax;
   r.vel = dv / vmax;
   r.fine_cycles = net.solver(kf).cycle();
@@ -144,6 +144,7 @@ VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
   for (std::size_t i = 1; i < coarse_instants.size(); ++i)
     r.coarse_dt_max =
         std::max(r.coarse_dt_max, net.seconds(coarse_instants[i] - coarse_instants[i - 1]));
+  // the issue's bound on the energy lost to the coupling (issue #4: <= 5 %)
   const auto e = net.energy();
   EXPECT_LT(std::abs(e.coupling_work_J), 0.05 * e.external_work_J);
   return r;
@@ -172,8 +173,6 @@ TEST(LayerVariableSteps, HannPulseAtMeshRatiosMatchesMono) {
     // step; measured 3.05 % there against mono at its own steps (fixed steps at one step: 0.55 %).
     EXPECT_LE(r.disp, ratio < 4.0 ? 0.03 : 0.035) << "ratio " << ratio;
     EXPECT_LE(r.vel, 0.07) << "ratio " << ratio;
-    EXPECT_TRUE(r.every_step_within_its_proposal) << "ratio " << ratio;
-    EXPECT_TRUE(r.coarse_steps_whole_multiples) << "ratio " << ratio;
   }
 }
 
@@ -260,6 +259,9 @@ TEST(LayerVariableSteps, ThreeDomainChainRuns) {
   std::printf("[measured] chain, variable steps: cycles%s; end node displacement error %.2f %%\n",
               cycles.c_str(), 100.0 * du / umax);
   EXPECT_LE(du / umax, 0.03);
+  for (std::size_t k = 1; k < net.size(); ++k)  // the `last` flag: all end together
+    EXPECT_EQ(net.stepper(k).time(), net.stepper(0).time()) << net.solver(k).domain_name();
+  EXPECT_GE(net.seconds(net.stepper(0).time()), m.controls.end_time_s * (1.0 - 1e-12));
 }
 
 // A domain holding ghosts of two owners (the finest quadrant, next to both others) is refused
@@ -304,4 +306,40 @@ TEST(LayerVariableSteps, LeadersKeepTheStepSafetyOfTheirProposal) {
               largest_fraction[0], largest_fraction[1]);
   EXPECT_GT(largest_fraction[0], 0.95);
   EXPECT_LE(largest_fraction[1], 0.8 * (1.0 + 1e-9));
+}
+
+// A partner whose messages do not fit: a force proposal below 0 is refused on delivery, and a
+// force for another instant than the leader's is a LayerPartnerError (a daemon reports it as a
+// protocol error naming the partner) when the leader needs it.
+TEST(LayerVariableSteps, RefusesAPartnersMessagesThatDoNotFit) {
+  auto m = hann_bar(2.0, 100, 2.0, 0.5);
+  auto d = cosim::build_layer_domains(m, "test");
+  auto ports = cosim::layer_ports(d);
+  std::size_t kc = 0;
+  for (std::size_t k = 0; k < d.solvers.size(); ++k)
+    if (d.solvers[k]->domain_name() == "coarse") kc = k;
+  auto& solver = *d.solvers[kc];
+  solver.initialize();
+  const auto n_j = ports[kc].front().local.size();
+  const std::uint32_t iface = ports[kc].front().index;
+  cosim::LayerStepper st(solver, ports[kc], 0, coordinator::kDefaultTicksPerSecond,
+                         cosim::LayerSteps::Variable);
+  st.initialize();
+  cosim::LayerMessage f;
+  f.kind = cosim::LayerMessage::Kind::Force;
+  f.interface_index = iface;
+  f.first.assign(3 * n_j, 0.0);
+  f.proposal = -5;
+  EXPECT_THROW(st.deliver(f), ModelError);
+  f.proposal = 1000;
+  f.time = 7;  // the leader is at 0
+  st.deliver(f);
+  try {
+    st.advance();
+    ADD_FAILURE() << "a force for t = 7 ticks was applied at t = 0";
+  } catch (const cosim::LayerPartnerError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("t = 7 ticks"), std::string::npos) << what;
+    EXPECT_NE(what.find("'fine'"), std::string::npos) << what;
+  }
 }

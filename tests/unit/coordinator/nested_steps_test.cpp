@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "solver/core/errors.h"
@@ -119,5 +120,27 @@ TEST(NestedSteps, HugeProposalsPlanOrFailWithinTheTickRange) {
     EXPECT_NE(std::string(e.what()).find("tick range"), std::string::npos) << e.what();
   }
 }
+// aligned_end: the end rounded up to the first instant every domain lands on, lcm(steps) =
+// base / gcd(n); an end already on it stays; one leaving the tick range is refused.
+TEST(NestedSteps, AlignedEndIsTheFirstCommonInstantAtOrAfterTheEnd) {
+  StepPlan p;
+  p.base = 24;
+  p.n = {1, 3};  // steps 24 and 8: common instants every 24
+  p.step = {24, 8};
+  EXPECT_EQ(aligned_end(p, 10), 24);
+  EXPECT_EQ(aligned_end(p, 48), 48);
+  EXPECT_EQ(aligned_end(p, 0), 0);
+  p.n = {3, 3};  // both at 8 (a fine side with the larger proposal): every 8, not every 24
+  p.step = {8, 8};
+  EXPECT_EQ(aligned_end(p, 10), 16);
+  p.n = {2, 6};  // 12 and 4: every 12
+  p.step = {12, 4};
+  EXPECT_EQ(aligned_end(p, 13), 24);
+  p.base = std::numeric_limits<Tick>::max() / 2;
+  p.n = {1};
+  p.step = {p.base};
+  EXPECT_THROW(aligned_end(p, p.base * 2 - 1 + 2), ModelError);
+}
+
 }  // namespace
 }  // namespace crashlink::coordinator
