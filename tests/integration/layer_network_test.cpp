@@ -47,14 +47,7 @@ Accuracy hann_vs_mono(double r) {
   m.domains = {{"fine", {0}}, {"coarse", {1}}};
   const double c = std::sqrt(mat.youngs_modulus_Pa / mat.density_kg_m3);
   const double unit = 1.0 / c, tp = 0.2 * unit, v0 = 1.0;
-  model::Curve hann;
-  for (int k = 0; k <= 100; ++k) {
-    const double t = tp * k / 100.0;
-    hann.t_s.push_back(t);
-    hann.value.push_back(0.5 * v0 * (1.0 - std::cos(2.0 * M_PI * t / tp)));
-  }
-  hann.t_s.push_back(10.0);
-  hann.value.push_back(0.0);
+  const model::Curve hann = hann_pulse(tp, v0, 10.0);
   m.prescribed_velocities.push_back(
       {"hann", where(m, [](double x, double, double) { return x < 1e-9; }), 0, hann});
 

@@ -47,14 +47,7 @@ model::Model hann_bar(double r, int n_fine = 100, double coarse_length = 2.0,
   m.domains = {{"fine", {0}}, {"coarse", {1}}};
   const double c = std::sqrt(mat.youngs_modulus_Pa / mat.density_kg_m3);
   const double tp = 0.2 / c, v0 = 1.0;
-  model::Curve hann;
-  for (int k = 0; k <= 100; ++k) {
-    const double t = tp * k / 100.0;
-    hann.t_s.push_back(t);
-    hann.value.push_back(0.5 * v0 * (1.0 - std::cos(2.0 * M_PI * t / tp)));
-  }
-  hann.t_s.push_back(10.0);
-  hann.value.push_back(0.0);
+  const model::Curve hann = hann_pulse(tp, v0, 10.0);
   m.prescribed_velocities.push_back(
       {"hann", where(m, [](double x, double, double) { return x < 1e-9; }), 0, hann});
   return m;
@@ -73,6 +66,22 @@ struct History {
   }
 };
 
+/// Mono at its own (variable) steps: node `gi`'s x displacement and velocity at every instant.
+History mono_history(const model::Model& m, std::size_t gi) {
+  History h;
+  integration::Solver s(m, "mono");
+  s.initialize();
+  for (;;) {
+    s.begin_cycle();
+    h.t.push_back(s.time_s());
+    h.u.push_back(s.displacement()[3 * gi]);
+    h.v.push_back(s.node_velocity(gi)[0]);
+    if (s.finished()) break;
+    s.end_cycle();
+  }
+  return h;
+}
+
 struct VariableRun {
   double disp = 0.0, vel = 0.0;  ///< interface errors against mono (relative to max)
   std::int64_t fine_cycles = 0, coarse_cycles = 0;
@@ -83,20 +92,7 @@ VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
   std::size_t gi = 0;
   for (std::size_t g = 0; g < m.nodes.count(); ++g)
     if (std::abs(m.nodes.x0[3 * g] - 1.0) < 1e-9) gi = g;
-  // Mono at its own (variable) steps, the interface node's history.
-  History mono;
-  {
-    integration::Solver s(m, "mono");
-    s.initialize();
-    for (;;) {
-      s.begin_cycle();
-      mono.t.push_back(s.time_s());
-      mono.u.push_back(s.displacement()[3 * gi]);
-      mono.v.push_back(s.node_velocity(gi)[0]);
-      if (s.finished()) break;
-      s.end_cycle();
-    }
-  }
+  const History mono = mono_history(m, gi);  // mono at its own steps
   cosim::LayerNetworkOptions o;
   o.variable_steps = fixed_safety == 0.0;
   if (fixed_safety > 0.0) o.step_safety = fixed_safety;
@@ -226,19 +222,7 @@ TEST(LayerVariableSteps, ThreeDomainChainRuns) {
   const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
   m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
   const std::size_t gi = static_cast<std::size_t>(end.front());
-  History mono;
-  {
-    integration::Solver s(m, "mono");
-    s.initialize();
-    for (;;) {
-      s.begin_cycle();
-      mono.t.push_back(s.time_s());
-      mono.u.push_back(s.displacement()[3 * gi]);
-      mono.v.push_back(0.0);
-      if (s.finished()) break;
-      s.end_cycle();
-    }
-  }
+  const History mono = mono_history(m, gi);
   cosim::LayerNetworkOptions o;
   o.variable_steps = true;
   cosim::LayerNetwork net(m, o);

@@ -382,4 +382,18 @@ inline int local_of(const partition::DomainModel& dm, std::int32_t gi) {
   return static_cast<int>(it - dm.global_node.begin());
 }
 
+/// The coupling study's Hann velocity pulse: 0.5 v0 (1 - cos(2 pi t / tp)) [m/s] over [0, tp] in
+/// 100 segments, then 0 until `hold_s`.
+inline model::Curve hann_pulse(double tp_s, double v0_m_s, double hold_s) {
+  model::Curve hann;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = tp_s * k / 100.0;
+    hann.t_s.push_back(t);
+    hann.value.push_back(0.5 * v0_m_s * (1.0 - std::cos(2.0 * M_PI * t / tp_s)));
+  }
+  hann.t_s.push_back(hold_s);
+  hann.value.push_back(0.0);
+  return hann;
+}
+
 }  // namespace crashlink::testing
