@@ -164,10 +164,7 @@ void LayerStepper::initialize() {
 
 bool LayerStepper::at_owner_instant(const LayerPort& port) const {
   if (!variable_) return t_ % port.partner_step == 0;
-  if (t_ == 0) return true;
-  for (std::size_t p = 0; p < ports_.size(); ++p)
-    if (&ports_[p] == &port) return state_[p].have_u1 && t_ == state_[p].T1;
-  return false;
+  return t_ == 0 || at_owner_end();  // every fine port has the one owner
 }
 
 Tick LayerStepper::proposal_ticks() const {
@@ -462,11 +459,7 @@ void LayerStepper::send_displacements() {
       continue;
     }
     ++displacements_sent_;
-    LayerMessage m;
-    m.kind = LayerMessage::Kind::Displacement;
-    m.interface_index = port.index;
-    m.time = t_ + h_;
-    m.last = variable_ && finishes_at(m.time);
+    LayerMessage m = displacement_message(port);
     m.first.resize(3 * port.local.size());
     if (state_[p].rotates) m.second.resize(3 * port.local.size());
     for (std::size_t j = 0; j < port.local.size(); ++j)
@@ -477,6 +470,16 @@ void LayerStepper::send_displacements() {
       }
     outbox_.push_back(std::move(m));
   }
+}
+
+LayerMessage LayerStepper::displacement_message(const LayerPort& port) const {
+  // u_J(t + h) of a coarse port, vectors left to the caller
+  LayerMessage m;
+  m.kind = LayerMessage::Kind::Displacement;
+  m.interface_index = port.index;
+  m.time = t_ + h_;
+  m.last = variable_ && finishes_at(m.time);
+  return m;
 }
 
 void LayerStepper::send_displacements_ahead() {
@@ -497,11 +500,7 @@ void LayerStepper::send_displacements_ahead() {
     ps.sent_ahead = t_ + h_;
     ++displacements_sent_;
     ++displacements_ahead_;
-    LayerMessage m;
-    m.kind = LayerMessage::Kind::Displacement;
-    m.interface_index = port.index;
-    m.time = t_ + h_;
-    m.last = variable_ && finishes_at(m.time);
+    LayerMessage m = displacement_message(port);
     m.first = ps.ahead_u;
     m.second = ps.ahead_omega;
     outbox_.push_back(std::move(m));

@@ -241,6 +241,7 @@ class LayerStepper {
   bool ghost_targets_ready();
   void send_displacements();
   void send_displacements_ahead();
+  LayerMessage displacement_message(const LayerPort& port) const;
   void send_forces();
   bool forces_ready();
   void apply_forces();
