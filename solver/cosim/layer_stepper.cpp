@@ -157,6 +157,15 @@ void LayerStepper::initialize() {
       ps.next_expected = variable_ ? 1 : port.partner_step;
     } else {
       ps.next_expected = 0;  // the holder's g_A(0)
+      // u_J(t + h) leaves before the ghosts' motion is applied (Phase::Positions), so the J
+      // nodes this domain owns must not be ghosts of another port.
+      const auto& ghosts = solver_.ghost_nodes();
+      for (const std::size_t i : port.local)
+        if (std::find(ghosts.begin(), ghosts.end(), static_cast<std::int32_t>(i)) != ghosts.end())
+          throw ModelError(fmt::format(
+              "layer stepper '{}': interface {}: node id {} is a J node this domain owns and a "
+              "ghost of another interface; cut the model so that the interfaces do not touch",
+              solver_.domain_name(), port.index, solver_.model().nodes.id[i]));
     }
   }
   send_forces();  // g_A(0) of every fine port
@@ -639,14 +648,20 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         phase_ = Phase::Positions;
         break;
       case Phase::Positions:
+        solver_.end_cycle_positions();  // the ghosts' (J of the fine ports) left provisional
+        send_displacements();
+        flush_outbox();  // u_J(t + h) leaves before this domain's forces
+        // Overlap (DESIGN.md §2.6): the elements that touch no ghost need nothing from the
+        // owners, so a fine domain computes them before it waits for u_J(t + h).
+        solver_.end_cycle_interior_forces();
+        phase_ = Phase::Rim;
+        break;
+      case Phase::Rim:
         if (!ghost_targets_ready()) return wait_ = Wait::Displacement;
         if (!ghost_u_.empty()) {
           solver_.set_ghost_displacement(ghost_u_.data());
           solver_.set_ghost_angular_velocity(ghost_omega_.data());
         }
-        solver_.end_cycle_positions();
-        send_displacements();
-        flush_outbox();               // u_J(t + h) leaves before this domain's forces
         solver_.end_cycle_compute();  // overlaps the partners' work
         t_ += h_;
         send_forces();

@@ -216,7 +216,9 @@ class LayerStepper {
   const std::vector<LayerPort>& ports() const { return ports_; }
 
  private:
-  enum class Phase : std::uint8_t { Initial, Begin, Positions, Accelerations, Done };
+  /// Positions: u(t + h) and the interior elements' forces, which need no partner; Rim: the
+  /// ghosts' motion u_J(t + h) (waits for it), the other forces, g_A(t + h) sent.
+  enum class Phase : std::uint8_t { Initial, Begin, Positions, Rim, Accelerations, Done };
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct PortState {
     std::deque<LayerMessage> inbox;              ///< received, not consumed yet

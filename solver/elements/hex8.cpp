@@ -191,8 +191,14 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
   std::size_t node[8][W];          // 3 * node index of node I of lane l
   alignas(64) double fl[3][8][W];  // forces for the scatter-add [N]
   alignas(64) double dt_e[W];      // stable step per lane [s]
-  for (std::size_t e0 = 0; e0 < ne; e0 += W) {
-    const int nl = static_cast<int>(std::min<std::size_t>(W, ne - e0));
+  // Elements [first, end) only (StepInfo::first_element), in the same order; ne stays the
+  // stride of the histories.
+  static_assert(kElementBatch % W == 0, "element ranges must start on a lane batch");
+  const std::size_t first = step.first_element, end = std::min(ne, step.end_element);
+  CRASHLINK_ASSERT(first % W == 0);
+  CRASHLINK_ASSERT((first == 0 && end == ne) || (update && !record_reference));
+  for (std::size_t e0 = first; e0 < end; e0 += W) {
+    const int nl = static_cast<int>(std::min<std::size_t>(W, end - e0));
     const bool full = nl == W;
     const auto padding = lane >= vd(static_cast<double>(nl));
     if (e0 % 8 < static_cast<std::size_t>(W) && e0 + kPrefetchHistory < ne) {

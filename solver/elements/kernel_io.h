@@ -6,6 +6,7 @@
 // it sees x = x0 + u^{n+1} and the mid-step velocities v^{n+1/2}, updates stresses from t^n to
 // t^{n+1} with the rate of deformation D(v^{n+1/2}) at the mid-step configuration, and ADDS the
 // internal forces f_int(u^{n+1}) into f (and moments into m for shells).
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -32,7 +33,19 @@ struct StepInfo {
   /// If set: [ne] each element's stable step written (the value whose minimum is
   /// KernelResult::dt_stable_s; `crashlink advise`). Null in runs.
   double* element_dt_s = nullptr;
+  /// The elements [first_element, end_element) of the part (end clamped to the part's count):
+  /// a domain computes the elements that do not touch its ghost nodes while it waits for their
+  /// motion, and the rest after (Solver::end_cycle_interior_forces). first_element must be a
+  /// multiple of kElementBatch (the kernels' blocked histories); the forces and histories of
+  /// [0, s) then [s, ne) are those of one call over [0, ne), to the bit. Only after the initial
+  /// call (which records the reference state of every element).
+  std::size_t first_element = 0;
+  std::size_t end_element = std::numeric_limits<std::size_t>::max();
 };
+
+/// Element ranges (StepInfo::first_element) start at multiples of this: the shell kernel's lane
+/// count and a multiple of the hexahedron kernel's (static_asserts in shell_bt.h and hex8.cpp).
+inline constexpr std::size_t kElementBatch = 8;
 
 /// What a kernel call reports. Energies are increments over [t^n, t^{n+1}] by the midpoint rule.
 struct KernelResult {

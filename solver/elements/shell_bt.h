@@ -61,6 +61,7 @@ namespace crashlink::elements {
 
 /// Elements processed together by the kernel (gather -> SoA lanes -> scatter-add).
 inline constexpr std::size_t kShellLanes = 8;
+static_assert(kElementBatch % kShellLanes == 0, "element ranges must start on a shell batch");
 /// Largest supported number of Gauss points through the thickness.
 inline constexpr int kShellMaxPoints = 10;
 /// Transverse shear correction factor of the Mindlin plate (Reissner's 5/6).

@@ -206,8 +206,12 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t crit = -1;
 
-  for (std::size_t b0 = 0; b0 < ne; b0 += L) {
-    const std::size_t nl = std::min(L, ne - b0);
+  // Elements [first, end) only (StepInfo::first_element): whole batches, in the same order.
+  const std::size_t first = step.first_element, end = std::min(ne, step.end_element);
+  CRASHLINK_ASSERT(first % L == 0);
+  CRASHLINK_ASSERT((first == 0 && end == ne) || (update && (!kDamped || !record_beta)));
+  for (std::size_t b0 = first; b0 < end; b0 += L) {
+    const std::size_t nl = std::min(L, end - b0);
     // ---- gather ------------------------------------------------------------------------------
     std::int32_t nd[4][L];
     for (std::size_t l = 0; l < L; ++l) {

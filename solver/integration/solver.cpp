@@ -271,6 +271,9 @@ void Solver::initialize() {
   }
   ghost_target_.assign(3 * ghost_list_.size(), 0.0);
   ghost_omega_.assign(3 * ghost_list_.size(), 0.0);
+  ghost_u_prev_.assign(3 * ghost_list_.size(), 0.0);
+  ghost_reaction_.assign(3 * ghost_list_.size(), 0.0);
+  ghost_reaction_moment_.assign(3 * ghost_list_.size(), 0.0);
   parts_.clear();
   for (const auto& p : model_.parts) {
     PartRuntime r;
@@ -297,6 +300,21 @@ void Solver::initialize() {
   time_s_ = 0.0;
   cycle_ = 0;
   dt_prev_ = 0.0;
+  // The interior elements of each part: those before its first element on a ghost node, in
+  // whole batches.
+  interior_end_.assign(model_.parts.size(), 0);
+  for (std::size_t p = 0; p < model_.parts.size(); ++p) {
+    const auto& part = model_.parts[p];
+    const std::size_t ne = part.element_count();
+    const auto k = static_cast<std::size_t>(model::nodes_per_element(part.kind));
+    std::size_t e = 0;
+    while (e < ne &&
+           std::none_of(part.connectivity.begin() + static_cast<std::ptrdiff_t>(k * e),
+                        part.connectivity.begin() + static_cast<std::ptrdiff_t>(k * e + k),
+                        [&](std::int32_t c) { return ghost_[static_cast<std::size_t>(c)] != 0; }))
+      ++e;
+    interior_end_[p] = e == ne ? ne : e / elements::kElementBatch * elements::kElementBatch;
+  }
   compute_forces(0.0);
   compute_contact_forces(0.0);
   compute_external_forces(0.0);
@@ -307,39 +325,55 @@ void Solver::initialize() {
   begun_ = false;
 }
 
-void Solver::compute_forces(double dt) {
-  std::fill(f_int_.begin(), f_int_.end(), 0.0);
-  std::fill(m_int_.begin(), m_int_.end(), 0.0);
+void Solver::compute_forces(double dt, ElementSpan span) {
+  if (span != ElementSpan::Rim) {
+    std::fill(f_int_.begin(), f_int_.end(), 0.0);
+    std::fill(m_int_.begin(), m_int_.end(), 0.0);
+    dt_stable_ = std::numeric_limits<double>::infinity();
+  }
   const elements::NodalView nv{x_.data(), v_.data(), omega_.data(), f_int_.data(), m_int_.data()};
   const auto& c = model_.controls;
-  dt_stable_ = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < parts_.size(); ++p) {
     const auto& part = model_.parts[p];
     auto& rt = parts_[p];
     const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
     elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic,
                             c.bulk_linear_in_expansion};
+    if (span == ElementSpan::Interior) step.end_element = interior_end_[p];
+    if (span == ElementSpan::Rim) step.first_element = interior_end_[p];
+    if (span != ElementSpan::Rim) rt.last = {};
+    if (step.first_element >= std::min(step.end_element, part.element_count())) continue;
     if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
-      rt.element_dt_s.assign(part.element_count(), 0.0);
+      if (rt.element_dt_s.size() != part.element_count())
+        rt.element_dt_s.assign(part.element_count(), 0.0);
       step.element_dt_s = rt.element_dt_s.data();
     }
+    elements::KernelResult r;
     if (auto* hs = std::get_if<elements::Hex8State>(&rt.state)) {
-      rt.last = elements::hex8_internal_forces(part, mat, *hs, nv, step);
+      r = elements::hex8_internal_forces(part, mat, *hs, nv, step);
     } else if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {
       step.bulk_viscosity = c.bulk_viscosity && c.shell_bulk_viscosity;
-      rt.last = elements::shell_internal_forces(part, mat, *ss, nv, step);
+      r = elements::shell_internal_forces(part, mat, *ss, nv, step);
     } else {
       continue;
     }
-    rt.internal_energy_J += rt.last.internal_energy_increment_J;
-    rt.hourglass_energy_J += rt.last.hourglass_energy_increment_J;
-    rt.damping_energy_J += rt.last.damping_energy_increment_J;  // included in internal
-    energy_.internal_J += rt.last.internal_energy_increment_J;
-    energy_.hourglass_J += rt.last.hourglass_energy_increment_J;
-    if (rt.last.dt_stable_s < dt_stable_) {
-      dt_stable_ = rt.last.dt_stable_s;
+    rt.internal_energy_J += r.internal_energy_increment_J;
+    rt.hourglass_energy_J += r.hourglass_energy_increment_J;
+    rt.damping_energy_J += r.damping_energy_increment_J;  // included in internal
+    energy_.internal_J += r.internal_energy_increment_J;
+    energy_.hourglass_J += r.hourglass_energy_increment_J;
+    // the part's call(s) of this cycle: energies summed, the smallest step
+    rt.last.internal_energy_increment_J += r.internal_energy_increment_J;
+    rt.last.hourglass_energy_increment_J += r.hourglass_energy_increment_J;
+    rt.last.damping_energy_increment_J += r.damping_energy_increment_J;
+    if (r.dt_stable_s < rt.last.dt_stable_s) {
+      rt.last.dt_stable_s = r.dt_stable_s;
+      rt.last.critical_element = r.critical_element;
+    }
+    if (r.dt_stable_s < dt_stable_) {
+      dt_stable_ = r.dt_stable_s;
       critical_part_ = p;
-      critical_local_ = rt.last.critical_element;
+      critical_local_ = r.critical_element;
     }
   }
 }
@@ -573,32 +607,18 @@ void Solver::end_cycle_positions() {
   CRASHLINK_ASSERT(begun_);
   CRASHLINK_ASSERT(!positions_done_);
   const double dt = dt_;
-  if (!ghost_list_.empty()) {
-    if (!ghost_target_set_)
-      throw ModelError(
-          fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
-                      "given (set_ghost_displacement before end_cycle_forces)",
-                      domain_, cycle_));
-    for (std::size_t k = 0; k < ghost_list_.size(); ++k)
-      for (std::size_t d = 0; d < 3; ++d) {
-        const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
-        v_[i] = (ghost_target_[3 * k + d] - u_[i]) / dt;  // the motion the coupling prescribes
-      }
-  }
-  if (ghost_omega_set_)
-    for (std::size_t k = 0; k < ghost_list_.size(); ++k)
-      for (std::size_t d = 0; d < 3; ++d)
-        omega_[3 * static_cast<std::size_t>(ghost_list_[k]) + d] = ghost_omega_[3 * k + d];
-  ghost_omega_set_ = false;
-  advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
-                       u_.size());  // [2]
+  // The ghosts' u^n and reaction at t^n, for apply_ghost_motion() once their motion is known.
   for (std::size_t k = 0; k < ghost_list_.size(); ++k)
     for (std::size_t d = 0; d < 3; ++d) {
       const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
-      du_[i] = ghost_target_[3 * k + d] - (u_[i] - du_[i]);
-      u_[i] = ghost_target_[3 * k + d];  // exactly, not up to the round-off of u + dt v
+      ghost_u_prev_[3 * k + d] = u_[i];
+      // reaction of a massless prescribed node: R = f_int - f_ext - f_cont - f_coup
+      ghost_reaction_[3 * k + d] = f_int_[i] - f_ext_[i] - f_cont_[i] - f_coup_[i];
+      ghost_reaction_moment_[3 * k + d] = m_int_[i] - m_coup_[i];
     }
-  ghost_target_set_ = false;
+  // [2] for every node; the ghosts' values are provisional (apply_ghost_motion).
+  advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
+                       u_.size());
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
   for (auto& b : bodies_) {
@@ -614,14 +634,63 @@ void Solver::end_cycle_positions() {
   // Every work term by the trapezoid rule 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) (energy.h):
   // first the F^n halves, then the forces at t^{n+1}, then their halves. One pass: x^{n+1}, the
   // F^n halves, and the coupling loads of t^n cleared.
-  const double ghost_work = ghost_reaction_work(0.5);
   const StepWork w = positions_and_work();
+  // Until apply_ghost_motion, a ghost's position and velocity are NaN: a force computed from them
+  // (an element taken for interior that is not) is not finite, and the guard stops the run.
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  for (const auto gh : ghost_list_)
+    for (std::size_t d = 0; d < 3; ++d) {
+      x_[3 * static_cast<std::size_t>(gh) + d] = kUnknown;
+      v_[3 * static_cast<std::size_t>(gh) + d] = kUnknown;
+    }
   energy_.external_work_J += 0.5 * w.external + rigid_gravity_work;
   // Contact energy = minus the work of the contact forces (penalty spring energy + friction
   // dissipation).
   if (!contacts_.empty()) energy_.contact_J -= 0.5 * w.contact;
-  energy_.coupling_work_J += 0.5 * w.coupling + 0.5 * w.coupling_moment + ghost_work;
+  energy_.coupling_work_J += 0.5 * w.coupling + 0.5 * w.coupling_moment;
   positions_done_ = true;
+}
+
+void Solver::end_cycle_interior_forces() {
+  CRASHLINK_ASSERT(positions_done_);
+  CRASHLINK_ASSERT(!interior_done_);
+  compute_forces(dt_, ElementSpan::Interior);
+  interior_done_ = true;
+}
+
+void Solver::apply_ghost_motion() {
+  const double dt = dt_;
+  if (!ghost_list_.empty() && !ghost_target_set_)
+    throw ModelError(
+        fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
+                    "given (set_ghost_displacement before end_cycle_compute)",
+                    domain_, cycle_));
+  const double* x0 = model_.nodes.x0.data();
+  double ext = 0.0, cont = 0.0, ghost_work = 0.0;
+  for (std::size_t k = 0; k < ghost_list_.size(); ++k)
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
+      const double target = ghost_target_[3 * k + d];
+      const double du = target - ghost_u_prev_[3 * k + d];
+      // the F^n halves that end_cycle_positions() summed with the provisional increment
+      ext += f_ext_[i] * (du - du_[i]);
+      cont += f_cont_[i] * (du - du_[i]);
+      v_[i] = du / dt;  // the motion the coupling prescribes
+      du_[i] = du;
+      u_[i] = target;  // exactly, not up to the round-off of u + dt v
+      x_[i] = x0[i] + target;
+      if (ghost_omega_set_) {
+        omega_[i] = ghost_omega_[3 * k + d];
+        dtheta_[i] = dt * omega_[i];
+      }
+      ghost_work +=
+          ghost_reaction_[3 * k + d] * du + ghost_reaction_moment_[3 * k + d] * dtheta_[i];
+    }
+  ghost_target_set_ = false;
+  ghost_omega_set_ = false;
+  if (external_loads_) energy_.external_work_J += 0.5 * ext;
+  if (!contacts_.empty()) energy_.contact_J -= 0.5 * cont;
+  energy_.coupling_work_J += 0.5 * ghost_work;  // the R^n half of the ghosts' reaction work
 }
 
 Solver::StepWork Solver::positions_and_work() {
@@ -673,9 +742,12 @@ void Solver::rebuild_coupled_nodes() {
 
 void Solver::end_cycle_compute() {
   CRASHLINK_ASSERT(positions_done_);
-  positions_done_ = false;
   const double dt = dt_;
-  compute_forces(dt);
+  if (!interior_done_) compute_forces(dt, ElementSpan::Interior);
+  apply_ghost_motion();
+  compute_forces(dt, ElementSpan::Rim);
+  positions_done_ = false;
+  interior_done_ = false;
   compute_contact_forces(dt);
   compute_external_forces(time_s_);
   if (external_loads_) energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);

@@ -62,10 +62,23 @@ class Solver {
   /// that its force computation overlaps its partners' work (DESIGN.md §2.6 "Overlap").
   void end_cycle_forces();
   /// First half of end_cycle_forces(): u^{n+1} ([2]), rigid bodies, t^{n+1}, the F^n halves of
-  /// the trapezoid work terms.
+  /// the trapezoid work terms. Ghost nodes are left unknown, their positions and velocities NaN
+  /// until end_cycle_compute() applies their motion (set_ghost_displacement), so this half does
+  /// not need it.
   void end_cycle_positions();
-  /// Second half: the forces at t^{n+1} and the F^{n+1} halves of the work terms.
+  /// Optional, between the two halves: the forces of the elements that touch no ghost node
+  /// ([0, interior_elements(p)) of every part), which need nothing a partner sends. A `layer`
+  /// fine domain computes them while it waits for the ghosts' motion u_J (DESIGN.md §2.6
+  /// "Overlap"); end_cycle_compute() does it otherwise. The forces are the same either way.
+  void end_cycle_interior_forces();
+  /// Second half: the ghosts' motion (set_ghost_displacement and set_ghost_angular_velocity
+  /// before it), the forces at t^{n+1} and the F^{n+1} halves of the work terms.
   void end_cycle_compute();
+  /// Elements [0, interior_elements(p)) of part p touch no ghost node; a multiple of
+  /// elements::kElementBatch (the element count when the domain has no ghosts). The
+  /// decomposition puts a fine domain's elements that touch J last in each part
+  /// (partition::build_domain), so that this is most of the part. After initialize().
+  std::size_t interior_elements(std::size_t p) const { return interior_end_[p]; }
   /// a^{n+1} = M^{-1}(f_ext + f_cont + f_coupling - f_int) ([1]) and the next step proposal.
   void end_cycle_accelerations();
 
@@ -177,7 +190,15 @@ class Solver {
   void assemble_masses();
   void build_rigid_bodies();
   void apply_initial_velocities();
-  void compute_forces(double dt);  // f_int, m_int at the current configuration
+  /// Which elements compute_forces() takes: all of them; the interior ones (f_int, m_int
+  /// cleared first); the rest (added).
+  enum class ElementSpan { All, Interior, Rim };
+  // f_int, m_int at the current configuration
+  void compute_forces(double dt, ElementSpan span = ElementSpan::All);
+  /// end_cycle_compute's first step: the ghosts' displacement, velocity and rotation increment
+  /// over the step from the coupling's u^{n+1} and omega^{n+1/2}, and the work terms that
+  /// end_cycle_positions() summed with their provisional increments, corrected.
+  void apply_ghost_motion();
   void compute_external_forces(double t);
   void compute_contact_forces(double dt);  // f_cont at the current configuration
   void compute_accelerations();
@@ -256,6 +277,12 @@ class Solver {
   std::int64_t critical_local_ = -1;
   bool begun_ = false;
   bool positions_done_ = false;  // end_cycle_positions() done, end_cycle_compute() not yet
+  bool interior_done_ = false;   // end_cycle_interior_forces() done, end_cycle_compute() not yet
+  std::vector<std::size_t> interior_end_;  // [parts] interior_elements()
+  // Within a cycle, for apply_ghost_motion(): the ghosts' u^n and their reaction at t^n,
+  // R = f_int - f_ext - f_cont - f_coup and m_int - m_coup [3 * ghosts] (the element forces
+  // at t^n are gone once the interior ones at t^{n+1} are computed).
+  std::vector<double> ghost_u_prev_, ghost_reaction_, ghost_reaction_moment_;
   // Arrays known to hold zeros, not read by the nodal passes (they are memory-bound):
   bool external_loads_ = false;  // gravity or loads: f_ext may be non-zero
   // The nodes whose f_coup / m_coup were written since they were last cleared (f_coup and m_coup

@@ -30,6 +30,8 @@ namespace crashlink::partition {
 enum class Scheme : std::uint8_t { Layer, Paper };
 
 /// One domain's sub-model. Node and element user ids are the global ones; indices are local.
+/// Each local part keeps the global element order, except that the elements on a ghost node come
+/// last (Solver::interior_elements).
 struct DomainModel {
   std::string name;
   model::Model model;

@@ -59,6 +59,15 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     for (std::size_t e = a.offset[p]; e < a.offset[p + 1]; ++e)
       if (pl.elem_domain[e] == d) elems.push_back(a.elem_local[e]);
     if (elems.empty()) continue;
+    // The elements on a ghost node (the moved layer's outer row, next to J) last, each group in
+    // global order: the solver computes the others while it waits for the ghosts' motion
+    // (Solver::interior_elements, DESIGN.md §2.6 "Overlap").
+    const auto k = static_cast<std::size_t>(model::nodes_per_element(gp.kind));
+    std::stable_partition(elems.begin(), elems.end(), [&](Index le) {
+      const auto* c = gp.connectivity.data() + k * static_cast<std::size_t>(le);
+      return std::none_of(c, c + k,
+                          [&](Index gi) { return role[static_cast<std::size_t>(gi)] == kGhost; });
+    });
     model::Part lp;
     lp.name = gp.name;
     lp.kind = gp.kind;
@@ -67,7 +76,6 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     lp.through_thickness_points = gp.through_thickness_points;
     lp.hourglass_coefficient = gp.hourglass_coefficient;
     lp.damping_ratio = gp.damping_ratio;
-    const auto k = static_cast<std::size_t>(model::nodes_per_element(gp.kind));
     // Interface damping (Placement::elem_damping_ratio): max(own, interface) per element; the
     // per-element vector is only created when some element of the part gets more than its own.
     bool raised = false;
