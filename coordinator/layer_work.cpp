@@ -23,7 +23,8 @@ LayerSample LayerWorkMeter::add(Tick T, std::span<const double> g, std::span<con
   LayerSample row;
   row.time = T;
   row.link_work_J = s_.work_J;
-  for (std::size_t i = 0; i < g.size(); ++i) row.force_N[i % 3] += g[i];
+  for (std::size_t i = 0; i + 2 < g.size(); i += 3)  // the same sums as over i % 3
+    for (std::size_t d = 0; d < 3; ++d) row.force_N[d] += g[i + d];
   s_.g_prev.assign(g.begin(), g.end());
   s_.u_prev.assign(u.begin(), u.end());
   s_.m_prev.assign(m.begin(), m.end());

@@ -83,7 +83,7 @@ void LayerNetwork::route(std::size_t from) {
     const std::size_t to = m.kind == LayerMessage::Kind::Displacement
                                ? fine_of_[m.interface_index]
                                : coarse_of_[m.interface_index];
-    steppers_[to]->deliver(m);
+    steppers_[to]->deliver(std::move(m));
     ++messages_;
   }
 }

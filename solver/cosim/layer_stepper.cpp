@@ -310,7 +310,7 @@ bool LayerStepper::start_owner_step() {
   return true;
 }
 
-void LayerStepper::deliver(const LayerMessage& m) {
+void LayerStepper::deliver(LayerMessage m) {
   const std::string& dom = solver_.domain_name();
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     if (ports_[p].index != m.interface_index) continue;
@@ -341,7 +341,7 @@ void LayerStepper::deliver(const LayerMessage& m) {
         throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                          ": " + kind_name(m.kind) + " for the last representable tick");
       ps.next_expected = m.time + 1;
-      ps.inbox.push_back(m);
+      ps.inbox.push_back(std::move(m));
       return;
     }
     const Tick every = port.fine_side ? port.partner_step : h_;
@@ -352,7 +352,7 @@ void LayerStepper::deliver(const LayerMessage& m) {
                        " ticks later, would be beyond the tick range (2^63 - 1 ticks): the "
                        "coordinator's steps do not fit this run (a smaller ticks_per_second)");
     ps.next_expected += every;
-    ps.inbox.push_back(m);
+    ps.inbox.push_back(std::move(m));
     return;
   }
   throw ModelError("layer stepper '" + dom + "': " + kind_name(m.kind) + " for interface " +
@@ -604,14 +604,8 @@ void LayerStepper::apply_forces() {
     auto& ps = state_[p];
     const auto m = std::move(ps.inbox.front());
     ps.inbox.pop_front();
-    for (std::size_t j = 0; j < ports_[p].local.size(); ++j) {
-      const double* f = &m.first[3 * j];
-      solver_.add_coupling_force(ports_[p].local[j], Vec3{f[0], f[1], f[2]});
-      if (!m.second.empty()) {
-        const double* mo = &m.second[3 * j];
-        solver_.add_coupling_moment(ports_[p].local[j], Vec3{mo[0], mo[1], mo[2]});
-      }
-    }
+    solver_.add_coupling_loads(ports_[p].local, m.first.data(),
+                               m.second.empty() ? nullptr : m.second.data());
   }
 }
 

@@ -140,7 +140,7 @@ class LayerStepper {
   /// Delivers a partner's message (any order across interfaces; in time order per interface).
   /// Throws ProtocolError-like ModelError for an unknown interface, a wrong kind for the port's
   /// side, a wrong length, or a time that is not the next one expected.
-  void deliver(const LayerMessage& m);
+  void deliver(LayerMessage m);
 
   /// Runs cycles until it must wait, the run is finished, or time() >= until at the start of a
   /// cycle (returns Wait::None, nothing begun: call again to go on); calls on_sample after every

@@ -701,7 +701,7 @@ class Daemon {
           fmt::format("unexpected {} during the run of domain '{}'", body_name(e), o_.domain));
     }
     try {
-      stepper_->deliver(*m);
+      stepper_->deliver(std::move(*m));
     } catch (const ModelError& x) {
       throw transport::ProtocolError("coordinator", x.what());
     }

@@ -703,7 +703,8 @@ Solver::StepWork Solver::positions_and_work() {
     positions_pass<false>(x0, u, du, fe, fc, x_.data(), x_.size(), w.external, w.contact);
   // The coupling loads live on few nodes: their work in index order (the sums over all dofs,
   // which add exact zeros elsewhere), then cleared.
-  std::sort(coupled_nodes_.begin(), coupled_nodes_.end());
+  if (!std::is_sorted(coupled_nodes_.begin(), coupled_nodes_.end()))
+    std::sort(coupled_nodes_.begin(), coupled_nodes_.end());
   double coup = 0.0, mom = 0.0;
   double* __restrict fk = f_coup_.data();
   double* __restrict mk = m_coup_.data();
@@ -810,6 +811,25 @@ void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
     f_coup_[3 * i + d] += f[d];
     energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
   }
+}
+
+void Solver::add_coupling_loads(const std::vector<std::size_t>& nodes, const double* f,
+                                const double* m) {
+  double work = energy_.coupling_work_J;  // the additions of the one-node calls, in their order
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const std::size_t i = nodes[j];
+    mark_coupled(i);
+    for (std::size_t d = 0; d < 3; ++d) {
+      f_coup_[3 * i + d] += f[3 * j + d];
+      work += 0.5 * f[3 * j + d] * du_[3 * i + d];  // the F^{n+1} half
+    }
+    if (m != nullptr)
+      for (std::size_t d = 0; d < 3; ++d) {
+        m_coup_[3 * i + d] += m[3 * j + d];
+        work += 0.5 * m[3 * j + d] * dtheta_[3 * i + d];
+      }
+  }
+  energy_.coupling_work_J = work;
 }
 
 void Solver::set_acceleration(std::size_t i, const Vec3& a) {

@@ -108,6 +108,10 @@ class Solver {
   /// Between the two halves: adds a coupling force on node i at t^{n+1} [N] (its work is
   /// counted as coupling work).
   void add_coupling_force(std::size_t i, const Vec3& f);
+  /// add_coupling_force(nodes[j], f[3j..3j+2]) then, if m is not null, add_coupling_moment(
+  /// nodes[j], m[3j..3j+2]) for every j in order: the same sums, in one call (a `layer` coarse
+  /// domain's g_A on J every step).
+  void add_coupling_loads(const std::vector<std::size_t>& nodes, const double* f, const double* m);
   /// After end_cycle_accelerations(): replaces a^{n+1} of node i (the `paper` scheme's corrected
   /// acceleration [8]-[11]); the implied force M (a - a_free) is counted as coupling work.
   void set_acceleration(std::size_t i, const Vec3& a);
