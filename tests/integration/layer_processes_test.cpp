@@ -345,6 +345,71 @@ TEST_P(LayerProcesses, MultiBarVariableStepsThroughTheCoordinatorIsNetworkToTheB
   multi_bar_variable_case(GetParam(), false);
 }
 
+// Three domains in a chain, fine | mid | coarse (5, 10 and 30 mm hexes), ended at a time that is
+// no instant of the coarse domain. Every domain must end together: with fixed steps at the first
+// common instant after the end time (coordinator::aligned_end, sent with the Setup), with variable
+// steps when the leader's u_J says it is its last. Before session 10's fix the fine domain stopped
+// at mid's first instant after the end time and mid waited for it forever (seen in process). The
+// daemons must give LayerNetwork's bits, every domain's last state at the same time.
+static void chain_case(Scheme scheme, bool variable) {
+  const std::string t(transport::scheme_name(scheme));
+  const auto dir = fresh_dir(std::string("chain3-") + (variable ? "variable-" : "fixed-") + t);
+  const RemoveIfPassed cleanup{dir};
+  const double end_s = 2.11e-4;
+  const std::string scenario = write_file(
+      dir / "chain.yaml",
+      bar_parts_yaml("chain3", end_s,
+                     {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+  const auto out = dir / "out";
+  std::string log;
+  // Fixed steps at 0.8 of the initial stable steps: at 0.9 the coarse bar's stable step falls
+  // below its fixed step under the pulse, and the run stops with impose_step's error.
+  const std::vector<std::string> safety{"--step-safety", "0.8"};
+  const int code =
+      run_pieces(scheme, scenario, out, "multi",
+                 {{"fine", safety}, {"mid", safety}, {"coarse", safety}}, log, true, variable);
+  ASSERT_EQ(code, 0) << log;
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.variable_steps = variable;
+  o.step_safety = 0.8;
+  const Reference ref = reference(m, o);
+  ASSERT_EQ(ref.cycles_of.size(), 3u);
+  std::vector<double> end_times;
+  for (const std::string d : {"fine", "mid", "coarse"}) {
+    const auto s = last_state((out / "domains" / (d + ".h5")).string());
+    ASSERT_TRUE(s.ok()) << d;
+    const Diff net = compare(s, m, ref.u);
+    EXPECT_GT(net.scale, 0.0) << d;
+    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
+    end_times.push_back(s.time_s);
+  }
+  // Each domain's time is its own sum of steps in seconds: equal up to that sum's round-off.
+  EXPECT_NEAR(end_times[0], end_times[1], 1e-12 * end_times[1]);
+  EXPECT_NEAR(end_times[1], end_times[2], 1e-12 * end_times[1]);
+  if (!variable) {
+    // In ticks, exactly: cycles x step is the same instant for the three domains.
+    ASSERT_EQ(ref.steps.size(), 3u);
+    EXPECT_EQ(ref.cycles_of[0] * ref.steps[0], ref.cycles_of[1] * ref.steps[1]);
+    EXPECT_EQ(ref.cycles_of[1] * ref.steps[1], ref.cycles_of[2] * ref.steps[2]);
+    EXPECT_GT(end_times[2], end_s) << "the end time is a coarse instant: no test";
+  }
+  std::printf(
+      "[measured] chain of three over %s, %s steps: %lld / %lld / %lld cycles, all ending at "
+      "%.6e s (end time %.6e s), bit-identical to LayerNetwork\n",
+      t.c_str(), variable ? "variable" : "fixed", static_cast<long long>(ref.cycles_of[0]),
+      static_cast<long long>(ref.cycles_of[1]), static_cast<long long>(ref.cycles_of[2]),
+      end_times[0], end_s);
+}
+
+TEST_P(LayerProcesses, ThreeDomainChainEndsTogetherAndIsNetworkToTheBit) {
+  chain_case(GetParam(), false);
+}
+
+TEST_P(LayerProcesses, ThreeDomainChainWithVariableStepsIsNetworkToTheBit) {
+  chain_case(GetParam(), true);
+}
+
 INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,
                          ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
                          scheme_test_name);
