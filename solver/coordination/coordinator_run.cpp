@@ -21,6 +21,7 @@
 #include "coordinator/interface_match.h"
 #include "coordinator/layer_router.h"
 #include "coordinator/protocol_error.h"
+#include "coordinator/stall_watch.h"
 #include "solver/coordination/coupling_history.h"
 #include "solver/coordination/layer_cut.h"
 #include "solver/coordination/paper_cut.h"
@@ -376,6 +377,7 @@ class Coordinator {
   void route() {
     std::size_t done = 0;
     const double end_s = cut_.end_time_s;
+    coordinator::StallWatch stall(2 * o_.session.peer_timeout);
     while (done < cut_.names.size()) {
       check_stop_requested();
       auto in = link_->poll(100ms);
@@ -434,7 +436,27 @@ class Coordinator {
         }
       }
       link_->check_alive();
+      if (stall.stuck(latest_, done, coordinator::StallWatch::Clock::now())) stuck(stall);
     }
+  }
+
+  /// Every process alive, none moving (coordinator/stall_watch.h): a deadlocked schedule.
+  [[noreturn]] void stuck(const coordinator::StallWatch& stall) {
+    std::vector<std::string> where;
+    for (std::size_t k = 0; k < cut_.names.size(); ++k)
+      where.push_back(
+          fmt::format("'{}' {} t = {:.6e} s", cut_.names[k],
+                      outcomes_[k].finished ? "finished, last reported" : "last reported",
+                      static_cast<double>(latest_[k]) / static_cast<double>(o_.ticks_per_second)));
+    throw StopRun(Stop{
+        run::kExitInternal,
+        wire::ERROR_CODE_INTERNAL,
+        {},
+        fmt::format("coordinator: the run is stuck: every process is alive but no domain has "
+                    "moved for {:.1f} s ({}). The domains wait for each other: an internal error "
+                    "of the schedule; please report it with the scenario",
+                    std::chrono::duration<double>(stall.still_for()).count(),
+                    fmt::join(where, ", "))});
   }
 
   static constexpr const char* kSelf = "coordinator";
