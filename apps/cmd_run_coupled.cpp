@@ -12,6 +12,7 @@
 #include "apps/cmd_run.h"
 #include "apps/launcher.h"
 #include "apps/timing_reader.h"
+#include "solver/coordination/coordinator_run.h"
 #include "solver/core/errors.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/result_reader.h"
@@ -112,12 +113,9 @@ int run_coupled(const RunCommandOptions& o) {
     throw InputError(
         "--coupling paper: --checkpoint-interval and --restart are features of "
         "`layer` runs; run `paper` without them");
-  if (!paper && o.variable_steps &&
-      (o.mode != "multi" || o.checkpoint_interval_s > 0.0 || !o.restart.empty()))
-    throw InputError(
-        "--variable-steps with `layer`: --mode multi without --checkpoint-interval and --restart "
-        "(variable layer steps are not planned for split, and their checkpoints are not written "
-        "yet)");
+  if (!paper && o.variable_steps)
+    coordination::check_layer_variable_steps(o.mode != "multi", o.checkpoint_interval_s > 0.0,
+                                             !o.restart.empty());
   if (!paper && o.no_drift)
     throw InputError(
         "--no-drift switches the drift correction [11] of --coupling paper off; "

@@ -70,7 +70,7 @@ const LayerRoute& LayerRouter::checked(int from, std::uint32_t interface, bool f
                     "any later instant)",
                     who, what, interface, time, expected, r.coarse_step));
   }
-  if (time > std::numeric_limits<Tick>::max() - (variable_ ? 1 : r.coarse_step)) {
+  if (time > std::numeric_limits<Tick>::max() - spacing(r)) {
     throw ProtocolError(
         fmt::format("domain '{}' sent a {} for interface {} at {} ticks; the one after it, {} "
                     "ticks later, would be beyond the tick range (2^63 - 1 ticks): the "
@@ -92,7 +92,7 @@ LayerRouter::Routed LayerRouter::force(int from, std::uint32_t interface, Tick t
                                        std::span<const double> force_N,
                                        std::span<const double> moment_Nm) {
   const auto& r = checked(from, interface, true, time, force_N.size(), moment_Nm.size());
-  tracks_[interface].next_force = time + (variable_ ? 1 : r.coarse_step);
+  tracks_[interface].next_force = time + spacing(r);
   ++forwarded_;
   return {r.coarse};
 }
@@ -102,7 +102,7 @@ LayerRouter::Routed LayerRouter::displacement(int from, std::uint32_t interface,
                                               std::span<const double> angular_velocity_rad_s) {
   const auto& r =
       checked(from, interface, false, time, displacement_m.size(), angular_velocity_rad_s.size());
-  tracks_[interface].next_displacement = time + (variable_ ? 1 : r.coarse_step);
+  tracks_[interface].next_displacement = time + spacing(r);
   ++forwarded_;
   return {r.fine};
 }
@@ -127,17 +127,16 @@ std::vector<LayerSample> LayerRouter::rows(int from, std::uint32_t interface,
                     "force values and {} link works; expected {} and {}",
                     who, n, interface, force_N.size(), work_J.size(), 3 * n, n));
   }
-  const Tick H = routes_[interface].coarse_step;
+  const Tick every = spacing(routes_[interface]);
   auto& t = tracks_[interface];
   std::vector<LayerSample> out(n);
   for (std::size_t r = 0; r < n; ++r) {
-    const Tick every = variable_ ? 1 : H;
     if ((variable_ ? times[r] < t.next_row : times[r] != t.next_row) ||
         times[r] > std::numeric_limits<Tick>::max() - every) {
       throw ProtocolError(fmt::format(
           "domain '{}' reported a history row of interface {} at {} ticks; the next one must be "
-          "at {} ticks (every {} ticks, in time order, within the tick range)",
-          who, interface, times[r], t.next_row, H));
+          "at {} ticks{} (in time order, within the tick range)",
+          who, interface, times[r], t.next_row, variable_ ? " or later" : ""));
     }
     t.next_row = times[r] + every;
     out[r].time = times[r];

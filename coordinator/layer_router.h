@@ -87,6 +87,9 @@ class LayerRouter {
 
   const LayerRoute& checked(int from, std::uint32_t interface, bool force_message, Tick time,
                             std::size_t first_size, std::size_t second_size) const;
+  /// The least spacing of an interface's instants: its coarse step, or 1 tick with variable steps
+  /// (any later instant).
+  Tick spacing(const LayerRoute& r) const { return variable_ ? 1 : r.coarse_step; }
 
   std::vector<LayerRoute> routes_;
   std::vector<std::string> names_;

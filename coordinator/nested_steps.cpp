@@ -2,6 +2,7 @@
 #include "coordinator/nested_steps.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -129,6 +130,11 @@ Tick aligned_end(const StepPlan& plan, Tick end) {
                      " ticks rounded up to the common period " + std::to_string(period) +
                      " ticks of every step leaves the tick range");
   return k * period;
+}
+
+Tick aligned_end(const StepPlan& plan, double end_s, std::int64_t ticks_per_second) {
+  return aligned_end(
+      plan, static_cast<Tick>(std::llround(end_s * static_cast<double>(ticks_per_second))));
 }
 
 }  // namespace crashlink::coordinator

@@ -35,13 +35,16 @@ struct StepPlan {
 /// Throws ModelError when no domain has a limit, when the links form a cycle of coarse -> fine
 /// (names the domains), or when lcm(n) exceeds base / 1000 (steps would lose more than 0.1 % to
 /// rounding), or when a step times a substep count leaves the tick range (2^63 ticks).
+StepPlan nested_steps(const std::vector<Tick>& proposal,
+                      const std::vector<std::pair<int, int>>& links, bool common,
+                      const std::vector<std::string>& names = {});
+
 /// The end instant every domain of `plan` can stop at: `end` rounded up to a whole number of
 /// lcm(steps) = base / gcd(n) (the first instant all domains land on). Throws ModelError when that
 /// leaves the tick range.
 Tick aligned_end(const StepPlan& plan, Tick end);
-
-StepPlan nested_steps(const std::vector<Tick>& proposal,
-                      const std::vector<std::pair<int, int>>& links, bool common,
-                      const std::vector<std::string>& names = {});
+/// The same for the scenario's end time in seconds, rounded to the nearest tick first: what the
+/// coordinator's Setup sends (Setup.end_time_ticks) and cosim::LayerNetwork applies.
+Tick aligned_end(const StepPlan& plan, double end_s, std::int64_t ticks_per_second);
 
 }  // namespace crashlink::coordinator

@@ -156,12 +156,8 @@ class Coordinator {
       throw InputError(
           "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
           "or drop the option)");
-    if (o_.variable_steps && !o_.paper &&
-        (o_.common_step || o_.checkpoint_interval_s > 0.0 || o_.restart))
-      throw InputError(
-          "--variable-steps with `layer`: a `multi` run without checkpoints (variable layer "
-          "steps are not planned for `split`, and their checkpoints are not written yet); drop "
-          "--checkpoint-interval / --restart, or the option");
+    if (o_.variable_steps && !o_.paper)
+      check_layer_variable_steps(o_.common_step, o_.checkpoint_interval_s > 0.0, o_.restart);
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -749,6 +745,14 @@ class Coordinator {
 };
 
 }  // namespace
+
+void check_layer_variable_steps(bool split, bool checkpoints, bool restart) {
+  if (split || checkpoints || restart)
+    throw InputError(
+        "--variable-steps with `layer`: a `multi` run without checkpoints (variable layer steps "
+        "are not planned for `split`, and their checkpoints are not written yet); drop --mode "
+        "split / --checkpoint-interval / --restart, or the option");
+}
 
 CoordinatorResult run_coordinator(const CoordinatorOptions& options) {
   return Coordinator(options).run();

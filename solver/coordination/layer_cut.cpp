@@ -163,10 +163,9 @@ wire::Envelope setup_message(const LayerCut& cut, const coordinator::StepPlan& p
                              bool common, const wire::Options& options,
                              std::int64_t ticks_per_second) {
   // every domain ends at the same base instant (LayerStepper::set_end_time)
-  wire::Envelope e = setup_envelope(
-      common, wire::COUPLING_LAYER, options, ticks_per_second,
-      coordinator::aligned_end(plan, static_cast<std::int64_t>(std::llround(
-                                         cut.end_time_s * static_cast<double>(ticks_per_second)))));
+  wire::Envelope e =
+      setup_envelope(common, wire::COUPLING_LAYER, options, ticks_per_second,
+                     coordinator::aligned_end(plan, cut.end_time_s, ticks_per_second));
   auto* s = e.mutable_setup();
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
   for (const auto& c : cut.interfaces) {

@@ -66,14 +66,13 @@ void LayerNetwork::initialize() {
         *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.ticks_per_second,
         options_.variable_steps ? LayerSteps::Variable : LayerSteps::Fixed));
   }
-  if (!options_.variable_steps) {
-    const auto end =
-        static_cast<Tick>(std::llround(d_.solvers.front()->model().controls.end_time_s *
-                                       static_cast<double>(options_.ticks_per_second)));
-    for (auto& st : steppers_) st->set_end_time(coordinator::aligned_end(plan_, end));
-  }
-  if (options_.variable_steps)
+  if (options_.variable_steps) {
     for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);
+  } else {  // every domain ends at the same instant, as the coordinator's Setup says
+    const Tick end = coordinator::aligned_end(
+        plan_, d_.solvers.front()->model().controls.end_time_s, options_.ticks_per_second);
+    for (auto& st : steppers_) st->set_end_time(end);
+  }
   for (auto& st : steppers_) st->initialize();
   for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);
 }

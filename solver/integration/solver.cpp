@@ -426,45 +426,6 @@ void Solver::compute_accelerations() {
   zero_held(model_.fixed, a_.data(), alpha_.data(), 0, n_);
 }
 
-double Solver::step_proposal() const {
-  const auto& c = model_.controls;
-  double dt = c.dt_scale * dt_stable_;
-  if (c.dt_max_s > 0.0) dt = std::min(dt, c.dt_max_s);
-  return dt;
-}
-
-void Solver::propose_step() {
-  const double dt = step_proposal();
-  if (!std::isfinite(dt))
-    throw ModelError(
-        fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
-                    "set controls.dt_max",
-                    domain_));
-  if (!(dt > 0.0))
-    throw NumericalError(
-        fmt::format("{}: stable step {:.3e} s at cycle {}, t = {:.6e} s, set by {}: "
-                    "the element collapsed",
-                    domain_, dt, cycle_, time_s_, critical_element()));
-  if (cycle_ > 0 && dt < 1e-4 * dt_min_)
-    throw NumericalError(fmt::format(
-        "{}: the stable step fell to {:.3e} s (1e-4 of the smallest step so far, {:.3e} s) at "
-        "cycle "
-        "{}, t = {:.6e} s, set by {}: an element is collapsing; check its mesh and material",
-        domain_, dt, dt_min_, cycle_, time_s_, critical_element()));
-  dt_ = dt;
-}
-
-std::string Solver::critical_element() const {
-  if (critical_local_ < 0 && critical_part_ == model_.parts.size()) {
-    const auto k = static_cast<std::size_t>(-1 - critical_local_);
-    return fmt::format("the penalty springs of contact '{}'", model_.contacts[k].name);
-  }
-  if (critical_local_ < 0 || critical_part_ >= model_.parts.size()) return "no element";
-  const auto& p = model_.parts[critical_part_];
-  return fmt::format("part '{}' element {}", p.name,
-                     p.element_id[static_cast<std::size_t>(critical_local_)]);
-}
-
 double Solver::kinetic_energy() const {
   // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h)
   return kinetic_energy_from(kinetic_sum(0, n_, 0.0));
@@ -586,18 +547,6 @@ void Solver::end_cycle() {
   end_cycle_accelerations();
 }
 
-double Solver::ghost_reaction_work(double weight) const {
-  // Reaction of a massless prescribed node: R = f_int - f_ext - f_cont - f_coup.
-  double w = 0.0;
-  for (auto g : ghost_list_)
-    for (std::size_t d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * static_cast<std::size_t>(g) + d;
-      w += (f_int_[k] - f_ext_[k] - f_cont_[k] - f_coup_[k]) * du_[k] +
-           (m_int_[k] - m_coup_[k]) * dtheta_[k];
-    }
-  return weight * w;
-}
-
 void Solver::end_cycle_forces() {
   end_cycle_positions();
   end_cycle_compute();
@@ -612,9 +561,8 @@ void Solver::end_cycle_positions() {
     for (std::size_t d = 0; d < 3; ++d) {
       const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
       ghost_u_prev_[3 * k + d] = u_[i];
-      // reaction of a massless prescribed node: R = f_int - f_ext - f_cont - f_coup
-      ghost_reaction_[3 * k + d] = f_int_[i] - f_ext_[i] - f_cont_[i] - f_coup_[i];
-      ghost_reaction_moment_[3 * k + d] = m_int_[i] - m_coup_[i];
+      ghost_reaction_[3 * k + d] = ghost_reaction(i);
+      ghost_reaction_moment_[3 * k + d] = ghost_reaction_moment(i);
     }
   // [2] for every node; the ghosts' values are provisional (apply_ghost_motion).
   advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
@@ -658,41 +606,6 @@ void Solver::end_cycle_interior_forces() {
   interior_done_ = true;
 }
 
-void Solver::apply_ghost_motion() {
-  const double dt = dt_;
-  if (!ghost_list_.empty() && !ghost_target_set_)
-    throw ModelError(
-        fmt::format("{}: cycle {}: the ghost nodes' displacement at t^(n+1) was not "
-                    "given (set_ghost_displacement before end_cycle_compute)",
-                    domain_, cycle_));
-  const double* x0 = model_.nodes.x0.data();
-  double ext = 0.0, cont = 0.0, ghost_work = 0.0;
-  for (std::size_t k = 0; k < ghost_list_.size(); ++k)
-    for (std::size_t d = 0; d < 3; ++d) {
-      const std::size_t i = 3 * static_cast<std::size_t>(ghost_list_[k]) + d;
-      const double target = ghost_target_[3 * k + d];
-      const double du = target - ghost_u_prev_[3 * k + d];
-      // the F^n halves that end_cycle_positions() summed with the provisional increment
-      ext += f_ext_[i] * (du - du_[i]);
-      cont += f_cont_[i] * (du - du_[i]);
-      v_[i] = du / dt;  // the motion the coupling prescribes
-      du_[i] = du;
-      u_[i] = target;  // exactly, not up to the round-off of u + dt v
-      x_[i] = x0[i] + target;
-      if (ghost_omega_set_) {
-        omega_[i] = ghost_omega_[3 * k + d];
-        dtheta_[i] = dt * omega_[i];
-      }
-      ghost_work +=
-          ghost_reaction_[3 * k + d] * du + ghost_reaction_moment_[3 * k + d] * dtheta_[i];
-    }
-  ghost_target_set_ = false;
-  ghost_omega_set_ = false;
-  if (external_loads_) energy_.external_work_J += 0.5 * ext;
-  if (!contacts_.empty()) energy_.contact_J -= 0.5 * cont;
-  energy_.coupling_work_J += 0.5 * ghost_work;  // the R^n half of the ghosts' reaction work
-}
-
 Solver::StepWork Solver::positions_and_work() {
   StepWork w;
   const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(), *fe = f_ext_.data(),
@@ -724,23 +637,6 @@ Solver::StepWork Solver::positions_and_work() {
   return w;
 }
 
-void Solver::mark_coupled(std::size_t i) {
-  if (coupled_mark_[i]) return;
-  coupled_mark_[i] = 1;
-  coupled_nodes_.push_back(static_cast<std::int32_t>(i));
-}
-
-void Solver::rebuild_coupled_nodes() {
-  std::fill(coupled_mark_.begin(), coupled_mark_.end(), 0);
-  coupled_nodes_.clear();
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
-      if (f_coup_[k] != 0.0 || m_coup_[k] != 0.0) {
-        mark_coupled(i);
-        break;
-      }
-}
-
 void Solver::end_cycle_compute() {
   CRASHLINK_ASSERT(positions_done_);
   const double dt = dt_;
@@ -763,192 +659,6 @@ void Solver::end_cycle_accelerations() {
   propose_step();
   dt_min_ = std::min(dt_min_, dt_);
   begun_ = false;
-}
-
-void Solver::set_mass_override(std::vector<double> mass_kg) {
-  mass_override_ = std::move(mass_kg);
-}
-
-void Solver::set_ghost_nodes(std::vector<std::int32_t> nodes) {
-  ghost_list_ = std::move(nodes);
-}
-
-void Solver::set_ghost_displacement(const double* u_next) {
-  std::copy(u_next, u_next + ghost_target_.size(), ghost_target_.begin());
-  ghost_target_set_ = true;
-}
-
-void Solver::set_inertia_override(std::vector<double> inertia_kgm2) {
-  inertia_override_ = std::move(inertia_kgm2);
-}
-
-void Solver::set_ghost_angular_velocity(const double* omega_mid) {
-  std::copy(omega_mid, omega_mid + ghost_omega_.size(), ghost_omega_.begin());
-  ghost_omega_set_ = true;
-}
-
-Vec3 Solver::net_moment(std::size_t i) const {
-  return {-m_int_[3 * i], -m_int_[3 * i + 1], -m_int_[3 * i + 2]};
-}
-
-void Solver::add_coupling_moment(std::size_t i, const Vec3& m) {
-  mark_coupled(i);
-  for (std::size_t d = 0; d < 3; ++d) {
-    m_coup_[3 * i + d] += m[d];
-    energy_.coupling_work_J += 0.5 * m[d] * dtheta_[3 * i + d];
-  }
-}
-
-Vec3 Solver::net_force(std::size_t i) const {
-  return {f_ext_[3 * i] + f_cont_[3 * i] - f_int_[3 * i],
-          f_ext_[3 * i + 1] + f_cont_[3 * i + 1] - f_int_[3 * i + 1],
-          f_ext_[3 * i + 2] + f_cont_[3 * i + 2] - f_int_[3 * i + 2]};
-}
-
-void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
-  mark_coupled(i);
-  for (std::size_t d = 0; d < 3; ++d) {
-    f_coup_[3 * i + d] += f[d];
-    energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
-  }
-}
-
-void Solver::add_coupling_loads(const std::vector<std::size_t>& nodes, const double* f,
-                                const double* m) {
-  double work = energy_.coupling_work_J;  // the additions of the one-node calls, in their order
-  for (std::size_t j = 0; j < nodes.size(); ++j) {
-    const std::size_t i = nodes[j];
-    mark_coupled(i);
-    for (std::size_t d = 0; d < 3; ++d) {
-      f_coup_[3 * i + d] += f[3 * j + d];
-      work += 0.5 * f[3 * j + d] * du_[3 * i + d];  // the F^{n+1} half
-    }
-    if (m != nullptr)
-      for (std::size_t d = 0; d < 3; ++d) {
-        m_coup_[3 * i + d] += m[3 * j + d];
-        work += 0.5 * m[3 * j + d] * dtheta_[3 * i + d];
-      }
-  }
-  energy_.coupling_work_J = work;
-}
-
-void Solver::set_acceleration(std::size_t i, const Vec3& a) {
-  mark_coupled(i);
-  for (std::size_t d = 0; d < 3; ++d) {
-    const double f = mass_[i] * (a[d] - a_[3 * i + d]);  // the link force that makes a
-    f_coup_[3 * i + d] += f;
-    energy_.coupling_work_J += 0.5 * f * du_[3 * i + d];
-    a_[3 * i + d] = a[d];
-  }
-}
-
-bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, double dt_next,
-                                    double* u_next, double* omega_mid) const {
-  for (const auto i : nodes)
-    if (i >= n_ || rigid_node_[i] || ghost_[i] || prescribed_node_[i]) return false;
-  // The next step must be one propose_step() and impose_step() will accept (their checks on
-  // step_proposal(), the proposal from the stable step at hand), so that a step above the stable
-  // limit stops the run before anything computed with it leaves; non-finite values are left to
-  // the passes' guard likewise.
-  const double proposal = step_proposal();
-  if (!(dt_next > 0.0) || dt_next > proposal * (1.0 + 1e-9) || proposal < 1e-4 * dt_min_)
-    return false;
-  // The expressions of coupling_pass, zero_held, velocity_pass (or advance_velocity, the same
-  // update) and advance_displacement, written the same way so that the compiler rounds (and
-  // contracts to FMA) alike; LayerStepper compares the result with the passes' to the bit.
-  const double dt_mid = mid_step(dt_, dt_next);
-  const auto& fixed = model_.fixed;
-  for (std::size_t j = 0; j < nodes.size(); ++j) {
-    const std::size_t i = nodes[j];
-    const std::uint8_t mask = fixed.empty() ? 0 : fixed[i];
-    for (std::size_t d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * i + d;
-      const double f = f_ext_[k] + f_cont_[k] + f_coup_[k];
-      const double a = (f - f_int_[k]) * inv_mass_[i];
-      const double al = (m_coup_[k] - m_int_[k]) * inv_inertia_[i];
-      // a held dof's a and alpha are zeroed too, which matters not here: its velocity is 0
-      double v = v_[k];
-      v += dt_mid * a;
-      double w = omega_[k];
-      w += dt_mid * al;
-      if (mask & (1u << d)) v = 0.0;
-      if (mask & (8u << d)) w = 0.0;
-#ifdef __FMA__
-      u_next[3 * j + d] = std::fma(dt_next, v, u_[k]);
-#else
-      u_next[3 * j + d] = u_[k] + dt_next * v;
-#endif
-      if (omega_mid) omega_mid[3 * j + d] = w;
-      if (!std::isfinite(u_next[3 * j + d]) || !std::isfinite(w)) return false;
-    }
-  }
-  return true;
-}
-
-void Solver::impose_step(double dt) {
-  if (!(dt > 0.0) || dt > dt_ * (1.0 + 1e-9))
-    throw NumericalError(fmt::format(
-        "{}: cycle {}: the coordinator imposed dt = {:.6e} s, but this domain's stable step is "
-        "{:.6e} s (set by {}); a coupled step may never exceed a domain's own",
-        domain_, cycle_, dt, dt_, critical_element()));
-  dt_ = dt;
-  dt_min_ = std::min(dt_min_, dt_);
-}
-
-void Solver::impose_committed_step(double dt) {
-  const double cap = model_.controls.dt_max_s;
-  const double limit = cap > 0.0 ? std::min(dt_stable_, cap) : dt_stable_;
-  if (!(dt > 0.0) || dt > limit * (1.0 + 1e-9))
-    throw NumericalError(fmt::format(
-        "{}: cycle {}, t = {:.6e} s: the step {:.6e} s committed at the start of the owner step "
-        "now exceeds this domain's stable step {:.6e} s (set by {}): the mesh stiffened faster "
-        "than one coarse step can follow; lower controls.dt_scale or run with fixed steps",
-        domain_, cycle_, time_s_, dt, limit, critical_element()));
-  dt_ = dt;
-  dt_min_ = std::min(dt_min_, dt_);
-}
-
-Vec3 Solver::node_velocity(std::size_t i) const {
-  return {0.5 * (v_prev_[3 * i] + v_[3 * i]), 0.5 * (v_prev_[3 * i + 1] + v_[3 * i + 1]),
-          0.5 * (v_prev_[3 * i + 2] + v_[3 * i + 2])};
-}
-
-ProbeValue Solver::probe(const model::Probe& p) const {
-  ProbeValue r;
-  const auto i = static_cast<std::size_t>(p.index);
-  if (p.kind == model::Probe::Kind::Node) {
-    r.displacement_m = {u_[3 * i], u_[3 * i + 1], u_[3 * i + 2]};
-    r.velocity_m_s = node_velocity(i);
-    r.acceleration_m_s2 = {a_[3 * i], a_[3 * i + 1], a_[3 * i + 2]};
-  } else {
-    const auto& b = bodies_[i];
-    r.displacement_m = b.centre - b.centre0;
-    r.velocity_m_s = 0.5 * (b.velocity_prev + b.velocity);
-    r.acceleration_m_s2 = (1.0 / b.mass_kg) * b.force;
-  }
-  return r;
-}
-
-void Solver::element_output(std::size_t p, const elements::ElementOutput& out) const {
-  const auto& part = model_.parts[p];
-  if (const auto* hs = std::get_if<elements::Hex8State>(&parts_[p].state)) {
-    elements::hex8_element_output(part, *hs, out);
-  } else if (const auto* ss = std::get_if<elements::ShellState>(&parts_[p].state)) {
-    elements::shell_element_output(part, *ss, out);
-  } else {
-    const std::size_t ne = part.element_count();
-    if (out.von_mises_Pa) std::fill(out.von_mises_Pa, out.von_mises_Pa + ne, 0.0);
-    if (out.eps_p) std::fill(out.eps_p, out.eps_p + ne, 0.0);
-    if (out.stress_Pa) std::fill(out.stress_Pa, out.stress_Pa + 6 * ne, 0.0);
-  }
-}
-
-double Solver::total_mass_kg() const {
-  double m = 0.0;
-  for (std::size_t i = 0; i < n_; ++i)
-    if (!rigid_node_[i] && !ghost_[i]) m += mass_[i];
-  for (const auto& b : bodies_) m += b.mass_kg;
-  return m;
 }
 
 }  // namespace crashlink::integration

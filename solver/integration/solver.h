@@ -90,12 +90,12 @@ class Solver {
   /// scheme's J nodes on the fine side). Their mass and kinetic energy belong to another domain.
   void set_ghost_nodes(std::vector<std::int32_t> nodes);
   const std::vector<std::int32_t>& ghost_nodes() const { return ghost_list_; }
-  /// Before end_cycle_forces(): ghost displacements at t^{n+1}, [3 * ghost count] [m].
+  /// Before end_cycle_compute(): ghost displacements at t^{n+1}, [3 * ghost count] [m].
   void set_ghost_displacement(const double* u_next);
   /// Before initialize(): [n] summed rotational inertias [kg m^2] (0 keeps the local one): a shell
   /// J node's natural inertia summed over every element of the global model.
   void set_inertia_override(std::vector<double> inertia_kgm2);
-  /// Before end_cycle_forces(): ghost angular velocities omega^{n+1/2} [3 * ghost count] [rad/s]
+  /// Before end_cycle_compute(): ghost angular velocities omega^{n+1/2} [3 * ghost count] [rad/s]
   /// (shell J nodes; optional: without it a ghost keeps its angular velocity).
   void set_ghost_angular_velocity(const double* omega_mid);
   /// Between the two halves: -m_int of node i at t^{n+1} (its own domain's moment) [N m].
@@ -216,6 +216,12 @@ class Solver {
   /// prescribed velocities, not the first cycle); returns the sum.
   double velocity_pass(double dt_mid);
   double ghost_reaction_work(double weight) const;  // weight * sum_g R_g . du_g
+  /// Reaction of a massless prescribed (ghost) node at dof k of [3n]: R = f_int - f_ext - f_cont -
+  /// f_coup [N]; its moment m_int - m_coup [N m].
+  double ghost_reaction(std::size_t k) const {
+    return f_int_[k] - f_ext_[k] - f_cont_[k] - f_coup_[k];
+  }
+  double ghost_reaction_moment(std::size_t k) const { return m_int_[k] - m_coup_[k]; }
   /// Dot products of the F^n halves of the step's work (energy.h): f_ext, f_cont, f_coup with
   /// du and m_coup with dtheta.
   struct StepWork {

@@ -182,6 +182,29 @@ std::pair<double, double> interface_history(const std::filesystem::path& out, co
   return {work.back(), owner};
 }
 
+/// Each domain file's last state against LayerNetwork's displacements: read, moved, and equal to
+/// the bit. Returns the largest relative difference and each domain's last time [s] (-1 for a
+/// file that could not be read).
+struct NetworkMatch {
+  double worst = 0.0;
+  std::vector<double> end_times;
+};
+NetworkMatch expect_network_bits(const std::filesystem::path& out, const model::Model& m,
+                                 const Reference& ref, const std::vector<std::string>& domains) {
+  NetworkMatch r;
+  for (const auto& d : domains) {
+    const auto s = last_state((out / "domains" / (d + ".h5")).string());
+    EXPECT_TRUE(s.ok()) << d;
+    r.end_times.push_back(s.time_s);
+    const Diff net = compare(s, m, ref.u);
+    EXPECT_GE(net.max_abs, 0.0) << d;
+    EXPECT_GT(net.scale, 0.0) << d;
+    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
+    r.worst = std::max(r.worst, net.rel());
+  }
+  return r;
+}
+
 class LayerProcesses : public ::testing::TestWithParam<Scheme> {
  protected:
   std::string scheme() const { return std::string(transport::scheme_name(GetParam())); }
@@ -276,15 +299,7 @@ static void multi_bar_case(Scheme scheme, bool lanes) {
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 2u);
   EXPECT_EQ(ref.steps[1], 2 * ref.steps[0]) << "the plan is not at ratio 2";
-  double worst = 0.0;
-  for (const std::string d : {"fine", "coarse"}) {
-    const auto s = last_state((out / "domains" / (d + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << d;
-    const Diff net = compare(s, m, ref.u);
-    ASSERT_GE(net.max_abs, 0.0) << d;
-    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
-    worst = std::max(worst, net.rel());
-  }
+  const double worst = expect_network_bits(out, m, ref, {"fine", "coarse"}).worst;
   const auto [link_work, owner_work] = interface_history(out, m, ref);
   std::printf(
       "[measured] multi over %s (%s), bar at H/h = %lld/%lld ticks: max |u - u_network| / "
@@ -320,14 +335,7 @@ static void multi_bar_variable_case(Scheme scheme, bool lanes) {
   cosim::LayerNetworkOptions o;
   o.variable_steps = true;
   const Reference ref = reference(m, o);
-  for (const std::string d : {"fine", "coarse"}) {
-    const auto s = last_state((out / "domains" / (d + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << d;
-    const Diff net = compare(s, m, ref.u);
-    ASSERT_GE(net.max_abs, 0.0) << d;
-    EXPECT_GT(net.scale, 0.0) << d;
-    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
-  }
+  expect_network_bits(out, m, ref, {"fine", "coarse"});
   const auto [link_work, owner_work] = interface_history(out, m, ref);
   std::printf(
       "[measured] multi over %s (%s), bar, variable steps: %lld fine and %lld coarse cycles, "
@@ -375,15 +383,8 @@ static void chain_case(Scheme scheme, bool variable) {
   o.step_safety = 0.8;
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.cycles_of.size(), 3u);
-  std::vector<double> end_times;
-  for (const std::string d : {"fine", "mid", "coarse"}) {
-    const auto s = last_state((out / "domains" / (d + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << d;
-    const Diff net = compare(s, m, ref.u);
-    EXPECT_GT(net.scale, 0.0) << d;
-    EXPECT_EQ(net.max_abs, 0.0) << d << ": not bit-identical to LayerNetwork";
-    end_times.push_back(s.time_s);
-  }
+  const std::vector<double> end_times =
+      expect_network_bits(out, m, ref, {"fine", "mid", "coarse"}).end_times;
   // Each domain's time is its own sum of steps in seconds: equal up to that sum's round-off.
   EXPECT_NEAR(end_times[0], end_times[1], 1e-12 * end_times[1]);
   EXPECT_NEAR(end_times[1], end_times[2], 1e-12 * end_times[1]);
