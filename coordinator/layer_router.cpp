@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 #include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
@@ -24,6 +26,7 @@ LayerRouter::LayerRouter(std::vector<LayerRoute> routes, std::vector<std::string
     }
   }
   tracks_.resize(routes_.size());
+  recent_.resize(routes_.size());
   for (std::size_t i = 0; i < routes_.size(); ++i) {
     tracks_[i].next_displacement = routes_[i].coarse_step;  // u_J(H) first; g_A(0) first
   }
@@ -94,6 +97,7 @@ LayerRouter::Routed LayerRouter::force(int from, std::uint32_t interface, Tick t
   const auto& r = checked(from, interface, true, time, force_N.size(), moment_Nm.size());
   tracks_[interface].next_force = time + spacing(r);
   ++forwarded_;
+  remember(interface, time);
   return {r.coarse};
 }
 
@@ -104,6 +108,7 @@ LayerRouter::Routed LayerRouter::displacement(int from, std::uint32_t interface,
       checked(from, interface, false, time, displacement_m.size(), angular_velocity_rad_s.size());
   tracks_[interface].next_displacement = time + spacing(r);
   ++forwarded_;
+  remember(interface, time);
   return {r.fine};
 }
 
@@ -146,19 +151,45 @@ std::vector<LayerSample> LayerRouter::rows(int from, std::uint32_t interface,
   return out;
 }
 
+void LayerRouter::remember(std::uint32_t i, Tick time) {
+  if (!variable_) return;
+  auto& q = recent_[i];
+  q.push_back(time);
+  if (q.size() <= kRecent) return;
+  folded_latest_ = std::max(folded_latest_, q.front());
+  ++folded_;
+  q.pop_front();
+}
+
 std::int64_t LayerRouter::messages_through(Tick time) const {
   std::int64_t n = 0;
-  for (const auto& r : routes_) n += 2 * (time / r.coarse_step) + 1;
+  if (!variable_) {
+    for (const auto& r : routes_) n += 2 * (time / r.coarse_step) + 1;
+    return n;
+  }
+  if (folded_latest_ > time)
+    throw std::logic_error(
+        fmt::format("layer router: the vectors forwarded up to {} ticks are asked for after one "
+                    "at {} ticks was folded into the count (more than {} of an interface's "
+                    "vectors after it)",
+                    time, folded_latest_, kRecent));
+  n = folded_;
+  for (const auto& q : recent_)
+    n += std::count_if(q.begin(), q.end(), [&](Tick t) { return t <= time; });
   return n;
 }
 
 void LayerRouter::restore_progress(Tick time, std::int64_t forwarded) {
   for (std::size_t i = 0; i < routes_.size(); ++i) {
-    tracks_[i].next_force = time + routes_[i].coarse_step;
-    tracks_[i].next_displacement = time + routes_[i].coarse_step;
-    tracks_[i].next_row = time + routes_[i].coarse_step;
+    const Tick next = time + spacing(routes_[i]);
+    tracks_[i].next_force = next;
+    tracks_[i].next_displacement = next;
+    tracks_[i].next_row = next;
+    recent_[i].clear();
   }
   forwarded_ = forwarded;
+  folded_ = forwarded;
+  folded_latest_ = time;
 }
 
 }  // namespace crashlink::coordinator

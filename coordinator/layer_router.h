@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <span>
 #include <string>
 #include <utility>
@@ -62,21 +63,25 @@ class LayerRouter {
                                 std::span<const std::int64_t> times,
                                 std::span<const double> force_N, std::span<const double> work_J);
 
-  /// A restarted run from the checkpoint at T (a multiple of every step): every interface
-  /// expects its next force, displacement and history row at T + H; the forwarded count becomes
-  /// `forwarded`.
+  /// A restarted run from the checkpoint at T (an instant of every domain): every interface
+  /// expects its next force, displacement and history row at T + H (variable steps: after T); the
+  /// forwarded count becomes `forwarded`.
   void restore_progress(Tick time, std::int64_t forwarded);
 
   std::size_t size() const { return routes_.size(); }
   const LayerRoute& route(std::size_t i) const { return routes_[i]; }
   /// Messages forwarded so far.
   std::int64_t forwarded() const { return forwarded_; }
-  /// Messages of every interface for the instants up to T (a multiple of every step), whoever
-  /// routed them: its forces g_A(0), g_A(H), ..., g_A(T) and displacements u_J(H), ..., u_J(T),
-  /// i.e. sum over interfaces of 2 T/H + 1. A checkpoint at T counts what the coordinator
-  /// forwarded with min(forwarded(), this): vectors for later instants sent before it (a faster
-  /// partner's, or a coarse side's u_J(T + H), sent ahead) are sent again after a restart.
+  /// Messages of every interface for the instants up to T (an instant of every domain), whoever
+  /// routed them: fixed steps, its forces g_A(0), g_A(H), ..., g_A(T) and displacements u_J(H),
+  /// ..., u_J(T), i.e. sum over interfaces of 2 T/H + 1; variable steps, those this router
+  /// forwarded up to T (it keeps the instants of each interface's latest kRecent). A checkpoint
+  /// at T counts what the coordinator forwarded with min(forwarded(), this): vectors for later
+  /// instants sent before it (a faster partner's, or a coarse side's u_J(T + H), sent ahead) are
+  /// sent again after a restart. Variable steps: std::logic_error when a vector after T has
+  /// already been folded into the count (more than kRecent of an interface's vectors after T).
   std::int64_t messages_through(Tick time) const;
+  static constexpr std::size_t kRecent = 64;
 
  private:
   struct Track {
@@ -93,8 +98,14 @@ class LayerRouter {
 
   std::vector<LayerRoute> routes_;
   std::vector<std::string> names_;
+  /// Variable steps: a forwarded vector of interface i at `time` (messages_through's window).
+  void remember(std::uint32_t i, Tick time);
+
   std::vector<Track> tracks_;
   std::int64_t forwarded_ = 0;
+  std::vector<std::deque<Tick>> recent_;  ///< variable: [interfaces] latest forwarded instants
+  std::int64_t folded_ = 0;               ///< variable: forwarded vectors out of recent_
+  Tick folded_latest_ = -1;               ///< variable: the latest instant among them
   bool variable_ = false;
 };
 

@@ -16,7 +16,9 @@ namespace crashlink::wire {
 // FreeState.velocities_m_s / energy_time_ticks, EnergyTerms.coupled_kinetic_j (a version-4 daemon
 // would cut the scenario for `layer` and misread a `paper` Setup); 6 variable `layer` steps:
 // Setup.variable_steps, LayerForce.step_proposal_ticks, LayerDisplacement.last (a version-5
-// daemon would run fixed steps against partners that do not).
-inline constexpr std::uint32_t kProtocolVersion = 6;
+// daemon would run fixed steps against partners that do not); 7 checkpoints of variable `layer`
+// steps: LayerDisplacement.pause, LayerReport.checkpoint (a version-6 holder would not pause with
+// its owner, and the checkpoint instants would differ).
+inline constexpr std::uint32_t kProtocolVersion = 7;
 
 }  // namespace crashlink::wire

@@ -156,8 +156,7 @@ class Coordinator {
       throw InputError(
           "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
           "or drop the option)");
-    if (o_.variable_steps && !o_.paper)
-      check_layer_variable_steps(o_.common_step, o_.checkpoint_interval_s > 0.0, o_.restart);
+    if (o_.variable_steps && !o_.paper) check_layer_variable_steps(o_.common_step);
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -289,6 +288,7 @@ class Coordinator {
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
     router_->set_variable_steps(o_.variable_steps);
+    row_latest_.assign(router_->size(), 0);
     lanes_ = o_.lanes && std::all_of(regs_.begin(), regs_.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
@@ -461,6 +461,10 @@ class Coordinator {
   /// common multiple of the domains' steps, so every domain is between two cycles there.
   void plan_checkpoints(const std::vector<coordinator::Tick>& steps) {
     if (!(o_.checkpoint_interval_s > 0.0)) return;
+    if (o_.variable_steps) {
+      plan_variable_checkpoints();
+      return;
+    }
     coordinator::Tick l = 1;
     for (const auto h : steps) {
       if (h < 1) continue;
@@ -484,6 +488,49 @@ class Coordinator {
           "every domain's step) into %s/checkpoints\n",
           static_cast<double>(checkpoint_every_) / static_cast<double>(o_.ticks_per_second),
           o_.checkpoint_interval_s, o_.out_dir.c_str());
+      std::fflush(o_.log);
+    }
+  }
+
+  /// Variable steps: the interval as asked, in ticks; each checkpoint is written at the leader's
+  /// first instant at or after a multiple of it, where the whole tree of domains pauses
+  /// (LayerStepper::advance). A cut with several leaders (domains that hold no ghost) has no
+  /// common instants: refused.
+  void plan_variable_checkpoints() {
+    std::vector<std::string> leaders;
+    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
+      const bool follows =
+          std::any_of(cut_.interfaces.begin(), cut_.interfaces.end(),
+                      [&](const auto& c) { return c.fine == static_cast<int>(k); });
+      if (!follows) leaders.push_back(cut_.names[k]);
+    }
+    if (leaders.size() > 1) {
+      throw StopRun(Stop{run::kExitInput,
+                         wire::ERROR_CODE_MODEL,
+                         {},
+                         fmt::format("coordinator: checkpoints with --variable-steps need one "
+                                     "leader (a domain that holds no ghosts) whose instants the "
+                                     "others land on; this cut has {} ({}), each with instants "
+                                     "of its own; run with fixed steps to write checkpoints",
+                                     leaders.size(), fmt::join(leaders, ", "))});
+    }
+    const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
+    if (!(want < 4.0e18))
+      throw StopRun(Stop{run::kExitInput,
+                         wire::ERROR_CODE_MODEL,
+                         {},
+                         fmt::format("coordinator: the checkpoint interval {} s does not fit a "
+                                     "tick count",
+                                     o_.checkpoint_interval_s)});
+    checkpoint_every_ = std::max<std::int64_t>(1, std::llround(want));
+    if (o_.log != nullptr) {
+      std::fprintf(
+          o_.log,
+          "crashlink-coordinator: checkpoints at the first instant of '%s' at or after "
+          "every %.6e s (variable steps) into %s/checkpoints\n",
+          leaders.empty() ? "?" : leaders.front().c_str(),
+          static_cast<double>(checkpoint_every_) / static_cast<double>(o_.ticks_per_second),
+          o_.out_dir.c_str());
       std::fflush(o_.log);
     }
   }
@@ -536,6 +583,7 @@ class Coordinator {
             r.get_int("interfaces"), T, hash_, router_->size()));
       }
       router_->restore_progress(T, r.get_int("forwarded"));
+      std::fill(row_latest_.begin(), row_latest_.end(), T);
       std::fill(latest_.begin(), latest_.end(), T);
       cpu_before_ = r.get_double("run.cpu_seconds");
       rows = history_->replay((std::filesystem::path(dir) / "coordinator.h5").string(),
@@ -551,14 +599,20 @@ class Coordinator {
     }
   }
 
-  /// After interface i's history row at `time` was recorded: at a checkpoint instant, once every
-  /// interface has its row there, write the coordinator's checkpoint (its history up to `time`;
-  /// the link work's running state is in the fine sides' checkpoints).
-  void snapshot(std::uint32_t i, coordinator::Tick time) {
-    if (checkpoint_every_ <= 0 || time <= 0 || time % checkpoint_every_ != 0) return;
-    auto& snaps = snapshots_[time];
-    snaps.insert(i);
-    if (snaps.size() < router_->size()) return;
+  /// A daemon announced its checkpoint at `time` (LayerReport.checkpoint: every domain writes one
+  /// there). Once every interface's history rows have reached `time`, the coordinator writes its
+  /// own: the history up to `time` (the link work's running state is in the fine sides').
+  void snapshot_when_complete() {
+    while (!due_.empty()) {
+      const coordinator::Tick time = *due_.begin();
+      for (const auto t : row_latest_)
+        if (t < time) return;
+      write_snapshot(time);
+      due_.erase(due_.begin());
+    }
+  }
+
+  void write_snapshot(coordinator::Tick time) {
     const std::string dir = run::begin_checkpoint(o_.out_dir, time, kSelf);
     history_->flush();  // rows up to `time` (and some later ones: replay keeps <= time)
     run::copy_into_checkpoint(history_->path(), dir);
@@ -572,7 +626,6 @@ class Coordinator {
     w.put_double("run.cpu_seconds", cpu_before_ + cpu_seconds() - cpu0_);
     w.save((std::filesystem::path(dir) / "state.bin").string());
     run::commit_checkpoint(o_.out_dir, time, kSelf);
-    snapshots_.erase(time);
   }
 
   /// A LayerReport from domain k: its progress and, from a fine side, history rows, each checked
@@ -592,8 +645,11 @@ class Coordinator {
           k, i, {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
           view(rows.force_n()), view(rows.link_work_j()));
       history_->append(i, samples, o_.ticks_per_second);
-      for (const auto& row : samples) snapshot(i, row.time);
+      if (!samples.empty()) row_latest_[i] = samples.back().time;
     }
+    if (rep.checkpoint() && checkpoint_every_ > 0 && router_->size() > 0)
+      due_.insert(rep.time_ticks());
+    snapshot_when_complete();
   }
 
   /// Shared-memory lanes of daemons that died leave their files behind: remove them.
@@ -737,21 +793,21 @@ class Coordinator {
   std::string hash_;
   coordinator::Tick checkpoint_every_ = 0;
   coordinator::Tick restart_from_ = -1;
-  double cpu_before_ = 0.0;  ///< CPU of the run(s) before the checkpoint restarted from
-  std::map<coordinator::Tick, std::set<std::uint32_t>> snapshots_;
-  std::vector<coordinator::Tick> latest_;  ///< [daemons] the instant of the latest report
+  double cpu_before_ = 0.0;          ///< CPU of the run(s) before the checkpoint restarted from
+  std::set<coordinator::Tick> due_;  ///< checkpoint instants announced, not written
+  std::vector<coordinator::Tick> row_latest_;  ///< [interfaces] instant of the latest history row
+  std::vector<coordinator::Tick> latest_;      ///< [daemons] the instant of the latest report
   bool lanes_ = false;
   std::int64_t reports_ = 0;
 };
 
 }  // namespace
 
-void check_layer_variable_steps(bool split, bool checkpoints, bool restart) {
-  if (split || checkpoints || restart)
+void check_layer_variable_steps(bool split) {
+  if (split)
     throw InputError(
-        "--variable-steps with `layer`: a `multi` run without checkpoints (variable layer steps "
-        "are not planned for `split`, and their checkpoints are not written yet); drop --mode "
-        "split / --checkpoint-interval / --restart, or the option");
+        "--variable-steps with `layer`: a `multi` run (variable layer steps are not planned for "
+        "`split`); drop --mode split or the option");
 }
 
 CoordinatorResult run_coordinator(const CoordinatorOptions& options) {

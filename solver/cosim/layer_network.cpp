@@ -1,12 +1,15 @@
 // LayerNetwork: every domain's LayerStepper in one thread (layer_network.h).
 #include "solver/cosim/layer_network.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "solver/core/errors.h"
+#include "solver/core/state_archive.h"
 
 namespace crashlink::cosim {
 
@@ -37,7 +40,7 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
   }
 }
 
-void LayerNetwork::initialize() {
+void LayerNetwork::build_steppers() {
   std::vector<Tick> proposal(d_.solvers.size());
   const coordinator::TickClock clock(options_.ticks_per_second);
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
@@ -73,8 +76,29 @@ void LayerNetwork::initialize() {
         plan_, d_.solvers.front()->model().controls.end_time_s, options_.ticks_per_second);
     for (auto& st : steppers_) st->set_end_time(end);
   }
+}
+
+void LayerNetwork::initialize() {
+  build_steppers();
   for (auto& st : steppers_) st->initialize();
   for (std::size_t k = 0; k < steppers_.size(); ++k) route(k);
+}
+
+void LayerNetwork::save_state(std::size_t k, core::StateWriter& w) const {
+  d_.solvers[k]->save_state(w);
+  steppers_[k]->save_state(w);
+}
+
+void LayerNetwork::restore(const std::vector<std::string>& paths) {
+  if (paths.size() != d_.solvers.size())
+    throw ModelError(fmt::format("layer network: {} checkpoints for {} domains", paths.size(),
+                                 d_.solvers.size()));
+  build_steppers();
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const core::StateReader r(paths[k]);
+    d_.solvers[k]->restore_state(r);
+    steppers_[k]->restore_state(r);
+  }
 }
 
 void LayerNetwork::route(std::size_t from) {

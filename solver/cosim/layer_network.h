@@ -13,10 +13,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "coordinator/nested_steps.h"
 #include "coordinator/ticks.h"
+#include "solver/core/state_archive.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 
@@ -46,6 +48,12 @@ class LayerNetwork {
 
   /// Solvers initialised, steps planned, steppers initialised, the t = 0 forces exchanged.
   void initialize();
+  /// Checkpoints (DESIGN.md §2.6), once run(..., until) has returned false (every domain paused
+  /// at one instant): domain k's solver and stepper (Solver / LayerStepper::save_state).
+  void save_state(std::size_t k, core::StateWriter& w) const;
+  /// Instead of initialize(): each domain k resumes from the state file paths[k] (save_state's,
+  /// StateWriter::save). Throws CheckpointError for a file of another model or run.
+  void restore(const std::vector<std::string>& paths);
   /// Advances every domain until it has finished or reached `until` ticks (each stops at the
   /// start of its first cycle at or after `until`). on_sample(k) after every begin_cycle() of
   /// solver k. Returns true when every domain has finished.
@@ -70,6 +78,7 @@ class LayerNetwork {
 
  private:
   void route(std::size_t from);
+  void build_steppers();  ///< initialize() up to the steppers' own initialize()
 
   LayerNetworkOptions options_;
   LayerDomains d_;

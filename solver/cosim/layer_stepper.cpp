@@ -255,6 +255,18 @@ bool LayerStepper::finishes_at(Tick t) const {
   return t == owner_T_ + owner_H_ && owner_last_;  // with the owner (its u_J(T + H) says so)
 }
 
+bool LayerStepper::pauses_at(Tick t) const {
+  if (!follower_) return t_ < until_ && t >= until_;
+  return owner_pause_ && t == owner_T_ + owner_H_;
+}
+
+bool LayerStepper::pause_here() {
+  if (!variable_ || !follower_) return t_ >= until_;
+  if (!step_pending_ || !owner_pause_ || !at_owner_end()) return false;
+  owner_pause_ = false;  // taken: the next advance() goes on from here
+  return true;
+}
+
 bool LayerStepper::finished_here() const {
   if (variable_) return finishes_at(t_);
   if (t_ < end_) return false;
@@ -294,6 +306,7 @@ bool LayerStepper::start_owner_step() {
           solver_.domain_name(), port.index, port.partner, t, T1));
     T1 = t;
     owner_last_ = ps.inbox.front().last;
+    owner_pause_ = ps.inbox.front().pause;
   }
   if (T1 <= t_)
     throw ModelError(
@@ -488,6 +501,7 @@ LayerMessage LayerStepper::displacement_message(const LayerPort& port) const {
   m.interface_index = port.index;
   m.time = t_ + h_;
   m.last = variable_ && finishes_at(m.time);
+  m.pause = variable_ && pauses_at(m.time);
   return m;
 }
 
@@ -613,6 +627,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
   if (!initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() +
                      "': advance() before initialize()");
+  until_ = until;
   for (;;) {
     switch (phase_) {
       case Phase::Initial:
@@ -623,7 +638,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         phase_ = Phase::Begin;
         break;
       case Phase::Begin:
-        if (t_ >= until) return wait_ = Wait::None;
+        if (pause_here()) return wait_ = Wait::None;
         if (step_pending_) {  // a variable follower at the end of its owner step
           if (finished_here()) {
             if (h_ > 0) solver_.impose_committed_step(seconds(h_));  // for the last sample

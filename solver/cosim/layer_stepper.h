@@ -108,6 +108,9 @@ struct LayerMessage {
   Tick proposal = 0;
   /// Displacement, variable steps: the owner's run ends at `time` (its holder ends there too).
   bool last = false;
+  /// Displacement, variable steps: the owner pauses at `time` (advance()'s `until`: a checkpoint),
+  /// and its holder pauses there with it.
+  bool pause = false;
 };
 
 /// History rows of one fine-side interface (coordinator/layer_work.h), for the coordinator.
@@ -142,10 +145,16 @@ class LayerStepper {
   /// side, a wrong length, or a time that is not the next one expected.
   void deliver(LayerMessage m);
 
-  /// Runs cycles until it must wait, the run is finished, or time() >= until at the start of a
-  /// cycle (returns Wait::None, nothing begun: call again to go on); calls on_sample after every
+  /// Runs cycles until it must wait, the run is finished, or it pauses at the start of a cycle
+  /// (returns Wait::None, nothing begun: call again to go on); calls on_sample after every
   /// begin_cycle() (the state at time() complete). Returns why it stopped. A domain finishes at its
   /// first instant >= the end time that is also an instant of every owner it holds ghosts of.
+  /// Pauses: fixed steps and variable leaders at their first instant >= until; a variable follower
+  /// where its owner pauses (the instants it lands on are its owner's, not the multiples of
+  /// `until`), which the owner's u_J says (LayerMessage::pause); its own `until` is not used. So
+  /// a whole tree of domains pauses at its leader's first instant >= until, to the tick, as a
+  /// checkpoint needs. The leader marks the u_J it sends from the `until` of the call that sends
+  /// it: call with the same `until` until the pause.
   Wait advance(const std::function<void()>& on_sample = {},
                Tick until = std::numeric_limits<Tick>::max());
 
@@ -170,8 +179,10 @@ class LayerStepper {
   const std::deque<LayerMessage>& outbox() const { return outbox_; }  ///< not taken yet
 
   /// Checkpoints (layer_stepper_state.cpp, DESIGN.md §2.6 "Checkpoints"). At a cycle boundary
-  /// (advance() returned Wait::None because time() reached `until`, outbox empty): the phase, the
-  /// time and every port's owner step in use, with the ghost targets. Messages already received for
+  /// (advance() returned Wait::None: it paused, outbox empty): the phase, the time and every
+  /// port's owner step in use, with the ghost targets; variable steps: the step chosen (leader) or
+  /// the owner step just ended and the proposal sent with g_A(t) (follower, which pauses only at
+  /// the end of an owner step). Messages already received for
   /// later instants are left out (their senders send them again after a restart: a faster partner
   /// computes them again; a coarse side that sent u_J(t + h) ahead before stopping at t sends it
   /// after its positions, since a restored stepper has sent nothing ahead), and the port's next
@@ -253,6 +264,8 @@ class LayerStepper {
   Tick choose_step() const;        ///< a leader's next step, from the holders' g_A (inbox fronts)
   bool at_owner_end() const;       ///< a follower at the end T + H of its owner step
   bool finishes_at(Tick t) const;  ///< variable: this domain's run ends at instant t
+  bool pauses_at(Tick t) const;    ///< variable: this domain pauses at instant t (u_J's flag)
+  bool pause_here();               ///< advance() pauses at t_ (a follower's flag is taken)
   bool start_owner_step();         ///< false: waits for the owner's next u_J
   Tick next_substep() const;       ///< a follower's next step inside the owner step
 
@@ -272,6 +285,8 @@ class LayerStepper {
   std::int64_t substep_ = 0;        ///< variable follower: index of the step about to be taken
   Tick owner_T_ = 0, owner_H_ = 0;  ///< variable follower: the owner step [T, T + H] in use
   bool owner_last_ = false;         ///< variable follower: the owner ends at T + H
+  bool owner_pause_ = false;        ///< variable follower: the owner pauses at T + H
+  Tick until_ = std::numeric_limits<Tick>::max();  ///< advance()'s `until` (a leader's pause)
   std::int64_t ticks_per_second_ = 0;
   Phase phase_ = Phase::Initial;
   Wait wait_ = Wait::None;

@@ -8,21 +8,34 @@ namespace crashlink::cosim {
 
 void LayerStepper::save_state(core::StateWriter& w) const {
   const std::string& dom = solver_.domain_name();
-  if (variable_)
-    throw ModelError(
-        fmt::format("layer stepper '{}': checkpoints of a run with variable layer "
-                    "steps are not written yet (the owner steps in use are not "
-                    "saved); run with fixed steps to write checkpoints",
-                    dom));
   if (phase_ != Phase::Begin || !outbox_.empty()) {
     throw ModelError(
         fmt::format("layer stepper '{}': a checkpoint is taken between two cycles "
                     "with nothing left to send (phase {}, {} messages queued)",
                     dom, static_cast<int>(phase_), outbox_.size()));
   }
+  if (variable_ && follower_ && !(step_pending_ && (t_ == 0 || at_owner_end()))) {
+    throw ModelError(
+        fmt::format("layer stepper '{}': a checkpoint of a variable follower is taken at the end "
+                    "of an owner step; this one is at {} ticks, inside [{}, {}]",
+                    dom, t_, owner_T_, owner_T_ + owner_H_));
+  }
   w.put_int("stepper.step", h_);
   w.put_int("stepper.ticks_per_second", ticks_per_second_);
   w.put_int("stepper.time", t_);
+  w.put_bool("stepper.variable", variable_);
+  if (variable_) {
+    // Leader: h_ is the step chosen at t_ from the holders' g_A(t_), gone with them. Follower: the
+    // owner step just ended (the next one comes with the owner's u_J, sent again) and the
+    // proposal sent with g_A(t_), from which it commits its substeps.
+    w.put_bool("stepper.step_pending", step_pending_);
+    w.put_int("stepper.proposal_sent", proposal_sent_);
+    w.put_int("stepper.substeps", substeps_);
+    w.put_int("stepper.substep", substep_);
+    w.put_int("stepper.owner_T", owner_T_);
+    w.put_int("stepper.owner_H", owner_H_);
+    w.put_bool("stepper.owner_last", owner_last_);
+  }
   w.put_int("stepper.ports", static_cast<std::int64_t>(ports_.size()));
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
@@ -44,6 +57,7 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put(pre + "u_1", std::span<const double>(ps.u_1));
     w.put(pre + "omega", std::span<const double>(ps.omega));
     w.put_int(pre + "T", ps.T);
+    w.put_int(pre + "T1", ps.T1);
     w.put_bool(pre + "have_u1", ps.have_u1);
     if (!ps.rows.empty()) {
       throw ModelError(
@@ -66,7 +80,14 @@ void LayerStepper::restore_state(const core::StateReader& r) {
   const std::string& dom = solver_.domain_name();
   if (phase_ != Phase::Initial || initialized_)
     throw ModelError("layer stepper '" + dom + "': restore_state() after initialize()");
-  if (r.get_int("stepper.step") != h_ ||
+  if (r.get_bool("stepper.variable") != variable_) {
+    throw CheckpointError(fmt::format(
+        "checkpoint {}: domain '{}' was run with {} steps, this run has {} steps; restart with "
+        "--variable-steps as the run that wrote the checkpoint {}",
+        r.path(), dom, variable_ ? "fixed" : "variable", variable_ ? "variable" : "fixed",
+        variable_ ? "did not" : "did"));
+  }
+  if ((!variable_ && r.get_int("stepper.step") != h_) ||
       r.get_int("stepper.ticks_per_second") != ticks_per_second_ ||
       r.get_int("stepper.ports") != static_cast<std::int64_t>(ports_.size())) {
     throw CheckpointError(fmt::format(
@@ -93,6 +114,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     r.get(pre + "u_1", ps.u_1);
     r.get(pre + "omega", ps.omega);
     ps.T = r.get_int(pre + "T");
+    ps.T1 = r.get_int(pre + "T1");
     ps.have_u1 = r.get_bool(pre + "have_u1");
     coordinator::LayerWorkState h;
     r.get(pre + "work.g_prev", h.g_prev);
@@ -106,6 +128,17 @@ void LayerStepper::restore_state(const core::StateReader& r) {
   r.get_exact("stepper.ghost_u", ghost_u_);
   r.get_exact("stepper.ghost_omega", ghost_omega_);
   t_ = r.get_int("stepper.time");
+  if (variable_) {
+    h_ = r.get_int("stepper.step");
+    step_pending_ = r.get_bool("stepper.step_pending");
+    proposal_sent_ = r.get_int("stepper.proposal_sent");
+    substeps_ = r.get_int("stepper.substeps");
+    substep_ = r.get_int("stepper.substep");
+    owner_T_ = r.get_int("stepper.owner_T");
+    owner_H_ = r.get_int("stepper.owner_H");
+    owner_last_ = r.get_bool("stepper.owner_last");
+    owner_pause_ = false;  // the pause it was written at is behind
+  }
   initialized_ = true;
   phase_ = Phase::Begin;
   wait_ = Wait::None;

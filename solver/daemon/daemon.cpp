@@ -164,7 +164,7 @@ class Daemon {
   void write_checkpoint() {
     const auto t0 = Clock::now();
     const cosim::Tick T = stepper_->time();
-    send_report();  // the interface history up to T, which the coordinator's checkpoint holds
+    send_report(true);  // the interface history up to T, which the coordinator's checkpoint holds
     const std::string dir = run::begin_checkpoint(o_.out_dir, T, o_.domain);
     recorder_->flush();
     run::copy_into_checkpoint(writer_->h5_path(), dir);
@@ -557,10 +557,11 @@ class Daemon {
   }
 
   /// Progress and the interface history rows completed since the last report (LayerReport).
-  void send_report() {
+  void send_report(bool checkpoint = false) {
     wire::Envelope e;
     auto* rep = e.mutable_layer_report();
     rep->set_time_ticks(stepper_->time());
+    rep->set_checkpoint(checkpoint);
     for (const auto& h : stepper_->take_history()) {
       auto* rows = rep->add_rows();
       rows->set_interface_index(h.interface_index);
@@ -631,9 +632,11 @@ class Daemon {
       }
       send_outbox();  // g_A(0) after initialize(); otherwise sent from advance() already
       if (w == Wait::Finished) return;
-      if (w == Wait::None && stepper_->time() >= until && stepper_->at_cycle_boundary()) {
+      // Paused (LayerStepper::advance): at `until`, or with variable steps at the first instant
+      // of the leader at or after it, which a follower's owner marks.
+      if (w == Wait::None && stepper_->at_cycle_boundary() && checkpoint_every_ > 0) {
         write_checkpoint();
-        next_checkpoint_ += checkpoint_every_;
+        next_checkpoint_ = (stepper_->time() / checkpoint_every_ + 1) * checkpoint_every_;
         continue;
       }
       // What on_sample read meanwhile may be the very message the stepper waits for: deliver it

@@ -22,6 +22,7 @@ wire::Envelope to_envelope(const cosim::LayerMessage& m) {
     d->set_interface_index(m.interface_index);
     d->set_time_ticks(m.time);
     d->set_last(m.last);
+    d->set_pause(m.pause);
     put(d->mutable_displacements_m(), m.first);
     put(d->mutable_angular_velocities_rad_s(), m.second);
   } else {
@@ -43,6 +44,7 @@ std::optional<cosim::LayerMessage> to_layer_message(const wire::Envelope& e) {
     m.interface_index = d.interface_index();
     m.time = d.time_ticks();
     m.last = d.last();
+    m.pause = d.pause();
     m.first = get(d.displacements_m());
     m.second = get(d.angular_velocities_rad_s());
     return m;

@@ -98,15 +98,35 @@ void expect_same_results(const std::string& ref_h5, const std::string& run_h5) {
   }
 }
 
-TEST(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
-  const fs::path ref = fresh_dir("ckpt_ref");
+/// Fixed steps, and variable ones (each domain its own proposal; the checkpoints at the body's
+/// first instant at or after each multiple of the interval, where the wiper pauses with it).
+class CheckpointRestart : public ::testing::TestWithParam<std::string> {};
+
+std::string steps_name(const ::testing::TestParamInfo<std::string>& p) {
+  return p.param.empty() ? "Fixed" : "Variable";
+}
+
+INSTANTIATE_TEST_SUITE_P(Steps, CheckpointRestart,
+                         ::testing::Values(std::string(), std::string("--variable-steps")),
+                         steps_name);
+
+TEST_P(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
+  const std::string steps = GetParam();
+  const std::string tag = steps.empty() ? "" : "_var";
+  const fs::path ref = fresh_dir("ckpt_ref" + tag);
   int status = -1;
-  const std::string out_ref = run_command(run_line(ref, ""), status);
+  const std::string out_ref = run_command(run_line(ref, steps), status);
   ASSERT_EQ(status, 0) << out_ref;
   EXPECT_GE(complete_instants(ref), 3u) << out_ref;  // 3 kept (6, 8, 10 ms)
+  if (!steps.empty()) {
+    // at instants of the leader: not the multiples of the interval to the tick
+    for (const auto t : crashlink::run::list_checkpoints(ref.string(), "coordinator"))
+      std::printf("[measured] variable steps: a checkpoint at %lld ticks\n",
+                  static_cast<long long>(t));
+  }
 
   // The same run, killed between its second and third checkpoints.
-  const fs::path dir = fresh_dir("ckpt_killed");
+  const fs::path dir = fresh_dir("ckpt_killed" + tag);
   {
     std::vector<std::string> argv{bin("crashlink"),
                                   "run",
@@ -118,6 +138,7 @@ TEST(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
                                   std::to_string(kInterval_s),
                                   "--out",
                                   dir.string()};
+    if (!steps.empty()) argv.push_back(steps);
     Child run(argv);
     const auto deadline = std::chrono::steady_clock::now() + 300s;
     while (complete_instants(dir) < 2 && std::chrono::steady_clock::now() < deadline) {
@@ -137,7 +158,7 @@ TEST(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
 
   const std::string out = run_command(
       bin("crashlink") + " run " + kScenario + " --mode multi --quiet --checkpoint-interval " +
-          std::to_string(kInterval_s) + " --restart " + dir.string(),
+          std::to_string(kInterval_s) + " " + steps + " --restart " + dir.string(),
       status);
   ASSERT_EQ(status, 0) << out;
   const std::string marker = "from the checkpoint at t = ";
@@ -153,7 +174,94 @@ TEST(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
   expect_same_results((ref / "result.h5").string(), (dir / "result.h5").string());
 }
 
-TEST(CheckpointRestart, RestartWithoutCheckpointsIsRefusedNamingWhatEachHas) {
+// Variable steps on a chain fine | mid | coarse, over processes: mid follows coarse and leads
+// fine, so the three pause together only if each owner's u_J says where (LayerMessage::pause).
+// The run with checkpoints, resumed from its newest, ends as the run without them, to the bit.
+TEST(CheckpointRestartChain, VariableStepsRestartedFromTheNewestCheckpointIsTheSameRun) {
+  const fs::path dir = fresh_dir("ckpt_chain");
+  const std::string scenario = crashlink::proc_test::write_file(
+      dir / "chain.yaml",
+      crashlink::proc_test::bar_parts_yaml(
+          "chain3", 6.0e-4,
+          {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+  const std::string run = bin("crashlink") + " run " + scenario +
+                          " --mode multi --quiet --variable-steps --step-safety 0.8 ";
+  int status = -1;
+  const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
+  ASSERT_EQ(status, 0) << out_ref;
+  const std::string every = "--checkpoint-interval 1.1e-4 ";
+  const std::string out_ck = run_command(run + every + "--out " + (dir / "ck").string(), status);
+  ASSERT_EQ(status, 0) << out_ck;
+  const auto instants = crashlink::run::list_checkpoints((dir / "ck").string(), "coordinator");
+  ASSERT_EQ(instants.size(), 3u) << out_ck;  // the newest 3 of 5 (1.1e-4 ... 5.5e-4 s)
+  for (const char* d : {"fine", "mid", "coarse"})
+    EXPECT_EQ(crashlink::run::list_checkpoints((dir / "ck").string(), d), instants) << d;
+  const std::string out = run_command(run + every + "--restart " + (dir / "ck").string(), status);
+  ASSERT_EQ(status, 0) << out;
+  const std::string marker = "from the checkpoint at t = ";
+  ASSERT_NE(out.find(marker), std::string::npos) << out;
+  std::printf(
+      "[measured] chain, variable steps: checkpoints at %lld, %lld, %lld ticks; restarted "
+      "from t = %s",
+      static_cast<long long>(instants[0]), static_cast<long long>(instants[1]),
+      static_cast<long long>(instants[2]),
+      out.substr(out.find(marker) + marker.size(), 12).c_str());
+  std::printf(" s\n");
+
+  const crashlink::io::ResultReader a((dir / "ref" / "result.h5").string());
+  const crashlink::io::ResultReader b((dir / "ck" / "result.h5").string());
+  const auto ga = a.glstat(), gb = b.glstat();
+  ASSERT_EQ(ga.size(), gb.size());
+  for (std::size_t i = 0; i < ga.size(); ++i) {
+    ASSERT_EQ(ga[i].time_s, gb[i].time_s) << "row " << i;
+    ASSERT_EQ(ga[i].kinetic_energy_J, gb[i].kinetic_energy_J) << "row " << i;
+    ASSERT_EQ(ga[i].internal_energy_J, gb[i].internal_energy_J) << "row " << i;
+    ASSERT_EQ(ga[i].coupling_work_J, gb[i].coupling_work_J) << "row " << i;
+  }
+  ASSERT_EQ(a.state_count(), b.state_count());
+  const auto last = a.state_count() - 1;
+  EXPECT_EQ(a.state(last).displacement_m, b.state(last).displacement_m);
+  EXPECT_EQ(a.state(last).velocity_m_s, b.state(last).velocity_m_s);
+  std::error_code ec;
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
+}
+
+// Two bars that do not touch, each cut in two: two leaders, whose instants never meet. Variable
+// steps cannot checkpoint them together: refused before the run, naming both.
+TEST(CheckpointRestartRefusals, VariableStepsWithTwoLeadersAreRefusedNamingThem) {
+  const fs::path dir = fresh_dir("ckpt_two_leaders");
+  std::string yaml = crashlink::proc_test::bar_parts_yaml(
+      "two_bars", 1e-4,
+      {{"fine1", 0.0, 0.1, 20}, {"coarse1", 0.1, 0.1, 5}, {"fine2", 0.3, 0.1, 20}});
+  // fine2 on its own (no node near another part's) and coarse2 merged with it
+  const std::string merged = "  fine2:\n    material: steel\n    merge_nodes: true\n";
+  ASSERT_NE(yaml.find(merged), std::string::npos) << yaml;
+  yaml.replace(yaml.find(merged), merged.size(), "  fine2:\n    material: steel\n");
+  const std::string parts_end = "node_sets:\n";
+  yaml.insert(yaml.find(parts_end),
+              "  coarse2:\n    material: steel\n    merge_nodes: true\n    mesh: {generator: bar, "
+              "origin: [0.4, 0.0, 0.0], axis: x, length: 0.2, cross_section: [0.05, 0.05], "
+              "divisions: 5}\n");
+  yaml += "  coarse2: {parts: [coarse2]}\n";
+  const std::string scenario = crashlink::proc_test::write_file(dir / "two.yaml", yaml);
+  int status = -1;
+  const std::string out = run_command(bin("crashlink") + " run " + scenario +
+                                          " --mode multi --quiet --variable-steps "
+                                          "--checkpoint-interval 2e-5 --out " +
+                                          (dir / "out").string(),
+                                      status);
+  EXPECT_NE(status, 0) << out;
+  EXPECT_NE(out.find("coordinator exited with code 2"), std::string::npos) << out;
+  EXPECT_NE(out.find("need one leader"), std::string::npos) << out;
+  EXPECT_NE(out.find("(coarse1, coarse2)"), std::string::npos) << out;
+  const std::string plain =
+      run_command(bin("crashlink") + " run " + scenario +
+                      " --mode multi --quiet --variable-steps --out " + (dir / "plain").string(),
+                  status);
+  EXPECT_EQ(status, 0) << "without checkpoints the two groups run:\n" << plain;
+}
+
+TEST(CheckpointRestartRefusals, RestartWithoutCheckpointsIsRefusedNamingWhatEachHas) {
   const fs::path dir = fresh_dir("ckpt_none");
   int status = -1;
   const std::string out = run_command(

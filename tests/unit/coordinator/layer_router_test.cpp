@@ -147,3 +147,30 @@ TEST(LayerRouter, WithVariableStepsAnyLaterInstantGoesAndAnEarlierOneIsRefused) 
   EXPECT_EQ(r.rows(0, 0, std::vector<std::int64_t>{0, 7}, f, w).size(), 2u);
   EXPECT_THROW(r.rows(0, 0, std::vector<std::int64_t>{5, 19}, f, w), ProtocolError);
 }
+
+// Variable steps: a checkpoint at T counts the vectors forwarded for the instants up to T, any
+// instants; after a restart every interface expects instants after T, and the count goes on.
+TEST(LayerRouter, WithVariableStepsMessagesThroughCountsWhatWasForwardedUpToAnInstant) {
+  auto r = two_domains();
+  r.set_variable_steps(true);
+  Tick t = 0;
+  for (int k = 0; k < 100; ++k) {  // steps of 7, 8, 9, 7, ...: no multiple of anything
+    r.force(0, 0, t, vec(1.0), {});
+    const Tick next = t + 7 + k % 3;
+    r.displacement(1, 0, next, vec(1.0), {});  // u_J(T + H) before g_A(T + H)
+    t = next;
+  }
+  // forces at the 100 instants before t and displacements at the 100 after 0, up to t
+  EXPECT_EQ(r.forwarded(), 200);
+  EXPECT_EQ(r.messages_through(t), 200);
+  EXPECT_EQ(r.messages_through(t - 1), 199);                    // not the u_J(t) sent ahead
+  EXPECT_THROW((void)r.messages_through(5), std::logic_error);  // folded out of the window
+  r.restore_progress(t, 199);
+  EXPECT_EQ(r.forwarded(), 199);
+  EXPECT_THROW(r.force(0, 0, t, vec(1.0), {}), ProtocolError);  // g_A(t) was used before
+  EXPECT_EQ(r.force(0, 0, t + 1, vec(1.0), {}).to, 1);
+  EXPECT_EQ(r.messages_through(t + 1), 200);
+  const std::vector<double> f{0.0, 0.0, 0.0}, w{0.0};
+  EXPECT_THROW(r.rows(0, 0, std::vector<std::int64_t>{t}, f, w), ProtocolError);
+  EXPECT_EQ(r.rows(0, 0, std::vector<std::int64_t>{t + 3}, f, w).size(), 1u);
+}

@@ -1,0 +1,139 @@
+// Checkpoints of `layer` runs with variable steps (layer_stepper.h advance(), save_state; docs/
+// checkpoints.md "Variable steps"), in the in-process LayerNetwork, on the three-domain chain
+// fine | mid | coarse, where the middle domain follows the coarse one and leads the fine one:
+// - the whole chain pauses at one instant, the coarse leader's first instant at or after
+//   `until` (mid and fine land on it, flagged by their owners' u_J), not at instants of their own;
+// - a run saved there and restored into a fresh network ends with the uninterrupted run's bits,
+//   and so does the paused run itself (a pause changes nothing).
+// The same over processes, killed and restarted: CheckpointRestart.*/Variable.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "solver/core/state_archive.h"
+#include "solver/cosim/layer_network.h"
+#include "tests/unit/partition/partition_models.h"
+
+using namespace crashlink;
+using namespace crashlink::testing;
+
+namespace {
+
+model::Model pulsed_chain() {
+  auto m = chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}});
+  m.controls.end_time_s = 2e-3;
+  m.controls.bulk_viscosity = true;
+  for (auto i : where(m, [](double x, double, double) { return x < 1e-9; }))
+    m.fixed[static_cast<std::size_t>(i)] |= 7;
+  const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
+  m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
+  return m;
+}
+
+cosim::LayerNetworkOptions variable() {
+  cosim::LayerNetworkOptions o;
+  o.variable_steps = true;
+  o.step_safety = 0.9;
+  return o;
+}
+
+cosim::Tick ticks(const cosim::LayerNetwork& net, double t_s) {
+  return static_cast<cosim::Tick>(t_s * static_cast<double>(net.stepper(0).ticks_per_second()));
+}
+
+std::size_t index_of(const cosim::LayerNetwork& net, const std::string& name) {
+  for (std::size_t k = 0; k < net.size(); ++k)
+    if (net.solver(k).domain_name() == name) return k;
+  ADD_FAILURE() << "no domain " << name;
+  return 0;
+}
+
+void expect_same_bits(const cosim::LayerNetwork& a, const cosim::LayerNetwork& b,
+                      const std::string& what) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const auto& sa = a.solver(k);
+    const auto& sb = b.solver(k);
+    EXPECT_EQ(sa.cycle(), sb.cycle()) << what << ", " << sa.domain_name();
+    EXPECT_EQ(a.stepper(k).time(), b.stepper(k).time()) << what << ", " << sa.domain_name();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < sa.displacement().size(); ++i) {
+      differ += std::bit_cast<std::uint64_t>(sa.displacement()[i]) !=
+                std::bit_cast<std::uint64_t>(sb.displacement()[i]);
+      differ += std::bit_cast<std::uint64_t>(sa.velocity_mid()[i]) !=
+                std::bit_cast<std::uint64_t>(sb.velocity_mid()[i]);
+    }
+    EXPECT_EQ(differ, 0u) << what << ", " << sa.domain_name() << ": values that differ";
+  }
+}
+
+}  // namespace
+
+TEST(LayerVariableCheckpoint, TheChainPausesTogetherAtTheLeadersFirstInstantAfterUntil) {
+  const auto m = pulsed_chain();
+  cosim::LayerNetwork net(m, variable());
+  net.initialize();
+  const std::size_t leader = index_of(net, "coarse");
+  cosim::Tick leader_before = -1;  // the leader's last sampled instant before the pause
+  int pauses = 0;
+  for (double until_s = 1.3e-4; until_s < 1.9e-3; until_s += 1.7e-4) {
+    const auto until = ticks(net, until_s);
+    ASSERT_FALSE(net.run(
+        [&](std::size_t k) {
+          if (k == leader) leader_before = net.stepper(k).time();
+        },
+        until));
+    const cosim::Tick T = net.stepper(leader).time();
+    EXPECT_GE(T, until);
+    EXPECT_LT(leader_before, until) << "the leader passed `until` before pausing";
+    for (std::size_t k = 0; k < net.size(); ++k) {
+      EXPECT_EQ(net.stepper(k).time(), T) << net.solver(k).domain_name() << " at until " << until;
+      EXPECT_TRUE(net.stepper(k).at_cycle_boundary()) << net.solver(k).domain_name();
+    }
+    ++pauses;
+  }
+  EXPECT_EQ(pauses, 11);
+  EXPECT_TRUE(net.run());
+}
+
+TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsBits) {
+  const auto m = pulsed_chain();
+  cosim::LayerNetwork straight(m, variable());
+  straight.initialize();
+  ASSERT_TRUE(straight.run());
+
+  cosim::LayerNetwork paused(m, variable());
+  paused.initialize();
+  ASSERT_FALSE(paused.run({}, ticks(paused, 7.7e-4)));  // mid-pulse
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_layer_variable_checkpoint_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < paused.size(); ++k) {
+    core::StateWriter w;
+    paused.save_state(k, w);
+    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
+    w.save(paths.back());
+  }
+  cosim::LayerNetwork resumed(m, variable());
+  resumed.restore(paths);
+  for (std::size_t k = 0; k < resumed.size(); ++k)
+    EXPECT_EQ(resumed.stepper(k).time(), paused.stepper(k).time());
+  ASSERT_TRUE(resumed.run());
+  ASSERT_TRUE(paused.run());
+  std::filesystem::remove_all(dir);
+
+  expect_same_bits(straight, resumed, "restored");
+  expect_same_bits(straight, paused, "paused");
+  std::string cycles;
+  for (std::size_t k = 0; k < straight.size(); ++k)
+    cycles +=
+        " " + straight.solver(k).domain_name() + " " + std::to_string(straight.solver(k).cycle());
+  std::printf("[measured] chain, variable steps, restored from %.4e s: cycles%s, to the bit\n",
+              paused.seconds(ticks(paused, 7.7e-4)), cycles.c_str());
+}
