@@ -25,8 +25,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
                 "each domain's step follows its stable step as the mesh deforms instead of "
-                "being fixed (paper: split takes the smallest of all at every instant; layer: "
-                "multi only, no checkpoints; docs/multirate.md)");
+                "being fixed (split: every domain at the smallest proposal of all at every "
+                "instant; multi: each its own; docs/multirate.md)");
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");

@@ -113,7 +113,6 @@ int run_coupled(const RunCommandOptions& o) {
     throw InputError(
         "--coupling paper: --checkpoint-interval and --restart are features of "
         "`layer` runs; run `paper` without them");
-  if (!paper && o.variable_steps) coordination::check_layer_variable_steps(o.mode != "multi");
   if (!paper && o.no_drift)
     throw InputError(
         "--no-drift switches the drift correction [11] of --coupling paper off; "

@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
       "--variable-steps", o.variable_steps,
       "variable steps instead of fixed steps planned at the start. `paper`: impose each free "
       "state's own step proposal (split: the smallest of all at every instant; multi: each its "
-      "own); `layer` (multi, no checkpoints): each domain follows its own proposal "
-      "(docs/multirate.md)");
+      "own); `layer`: the same, the leader choosing the step from its own and its holders' "
+      "proposals (docs/multirate.md)");
   apps::add_session_flags(app, session);
   try {
     app.parse(argc, argv);

@@ -156,7 +156,6 @@ class Coordinator {
       throw InputError(
           "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
           "or drop the option)");
-    if (o_.variable_steps && !o_.paper) check_layer_variable_steps(o_.common_step);
     if (o_.paper) {
       if (o_.checkpoint_interval_s > 0.0 || o_.restart)
         throw InputError(
@@ -802,13 +801,6 @@ class Coordinator {
 };
 
 }  // namespace
-
-void check_layer_variable_steps(bool split) {
-  if (split)
-    throw InputError(
-        "--variable-steps with `layer`: a `multi` run (variable layer steps are not planned for "
-        "`split`); drop --mode split or the option");
-}
 
 CoordinatorResult run_coordinator(const CoordinatorOptions& options) {
   return Coordinator(options).run();

@@ -103,12 +103,6 @@ struct CoordinatorResult {
   std::vector<DomainOutcome> domains;
 };
 
-/// The one rule for variable `layer` steps (docs/multirate.md "Variable steps"): `multi` only.
-/// Throws InputError with the fix otherwise; the launcher checks it before it starts any process,
-/// the coordinator for runs started by hand. (Their checkpoints need one leader: the coordinator
-/// checks that on the cut, layer_checkpoint_leader.)
-void check_layer_variable_steps(bool split);
-
 /// Runs the coordinator to the end of the run (or the first failure). Never throws.
 CoordinatorResult run_coordinator(const CoordinatorOptions& options);
 

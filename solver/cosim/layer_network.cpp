@@ -20,10 +20,9 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
                      std::to_string(options_.step_safety));
   if (options_.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
-  if (options_.variable_steps && (options_.common_step || !options_.proposal_s.empty()))
+  if (options_.variable_steps && !options_.proposal_s.empty())
     throw ModelError(
-        "layer network: variable steps are for `multi` with the solvers' own "
-        "proposals (no common_step or proposal_s)");
+        "layer network: variable steps follow the solvers' own proposals (no proposal_s)");
   if (!options_.proposal_s.empty() && options_.proposal_s.size() != d_.solvers.size())
     throw ModelError("layer network: " + std::to_string(options_.proposal_s.size()) +
                      " step proposals for " + std::to_string(d_.solvers.size()) + " domains");
@@ -67,7 +66,9 @@ void LayerNetwork::build_steppers() {
       if (p.fine_side) p.partner_step = plan_.step[coarse_of_[p.index]];
     steppers_.push_back(std::make_unique<LayerStepper>(
         *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.ticks_per_second,
-        options_.variable_steps ? LayerSteps::Variable : LayerSteps::Fixed));
+        !options_.variable_steps ? LayerSteps::Fixed
+        : options_.common_step   ? LayerSteps::VariableCommon
+                                 : LayerSteps::Variable));
   }
   if (options_.variable_steps) {
     for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);

@@ -33,9 +33,9 @@ struct LayerNetworkOptions {
   /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
   std::vector<double> proposal_s;
   std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
-  /// `multi` only: every domain follows its own step proposal (layer_stepper.h "Steps"); the
-  /// leaders take step_safety of theirs (LayerStepper::set_proposal_limits); proposal_s must stay
-  /// empty; plan() is then not used.
+  /// Every domain follows its own step proposal (layer_stepper.h "Steps"; `multi`: the leaders
+  /// take step_safety of theirs, LayerStepper::set_proposal_limits; `split`: all the least
+  /// proposal of all at every instant); proposal_s must stay empty; plan() is then not used.
   bool variable_steps = false;
 };
 

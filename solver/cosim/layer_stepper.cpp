@@ -33,7 +33,8 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
     : solver_(solver),
       ports_(std::move(ports)),
       h_(step),
-      variable_(steps == LayerSteps::Variable),
+      variable_(steps != LayerSteps::Fixed),
+      common_(steps == LayerSteps::VariableCommon),
       ticks_per_second_(ticks_per_second) {
   const std::string& dom = solver_.domain_name();
   if (variable_) {
@@ -168,7 +169,7 @@ void LayerStepper::initialize() {
               solver_.domain_name(), port.index, solver_.model().nodes.id[i]));
     }
   }
-  send_forces();  // g_A(0) of every fine port
+  if (!forces_wait_for_holders()) send_forces();  // g_A(0) of every fine port (else: Initial)
 }
 
 bool LayerStepper::at_owner_instant(const LayerPort& port) const {
@@ -188,7 +189,32 @@ Tick LayerStepper::proposal_ticks() const {
   return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
 }
 
+Tick LayerStepper::subtree_proposal() const {
+  // The least proposal of this domain and of the holders' g_A(t_) at the inbox fronts (each
+  // already its sender's subtree's least); 0 when none has a limit.
+  Tick p = proposal_ticks();
+  for (std::size_t k = 0; k < ports_.size(); ++k) {
+    if (ports_[k].fine_side || state_[k].inbox.empty()) continue;
+    const Tick q = state_[k].inbox.front().proposal;
+    if (q > 0 && (p == 0 || q < p)) p = q;
+  }
+  return p;
+}
+
+bool LayerStepper::forces_wait_for_holders() const {
+  if (!common_ || !follower_) return false;
+  return std::any_of(ports_.begin(), ports_.end(), [](const LayerPort& p) { return !p.fine_side; });
+}
+
 Tick LayerStepper::choose_step() const {
+  if (common_) {  // split: the least proposal of all (header, "Variable common")
+    const Tick H = subtree_proposal();
+    if (H == 0)
+      throw ModelError("layer stepper '" + solver_.domain_name() +
+                       "': no domain of this coupling has a stable-step limit (rigid bodies "
+                       "only?); set controls.dt_max");
+    return H;
+  }
   // A leader's next step (header, "Steps"): H = p_own or a whole multiple of a holder's proposal
   // below it, whichever costs least per unit time; the holders' proposals come with g_A(t).
   Tick own = proposal_ticks();
@@ -539,7 +565,7 @@ void LayerStepper::send_forces() {
     m.kind = LayerMessage::Kind::Force;
     m.interface_index = port.index;
     m.time = t_;
-    if (variable_) m.proposal = proposal_sent_ = proposal_ticks();
+    if (variable_) m.proposal = proposal_sent_ = common_ ? subtree_proposal() : proposal_ticks();
     m.first.resize(3 * port.local.size());
     if (state_[p].rotates) m.second.resize(3 * port.local.size());
     for (std::size_t j = 0; j < port.local.size(); ++j) {
@@ -632,6 +658,10 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
     switch (phase_) {
       case Phase::Initial:
         if (!forces_ready()) return wait_ = Wait::Force;
+        if (forces_wait_for_holders()) {  // g_A(0) with the holders' proposals at 0
+          send_forces();
+          flush_outbox();
+        }
         if (variable_ && !follower_) h_ = choose_step();  // reads the g_A(0) proposals
         apply_initial_forces();
         if (variable_ && !follower_) solver_.impose_step(seconds(h_));
@@ -673,12 +703,18 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         }
         solver_.end_cycle_compute();  // overlaps the partners' work
         t_ += h_;
-        send_forces();
-        flush_outbox();
+        if (!forces_wait_for_holders()) {
+          send_forces();
+          flush_outbox();
+        }
         phase_ = Phase::Accelerations;
         break;
       case Phase::Accelerations:
         if (!forces_ready()) return wait_ = Wait::Force;
+        if (forces_wait_for_holders()) {  // g_A(t) with the holders' proposals at t
+          send_forces();
+          flush_outbox();
+        }
         {
           // The next step: fixed; a leader's choice (reads the g_A proposals, before
           // apply_forces takes them); a follower's next substep, or unknown at the end of its

@@ -54,6 +54,12 @@
 //     the last ones a tick longer when n does not divide H), p the proposal it sent with g_A(T).
 //     The later substeps may not exceed the stable step itself (Solver::impose_committed_step).
 //   - a follower's own holders see its substeps as its steps.
+// Variable common (`split`, LayerSteps::VariableCommon): one step for all, as a mono run takes it
+// (DESIGN.md §2.1: the smallest proposal of all at every instant). Every g_A(t) carries the least
+// proposal of its sender's whole subtree (a domain that holds ghosts and has holders of its own
+// sends its g_A(t) only once its holders' g_A(t) are in); the leader takes H = the least of its
+// own and its holders' (no step safety, no hysteresis, no limit on the rise), and every follower
+// then takes its owner step in one substep.
 //
 // Array shapes: Port::local [n_J] (local solver index of each J node, Interface::j_nodes_global
 // order); every vector in a LayerMessage [3 n_J], xyz interleaved, the same order.
@@ -90,8 +96,9 @@ class LayerPartnerError : public ModelError {
   using ModelError::ModelError;
 };
 
-/// How a LayerStepper's steps are chosen (layer_stepper.h, "Steps").
-enum class LayerSteps : std::uint8_t { Fixed, Variable };
+/// How a LayerStepper's steps are chosen (layer_stepper.h, "Steps"). VariableCommon: `split` with
+/// variable steps, every domain at the smallest proposal of all at every instant.
+enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
 /// omega_J(time - H/2) [rad/s] (`second`, empty when no J node rotates). Force: ghost holder ->
@@ -217,7 +224,11 @@ class LayerStepper {
   /// controls.end_time_s in ticks (nearest), or set_end_time's
   Tick end_time() const { return end_; }
   Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)
-  LayerSteps steps() const { return variable_ ? LayerSteps::Variable : LayerSteps::Fixed; }
+  LayerSteps steps() const {
+    return !variable_ ? LayerSteps::Fixed
+           : common_  ? LayerSteps::VariableCommon
+                      : LayerSteps::Variable;
+  }
   std::int64_t ticks_per_second() const { return ticks_per_second_; }
   double seconds(Tick n) const;
   Wait waiting() const { return wait_; }
@@ -261,6 +272,8 @@ class LayerStepper {
   void flush_outbox();
   // Variable steps.
   Tick proposal_ticks() const;
+  Tick subtree_proposal() const;         ///< variable common: the least of own and holders' g_A(t_)
+  bool forces_wait_for_holders() const;  ///< variable common: g_A(t) after the holders' g_A(t)
   Tick choose_step() const;        ///< a leader's next step, from the holders' g_A (inbox fronts)
   bool at_owner_end() const;       ///< a follower at the end T + H of its owner step
   bool finishes_at(Tick t) const;  ///< variable: this domain's run ends at instant t
@@ -275,7 +288,8 @@ class LayerStepper {
   Tick h_ = 0, t_ = 0, end_ = 0;
   bool initialized_ = false;
   bool record_history_ = false;
-  bool variable_ = false;           ///< LayerSteps::Variable
+  bool variable_ = false;           ///< LayerSteps::Variable or VariableCommon
+  bool common_ = false;             ///< LayerSteps::VariableCommon
   bool follower_ = false;           ///< variable: has fine ports (its owner sets its owner steps)
   bool step_pending_ = false;       ///< variable follower: the next step awaits the owner's u_J
   Tick proposal_sent_ = 0;          ///< variable follower: the proposal sent with g_A(T)

@@ -278,7 +278,9 @@ class Daemon {
     open_lanes(setup);
     stepper_ = std::make_unique<cosim::LayerStepper>(
         *solver(), std::move(dom_->ports), setup.step_ticks(), tps_,
-        setup.variable_steps() ? cosim::LayerSteps::Variable : cosim::LayerSteps::Fixed);
+        !setup.variable_steps()            ? cosim::LayerSteps::Fixed
+        : setup.mode() == wire::MODE_SPLIT ? cosim::LayerSteps::VariableCommon
+                                           : cosim::LayerSteps::Variable);
     stepper_->set_record_history(true);
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);

@@ -39,18 +39,3 @@ TEST(CliRun, UnknownModeIsRefusedWithExitCode2) {
   EXPECT_EQ(WEXITSTATUS(status), 2) << out;
   EXPECT_NE(out.find("--mode multi"), std::string::npos) << out;
 }
-
-// --variable-steps with `layer` is for `multi` runs: split is refused with exit code 2 and a
-// message that says so (their checkpoints: CheckpointRestart.*/Variable).
-TEST(CliRun, VariableLayerStepsRefuseSplit) {
-  const std::string base = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
-                           CRASHLINK_SOURCE_DIR + "/scenarios/head_impact_small.yaml --quiet " +
-                           "--variable-steps --out " +
-                           (std::filesystem::temp_directory_path() / "crashlink_cli_var").string();
-  for (const std::string extra : {" --mode split", " --mode split --checkpoint-interval 1e-3"}) {
-    int status = -1;
-    const std::string out = run_command(base + extra, status);
-    EXPECT_EQ(WEXITSTATUS(status), 2) << extra << "\n" << out;
-    EXPECT_NE(out.find("not planned for `split`"), std::string::npos) << extra << "\n" << out;
-  }
-}
