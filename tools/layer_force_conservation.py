@@ -30,13 +30,32 @@ Measured (2026-11-22), `tools/layer_force_conservation.py 100000 sample,conserve
   highest frequency, on 3 fine elements, the layer and 3 coarse elements), 2 10^4 steps:
   'conserve' blows up at every r >= 2, after 4 452 (r = 2) to 15 904 (r = 8) steps; 'sample'
   stays bounded (rise of the undissipated energy 0.1-0.5 % of E0).
-So exact conservation this way is not a remedy at r = 2-4. Usage: layer_force_conservation.py
-[fine steps] [modes, comma-separated] [xi].
+So exact conservation this way is not a remedy at r = 2-4.
+
+Energy control by feedback (session 12): 'passive' and 'passabs' sample F as crashlink does and,
+whenever E has risen above its running minimum at a coarse instant, take the excess out over the
+next coarse step with a dashpot at J (to its coarse neighbour, resp. to the ground), its
+coefficient capped at kappa m / H ('passabs:0.1': kappa = 0.1; default 0.5). Measured, 2 10^4
+steps, `layer_force_conservation.py 20000 sample,passive,passabs 0.06`:
+  'sample' rises 0.11 / 0.21 / 0.21 / 0.48 / 0.32 / 0.32 % of E0 at r = 2 / 3 / 4 / 6 / 8 / 16,
+    and 0.087-0.48 % of it comes in ONE coarse step (the printed "max one-step rise"), during the
+    band's first passage through the interface (fine steps 500-1 400);
+  'passive' / 'passabs' leave the rise at 0.09-0.47 % and take 0.3-10 % more of E0 out by the
+    end; without interface damping 'passive' blows up or grows at r = 2-8 and 'passabs' still
+    rises 0.5-62 %.
+  A smooth field (fourth argument 'hann': a Hann bump over the band instead of its sharp edges)
+  does not help: with xi = 0.06 the one-step rise is 0.06-0.66 % at r = 2-16.
+So the rise the issue's criterion sees is the coupling's energy error within a single coarse step
+when content that the coarse mesh does not resolve crosses the interface: a control acting one
+step later cannot undo it. Meeting 0.1 % needs a coupled energy that the scheme conserves or
+dissipates at every step by construction.
+
+Usage: layer_force_conservation.py [fine steps] [modes, comma-separated] [xi] [band|hann].
 """
 import sys
 import numpy as np
 
-def run(r, nsteps, mode, xi=0.0):
+def run(r, nsteps, mode, xi=0.0, field='band'):
     dx = 0.01
     nf = 100
     nc = max(4, int(round(2.0 / (r * dx))))
@@ -69,7 +88,12 @@ def run(r, nsteps, mode, xi=0.0):
         return f
     h = 0.9 * dx; H = r * h
     rng = np.random.default_rng(1)
-    uA = np.zeros(nf + 2); vA = np.where((xf >= 0.3) & (xf <= 0.5), 1.0, 0.0)
+    inside = (xf >= 0.3) & (xf <= 0.5)
+    if field == 'hann':
+        band = np.where(inside, np.sin(np.pi * np.clip((xf - 0.3) / 0.2, 0.0, 1.0)) ** 2, 0.0)
+    else:
+        band = np.where(inside, 1.0, 0.0)
+    uA = np.zeros(nf + 2); vA = band
     vA = np.r_[vA, 0.0] + 1e-4 * rng.standard_normal(nf + 2)
     vA[0] = 0.0
     uB = np.zeros(nc + 1); vB = 1e-4 * rng.standard_normal(nc + 1); vB[-1] = 0.0
@@ -91,6 +115,11 @@ def run(r, nsteps, mode, xi=0.0):
         return ke + se
     E0 = energy(uA, vAm, vAp, uB, vBm, vBp)
     Emin = E0; rise = 0.0
+    base = mode.split(':')[0]
+    kappa = float(mode.split(':')[1]) if ':' in mode else 0.5
+    c_d = 0.0      # the dashpot's coefficient over the coming coarse step (passive, passabs)
+    jump = 0.0     # the largest rise of E over one coarse step
+    Eprev = E0
     ncoarse = nsteps // r
     for n in range(ncoarse):
         # coarse step T -> T+H with F^n
@@ -111,7 +140,7 @@ def run(r, nsteps, mode, xi=0.0):
             vAm = vAp; vAp = vAp + h * aA
             vAm[-1] = vAp[-1] = (uJ1 - uJ0) / H
         ftil = fsum / r
-        if mode == 'sample':
+        if base in ('sample', 'passive', 'passabs'):
             F = fJ
         elif mode == 'conserve':
             F = 2.0 * ftil - F
@@ -119,19 +148,34 @@ def run(r, nsteps, mode, xi=0.0):
             F = ftil
         else:
             F = fJ + float(mode[1:]) * (2.0 * ftil - F - fJ)
-        aB = fB / mB; aB[0] = (fB[0] + F) / MJ; aB[fixB] = 0
+        fd = np.zeros_like(fB)      # the energy control's dashpot at J
+        if base == 'passive' and c_d > 0.0:
+            fd[0] -= c_d * (vBp[0] - vBp[1]); fd[1] += c_d * (vBp[0] - vBp[1])
+        elif base == 'passabs' and c_d > 0.0:
+            fd[0] -= c_d * vBp[0]
+        aB = (fB + fd) / mB; aB[0] = (fB[0] + fd[0] + F) / MJ; aB[fixB] = 0
         vBm = vBp; vBp = vBp + H * aB
         E = energy(uA, vAm, vAp, uB, vBm, vBp)
         if not np.isfinite(E) or E > 1e6 * E0:
-            return dict(r=r, mode=mode, rise=np.inf, end=np.inf, blowup=(n + 1) * r)
+            return dict(r=r, mode=mode, rise=np.inf, end=np.inf, blowup=(n + 1) * r, jump=np.inf)
+        if n > 0:
+            jump = max(jump, (E - Eprev) / E0)
+        Eprev = E
         Emin = min(Emin, E); rise = max(rise, (E - Emin) / E0)
-    return dict(r=r, mode=mode, rise=rise, end=E / E0, blowup=None)
+        if base in ('passive', 'passabs'):   # the excess over the running minimum, next step
+            dv = vBp[0] - vBp[1] if base == 'passive' else vBp[0]
+            cmax = kappa * (min(MJ, mB[1]) if base == 'passive' else MJ) / H
+            excess = E - Emin
+            c_d = min(cmax, excess / (H * dv * dv)) if excess > 0.0 and dv != 0.0 else 0.0
+    return dict(r=r, mode=mode, rise=rise, end=E / E0, blowup=None, jump=jump)
 
 if __name__ == '__main__':
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
     modes = sys.argv[2].split(',') if len(sys.argv) > 2 else ['sample', 'conserve']
     xi = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
+    field = sys.argv[4] if len(sys.argv) > 4 else 'band'
     for r in (1, 2, 3, 4, 6, 8, 16):
         for mode in modes:
-            o = run(r, n, mode, xi)
-            print(f"r={r:2d} {mode:8s} rise={o['rise']:.3e} E_end/E0={o['end']:.6f} blowup={o['blowup']}", flush=True)
+            o = run(r, n, mode, xi, field)
+            print(f"r={r:2d} {mode:8s} rise={o['rise']:.3e} E_end/E0={o['end']:.6f} "
+                  f"blowup={o['blowup']} max one-step rise={o['jump']:.3e}", flush=True)
