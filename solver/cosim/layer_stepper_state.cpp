@@ -82,10 +82,10 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     throw ModelError("layer stepper '" + dom + "': restore_state() after initialize()");
   if (r.get_bool("stepper.variable") != variable_) {
     throw CheckpointError(fmt::format(
-        "checkpoint {}: domain '{}' was run with {} steps, this run has {} steps; restart with "
-        "--variable-steps as the run that wrote the checkpoint {}",
+        "checkpoint {}: domain '{}' was run with {} steps, this run has {} steps; restart {} "
+        "--variable-steps, as the run that wrote the checkpoint",
         r.path(), dom, variable_ ? "fixed" : "variable", variable_ ? "variable" : "fixed",
-        variable_ ? "did not" : "did"));
+        variable_ ? "without" : "with"));
   }
   if ((!variable_ && r.get_int("stepper.step") != h_) ||
       r.get_int("stepper.ticks_per_second") != ticks_per_second_ ||

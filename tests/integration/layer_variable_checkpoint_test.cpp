@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/errors.h"
 #include "solver/core/state_archive.h"
 #include "solver/cosim/layer_network.h"
 #include "tests/unit/partition/partition_models.h"
@@ -119,6 +120,18 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
     paused.save_state(k, w);
     paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
     w.save(paths.back());
+  }
+  {  // a checkpoint of variable steps does not restart a run of fixed steps
+    cosim::LayerNetworkOptions fixed;
+    fixed.step_safety = 0.9;
+    cosim::LayerNetwork wrong(m, fixed);
+    try {
+      wrong.restore(paths);
+      ADD_FAILURE() << "a variable-step checkpoint restored into fixed steps";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find("restart with --variable-steps"), std::string::npos)
+          << e.what();
+    }
   }
   cosim::LayerNetwork resumed(m, variable());
   resumed.restore(paths);
