@@ -10,9 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <set>
 #include <span>
@@ -22,12 +20,12 @@
 #include "coordinator/layer_router.h"
 #include "coordinator/protocol_error.h"
 #include "coordinator/stall_watch.h"
+#include "solver/coordination/coordinator_checkpoints.h"
 #include "solver/coordination/coupling_history.h"
 #include "solver/coordination/layer_cut.h"
 #include "solver/coordination/paper_cut.h"
 #include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
-#include "solver/core/state_archive.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
@@ -128,7 +126,7 @@ class Coordinator {
       r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
     }
     remove_lane_files();
-    r.cpu_seconds = cpu_before_ + cpu_seconds() - cpu0_;
+    r.cpu_seconds = run_cpu_seconds();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
     close_history(r);
     r.endpoint = link_ ? link_->endpoint() : std::string();
@@ -136,8 +134,8 @@ class Coordinator {
     r.lanes = lanes_;
     r.reports = reports_;
     r.notices = notices_;
-    r.checkpoint_interval_ticks = checkpoint_every_;
-    r.restarted_from_ticks = restart_from_;
+    r.checkpoint_interval_ticks = checkpoints_ ? checkpoints_->every() : 0;
+    r.restarted_from_ticks = checkpoints_ ? checkpoints_->restarted_from() : -1;
     r.domains = outcomes_;
     return r;
   }
@@ -146,6 +144,8 @@ class Coordinator {
   double cpu_seconds() const {
     return o_.in_process ? thread_cpu_seconds() : run::process_cpu_seconds();
   }
+  /// CPU of this run, plus that of the run(s) before the checkpoint it restarted from.
+  double run_cpu_seconds() const { return cpu_before_ + cpu_seconds() - cpu0_; }
 
   void prepare() {
     const std::string hash = io::scenario_hash(o_.scenario);
@@ -173,7 +173,7 @@ class Coordinator {
 
     std::filesystem::create_directories(o_.out_dir);
     hash_ = hash;
-    if (!o_.restart) run::remove_checkpoints(o_.out_dir, kSelf);
+    if (!o_.restart) run::remove_checkpoints(o_.out_dir, CoordinatorCheckpoints::kSelf);
     history_ = std::make_unique<CouplingHistory>(
         (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut_,
         o_.paper ? "paper" : "layer");
@@ -287,21 +287,25 @@ class Coordinator {
     }
     router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
     router_->set_variable_steps(o_.variable_steps);
-    row_latest_.assign(router_->size(), 0);
     lanes_ = o_.lanes && std::all_of(regs_.begin(), regs_.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
-    plan_checkpoints(plan.step);
-    options.set_checkpoint_interval_ticks(checkpoint_every_);
-    if (o_.restart) restore(choose_restart());
+    checkpoints_ = std::make_unique<CoordinatorCheckpoints>(o_, cut_, hash_);
+    options.set_checkpoint_interval_ticks(checkpoints_->plan(plan.step));
+    if (o_.restart) {
+      const auto T = checkpoints_->choose_restart(regs_, router_->size() > 0);
+      cpu_before_ = checkpoints_->restore(T, *router_, *history_);
+      if (router_->size() > 0) std::fill(latest_.begin(), latest_.end(), T);
+    }
+    const coordinator::Tick restart_from = checkpoints_->restarted_from();
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       outcomes_[k].step_ticks = plan.step[k];
       auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.common_step, options,
                                  o_.ticks_per_second);
       setup.mutable_setup()->set_variable_steps(o_.variable_steps);
-      if (restart_from_ >= 0) {
+      if (restart_from >= 0) {
         setup.mutable_setup()->set_restart(true);
-        setup.mutable_setup()->set_restart_ticks(restart_from_);
+        setup.mutable_setup()->set_restart_ticks(restart_from);
       }
       if (lanes_) add_lanes(static_cast<int>(k), *setup.mutable_setup());
       link_->send(cut_.names[k], setup);
@@ -454,179 +458,6 @@ class Coordinator {
                     fmt::join(where, ", "))});
   }
 
-  static constexpr const char* kSelf = "coordinator";
-
-  /// The interval in ticks: checkpoint_interval_s rounded to a whole multiple (>= 1) of the least
-  /// common multiple of the domains' steps, so every domain is between two cycles there.
-  void plan_checkpoints(const std::vector<coordinator::Tick>& steps) {
-    if (!(o_.checkpoint_interval_s > 0.0)) return;
-    if (o_.variable_steps) {
-      plan_variable_checkpoints();
-      return;
-    }
-    coordinator::Tick l = 1;
-    for (const auto h : steps) {
-      if (h < 1) continue;
-      l = std::lcm(l, h);
-      if (l > (std::int64_t{1} << 60)) {
-        throw StopRun(Stop{run::kExitInput,
-                           wire::ERROR_CODE_MODEL,
-                           {},
-                           "coordinator: the domains' steps have no common multiple that fits "
-                           "a tick count; run without checkpoints"});
-      }
-    }
-    const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
-    const auto n = std::max<std::int64_t>(
-        1, static_cast<std::int64_t>(std::llround(want / static_cast<double>(l))));
-    checkpoint_every_ = n * l;
-    if (o_.log != nullptr) {
-      std::fprintf(
-          o_.log,
-          "crashlink-coordinator: checkpoints every %.6e s (asked %.6e s; a multiple of "
-          "every domain's step) into %s/checkpoints\n",
-          static_cast<double>(checkpoint_every_) / static_cast<double>(o_.ticks_per_second),
-          o_.checkpoint_interval_s, o_.out_dir.c_str());
-      std::fflush(o_.log);
-    }
-  }
-
-  /// Variable steps: the interval as asked, in ticks; each checkpoint is written at the leader's
-  /// first instant at or after a multiple of it, where the whole tree of domains pauses
-  /// (LayerStepper::advance). A cut with several leaders (domains that hold no ghost) has no
-  /// common instants: refused.
-  void plan_variable_checkpoints() {
-    std::vector<std::string> leaders;
-    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
-      const bool follows =
-          std::any_of(cut_.interfaces.begin(), cut_.interfaces.end(),
-                      [&](const auto& c) { return c.fine == static_cast<int>(k); });
-      if (!follows) leaders.push_back(cut_.names[k]);
-    }
-    if (leaders.size() > 1) {
-      throw StopRun(Stop{run::kExitInput,
-                         wire::ERROR_CODE_MODEL,
-                         {},
-                         fmt::format("coordinator: checkpoints with --variable-steps need one "
-                                     "leader (a domain that holds no ghosts) whose instants the "
-                                     "others land on; this cut has {} ({}), each with instants "
-                                     "of its own; run with fixed steps to write checkpoints",
-                                     leaders.size(), fmt::join(leaders, ", "))});
-    }
-    const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
-    if (!(want < 4.0e18))
-      throw StopRun(Stop{run::kExitInput,
-                         wire::ERROR_CODE_MODEL,
-                         {},
-                         fmt::format("coordinator: the checkpoint interval {} s does not fit a "
-                                     "tick count",
-                                     o_.checkpoint_interval_s)});
-    checkpoint_every_ = std::max<std::int64_t>(1, std::llround(want));
-    if (o_.log != nullptr) {
-      std::fprintf(
-          o_.log,
-          "crashlink-coordinator: checkpoints at the first instant of '%s' at or after "
-          "every %.6e s (variable steps) into %s/checkpoints\n",
-          leaders.empty() ? "?" : leaders.front().c_str(),
-          static_cast<double>(checkpoint_every_) / static_cast<double>(o_.ticks_per_second),
-          o_.out_dir.c_str());
-      std::fflush(o_.log);
-    }
-  }
-
-  /// The newest instant at which the coordinator and every daemon have a checkpoint.
-  coordinator::Tick choose_restart() {
-    std::vector<coordinator::Tick> common = run::list_checkpoints(o_.out_dir, kSelf);
-    const bool any_interface = router_->size() > 0;
-    std::string listing = fmt::format("coordinator: [{}]", fmt::join(common, ", "));
-    bool first = true;
-    for (std::size_t k = 0; k < cut_.names.size(); ++k) {
-      const auto& ticks = regs_[k].checkpoint_ticks();
-      std::vector<coordinator::Tick> mine(ticks.begin(), ticks.end());
-      std::sort(mine.begin(), mine.end());
-      listing += fmt::format("; {}: [{}]", cut_.names[k], fmt::join(mine, ", "));
-      if (first && !any_interface) {
-        common = mine;  // no interface: the coordinator keeps no state of its own
-      } else {
-        std::vector<coordinator::Tick> both;
-        std::set_intersection(common.begin(), common.end(), mine.begin(), mine.end(),
-                              std::back_inserter(both));
-        common = std::move(both);
-      }
-      first = false;
-    }
-    if (common.empty()) {
-      throw StopRun(Stop{run::kExitInput,
-                         wire::ERROR_CODE_MODEL,
-                         {},
-                         fmt::format("coordinator: --restart: no checkpoint instant (ticks of "
-                                     "1/{} s) that the coordinator and every domain have ({}); "
-                                     "run from the start without --restart",
-                                     o_.ticks_per_second, listing)});
-    }
-    return common.back();
-  }
-
-  /// Router and interface histories as they were at T.
-  void restore(coordinator::Tick T) {
-    const std::string dir = run::checkpoint_folder(o_.out_dir, T, kSelf);
-    std::size_t rows = 0;
-    if (router_->size() > 0) {
-      const core::StateReader r((std::filesystem::path(dir) / "state.bin").string());
-      if (r.get_string("scenario_hash") != hash_ || r.get_int("time_ticks") != T ||
-          r.get_int("interfaces") != static_cast<std::int64_t>(router_->size())) {
-        throw CheckpointError(fmt::format(
-            "checkpoint {}: written at {} ticks for scenario {} with {} interfaces; this run is "
-            "at {} ticks of scenario {} with {}: restart with the scenario that wrote it",
-            r.path(), r.get_int("time_ticks"), r.get_string("scenario_hash"),
-            r.get_int("interfaces"), T, hash_, router_->size()));
-      }
-      router_->restore_progress(T, r.get_int("forwarded"));
-      std::fill(row_latest_.begin(), row_latest_.end(), T);
-      std::fill(latest_.begin(), latest_.end(), T);
-      cpu_before_ = r.get_double("run.cpu_seconds");
-      rows = history_->replay((std::filesystem::path(dir) / "coordinator.h5").string(),
-                              static_cast<double>(T) / static_cast<double>(o_.ticks_per_second));
-    }
-    restart_from_ = T;
-    if (o_.log != nullptr) {
-      std::fprintf(o_.log,
-                   "crashlink-coordinator: restarting every domain from the checkpoint at t = "
-                   "%.6e s (%zu interface history rows kept)\n",
-                   static_cast<double>(T) / static_cast<double>(o_.ticks_per_second), rows);
-      std::fflush(o_.log);
-    }
-  }
-
-  /// A daemon announced its checkpoint at `time` (LayerReport.checkpoint: every domain writes one
-  /// there). Once every interface's history rows have reached `time`, the coordinator writes its
-  /// own: the history up to `time` (the link work's running state is in the fine sides').
-  void snapshot_when_complete() {
-    while (!due_.empty()) {
-      const coordinator::Tick time = *due_.begin();
-      for (const auto t : row_latest_)
-        if (t < time) return;
-      write_snapshot(time);
-      due_.erase(due_.begin());
-    }
-  }
-
-  void write_snapshot(coordinator::Tick time) {
-    const std::string dir = run::begin_checkpoint(o_.out_dir, time, kSelf);
-    history_->flush();  // rows up to `time` (and some later ones: replay keeps <= time)
-    run::copy_into_checkpoint(history_->path(), dir);
-    core::StateWriter w;
-    w.put_string("scenario_hash", hash_);
-    w.put_int("time_ticks", time);
-    w.put_int("interfaces", static_cast<std::int64_t>(router_->size()));
-    // the vectors routed for the instants up to `time` only: later ones are sent again after a
-    // restart (LayerRouter::messages_through; 0 when the daemons use lanes)
-    w.put_int("forwarded", std::min(router_->forwarded(), router_->messages_through(time)));
-    w.put_double("run.cpu_seconds", cpu_before_ + cpu_seconds() - cpu0_);
-    w.save((std::filesystem::path(dir) / "state.bin").string());
-    run::commit_checkpoint(o_.out_dir, time, kSelf);
-  }
-
   /// A LayerReport from domain k: its progress and, from a fine side, history rows, each checked
   /// (LayerRouter::rows: k's fine-side interface, the next owner instants in order, sizes).
   void report(int k, const wire::LayerReport& rep) {
@@ -644,11 +475,10 @@ class Coordinator {
           k, i, {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
           view(rows.force_n()), view(rows.link_work_j()));
       history_->append(i, samples, o_.ticks_per_second);
-      if (!samples.empty()) row_latest_[i] = samples.back().time;
+      if (!samples.empty()) checkpoints_->rows_reached(i, samples.back().time);
     }
-    if (rep.checkpoint() && checkpoint_every_ > 0 && router_->size() > 0)
-      due_.insert(rep.time_ticks());
-    snapshot_when_complete();
+    if (rep.checkpoint()) checkpoints_->announced(rep.time_ticks());
+    checkpoints_->write_when_complete(*router_, *history_, run_cpu_seconds());
   }
 
   /// Shared-memory lanes of daemons that died leave their files behind: remove them.
@@ -790,12 +620,9 @@ class Coordinator {
   std::int64_t notices_ = 0;
   std::set<std::string> logged_;
   std::string hash_;
-  coordinator::Tick checkpoint_every_ = 0;
-  coordinator::Tick restart_from_ = -1;
-  double cpu_before_ = 0.0;          ///< CPU of the run(s) before the checkpoint restarted from
-  std::set<coordinator::Tick> due_;  ///< checkpoint instants announced, not written
-  std::vector<coordinator::Tick> row_latest_;  ///< [interfaces] instant of the latest history row
-  std::vector<coordinator::Tick> latest_;      ///< [daemons] the instant of the latest report
+  std::unique_ptr<CoordinatorCheckpoints> checkpoints_;  ///< `layer`, once the steps are planned
+  double cpu_before_ = 0.0;  ///< CPU of the run(s) before the checkpoint restarted from
+  std::vector<coordinator::Tick> latest_;  ///< [daemons] the instant of the latest report
   bool lanes_ = false;
   std::int64_t reports_ = 0;
 };

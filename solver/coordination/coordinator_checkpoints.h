@@ -1,0 +1,70 @@
+#pragma once
+// The coordinator's side of checkpoints and restart (docs/checkpoints.md): the interval (fixed
+// steps: a whole multiple of every domain's step; variable steps: as asked, written at the
+// leader's first instant at or after each multiple), the instant a restart resumes from, and the
+// coordinator's own checkpoint (the interface histories up to it, the vectors it routed, its CPU),
+// written once a daemon has announced the instant and every interface's history rows reached it.
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "coordinator/layer_router.h"
+#include "coordinator/ticks.h"
+#include "proto/crashlink.pb.h"
+#include "solver/coordination/coordinator_run.h"
+#include "solver/coordination/coupling_history.h"
+#include "solver/coordination/layer_cut.h"
+
+namespace crashlink::coordination {
+
+class CoordinatorCheckpoints {
+ public:
+  /// The folder name of the coordinator's checkpoints beside the daemons' (run/checkpoint_store.h).
+  static constexpr const char* kSelf = "coordinator";
+
+  /// `options` and `cut` must outlive this object; `hash` is the scenario's.
+  CoordinatorCheckpoints(const CoordinatorOptions& options, const LayerCut& cut, std::string hash);
+
+  /// The interval in ticks from options.checkpoint_interval_s (0: none), logged. Fixed steps:
+  /// rounded to a whole multiple (>= 1) of the least common multiple of `steps`, so every domain
+  /// is between two cycles there. Variable steps: as asked; the cut must have one leader (a domain
+  /// that holds no ghosts). Throws InputError otherwise, with the leaders' names or the values.
+  coordinator::Tick plan(const std::vector<coordinator::Tick>& steps);
+  coordinator::Tick every() const { return every_; }
+
+  /// The newest instant at which the coordinator (if `any_interface`: without one it keeps no state
+  /// of its own) and every daemon (regs[k].checkpoint_ticks, cut order) have a checkpoint.
+  /// Throws InputError listing what each has when there is none.
+  coordinator::Tick choose_restart(const std::vector<wire::Register>& regs,
+                                   bool any_interface) const;
+  /// Router and interface histories as they were at T (nothing to restore without an interface).
+  /// Returns the CPU time [s] of the run(s) before T. Throws CheckpointError for a checkpoint of
+  /// another scenario or cut.
+  double restore(coordinator::Tick T, coordinator::LayerRouter& router, CouplingHistory& history);
+  coordinator::Tick restarted_from() const { return restart_from_; }  ///< -1: from t = 0
+
+  /// After a LayerReport: interface i's history rows have reached `time`.
+  void rows_reached(std::uint32_t i, coordinator::Tick time);
+  /// A daemon announced its checkpoint at `time` (LayerReport.checkpoint).
+  void announced(coordinator::Tick time);
+  /// Writes the coordinator's checkpoint at every announced instant that every interface's rows
+  /// have reached, with `cpu_seconds` the run's CPU time so far.
+  void write_when_complete(const coordinator::LayerRouter& router, CouplingHistory& history,
+                           double cpu_seconds);
+
+ private:
+  void plan_variable();
+  void write(coordinator::Tick time, const coordinator::LayerRouter& router,
+             CouplingHistory& history, double cpu_seconds);
+
+  const CoordinatorOptions& o_;
+  const LayerCut& cut_;
+  std::string hash_;
+  coordinator::Tick every_ = 0;
+  coordinator::Tick restart_from_ = -1;
+  std::set<coordinator::Tick> due_;            ///< instants announced, not written yet
+  std::vector<coordinator::Tick> row_latest_;  ///< [interfaces] instant of the latest history row
+};
+
+}  // namespace crashlink::coordination

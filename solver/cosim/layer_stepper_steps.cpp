@@ -1,0 +1,211 @@
+// LayerStepper's steps, ends and pauses (layer_stepper.h "Steps"; DESIGN.md §2.6): a variable
+// leader's choice of H, a follower's owner steps and substeps, the instants at which a domain
+// ends and pauses (advance()'s `until`, checkpoints).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "solver/core/errors.h"
+#include "solver/cosim/layer_stepper.h"
+
+namespace crashlink::cosim {
+
+namespace {
+/// Variable steps: a leader's step changes by at most this fraction per step (choose_step).
+constexpr double kStepChange = 0.02;
+/// Variable steps: a leader changes to a cheaper kind of step only for more than this gain.
+constexpr double kSwitchGain = 0.05;
+}  // namespace
+
+void LayerStepper::set_proposal_limits(double leader_safety, double max_step_s) {
+  if (!(leader_safety > 0.0 && leader_safety <= 1.0) || !(max_step_s >= 0.0))
+    throw ModelError(
+        fmt::format("layer stepper '{}': leader safety {} must be in (0, 1] and the "
+                    "step cap {} s >= 0",
+                    solver_.domain_name(), leader_safety, max_step_s));
+  leader_safety_ = leader_safety;
+  max_step_s_ = max_step_s;
+}
+
+bool LayerStepper::at_owner_instant(const LayerPort& port) const {
+  if (!variable_) return t_ % port.partner_step == 0;
+  return t_ == 0 || at_owner_end();  // every fine port has the one owner
+}
+
+Tick LayerStepper::proposal_ticks() const {
+  double dt = solver_.step_proposal();
+  if (max_step_s_ > 0.0) dt = std::min(dt, max_step_s_);
+  if (!std::isfinite(dt) || dt >= 1e3) return 0;  // rigid bodies only: no limit of its own
+  if (!(dt * static_cast<double>(ticks_per_second_) >= 1.0))
+    throw NumericalError(
+        fmt::format("{}: the stable step fell to {:.3e} s, below one tick, at "
+                    "t = {} ticks, set by {}: an element is collapsing",
+                    solver_.domain_name(), dt, t_, solver_.critical_element()));
+  return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
+}
+
+Tick LayerStepper::subtree_proposal() const {
+  // The least proposal of this domain and of the holders' g_A(t_) at the inbox fronts (each
+  // already its sender's subtree's least); 0 when none has a limit.
+  Tick p = proposal_ticks();
+  for (std::size_t k = 0; k < ports_.size(); ++k) {
+    if (ports_[k].fine_side || state_[k].inbox.empty()) continue;
+    const Tick q = state_[k].inbox.front().proposal;
+    if (q > 0 && (p == 0 || q < p)) p = q;
+  }
+  return p;
+}
+
+bool LayerStepper::forces_wait_for_holders() const {
+  if (!common_ || !follower_) return false;
+  return std::any_of(ports_.begin(), ports_.end(), [](const LayerPort& p) { return !p.fine_side; });
+}
+
+Tick LayerStepper::choose_step() const {
+  if (common_) {  // split: the least proposal of all (header, "Variable common")
+    const Tick H = subtree_proposal();
+    if (H == 0)
+      throw ModelError("layer stepper '" + solver_.domain_name() +
+                       "': no domain of this coupling has a stable-step limit (rigid bodies "
+                       "only?); set controls.dt_max");
+    return H;
+  }
+  // A leader's next step (header, "Steps"): H = p_own or a whole multiple of a holder's proposal
+  // below it, whichever costs least per unit time; the holders' proposals come with g_A(t).
+  Tick own = proposal_ticks();
+  if (own > 0 && leader_safety_ < 1.0)
+    own = std::max<Tick>(1, static_cast<Tick>(leader_safety_ * static_cast<double>(own)));
+  struct Holder {
+    Tick p;
+    double w;
+  };
+  std::vector<Holder> holders;
+  std::vector<std::string> seen;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (port.fine_side || state_[p].inbox.empty()) continue;
+    if (std::find(seen.begin(), seen.end(), port.partner) != seen.end()) continue;
+    seen.push_back(port.partner);
+    holders.push_back({state_[p].inbox.front().proposal,
+                       static_cast<double>(std::max<std::size_t>(port.partner_elements, 1))});
+  }
+  if (own == 0)
+    for (const auto& k : holders) own = std::max(own, k.p);
+  if (own == 0)
+    throw ModelError("layer stepper '" + solver_.domain_name() +
+                     "': no domain of this coupling has a stable-step limit (rigid bodies only?); "
+                     "set controls.dt_max");
+  const double w_own =
+      static_cast<double>(std::max<std::size_t>(solver_.model().element_count(), 1));
+  auto rate = [&](Tick H) {
+    double c = w_own;
+    for (const auto& k : holders) c += k.w * static_cast<double>(k.p > 0 ? (H + k.p - 1) / k.p : 1);
+    return c / static_cast<double>(H);
+  };
+  std::vector<Tick> candidates{own};
+  for (const auto& k : holders)
+    if (k.p > 0 && k.p <= own) candidates.push_back((own / k.p) * k.p);
+  Tick best = own;
+  double best_rate = rate(own);
+  for (const Tick H : candidates) {
+    const double r = rate(H);
+    if (r < best_rate || (r == best_rate && H > best)) {
+      best = H;
+      best_rate = r;
+    }
+  }
+  // Hysteresis: the candidate nearest the last step stays unless another one is cheaper by more
+  // than kSwitchGain (two nearly equal costs must not make the step jump back and forth).
+  if (h_ > 0) {
+    Tick near = own;
+    for (const Tick H : candidates)
+      if (std::abs(H - h_) < std::abs(near - h_)) near = H;
+    if (rate(near) <= (1.0 + kSwitchGain) * best_rate) best = near;
+  }
+  // Up toward that target by at most kStepChange per step (a jump of the step by x costs the
+  // central-difference energy balance about x / 2 of that step's work, [2]); down at once: a
+  // holder's falling proposal must shrink H with it, or its substep count would jump instead.
+  if (h_ > 0)
+    best = std::min(
+        best, h_ + std::max<Tick>(1, static_cast<Tick>(kStepChange * static_cast<double>(h_))));
+  return best;
+}
+
+bool LayerStepper::finishes_at(Tick t) const {
+  if (!follower_) return t >= end_;
+  return t == owner_T_ + owner_H_ && owner_last_;  // with the owner (its u_J(T + H) says so)
+}
+
+bool LayerStepper::pauses_at(Tick t) const {
+  if (!follower_) return t_ < until_ && t >= until_;
+  return owner_pause_ && t == owner_T_ + owner_H_;
+}
+
+bool LayerStepper::pause_here() {
+  if (!variable_ || !follower_) return t_ >= until_;
+  if (!step_pending_ || !owner_pause_ || !at_owner_end()) return false;
+  owner_pause_ = false;  // taken: the next advance() goes on from here
+  return true;
+}
+
+bool LayerStepper::finished_here() const {
+  if (variable_) return finishes_at(t_);
+  if (t_ < end_) return false;
+  for (const auto& port : ports_)
+    if (port.fine_side && !at_owner_instant(port)) return false;  // land with the owner
+  return true;
+}
+
+bool LayerStepper::at_owner_end() const {
+  return owner_H_ > 0 && t_ == owner_T_ + owner_H_;
+}
+
+Tick LayerStepper::next_substep() const {
+  // Substep j of n of the owner step H: H / n whole ticks, the last H mod n of them one tick
+  // longer (no substep shorter than the others by more than a tick: DESIGN.md §2.7).
+  const Tick q = owner_H_ / substeps_, r = owner_H_ % substeps_;
+  return q + (substep_ >= substeps_ - r ? 1 : 0);
+}
+
+bool LayerStepper::start_owner_step() {
+  // A follower at the end of its owner step (or at t = 0): the owner's next u_J(T + H), the
+  // front of every fine port's inbox (the one in use was taken by ghost_targets_ready), tells H.
+  Tick T1 = -1;
+  for (std::size_t p = 0; p < ports_.size(); ++p) {
+    const auto& port = ports_[p];
+    if (!port.fine_side) continue;
+    const auto& ps = state_[p];
+    if (ps.inbox.empty()) {
+      wait_iface_ = port.index;
+      return false;
+    }
+    const Tick t = ps.inbox.front().time;
+    if (T1 >= 0 && t != T1)
+      throw LayerPartnerError(fmt::format(
+          "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, another "
+          "of its interfaces for t = {} ticks; one owner step must end at one instant",
+          solver_.domain_name(), port.index, port.partner, t, T1));
+    T1 = t;
+    owner_last_ = ps.inbox.front().last;
+    owner_pause_ = ps.inbox.front().pause;
+  }
+  if (T1 <= t_)
+    throw ModelError(
+        fmt::format("layer stepper '{}': the owner's u_J for t = {} ticks is not "
+                    "after this domain's instant {} ticks",
+                    solver_.domain_name(), T1, t_));
+  owner_T_ = t_;
+  owner_H_ = T1 - t_;
+  substeps_ = proposal_sent_ > 0
+                  ? std::max<Tick>(1, owner_H_ / proposal_sent_ + (owner_H_ % proposal_sent_ != 0))
+                  : 1;
+  substep_ = 0;
+  h_ = next_substep();
+  return true;
+}
+
+}  // namespace crashlink::cosim
