@@ -26,14 +26,7 @@ using namespace crashlink::testing;
 namespace {
 
 model::Model pulsed_chain() {
-  auto m = chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}});
-  m.controls.end_time_s = 2e-3;
-  m.controls.bulk_viscosity = true;
-  for (auto i : where(m, [](double x, double, double) { return x < 1e-9; }))
-    m.fixed[static_cast<std::size_t>(i)] |= 7;
-  const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
-  m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
-  return m;
+  return pulsed_chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}}, 2e-3, 2e-4, -1e5);
 }
 
 cosim::LayerNetworkOptions variable() {

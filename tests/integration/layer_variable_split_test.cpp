@@ -18,23 +18,8 @@
 using namespace crashlink;
 using namespace crashlink::testing;
 
-namespace {
-
-model::Model pulsed_chain(double end_s) {
-  auto m = chain3();
-  m.controls.end_time_s = end_s;
-  m.controls.bulk_viscosity = true;
-  for (auto i : where(m, [](double x, double, double) { return x < 1e-9; }))
-    m.fixed[static_cast<std::size_t>(i)] |= 7;
-  const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
-  m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 1e-4, 2e-4}, {0.0, -4e7, 0.0}}});
-  return m;
-}
-
-}  // namespace
-
 TEST(LayerVariableSplit, ChainFollowsTheLeastProposalOfAllAsMonoDoes) {
-  const auto m = pulsed_chain(1.5e-3);
+  const auto m = pulsed_chain3({{"coarse", {0}}, {"mid", {1}}, {"fine", {2}}}, 1.5e-3, 1e-4, -4e7);
   cosim::LayerNetworkOptions o;
   o.common_step = true;
   o.variable_steps = true;

@@ -213,15 +213,9 @@ TEST(LayerVariableSteps, FollowsAStableStepThatFallsWhereFixedStepsStop) {
 // The chain fine | mid | coarse (0.05 / 0.1 / 0.2 m elements): the middle domain follows the
 // coarse one and leads the fine one; against mono at its own steps on the fine end's node.
 TEST(LayerVariableSteps, ThreeDomainChainRuns) {
-  auto m = chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}});
-  m.controls.end_time_s = 2e-3;
-  m.controls.bulk_viscosity = true;
+  auto m = pulsed_chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}}, 2e-3, 2e-4, -1e5);
   m.controls.dt_scale = 0.5;  // mono runs at its own steps: keep their dispersion apart small
-  for (auto i : where(m, [](double x, double, double) { return x < 1e-9; }))
-    m.fixed[static_cast<std::size_t>(i)] |= 7;
-  const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
-  m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
-  const std::size_t gi = static_cast<std::size_t>(end.front());
+  const std::size_t gi = static_cast<std::size_t>(m.loads.back().nodes.front());
   const History mono = mono_history(m, gi);
   cosim::LayerNetworkOptions o;
   o.variable_steps = true;

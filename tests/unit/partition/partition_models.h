@@ -140,6 +140,20 @@ inline model::Model chain3(std::vector<model::Domain> domains = {
   return m;
 }
 
+/// chain3 held at x = 0, bulk viscosity on, run to `end_s`, with a triangular force pulse along x
+/// on its x = 2 m end: 0 at t = 0, `peak_N` at `rise_s`, 0 from 2 `rise_s` on.
+inline model::Model pulsed_chain3(std::vector<model::Domain> domains, double end_s, double rise_s,
+                                  double peak_N) {
+  auto m = chain3(std::move(domains));
+  m.controls.end_time_s = end_s;
+  m.controls.bulk_viscosity = true;
+  for (auto i : where(m, [](double x, double, double) { return x < 1e-9; }))
+    m.fixed[static_cast<std::size_t>(i)] |= 7;
+  const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
+  m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, rise_s, 2 * rise_s}, {0.0, peak_N, 0.0}}});
+  return m;
+}
+
 /// Four 0.5 x 0.5 m quadrant plates (4 x 4 shells each) around the origin, same mesh, densities
 /// 1, 4, 16 x steel so that the steps are in ratio 1 : 2 : 4: domain "a" = q1 (finest), "b" = q2,
 /// "c" = q3 + q4 (coarsest). The centre node is shared by the three domains.
