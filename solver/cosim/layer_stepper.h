@@ -197,8 +197,10 @@ class LayerStepper {
   /// with messages queued to send, or holding a received message for an instant <= time()
   /// (unconsumed).
   void save_state(core::StateWriter& w) const;
-  /// Instead of initialize(), after the solver's own restore_state(): resumes at the saved instant.
-  /// Throws CheckpointError if the saved step, tick or ports differ from this stepper's.
+  /// Instead of initialize(), after the solver's own restore_state(), and after
+  /// set_proposal_limits(): resumes at the saved instant. Throws CheckpointError if the saved
+  /// steps (fixed: the step; variable: the step safety and cap), tick or ports differ from this
+  /// stepper's.
   void restore_state(const core::StateReader& r);
   /// advance() stopped between two cycles (at `until`) or has not started.
   bool at_cycle_boundary() const { return phase_ == Phase::Begin; }

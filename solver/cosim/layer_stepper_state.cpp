@@ -35,6 +35,8 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put_int("stepper.owner_T", owner_T_);
     w.put_int("stepper.owner_H", owner_H_);
     w.put_bool("stepper.owner_last", owner_last_);
+    w.put_double("stepper.leader_safety", leader_safety_);
+    w.put_double("stepper.max_step_s", max_step_s_);
   }
   w.put_int("stepper.ports", static_cast<std::int64_t>(ports_.size()));
   for (std::size_t p = 0; p < ports_.size(); ++p) {
@@ -87,6 +89,15 @@ void LayerStepper::restore_state(const core::StateReader& r) {
         r.path(), dom, variable_ ? "fixed" : "variable", variable_ ? "variable" : "fixed",
         variable_ ? "without" : "with"));
   }
+  if (variable_ && (r.get_double("stepper.leader_safety") != leader_safety_ ||
+                    r.get_double("stepper.max_step_s") != max_step_s_)) {
+    throw CheckpointError(fmt::format(
+        "checkpoint {}: domain '{}' chose its steps with a step safety of {} and a step cap of "
+        "{} s; this run has {} and {} s. Variable steps go on from the checkpoint by the same "
+        "rule only with the same --step-safety and --max-step: restart with those",
+        r.path(), dom, r.get_double("stepper.leader_safety"), r.get_double("stepper.max_step_s"),
+        leader_safety_, max_step_s_));
+  }
   if ((!variable_ && r.get_int("stepper.step") != h_) ||
       r.get_int("stepper.ticks_per_second") != ticks_per_second_ ||
       r.get_int("stepper.ports") != static_cast<std::int64_t>(ports_.size())) {
@@ -101,8 +112,9 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     const auto& port = ports_[p];
     auto& ps = state_[p];
     const std::string pre = fmt::format("port{}.", p);
+    // (variable steps: partner_step is the planned first step, which the run does not use)
     if (r.get_int(pre + "index") != port.index || r.get_bool(pre + "fine_side") != port.fine_side ||
-        r.get_int(pre + "partner_step") != port.partner_step) {
+        (!variable_ && r.get_int(pre + "partner_step") != port.partner_step)) {
       throw CheckpointError(
           fmt::format("checkpoint {}: domain '{}', interface {} was cut or "
                       "stepped differently by the run that wrote it",

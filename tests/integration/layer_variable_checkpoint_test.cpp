@@ -126,6 +126,17 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
           << e.what();
     }
   }
+  {  // nor a run whose leader would choose its steps with another margin
+    auto other = variable();
+    other.step_safety = 0.8;
+    cosim::LayerNetwork wrong(m, other);
+    try {
+      wrong.restore(paths);
+      ADD_FAILURE() << "a checkpoint restored with another step safety";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find("step safety of 0.9"), std::string::npos) << e.what();
+    }
+  }
   cosim::LayerNetwork resumed(m, variable());
   resumed.restore(paths);
   for (std::size_t k = 0; k < resumed.size(); ++k)
