@@ -124,7 +124,7 @@ void LayerStepper::initialize() {
   if (phase_ != Phase::Initial || initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() + "': initialize() called twice");
   initialized_ = true;
-  if (!variable_) solver_.impose_step(seconds(h_));
+  if (!variable_) impose_fixed_step();
   step_pending_ = variable_ && follower_;  // a leader chooses once the g_A(0) are in
   t_ = 0;
   for (std::size_t p = 0; p < ports_.size(); ++p) {
@@ -457,6 +457,18 @@ void LayerStepper::apply_forces() {
   }
 }
 
+void LayerStepper::impose_fixed_step() {
+  try {
+    solver_.impose_step(seconds(h_));
+  } catch (const NumericalError& e) {
+    throw NumericalError(fmt::format(
+        "{}. Fixed `layer` steps are planned once, from --step-safety x the initial stable steps, "
+        "and this domain's stable step has fallen below its fixed one: run with --variable-steps "
+        "(every domain then follows its own stable step), or with a smaller --step-safety",
+        e.what()));
+  }
+}
+
 LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample, Tick until) {
   if (!initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() +
@@ -549,8 +561,10 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
             step_pending_ = true;
           else if (variable_ && follower_)
             solver_.impose_committed_step(seconds(h_));
-          else
+          else if (variable_)
             solver_.impose_step(seconds(h_));
+          else
+            impose_fixed_step();
         }
         phase_ = Phase::Begin;
         break;

@@ -272,6 +272,8 @@ class LayerStepper {
   bool forces_ready();
   void apply_forces();
   void flush_outbox();
+  /// Fixed steps: Solver::impose_step(h_), its NumericalError completed with the fix.
+  void impose_fixed_step();
   // Variable steps.
   Tick proposal_ticks() const;
   Tick subtree_proposal() const;         ///< variable common: the least of own and holders' g_A(t_)
