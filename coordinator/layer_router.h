@@ -95,12 +95,11 @@ class LayerRouter {
   /// The least spacing of an interface's instants: its coarse step, or 1 tick with variable steps
   /// (any later instant).
   Tick spacing(const LayerRoute& r) const { return variable_ ? 1 : r.coarse_step; }
-
-  std::vector<LayerRoute> routes_;
-  std::vector<std::string> names_;
   /// Variable steps: a forwarded vector of interface i at `time` (messages_through's window).
   void remember(std::uint32_t i, Tick time);
 
+  std::vector<LayerRoute> routes_;
+  std::vector<std::string> names_;
   std::vector<Track> tracks_;
   std::int64_t forwarded_ = 0;
   std::vector<std::deque<Tick>> recent_;  ///< variable: [interfaces] latest forwarded instants

@@ -136,6 +136,7 @@ double CoordinatorCheckpoints::restore(Tick T, coordinator::LayerRouter& router,
                           static_cast<double>(T) / static_cast<double>(o_.ticks_per_second));
   }
   restart_from_ = T;
+  latest_written_ = T;
   if (o_.log != nullptr) {
     std::fprintf(o_.log,
                  "crashlink-coordinator: restarting every domain from the checkpoint at t = "
@@ -151,7 +152,7 @@ void CoordinatorCheckpoints::rows_reached(std::uint32_t i, Tick time) {
 }
 
 void CoordinatorCheckpoints::announced(Tick time) {
-  if (every_ > 0 && !row_latest_.empty()) due_.insert(time);
+  if (every_ > 0 && !row_latest_.empty() && time > latest_written_) due_.insert(time);
 }
 
 void CoordinatorCheckpoints::write_when_complete(const coordinator::LayerRouter& router,
@@ -161,6 +162,8 @@ void CoordinatorCheckpoints::write_when_complete(const coordinator::LayerRouter&
     for (const auto t : row_latest_)
       if (t < time) return;
     write(time, router, history, cpu_seconds);
+    latest_written_ = time;
+    ++written_;
     due_.erase(due_.begin());
   }
 }

@@ -46,8 +46,10 @@ class CoordinatorCheckpoints {
 
   /// After a LayerReport: interface i's history rows have reached `time`.
   void rows_reached(std::uint32_t i, coordinator::Tick time);
-  /// A daemon announced its checkpoint at `time` (LayerReport.checkpoint).
+  /// A daemon announced its checkpoint at `time` (LayerReport.checkpoint). Every daemon does:
+  /// an instant already written is not written again.
   void announced(coordinator::Tick time);
+  std::int64_t written() const { return written_; }  ///< checkpoints written by this run
   /// Writes the coordinator's checkpoint at every announced instant that every interface's rows
   /// have reached, with `cpu_seconds` the run's CPU time so far.
   void write_when_complete(const coordinator::LayerRouter& router, CouplingHistory& history,
@@ -63,7 +65,9 @@ class CoordinatorCheckpoints {
   std::string hash_;
   coordinator::Tick every_ = 0;
   coordinator::Tick restart_from_ = -1;
-  std::set<coordinator::Tick> due_;            ///< instants announced, not written yet
+  std::set<coordinator::Tick> due_;        ///< instants announced, not written yet
+  coordinator::Tick latest_written_ = -1;  ///< the newest instant written (or restored)
+  std::int64_t written_ = 0;
   std::vector<coordinator::Tick> row_latest_;  ///< [interfaces] instant of the latest history row
 };
 

@@ -45,8 +45,9 @@ struct CoordinatorOptions {
   bool drift = true;         ///< `paper`: drift correction [11] on
   double guard_rise = 0.05;  ///< `paper`: energy guard (coordinator/paper_guard.h)
   /// `paper`: each free state's own step proposal instead of the fixed plan (DESIGN.md §2.6:
-  /// split imposes the smallest of all at every instant, multi each its own). `layer` (multi,
-  /// no checkpoints): Setup.variable_steps, every domain follows its own proposal.
+  /// split imposes the smallest of all at every instant, multi each its own). `layer`:
+  /// Setup.variable_steps (multi: every domain follows its own proposal; split: all the least
+  /// proposal of all), checkpoints at the leader's instants (coordinator_checkpoints.h).
   bool variable_steps = false;
   std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
   transport::SessionOptions session;
@@ -60,7 +61,8 @@ struct CoordinatorOptions {
   /// Set from outside (signal handler, launcher) to stop the run: every daemon gets an Error.
   const std::atomic<bool>* stop = nullptr;
   /// > 0: every domain writes a checkpoint at every multiple of this interval [s], rounded to a
-  /// whole multiple of every domain's step (DESIGN.md §2.6 "Checkpoints"), into
+  /// whole multiple of every domain's step (variable steps: at the leader's first instant at or
+  /// after each multiple) (DESIGN.md §2.6 "Checkpoints"), into
   /// OUT/checkpoints/<T>/<domain>; the coordinator its own into OUT/checkpoints/<T>/coordinator.
   double checkpoint_interval_s = 0.0;
   /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons

@@ -48,11 +48,13 @@ class LayerNetwork {
 
   /// Solvers initialised, steps planned, steppers initialised, the t = 0 forces exchanged.
   void initialize();
-  /// Checkpoints (DESIGN.md §2.6), once run(..., until) has returned false (every domain paused
-  /// at one instant): domain k's solver and stepper (Solver / LayerStepper::save_state).
+  /// Checkpoints (DESIGN.md §2.6), once run(..., until) has returned false with every domain
+  /// paused at one instant (none finished: check stepper(k).time() and at_cycle_boundary()):
+  /// domain k's solver and stepper (Solver / LayerStepper::save_state).
   void save_state(std::size_t k, core::StateWriter& w) const;
   /// Instead of initialize(): each domain k resumes from the state file paths[k] (save_state's,
-  /// StateWriter::save). Throws CheckpointError for a file of another model or run.
+  /// StateWriter::save). Throws CheckpointError for a file of another model or run, ModelError
+  /// when paths has not one file per domain.
   void restore(const std::vector<std::string>& paths);
   /// Advances every domain until it has finished or reached `until` ticks (each stops at the
   /// start of its first cycle at or after `until`). on_sample(k) after every begin_cycle() of

@@ -343,7 +343,7 @@ void LayerStepper::send_displacements_ahead() {
   // After the coupling loads at t (apply_forces), before end_cycle_accelerations(): u_J(t + h)
   // and omega_J(t + h/2) as the next cycle's passes will make them (Solver::
   // predict_next_positions), unless the run ends at t (finished_here(): no next cycle).
-  if (finished_here()) return;
+  if (finished_here() || pausing_now()) return;
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     if (port.fine_side) continue;
@@ -463,7 +463,7 @@ void LayerStepper::impose_fixed_step() {
   } catch (const NumericalError& e) {
     throw NumericalError(fmt::format(
         "{}. Fixed `layer` steps are planned once, from --step-safety x the initial stable steps, "
-        "and this domain's stable step has fallen below its fixed one: run with --variable-steps "
+        "and this domain's stable step is now below its fixed one: run with --variable-steps "
         "(every domain then follows its own stable step), or with a smaller --step-safety",
         e.what()));
   }

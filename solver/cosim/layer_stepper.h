@@ -158,10 +158,11 @@ class LayerStepper {
   /// first instant >= the end time that is also an instant of every owner it holds ghosts of.
   /// Pauses: fixed steps and variable leaders at their first instant >= until; a variable follower
   /// where its owner pauses (the instants it lands on are its owner's, not the multiples of
-  /// `until`), which the owner's u_J says (LayerMessage::pause); its own `until` is not used. So
-  /// a whole tree of domains pauses at its leader's first instant >= until, to the tick, as a
-  /// checkpoint needs. The leader marks the u_J it sends from the `until` of the call that sends
-  /// it: call with the same `until` until the pause.
+  /// `until`), which the owner's u_J says (LayerMessage::pause), as long as `until` <= that
+  /// instant. So a whole tree of domains pauses at its leader's first instant >= until, to the
+  /// tick, as a checkpoint needs, and stays there until called with a later `until`. The leader
+  /// marks the u_J it sends from the `until` of the call that sends it (nothing is sent ahead
+  /// across a pause): call every domain with the same `until` until all have paused.
   Wait advance(const std::function<void()>& on_sample = {},
                Tick until = std::numeric_limits<Tick>::max());
 
@@ -226,11 +227,6 @@ class LayerStepper {
   /// controls.end_time_s in ticks (nearest), or set_end_time's
   Tick end_time() const { return end_; }
   Tick step() const { return h_; }  ///< the step of the cycle about to begin (0: not known yet)
-  LayerSteps steps() const {
-    return !variable_ ? LayerSteps::Fixed
-           : common_  ? LayerSteps::VariableCommon
-                      : LayerSteps::Variable;
-  }
   std::int64_t ticks_per_second() const { return ticks_per_second_; }
   double seconds(Tick n) const;
   Wait waiting() const { return wait_; }
@@ -282,9 +278,12 @@ class LayerStepper {
   bool at_owner_end() const;       ///< a follower at the end T + H of its owner step
   bool finishes_at(Tick t) const;  ///< variable: this domain's run ends at instant t
   bool pauses_at(Tick t) const;    ///< variable: this domain pauses at instant t (u_J's flag)
-  bool pause_here();               ///< advance() pauses at t_ (a follower's flag is taken)
-  bool start_owner_step();         ///< false: waits for the owner's next u_J
-  Tick next_substep() const;       ///< a follower's next step inside the owner step
+  bool pause_here() const;         ///< advance() pauses at t_
+  /// A variable leader about to pause at t_: it sends nothing ahead, so that the u_J(t_ + h) it
+  /// sends after the pause is marked against the `until` of the call that sends it.
+  bool pausing_now() const;
+  bool start_owner_step();    ///< false: waits for the owner's next u_J
+  Tick next_substep() const;  ///< a follower's next step inside the owner step
 
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;

@@ -35,6 +35,7 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put_int("stepper.owner_T", owner_T_);
     w.put_int("stepper.owner_H", owner_H_);
     w.put_bool("stepper.owner_last", owner_last_);
+    w.put_bool("stepper.common", common_);
     w.put_double("stepper.leader_safety", leader_safety_);
     w.put_double("stepper.max_step_s", max_step_s_);
   }
@@ -89,7 +90,15 @@ void LayerStepper::restore_state(const core::StateReader& r) {
         r.path(), dom, variable_ ? "fixed" : "variable", variable_ ? "variable" : "fixed",
         variable_ ? "without" : "with"));
   }
-  if (variable_ && (r.get_double("stepper.leader_safety") != leader_safety_ ||
+  if (variable_ && r.get_bool("stepper.common") != common_) {
+    throw CheckpointError(fmt::format(
+        "checkpoint {}: domain '{}' was run in `{}` with variable steps, this run is `{}`; "
+        "restart with --mode {}, as the run that wrote the checkpoint",
+        r.path(), dom, common_ ? "multi" : "split", common_ ? "split" : "multi",
+        common_ ? "multi" : "split"));
+  }
+  // (split: the least proposal of all, no step safety; multi: the leader's step safety)
+  if (variable_ && ((!common_ && r.get_double("stepper.leader_safety") != leader_safety_) ||
                     r.get_double("stepper.max_step_s") != max_step_s_)) {
     throw CheckpointError(fmt::format(
         "checkpoint {}: domain '{}' chose its steps with a step safety of {} and a step cap of "

@@ -145,11 +145,15 @@ bool LayerStepper::pauses_at(Tick t) const {
   return owner_pause_ && t == owner_T_ + owner_H_;
 }
 
-bool LayerStepper::pause_here() {
+bool LayerStepper::pause_here() const {
   if (!variable_ || !follower_) return t_ >= until_;
-  if (!step_pending_ || !owner_pause_ || !at_owner_end()) return false;
-  owner_pause_ = false;  // taken: the next advance() goes on from here
-  return true;
+  // where the owner pauses, for as long as the caller's `until` has not passed that instant (a
+  // later `until`, the next checkpoint's, lets it go on; a repeated call stays paused)
+  return step_pending_ && owner_pause_ && at_owner_end() && t_ >= until_;
+}
+
+bool LayerStepper::pausing_now() const {
+  return variable_ && !follower_ && t_ >= until_;
 }
 
 bool LayerStepper::finished_here() const {
@@ -189,9 +193,17 @@ bool LayerStepper::start_owner_step() {
           "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, another "
           "of its interfaces for t = {} ticks; one owner step must end at one instant",
           solver_.domain_name(), port.index, port.partner, t, T1));
+    const bool last = ps.inbox.front().last, pause = ps.inbox.front().pause;
+    if (T1 >= 0 && (last != owner_last_ || pause != owner_pause_))
+      throw LayerPartnerError(fmt::format(
+          "layer stepper '{}': interface {}: the owner '{}' marks its u_J for t = {} ticks with "
+          "last = {}, pause = {}, another of its interfaces with {}, {}; one owner step ends or "
+          "pauses once",
+          solver_.domain_name(), port.index, port.partner, t, last, pause, owner_last_,
+          owner_pause_));
     T1 = t;
-    owner_last_ = ps.inbox.front().last;
-    owner_pause_ = ps.inbox.front().pause;
+    owner_last_ = last;
+    owner_pause_ = pause;
   }
   if (T1 <= t_)
     throw ModelError(

@@ -6,12 +6,15 @@
 // - a run saved there and restored into a fresh network ends with the uninterrupted run's bits,
 //   and so does the paused run itself (a pause changes nothing).
 // The same over processes, killed and restarted: CheckpointRestart.*/Variable.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -68,31 +71,55 @@ void expect_same_bits(const cosim::LayerNetwork& a, const cosim::LayerNetwork& b
 
 }  // namespace
 
+// Every order of the domains in the network (the earliest-first rule then calls them in other
+// orders), multi and split; after each pause also an `until` one tick later, which the leader's
+// next instant passes: the u_J it sent before the first pause must not carry the old mark.
 TEST(LayerVariableCheckpoint, TheChainPausesTogetherAtTheLeadersFirstInstantAfterUntil) {
-  const auto m = pulsed_chain();
-  cosim::LayerNetwork net(m, variable());
-  net.initialize();
-  const std::size_t leader = index_of(net, "coarse");
-  cosim::Tick leader_before = -1;  // the leader's last sampled instant before the pause
-  int pauses = 0;
-  for (double until_s = 1.3e-4; until_s < 1.9e-3; until_s += 1.7e-4) {
-    const auto until = ticks(net, until_s);
-    ASSERT_FALSE(net.run(
-        [&](std::size_t k) {
-          if (k == leader) leader_before = net.stepper(k).time();
-        },
-        until));
-    const cosim::Tick T = net.stepper(leader).time();
-    EXPECT_GE(T, until);
-    EXPECT_LT(leader_before, until) << "the leader passed `until` before pausing";
-    for (std::size_t k = 0; k < net.size(); ++k) {
-      EXPECT_EQ(net.stepper(k).time(), T) << net.solver(k).domain_name() << " at until " << until;
-      EXPECT_TRUE(net.stepper(k).at_cycle_boundary()) << net.solver(k).domain_name();
+  std::vector<std::string> names{"coarse", "fine", "mid"};  // sorted: next_permutation
+  const std::map<std::string, int> part{{"coarse", 0}, {"mid", 1}, {"fine", 2}};
+  int orders = 0;
+  do {
+    for (const bool split : {false, true}) {
+      std::vector<model::Domain> domains;
+      for (const auto& n : names) domains.push_back({n, {part.at(n)}});
+      const auto m = pulsed_chain3(domains, 2e-3, 2e-4, -1e5);
+      auto o = variable();
+      o.common_step = split;
+      cosim::LayerNetwork net(m, o);
+      net.initialize();
+      const std::size_t leader = index_of(net, "coarse");
+      const std::string where = fmt::format("order {} {} {}, {}", names[0], names[1], names[2],
+                                            split ? "split" : "multi");
+      cosim::Tick leader_before = -1;  // the leader's last sampled instant before the pause
+      int pauses = 0;
+      auto pause_at = [&](cosim::Tick until) {
+        ASSERT_FALSE(net.run(
+            [&](std::size_t k) {
+              if (k == leader) leader_before = net.stepper(k).time();
+            },
+            until))
+            << where;
+        const cosim::Tick T = net.stepper(leader).time();
+        EXPECT_GE(T, until) << where;
+        EXPECT_LT(leader_before, until) << where << ": the leader passed `until` before pausing";
+        for (std::size_t k = 0; k < net.size(); ++k) {
+          EXPECT_EQ(net.stepper(k).time(), T)
+              << where << ", " << net.solver(k).domain_name() << " at until " << until;
+          EXPECT_TRUE(net.stepper(k).at_cycle_boundary()) << where;
+        }
+        ++pauses;
+      };
+      for (double until_s = 1.3e-4; until_s < 1.9e-3; until_s += 1.7e-4) {
+        pause_at(ticks(net, until_s));
+        if (::testing::Test::HasFailure()) return;
+        pause_at(net.stepper(leader).time() + 1);  // closer than one step
+      }
+      EXPECT_EQ(pauses, 22) << where;
+      EXPECT_TRUE(net.run()) << where;
     }
-    ++pauses;
-  }
-  EXPECT_EQ(pauses, 11);
-  EXPECT_TRUE(net.run());
+    ++orders;
+  } while (std::next_permutation(names.begin(), names.end()));
+  EXPECT_EQ(orders, 6);
 }
 
 TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsBits) {
@@ -135,6 +162,18 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
       ADD_FAILURE() << "a checkpoint restored with another step safety";
     } catch (const CheckpointError& e) {
       EXPECT_NE(std::string(e.what()).find("step safety of 0.9"), std::string::npos) << e.what();
+    }
+  }
+  {  // nor a split run
+    auto split = variable();
+    split.common_step = true;
+    cosim::LayerNetwork wrong(m, split);
+    try {
+      wrong.restore(paths);
+      ADD_FAILURE() << "a multi checkpoint restored into split";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find("restart with --mode multi"), std::string::npos)
+          << e.what();
     }
   }
   cosim::LayerNetwork resumed(m, variable());
