@@ -192,27 +192,30 @@ TEST(CheckpointRestartChain, VariableStepsRestartedFromTheNewestCheckpointIsTheS
   int status = -1;
   const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
   ASSERT_EQ(status, 0) << out_ref;
-  const std::string every = "--checkpoint-interval 1.1e-4 ";
-  const std::string out_ck = run_command(run + every + "--out " + (dir / "ck").string(), status);
-  ASSERT_EQ(status, 0) << out_ck;
-  const auto instants = crashlink::run::list_checkpoints((dir / "ck").string(), "coordinator");
-  ASSERT_EQ(instants.size(), 3u) << out_ck;  // the newest 3 of 5 (1.1e-4 ... 5.5e-4 s)
-  for (const char* d : {"fine", "mid", "coarse"})
-    EXPECT_EQ(crashlink::run::list_checkpoints((dir / "ck").string(), d), instants) << d;
-  const std::string out = run_command(run + every + "--restart " + (dir / "ck").string(), status);
-  ASSERT_EQ(status, 0) << out;
-  const std::string marker = "from the checkpoint at t = ";
-  ASSERT_NE(out.find(marker), std::string::npos) << out;
-  std::printf(
-      "[measured] chain, variable steps: checkpoints at %lld, %lld, %lld ticks; restarted "
-      "from t = %s",
-      static_cast<long long>(instants[0]), static_cast<long long>(instants[1]),
-      static_cast<long long>(instants[2]),
-      out.substr(out.find(marker) + marker.size(), 12).c_str());
-  std::printf(" s\n");
-
-  expect_same_results((dir / "ref" / "result.h5").string(), (dir / "ck" / "result.h5").string(),
-                      2);  // the first and the last field state
+  // 1.1e-4 s: 5 checkpoints, the newest 3 kept; 2e-6 s, less than one coarse step (about 2.6 us):
+  // one at nearly every instant of the leader, each pause straight after the one before
+  for (const std::string interval : {"1.1e-4", "2e-6"}) {
+    const std::string every = "--checkpoint-interval " + interval + " ";
+    const fs::path ck = dir / ("ck" + interval);
+    const std::string out_ck = run_command(run + every + "--out " + ck.string(), status);
+    ASSERT_EQ(status, 0) << out_ck;
+    const auto instants = crashlink::run::list_checkpoints(ck.string(), "coordinator");
+    ASSERT_EQ(instants.size(), 3u) << out_ck;  // the newest 3
+    for (const char* d : {"fine", "mid", "coarse"})
+      EXPECT_EQ(crashlink::run::list_checkpoints(ck.string(), d), instants) << interval << d;
+    const std::string out = run_command(run + every + "--restart " + ck.string(), status);
+    ASSERT_EQ(status, 0) << out;
+    const std::string marker = "from the checkpoint at t = ";
+    ASSERT_NE(out.find(marker), std::string::npos) << out;
+    std::printf(
+        "[measured] chain, variable steps, interval %s s: checkpoints kept at %lld, %lld, %lld "
+        "ticks; restarted from t = %s s\n",
+        interval.c_str(), static_cast<long long>(instants[0]), static_cast<long long>(instants[1]),
+        static_cast<long long>(instants[2]),
+        out.substr(out.find(marker) + marker.size(), 12).c_str());
+    expect_same_results((dir / "ref" / "result.h5").string(), (ck / "result.h5").string(),
+                        2);  // the first and the last field state
+  }
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
 }
