@@ -69,6 +69,18 @@ void expect_same_bits(const cosim::LayerNetwork& a, const cosim::LayerNetwork& b
   }
 }
 
+/// Restoring `paths` into a network of `options` throws CheckpointError saying `fix`.
+void expect_restore_refused(const model::Model& m, const cosim::LayerNetworkOptions& options,
+                            const std::vector<std::string>& paths, const std::string& fix) {
+  cosim::LayerNetwork wrong(m, options);
+  try {
+    wrong.restore(paths);
+    ADD_FAILURE() << "restored where it should say: " << fix;
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find(fix), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 
 // Every order of the domains in the network (the earliest-first rule then calls them in other
@@ -141,41 +153,15 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
     paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
     w.save(paths.back());
   }
-  {  // a checkpoint of variable steps does not restart a run of fixed steps
-    cosim::LayerNetworkOptions fixed;
-    fixed.step_safety = 0.9;
-    cosim::LayerNetwork wrong(m, fixed);
-    try {
-      wrong.restore(paths);
-      ADD_FAILURE() << "a variable-step checkpoint restored into fixed steps";
-    } catch (const CheckpointError& e) {
-      EXPECT_NE(std::string(e.what()).find("restart with --variable-steps"), std::string::npos)
-          << e.what();
-    }
-  }
-  {  // nor a run whose leader would choose its steps with another margin
-    auto other = variable();
-    other.step_safety = 0.8;
-    cosim::LayerNetwork wrong(m, other);
-    try {
-      wrong.restore(paths);
-      ADD_FAILURE() << "a checkpoint restored with another step safety";
-    } catch (const CheckpointError& e) {
-      EXPECT_NE(std::string(e.what()).find("step safety of 0.9"), std::string::npos) << e.what();
-    }
-  }
-  {  // nor a split run
-    auto split = variable();
-    split.common_step = true;
-    cosim::LayerNetwork wrong(m, split);
-    try {
-      wrong.restore(paths);
-      ADD_FAILURE() << "a multi checkpoint restored into split";
-    } catch (const CheckpointError& e) {
-      EXPECT_NE(std::string(e.what()).find("restart with --mode multi"), std::string::npos)
-          << e.what();
-    }
-  }
+  cosim::LayerNetworkOptions fixed;  // a checkpoint of variable steps restarts no fixed run,
+  fixed.step_safety = 0.9;
+  expect_restore_refused(m, fixed, paths, "restart with --variable-steps");
+  auto other = variable();  // nor one whose leader would choose its steps with another margin,
+  other.step_safety = 0.8;
+  expect_restore_refused(m, other, paths, "step safety of 0.9");
+  auto split = variable();  // nor a split run
+  split.common_step = true;
+  expect_restore_refused(m, split, paths, "restart with --mode multi");
   cosim::LayerNetwork resumed(m, variable());
   resumed.restore(paths);
   for (std::size_t k = 0; k < resumed.size(); ++k)
