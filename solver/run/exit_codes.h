@@ -14,5 +14,12 @@ inline constexpr int kExitInternal = 4;
 /// The run was stopped by another process: a daemon or the coordinator died, went silent,
 /// reported an error or broke the protocol; or a socket failed. The message names the culprit.
 inline constexpr int kExitPeer = 5;
+/// A file could not be written or read back: disk full, read-only file system, no permission,
+/// `--out` names a file. The message names the file and the system's reason; what was written
+/// before stays readable.
+inline constexpr int kExitIo = 6;
+/// Stopped on request: SIGINT or SIGTERM (Ctrl-C, `kill PID`, a batch scheduler's cancel) to the
+/// launcher or to any process of the run; every process stops within 1 s, files flushed.
+inline constexpr int kExitStopped = 7;
 
 }  // namespace crashlink::run
