@@ -4,8 +4,10 @@
 
 #include "apps/cmd_compare.h"
 #include "apps/cmd_hic.h"
+#include "apps/stop_signal.h"
 #include "solver/core/errors.h"
 #include "solver/io/scenario_reader.h"
+#include "solver/run/exit_codes.h"
 #include "solver/run/run_single.h"
 
 namespace crashlink::apps {
@@ -98,8 +100,18 @@ int run_run(const RunCommandOptions& o) {
   run::RunOptions opt;
   opt.out_dir = o.out;
   opt.progress = !o.quiet;
+  install_stop_handlers();
+  opt.stop = &stop_flag();
   const auto summary = run::run_single_domain(model, opt);
   run::print_summary(stdout, summary);
+  if (summary.stopped) {
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "crashlink: stopped on request (SIGINT/SIGTERM) at t = %.6e s; %s holds "
+                 "the run up to there\n",
+                 summary.end_time_s, summary.result_h5.c_str());
+    return run::kExitStopped;
+  }
   if (summary.failed) {
     std::fprintf(stderr, "crashlink: error: %s\n", summary.failure.c_str());
     return 3;

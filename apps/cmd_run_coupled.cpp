@@ -178,6 +178,14 @@ int run_coupled(const RunCommandOptions& o) {
                 gathered.problem.c_str(), o.out.c_str());
   }
 
+  if (lr.stopped_on_request) {
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "crashlink: stopped on request (SIGINT/SIGTERM): every piece stopped and flushed "
+                 "its file; the results so far are in %s%s\n",
+                 o.out.c_str(), gathered.written ? "/result.h5" : "/domains/*.h5");
+    return run::kExitStopped;
+  }
   if (lr.ok() && gathered.written && gathered.problem.empty()) {
     for (const auto& p : model.probes) {
       if (p.kind != model::Probe::Kind::RigidBody) continue;

@@ -169,6 +169,7 @@ class ProcessRun {
       }
     }
     wait_all();
+    r.stopped_on_request = stopped_on_request_;
     for (auto& c : children_) r.pieces.push_back(c.outcome);
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
     return r;
@@ -237,13 +238,23 @@ class ProcessRun {
     }
   }
 
+  /// Until every child has exited. A failed piece: the others get the peer timeout to notice and
+  /// stop on their own, then SIGTERM, then SIGKILL 2 s later. A stop request (SIGINT / SIGTERM to
+  /// the launcher): SIGTERM to every piece at once, each stops at its next cycle or poll and
+  /// flushes its file; SIGKILL 2 s later to a piece that did not.
   void wait_all() {
     const auto grace =
         std::chrono::milliseconds{o_.session.peer_timeout_ms + o_.session.heartbeat_ms} + 2s;
     std::optional<Clock::time_point> termed;
     while (reap() > 0) {
       const auto now = Clock::now();
-      if (stop_flag().load() && !first_failure_) first_failure_ = now;
+      if (stop_flag().load() && !stopped_on_request_) {
+        stopped_on_request_ = true;
+        if (!termed) {
+          signal_all(SIGTERM);
+          termed = now;
+        }
+      }
       if (first_failure_ && !termed && now - *first_failure_ > grace) {
         signal_all(SIGTERM);
         termed = now;
@@ -257,6 +268,7 @@ class ProcessRun {
   const std::vector<std::string>& domains_;
   std::vector<Child> children_;
   std::optional<Clock::time_point> first_failure_;
+  bool stopped_on_request_ = false;
 };
 
 LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>& domains) {
@@ -316,6 +328,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   }
   for (auto& t : daemons) t.join();
   coordinator.join();
+  r.stopped_on_request = stop_flag().load();
   if (bar) bar->finish();
   PieceOutcome c;
   c.name = "coordinator";

@@ -22,7 +22,11 @@ using coordinator::Tick;
 
 CoordinatorCheckpoints::CoordinatorCheckpoints(const CoordinatorOptions& options,
                                                const LayerCut& cut, std::string hash)
-    : o_(options), cut_(cut), hash_(std::move(hash)), row_latest_(cut.interfaces.size(), 0) {}
+    : o_(options),
+      cut_(cut),
+      hash_(std::move(hash)),
+      pieces_(run::checkpoint_pieces(cut.names, !cut.interfaces.empty())),
+      row_latest_(cut.interfaces.size(), 0) {}
 
 Tick CoordinatorCheckpoints::plan(const std::vector<Tick>& steps) {
   if (!(o_.checkpoint_interval_s > 0.0)) return every_ = 0;
@@ -88,14 +92,19 @@ void CoordinatorCheckpoints::plan_variable() {
 
 Tick CoordinatorCheckpoints::choose_restart(const std::vector<wire::Register>& regs,
                                             bool any_interface) const {
-  std::vector<Tick> common = run::list_checkpoints(o_.out_dir, kSelf);
+  std::vector<std::string> damaged;
+  std::vector<Tick> common = run::list_sound_checkpoints(o_.out_dir, kSelf, &damaged);
+  for (const auto& d : damaged) log(fmt::format("checkpoint damaged, not used: {}", d));
   std::string listing = fmt::format("coordinator: [{}]", fmt::join(common, ", "));
+  std::vector<std::pair<std::string, std::vector<Tick>>> each;
+  if (any_interface) each.emplace_back(kSelf, common);
   bool first = true;
   for (std::size_t k = 0; k < cut_.names.size(); ++k) {
     const auto& ticks = regs[k].checkpoint_ticks();
     std::vector<Tick> mine(ticks.begin(), ticks.end());
     std::sort(mine.begin(), mine.end());
     listing += fmt::format("; {}: [{}]", cut_.names[k], fmt::join(mine, ", "));
+    each.emplace_back(cut_.names[k], mine);
     if (first && !any_interface) {
       common = mine;  // no interface: the coordinator keeps no state of its own
     } else {
@@ -109,9 +118,35 @@ Tick CoordinatorCheckpoints::choose_restart(const std::vector<wire::Register>& r
   if (common.empty())
     throw InputError(fmt::format(
         "--restart: no checkpoint instant (ticks of 1/{} s) that the coordinator and every "
-        "domain have ({}); run from the start without --restart",
+        "domain have intact ({}); run from the start without --restart",
         o_.ticks_per_second, listing));
+  // A newer instant that some piece lacks (not written, or damaged and reported by its owner):
+  // the restart falls back to the newest one every piece has, and says so.
+  Tick newest_any = common.back();
+  for (const auto& [who, ticks] : each)
+    if (!ticks.empty()) newest_any = std::max(newest_any, ticks.back());
+  if (newest_any > common.back()) {
+    std::vector<std::string> lacking;
+    for (const auto& [who, ticks] : each)
+      if (!std::binary_search(ticks.begin(), ticks.end(), newest_any)) lacking.push_back(who);
+    log(fmt::format(
+        "the newest checkpoint instant, t = {:.6e} s, is missing or damaged in {}: falling back "
+        "to t = {:.6e} s, the newest that every piece has intact ({})",
+        static_cast<double>(newest_any) / static_cast<double>(o_.ticks_per_second),
+        fmt::join(lacking, ", "),
+        static_cast<double>(common.back()) / static_cast<double>(o_.ticks_per_second), listing));
+  }
   return common.back();
+}
+
+void CoordinatorCheckpoints::log(const std::string& line) const {
+  if (o_.log == nullptr) return;
+  std::fprintf(o_.log, "crashlink-coordinator: %s\n", line.c_str());
+  std::fflush(o_.log);
+}
+
+void CoordinatorCheckpoints::prune_all() const {
+  if (every_ > 0) run::prune_checkpoints(o_.out_dir, pieces_, pieces_);
 }
 
 double CoordinatorCheckpoints::restore(Tick T, coordinator::LayerRouter& router,
@@ -182,7 +217,7 @@ void CoordinatorCheckpoints::write(Tick time, const coordinator::LayerRouter& ro
   w.put_int("forwarded", std::min(router.forwarded(), router.messages_through(time)));
   w.put_double("run.cpu_seconds", cpu_seconds);
   w.save((std::filesystem::path(dir) / "state.bin").string());
-  run::commit_checkpoint(o_.out_dir, time, kSelf);
+  run::commit_checkpoint(o_.out_dir, time, kSelf, pieces_);
 }
 
 }  // namespace crashlink::coordination

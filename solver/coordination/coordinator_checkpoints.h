@@ -15,13 +15,14 @@
 #include "solver/coordination/coordinator_run.h"
 #include "solver/coordination/coupling_history.h"
 #include "solver/coordination/layer_cut.h"
+#include "solver/run/checkpoint_store.h"
 
 namespace crashlink::coordination {
 
 class CoordinatorCheckpoints {
  public:
   /// The folder name of the coordinator's checkpoints beside the daemons' (run/checkpoint_store.h).
-  static constexpr const char* kSelf = "coordinator";
+  static constexpr const char* kSelf = run::kCoordinatorPiece;
 
   /// `options` and `cut` must outlive this object; `hash` is the scenario's.
   CoordinatorCheckpoints(const CoordinatorOptions& options, const LayerCut& cut, std::string hash);
@@ -34,8 +35,10 @@ class CoordinatorCheckpoints {
   coordinator::Tick every() const { return every_; }
 
   /// The newest instant at which the coordinator (if `any_interface`: without one it keeps no state
-  /// of its own) and every daemon (regs[k].checkpoint_ticks, cut order) have a checkpoint.
-  /// Throws InputError listing what each has when there is none.
+  /// of its own) and every daemon (regs[k].checkpoint_ticks, cut order: the daemons list only
+  /// their intact ones) have an intact checkpoint; logs the coordinator's damaged ones, and the
+  /// fall-back when a newer instant is missing or damaged in some piece. Throws InputError
+  /// listing what each has when there is none.
   coordinator::Tick choose_restart(const std::vector<wire::Register>& regs,
                                    bool any_interface) const;
   /// Router and interface histories as they were at T (nothing to restore without an interface).
@@ -54,15 +57,21 @@ class CoordinatorCheckpoints {
   /// have reached, with `cpu_seconds` the run's CPU time so far.
   void write_when_complete(const coordinator::LayerRouter& router, CouplingHistory& history,
                            double cpu_seconds);
+  /// At the end of a run that every daemon finished (their checkpoints all committed): removes
+  /// every piece's checkpoints older than the newest 3 complete instants, which a piece that
+  /// committed before the others could not yet remove (run/checkpoint_store.h).
+  void prune_all() const;
 
  private:
   void plan_variable();
+  void log(const std::string& line) const;
   void write(coordinator::Tick time, const coordinator::LayerRouter& router,
              CouplingHistory& history, double cpu_seconds);
 
   const CoordinatorOptions& o_;
   const LayerCut& cut_;
   std::string hash_;
+  std::vector<std::string> pieces_;  ///< every domain, and the coordinator with an interface
   coordinator::Tick every_ = 0;
   coordinator::Tick restart_from_ = -1;
   std::set<coordinator::Tick> due_;        ///< instants announced, not written yet

@@ -88,6 +88,7 @@ class Coordinator {
       prepare();
       admit();
       route();
+      if (checkpoints_) checkpoints_->prune_all();
     } catch (const StopRun& s) {
       stop = s.stop();
     } catch (const transport::PeerTimeoutError& e) {
@@ -539,6 +540,7 @@ class Coordinator {
     const std::string domain = err.domain().empty() ? in.domain : err.domain();
     const int code = err.code() == wire::ERROR_CODE_NUMERICAL ? run::kExitNumerical
                      : err.code() == wire::ERROR_CODE_MODEL   ? run::kExitInput
+                     : err.code() == wire::ERROR_CODE_STOPPED ? run::kExitStopped
                                                               : run::kExitPeer;
     throw StopRun(Stop{code,
                        err.code(),
@@ -557,8 +559,8 @@ class Coordinator {
 
   void check_stop_requested() const {
     if (o_.stop != nullptr && o_.stop->load()) {
-      throw StopRun(Stop{run::kExitPeer,
-                         wire::ERROR_CODE_INTERNAL,
+      throw StopRun(Stop{run::kExitStopped,
+                         wire::ERROR_CODE_STOPPED,
                          {},
                          "coordinator: stopped on request (signal or launcher)"});
     }

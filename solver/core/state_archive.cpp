@@ -54,15 +54,6 @@ const char* type_name(std::uint8_t t) {
   }
 }
 
-std::uint64_t fnv1a(const std::uint8_t* p, std::size_t n) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 template <class T>
 void append_raw(std::vector<std::uint8_t>& out, const T& x) {
   const auto* p = reinterpret_cast<const std::uint8_t*>(&x);
@@ -85,6 +76,14 @@ void fsync_path(const std::string& path, bool directory) {
 }
 
 }  // namespace
+
+std::uint64_t fnv1a(const std::uint8_t* p, std::size_t n, std::uint64_t h) {
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
 
 void StateWriter::record(std::string_view name, std::uint8_t type, std::size_t count,
                          const void* data, std::size_t bytes) {

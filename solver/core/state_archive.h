@@ -31,6 +31,10 @@ class CheckpointError : public InputError {
 
 namespace core {
 
+/// FNV-1a 64 of n bytes (Fowler, Noll, Vo): h = (h xor byte) * 1099511628211 for each byte, from
+/// the offset basis 1469598103934665603, or from `h` to continue a hash over several buffers.
+std::uint64_t fnv1a(const std::uint8_t* p, std::size_t n, std::uint64_t h = 1469598103934665603ull);
+
 class StateWriter {
  public:
   void put(std::string_view name, std::span<const double> v);

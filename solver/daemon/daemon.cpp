@@ -92,12 +92,15 @@ class Daemon {
       loop();
       finish();
     } catch (const Stopped&) {
-      failure = Failure{run::kExitPeer, wire::ERROR_CODE_INTERNAL, true,
+      failure = Failure{run::kExitStopped, wire::ERROR_CODE_STOPPED, true,
                         fmt::format("{}: stopped on request (signal)", where())};
     } catch (const transport::RemoteError& e) {
       const bool refused = e.code() == wire::ERROR_CODE_VERSION_MISMATCH ||
                            e.code() == wire::ERROR_CODE_SCENARIO_MISMATCH;
-      failure = Failure{refused ? run::kExitInput : run::kExitPeer, e.code(), false,
+      const int exit_code = refused                                ? run::kExitInput
+                            : e.code() == wire::ERROR_CODE_STOPPED ? run::kExitStopped
+                                                                   : run::kExitPeer;
+      failure = Failure{exit_code, e.code(), false,
                         fmt::format("{}: {} by the coordinator: {}", where(),
                                     refused ? "refused" : "stopped", e.what())};
     } catch (const transport::PeerTimeoutError& e) {
@@ -181,7 +184,7 @@ class Daemon {
     solver()->save_state(w);
     stepper_->save_state(w);
     w.save((std::filesystem::path(dir) / "state.bin").string());
-    run::commit_checkpoint(o_.out_dir, T, o_.domain);
+    run::commit_checkpoint(o_.out_dir, T, o_.domain, checkpoint_pieces());
     std::fprintf(stderr,
                  "crashlink-solver: domain '%s': checkpoint at t = %.6e s (cycle %lld), %.1f MB "
                  "of state, %.0f ms\n",
@@ -253,7 +256,20 @@ class Daemon {
 
     solver()->initialize();
     initialized_ = true;
-    checkpoints_ = run::list_checkpoints(o_.out_dir, o_.domain);
+    std::vector<std::string> damaged;
+    checkpoints_ = run::list_sound_checkpoints(o_.out_dir, o_.domain, &damaged);
+    for (const auto& d : damaged)
+      std::fprintf(stderr,
+                   "crashlink-solver: domain '%s': checkpoint damaged, not offered for a restart: "
+                   "%s\n",
+                   o_.domain.c_str(), d.c_str());
+  }
+
+  /// Every domain of the cut, and the coordinator when it keeps state (a cut with an interface).
+  std::vector<std::string> checkpoint_pieces() const {
+    std::vector<std::string> names;
+    for (const auto& d : dec_->domains) names.push_back(d.name);
+    return run::checkpoint_pieces(std::move(names), !dec_->interfaces.empty());
   }
 
   void connect() {

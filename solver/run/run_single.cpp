@@ -37,10 +37,14 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
       solver.begin_cycle();  // state at t^n complete; guard passed
       recorder.sample();
       if (solver.finished()) break;
+      if (options.stop != nullptr && options.stop->load()) {
+        sum.stopped = true;
+        break;
+      }
       solver.end_cycle();
       progress.update(solver.time_s(), solver.cycle(), solver.dt_s());
     }
-    recorder.finish();
+    recorder.finish();  // also when stopped: the state at t^n passed the guard
   } catch (const NumericalError& e) {
     progress.finish();
     sum.failed = true;
@@ -49,6 +53,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   }
   progress.finish();
   sum.cycles = solver.cycle();
+  if (sum.stopped) sum.end_time_s = solver.time_s();
   sum.dt_min_s = solver.dt_min_s();
   sum.energy = solver.energy();
   sum.cpu_seconds = process_cpu_seconds() - cpu0;
@@ -79,6 +84,11 @@ void print_summary(std::FILE* out, const RunSummary& s) {
       100.0 * e.balance_error(), hg_share);
   std::fprintf(out, "result: %s\n        %s\n", s.result_h5.c_str(), s.result_xdmf.c_str());
   if (s.failed) std::fprintf(out, "RUN FAILED: %s\n", s.failure.c_str());
+  if (s.stopped)
+    std::fprintf(out,
+                 "STOPPED ON REQUEST at t = %.6e s (cycle %lld): the file holds the run up to "
+                 "there\n",
+                 s.end_time_s, static_cast<long long>(s.cycles));
 }
 
 }  // namespace crashlink::run

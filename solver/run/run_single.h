@@ -1,5 +1,6 @@
 #pragma once
 // Runs one model as one domain (the `mono` reference) to completion, writing DIR/result.h5.
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -13,6 +14,9 @@ struct RunOptions {
   std::string out_dir = "out";
   bool progress = true;  ///< progress line on stderr
   std::string domain_name = "model";
+  /// Polled every cycle (SIGINT / SIGTERM handler's flag); set: the run stops there, flushes
+  /// and closes its file, and comes back with stopped = true.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct RunSummary {
@@ -26,8 +30,9 @@ struct RunSummary {
   integration::EnergyAccount energy;
   std::string result_h5;
   std::string result_xdmf;
-  bool failed = false;  ///< the guard stopped the run
-  std::string failure;  ///< its message
+  bool failed = false;   ///< the guard stopped the run
+  std::string failure;   ///< its message
+  bool stopped = false;  ///< RunOptions::stop was set: stopped on request at time end_time_s
 
   /// CPU nanoseconds per element per cycle (0 without elements or cycles).
   double ns_per_element_cycle() const;
