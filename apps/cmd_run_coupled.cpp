@@ -204,7 +204,8 @@ int run_coupled(const RunCommandOptions& o) {
                  gathered.problem.c_str());
     return run::kExitInternal;
   }
-  // The first culprit: a piece that failed on its own (not stopped because of another one).
+  // The code of the culprit: a piece that failed on its own (the guard, a file), not one stopped
+  // because of another (exit 5) or killed.
   std::vector<std::string> what;
   int code = run::kExitPeer;
   for (const auto& p : lr.pieces) {
@@ -213,7 +214,7 @@ int run_coupled(const RunCommandOptions& o) {
     PieceOutcome q = p;
     q.name = who;
     what.push_back(q.describe());
-    if (p.exit_code == run::kExitNumerical) code = run::kExitNumerical;
+    if (p.exit_code == run::kExitNumerical || p.exit_code == run::kExitIo) code = p.exit_code;
   }
   std::fprintf(stderr, "crashlink: error: the %s run failed: %s\n", o.mode.c_str(),
                fmt::format("{}", fmt::join(what, "; ")).c_str());

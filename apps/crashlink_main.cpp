@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "apps/cmd_stability_map.h"
 #include "apps/cmd_sweep.h"
 #include "solver/core/errors.h"
+#include "solver/run/exit_codes.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crashlink: multi-domain, multi-time-scale explicit dynamics for crash simulation"};
@@ -59,6 +61,12 @@ int main(int argc, char** argv) {
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return 2;
+  } catch (const crashlink::IoError& e) {
+    std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
+    return crashlink::run::kExitIo;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
+    return crashlink::run::kExitIo;
   } catch (const crashlink::Error& e) {
     std::fprintf(stderr, "crashlink: error: %s\n", e.what());
     return 3;

@@ -103,6 +103,16 @@ class Coordinator {
                   wire::ERROR_CODE_NUMERICAL,
                   {},
                   fmt::format("coordinator: {}", e.what())};
+    } catch (const IoError& e) {
+      stop = Stop{run::kExitIo,
+                  wire::ERROR_CODE_IO,
+                  {},
+                  fmt::format("coordinator: I/O error: {}", e.what())};
+    } catch (const std::filesystem::filesystem_error& e) {
+      stop = Stop{run::kExitIo,
+                  wire::ERROR_CODE_IO,
+                  {},
+                  fmt::format("coordinator: I/O error: {}", e.what())};
     } catch (const InputError& e) {
       stop = Stop{run::kExitInput,
                   wire::ERROR_CODE_MODEL,
@@ -541,6 +551,7 @@ class Coordinator {
     const int code = err.code() == wire::ERROR_CODE_NUMERICAL ? run::kExitNumerical
                      : err.code() == wire::ERROR_CODE_MODEL   ? run::kExitInput
                      : err.code() == wire::ERROR_CODE_STOPPED ? run::kExitStopped
+                     : err.code() == wire::ERROR_CODE_IO      ? run::kExitIo
                                                               : run::kExitPeer;
     throw StopRun(Stop{code,
                        err.code(),

@@ -37,6 +37,13 @@ class NumericalError : public Error {
   using Error::Error;
 };
 
+/// A file that cannot be written or read back: disk full, read-only file system, no permission,
+/// a folder where a file is meant (run::kExitIo). Message: the file, the system's reason, the fix.
+class IoError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A model that cannot be run as built (inconsistent sizes, a node in no element, ...).
 class ModelError : public Error {
  public:

@@ -61,7 +61,7 @@ void append_raw(std::vector<std::uint8_t>& out, const T& x) {
 }
 
 [[noreturn]] void sys_fail(const std::string& path, const char* what) {
-  throw CheckpointError(
+  throw IoError(
       fmt::format("checkpoint {}: {} failed: {}; check that the output folder "
                   "is writable and the disk is not full",
                   path, what, std::strerror(errno)));

@@ -119,6 +119,12 @@ class Daemon {
       // Refused by the coordinator's CURVE check: a second handshake would be refused too.
       failure = Failure{run::kExitInput, wire::ERROR_CODE_PROTOCOL, false,
                         fmt::format("{}: {}", where(), e.what())};
+    } catch (const IoError& e) {
+      failure = Failure{run::kExitIo, wire::ERROR_CODE_IO, true,
+                        fmt::format("{}: I/O error: {}", where(), e.what())};
+    } catch (const std::filesystem::filesystem_error& e) {
+      failure = Failure{run::kExitIo, wire::ERROR_CODE_IO, true,
+                        fmt::format("{}: I/O error: {}", where(), e.what())};
     } catch (const InputError& e) {
       failure = Failure{run::kExitInput, wire::ERROR_CODE_MODEL, true,
                         fmt::format("{}: input error: {}", where(), e.what())};

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <numeric>
 
@@ -82,16 +83,39 @@ herr_t walk_error(unsigned n, const H5E_error2_t* e, void* data) {
 
 ResultFileError::ResultFileError(const std::string& file, const std::string& object,
                                  const std::string& what)
-    : Error([&] {
+    : IoError([&] {
         std::string msg = fmt::format("{}:{}: {}", file, object, what);
         const std::string detail = hdf5_error_message();
-        if (!detail.empty()) msg += " (HDF5: " + detail + ")";
+        // A failed write or open says why in "errno = N, error message = '...'": that is the
+        // cause a user can act on (No space left on device, Read-only file system, ...).
+        const std::string key = "error message = '";
+        const auto at = detail.find(key);
+        const auto end = at == std::string::npos ? at : detail.find('\'', at + key.size());
+        if (end != std::string::npos) {
+          msg += ": " + detail.substr(at + key.size(), end - at - key.size()) +
+                 "; free space on that file system or write elsewhere (--out)";
+        } else if (!detail.empty()) {
+          msg += " (HDF5: " + detail + ")";
+        }
         return msg;
       }()),
       file_(file),
       object_(object) {}
 
+namespace {
+// No HDF5 clean-up at exit: after a write failed (disk full), H5Fclose fails and leaves the file
+// open, and H5_term_library's second try at exit crashed every process (SIGSEGV in
+// H5F__close_cb, HDF5 1.10.8). The writers close every object themselves; a file a failure left
+// open is abandoned at exit, with what was flushed before readable. H5dont_atexit must come
+// before any other HDF5 call: hence a static initializer of this library.
+const bool kNoHdf5AtExit = [] {
+  H5dont_atexit();
+  return true;
+}();
+}  // namespace
+
 void quiet_hdf5_errors() {
+  (void)kNoHdf5AtExit;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
@@ -108,10 +132,16 @@ FileHandle create_file(const std::string& path) {
   // Default file access (weak close degree): the writer closes its objects before the file, and
   // a reader in the same process may open the file while it is being written.
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (id < 0)
+  if (id < 0) {
+    // An empty file left by a create that failed half-way (disk full) is no result. (The HDF5
+    // error stack, which fail() reads, is untouched by std::filesystem.)
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0)
+      std::filesystem::remove(path, ec);
     fail(path, "/",
          "cannot create the result file (H5Fcreate); check the directory "
          "exists and is writable and that no other program holds the file");
+  }
   return FileHandle(id);
 }
 

@@ -28,7 +28,7 @@ namespace crashlink::io {
 
 /// An HDF5 call failed, or the result writer was used wrongly. Message:
 /// "<file>:<object path>: <what failed> (HDF5: <innermost HDF5 message>)".
-class ResultFileError : public Error {
+class ResultFileError : public IoError {
  public:
   ResultFileError(const std::string& file, const std::string& object, const std::string& what);
   const std::string& file() const { return file_; }

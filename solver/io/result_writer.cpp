@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <set>
 
+#include "solver/io/disk_space.h"
 #include "solver/io/hdf5_handles.h"
 #include "solver/io/xdmf_writer.h"
 
@@ -130,7 +131,7 @@ struct ResultWriter::Impl {
 
   /// Appends the buffered rows; the buffers are emptied even if a write fails (no row is ever
   /// written twice). Returns the number of rows written.
-  std::size_t write_history() {
+  std::size_t write_history(bool closing = false) {
     const std::size_t rows = buffered;
     struct Clear {
       Impl* self;
@@ -151,6 +152,11 @@ struct ResultWriter::Impl {
       }
     } clear{this};
     if (rows == 0) return 0;
+    std::uint64_t need = 0;
+    for (const auto& b : glstat_buffer) need += b.size();
+    for (const ProbeOut& p : probes) need += p.t.size() + p.u.size() + p.v.size() + p.a.size();
+    for (const ContactOut& c : contacts) need += c.t.size() + c.f.size();
+    if (!closing) ensure_space(h5_path, "/history", 8 * need);  // closing: in the reserve
     for (std::size_t c = 0; c < kGlstat.size(); ++c) {
       append_rows(
           Location{glstat[c].get(), h5_path, std::string("/history/glstat/") + kGlstat[c].name},
@@ -460,6 +466,11 @@ void ResultWriter::write_field_state(const FieldState& s) {
     check_size(s.parts[p].stress_Pa, 6 * ne, part + "/stress", false);
   }
 
+  std::uint64_t values = s.displacement_m.size() + s.velocity_m_s.size();
+  for (const auto& ps : s.parts)
+    values += ps.eps_p.size() + ps.von_mises_Pa.size() + ps.stress_Pa.size();
+  ensure_space(h5_path_, path, 8 * values);
+
   GroupHandle states = open_group(w.root(), "states");
   const Location sat{states.get(), h5_path_, "/states"};
   GroupHandle g = create_group(sat, std::to_string(k));
@@ -554,7 +565,7 @@ void ResultWriter::close() {
       if (!first) first = std::current_exception();
     }
   };
-  attempt([&] { history_rows_ += w->write_history(); });
+  attempt([&] { history_rows_ += w->write_history(true); });
   attempt([&] {
     for (auto& d : w->glstat) d.reset();
     w->probes.clear();

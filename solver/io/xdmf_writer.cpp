@@ -140,9 +140,11 @@ void write_xdmf(const std::string& path, const XdmfDocument& doc) {
     f.write(text.data(), static_cast<std::streamsize>(text.size()));
     f.flush();
     if (!f) {
+      const int err = errno;
+      f.close();
+      std::remove(tmp.c_str());  // the XDMF file before it stays as it was
       throw ResultFileError(
-          tmp, "/",
-          fmt::format("cannot write the XDMF file: {} (disk full?)", std::strerror(errno)));
+          tmp, "/", fmt::format("cannot write the XDMF file: {} (disk full?)", std::strerror(err)));
     }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {

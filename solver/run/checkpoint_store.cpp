@@ -29,7 +29,7 @@ std::string instant_name(std::int64_t ticks) {
 }
 
 [[noreturn]] void fail(const fs::path& p, const std::string& what, const std::error_code& ec) {
-  throw CheckpointError(
+  throw IoError(
       fmt::format("checkpoint {}: {}: {}; check that the output folder is "
                   "writable and the disk is not full",
                   p.string(), what, ec.message()));
