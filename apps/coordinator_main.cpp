@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "apps/program_cli.h"
 #include "apps/session_flags.h"
 #include "apps/stop_signal.h"
 #include "solver/coordination/coordinator_run.h"
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   apps::SessionFlags session;
   std::string mode = "multi";
   int join_timeout_ms = 60000;
+  apps::add_version_flag(app, "crashlink-coordinator");
   bool progress = false;
   app.add_option("--bind", o.bind,
                  "endpoint to bind: tcp://HOST:PORT (PORT * or 0: any free port, printed), "
@@ -70,7 +72,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : run::kExitInput;
+    return apps::parse_error_exit(app, e, "crashlink-coordinator");
   }
   o.common_step = mode == "split";
   o.lanes = !no_lanes;
