@@ -2,12 +2,13 @@
 // docs/processes.md). Started by `crashlink run` or by hand on any host:
 //   crashlink-solver --connect tcp://host:port --domain NAME --scenario FILE --out DIR
 // Exit codes: solver/run/exit_codes.h (0 ok, 2 input, usage or refused, 3 guard, 4 internal, 5
-// stopped because of another process or a socket failure).
+// stopped because of another process or a socket failure). Defaults: apps/shared_defaults.h.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "apps/program_cli.h"
 #include "apps/session_flags.h"
+#include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
 #include "solver/daemon/daemon.h"
 #include "solver/run/exit_codes.h"
@@ -16,6 +17,8 @@ int main(int argc, char** argv) {
   using namespace crashlink;
   CLI::App app{"crashlink-solver: one domain of a crashlink run, connected to the coordinator"};
   daemon::DaemonOptions o;
+  o.out_dir = apps::SharedDefaults::out;
+  o.step_safety = apps::SharedDefaults::step_safety;
   apps::SessionFlags session;
   apps::add_version_flag(app, "crashlink-solver");
   app.add_option("--connect", o.endpoint,
@@ -38,7 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
-  std::string coupling = "layer";
+  std::string coupling = apps::SharedDefaults::coupling;
   app.add_option("--coupling", coupling,
                  "layer (default) | paper: the coupling scheme; the coordinator's must be the same")
       ->check(CLI::IsMember({"layer", "paper"}))
