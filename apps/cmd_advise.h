@@ -9,11 +9,13 @@
 #include <cstdio>
 #include <string>
 
+#include "apps/shared_defaults.h"
+
 namespace crashlink::apps {
 
 struct AdviseOptions {
   std::string scenario;
-  double step_safety = 0.9;  ///< as `crashlink run --step-safety`
+  double step_safety = SharedDefaults::step_safety;  ///< as `crashlink run --step-safety`
   /// > 0: also the scenario's own split timed on processes over [F, 2F] of the end time
   /// (advise_process_sample.h).
   double process_sample = 0.0;

@@ -17,13 +17,15 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("scenario", o.scenario, "scenario YAML file")
       ->required()
       ->check(CLI::ExistingFile);
-  run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)");
+  run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)")
+      ->capture_default_str();
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
   run->add_option("--coupling", o.coupling,
                   "split/multi: layer (default) | paper (Bourel 2005 [8]-[11]: stable only up to "
                   "a step ratio of about 2; its guard stops it beyond, docs/paper-scheme.md)")
-      ->check(CLI::IsMember({"layer", "paper"}));
+      ->check(CLI::IsMember({"layer", "paper"}))
+      ->capture_default_str();
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
                 "each domain's step follows its stable step as the mesh deforms instead of "
@@ -48,7 +50,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("--checkpoint-interval", o.checkpoint_interval_s,
                   "split/multi: every process writes a checkpoint every this much simulated "
                   "time, s (rounded to a multiple of every domain's step) into OUT/checkpoints")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   run->add_flag("--no-lanes", o.no_lanes,
                 "split/multi: the layer vectors go through the coordinator instead of daemon to "
                 "daemon (docs/processes.md \"Lanes\"; for comparison)");

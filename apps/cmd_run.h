@@ -18,25 +18,26 @@
 #include <string>
 
 #include "apps/session_flags.h"
+#include "apps/shared_defaults.h"
 
 namespace crashlink::apps {
 
 struct RunCommandOptions {
   std::string scenario;
-  std::string out = "out";
+  std::string out = SharedDefaults::out;
   std::string mode = "mono";
-  std::string coupling = "layer";
+  std::string coupling = SharedDefaults::coupling;
   std::string transport = "ipc";
   bool quiet = false;
   SessionFlags session;
-  int join_timeout_ms = 60000;
+  int join_timeout_ms = SharedDefaults::join_timeout_ms;
   /// split/multi: factor on every domain's initial stable step before the steps are fixed for
   /// the run (the stable step shrinks as the mesh deforms; a fixed step above it stops the run).
-  double step_safety = 0.9;
+  double step_safety = SharedDefaults::step_safety;
   /// "" or "mono": run the reference too and compare (split/multi only).
   std::string reference;
   /// split/multi: checkpoints every this much simulated time [s] (0: none).
-  double checkpoint_interval_s = 0.0;
+  double checkpoint_interval_s = SharedDefaults::checkpoint_interval_s;
   /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
   bool no_lanes = false;        ///< CoordinatorOptions::lanes = false

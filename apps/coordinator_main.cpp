@@ -2,14 +2,17 @@
 // docs/processes.md). Started by `crashlink run` or by hand:
 //   crashlink-coordinator --bind tcp://0.0.0.0:5555 --scenario FILE --out DIR [--mode multi]
 // It prints the bound endpoint (and writes it to --endpoint-file), waits for one daemon per
-// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/run/exit_codes.h.
+// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/run/exit_codes.h. Defaults:
+// apps/shared_defaults.h.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
 
+#include "apps/program_cli.h"
 #include "apps/session_flags.h"
+#include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
 #include "solver/coordination/coordinator_run.h"
 #include "solver/run/exit_codes.h"
@@ -19,9 +22,12 @@ int main(int argc, char** argv) {
   using namespace crashlink;
   CLI::App app{"crashlink-coordinator: couples the domains of a crashlink run"};
   coordination::CoordinatorOptions o;
+  o.out_dir = apps::SharedDefaults::out;
+  o.checkpoint_interval_s = apps::SharedDefaults::checkpoint_interval_s;
   apps::SessionFlags session;
-  std::string mode = "multi";
-  int join_timeout_ms = 60000;
+  std::string mode = apps::SharedDefaults::coupled_mode;
+  int join_timeout_ms = apps::SharedDefaults::join_timeout_ms;
+  apps::add_version_flag(app, "crashlink-coordinator");
   bool progress = false;
   app.add_option("--bind", o.bind,
                  "endpoint to bind: tcp://HOST:PORT (PORT * or 0: any free port, printed), "
@@ -52,7 +58,7 @@ int main(int argc, char** argv) {
   app.add_flag("--restart", o.restart,
                "resume from the newest checkpoint in --out that every domain has (the daemons "
                "list theirs when they register)");
-  std::string coupling = "layer";
+  std::string coupling = apps::SharedDefaults::coupling;
   app.add_option("--coupling", coupling,
                  "layer (default) | paper (Bourel 2005 [8]-[11]; every daemon with --coupling "
                  "paper too; no checkpoints)")
@@ -70,7 +76,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : run::kExitInput;
+    return apps::parse_error_exit(app, e, "crashlink-coordinator");
   }
   o.common_step = mode == "split";
   o.lanes = !no_lanes;

@@ -1,10 +1,15 @@
 // crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise,
-// stability-map, sweep, keygen.
+// stability-map, sweep, keygen. A usage error (any subcommand, or none) exits 2 with CLI11's
+// message (apps/program_cli.h); --help and --version exit 0.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -17,12 +22,14 @@
 #include "apps/cmd_run.h"
 #include "apps/cmd_stability_map.h"
 #include "apps/cmd_sweep.h"
+#include "apps/program_cli.h"
 #include "solver/core/errors.h"
 #include "solver/run/exit_codes.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crashlink: multi-domain, multi-time-scale explicit dynamics for crash simulation"};
   app.require_subcommand(1);
+  crashlink::apps::add_version_flag(app, "crashlink");
   namespace cl = crashlink::apps;
   // Each subcommand: its options (filled by the parse) and the function that runs it.
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands;
@@ -53,14 +60,31 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // No subcommand: `crashlink` alone prints the usage; `crashlink frob` names what it got.
+    // Either exits 2 as any usage error.
+    std::string what;
+    if (app.get_subcommands().empty() && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      const auto got = app.remaining();
+      if (got.empty()) {
+        std::fputs(app.help().c_str(), stderr);
+      } else {
+        std::vector<std::string> names;
+        for (const auto& [command, run_command] : commands) names.push_back(command->get_name());
+        what =
+            fmt::format("'{}' is not {}; the subcommands: {}", got.front(),
+                        got.front().starts_with('-') ? "an option of crashlink without a subcommand"
+                                                     : "a subcommand",
+                        fmt::join(names, ", "));
+      }
+    }
+    return crashlink::apps::parse_error_exit(app, e, "crashlink", what);
   }
   try {
     for (const auto& [command, run_command] : commands)
       if (*command) return run_command();
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
-    return 2;
+    return crashlink::run::kExitInput;
   } catch (const crashlink::IoError& e) {
     std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
     return crashlink::run::kExitIo;
@@ -69,10 +93,10 @@ int main(int argc, char** argv) {
     return crashlink::run::kExitIo;
   } catch (const crashlink::Error& e) {
     std::fprintf(stderr, "crashlink: error: %s\n", e.what());
-    return 3;
+    return crashlink::run::kExitNumerical;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crashlink: internal error: %s\n", e.what());
-    return 4;
+    return crashlink::run::kExitInternal;
   }
   return 0;
 }

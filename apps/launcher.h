@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "apps/session_flags.h"
+#include "apps/shared_defaults.h"
 #include "transport/endpoint.h"
 
 namespace crashlink::apps {
@@ -28,14 +29,14 @@ struct LaunchOptions {
   transport::Scheme scheme = transport::Scheme::ipc;
   bool progress = true;  ///< the coordinator's progress line on stderr
   SessionFlags session;
-  int join_timeout_ms = 60000;
-  double step_safety = 0.9;            ///< passed to every daemon (DaemonOptions::step_safety)
-  double checkpoint_interval_s = 0.0;  ///< CoordinatorOptions::checkpoint_interval_s
-  bool restart = false;                ///< CoordinatorOptions::restart (out_dir holds the run)
-  bool lanes = true;                   ///< CoordinatorOptions::lanes
-  bool paper = false;                  ///< --coupling paper for the coordinator and every daemon
-  bool drift = true;                   ///< `paper`: drift correction [11] (--no-drift otherwise)
-  bool variable_steps = false;         ///< CoordinatorOptions::variable_steps
+  int join_timeout_ms = SharedDefaults::join_timeout_ms;
+  double step_safety = SharedDefaults::step_safety;  ///< to every daemon (--step-safety)
+  double checkpoint_interval_s = SharedDefaults::checkpoint_interval_s;  ///< to the coordinator
+  bool restart = false;         ///< CoordinatorOptions::restart (out_dir holds the run)
+  bool lanes = true;            ///< CoordinatorOptions::lanes
+  bool paper = false;           ///< --coupling paper for the coordinator and every daemon
+  bool drift = true;            ///< `paper`: drift correction [11] (--no-drift otherwise)
+  bool variable_steps = false;  ///< CoordinatorOptions::variable_steps
 };
 
 /// How one piece of the run ended.

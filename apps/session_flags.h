@@ -9,15 +9,17 @@
 #include <utility>
 #include <vector>
 
+#include "apps/shared_defaults.h"
 #include "transport/session.h"
 
 namespace crashlink::apps {
 
 struct SessionFlags {
-  int heartbeat_ms = 500;            ///< send a Heartbeat after this much silence
-  int peer_timeout_ms = 5000;        ///< a peer silent this long is dead
-  int handshake_timeout_ms = 30000;  ///< daemon: wait this long for the coordinator's Hello
-  transport::CurveOptions curve;     ///< CURVE keys (docs/processes.md, "Security (CURVE)")
+  int heartbeat_ms = SharedDefaults::heartbeat_ms;  ///< send a Heartbeat after this much silence
+  int peer_timeout_ms = SharedDefaults::peer_timeout_ms;  ///< a peer silent this long is dead
+  /// daemon: wait this long for the coordinator's Hello
+  int handshake_timeout_ms = SharedDefaults::handshake_timeout_ms;
+  transport::CurveOptions curve;  ///< CURVE keys (docs/processes.md, "Security (CURVE)")
 
   transport::SessionOptions options() const {
     transport::SessionOptions o;

@@ -1,12 +1,14 @@
 // crashlink-solver: one domain of a `layer` run as a daemon (solver/daemon/daemon.h,
 // docs/processes.md). Started by `crashlink run` or by hand on any host:
 //   crashlink-solver --connect tcp://host:port --domain NAME --scenario FILE --out DIR
-// Exit codes: solver/run/exit_codes.h (0 ok, 2 input or refused, 3 guard, 4 internal, 5 stopped
-// because of another process or a socket failure).
+// Exit codes: solver/run/exit_codes.h (0 ok, 2 input, usage or refused, 3 guard, 4 internal, 5
+// stopped because of another process or a socket failure). Defaults: apps/shared_defaults.h.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "apps/program_cli.h"
 #include "apps/session_flags.h"
+#include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
 #include "solver/daemon/daemon.h"
 #include "solver/run/exit_codes.h"
@@ -15,7 +17,10 @@ int main(int argc, char** argv) {
   using namespace crashlink;
   CLI::App app{"crashlink-solver: one domain of a crashlink run, connected to the coordinator"};
   daemon::DaemonOptions o;
+  o.out_dir = apps::SharedDefaults::out;
+  o.step_safety = apps::SharedDefaults::step_safety;
   apps::SessionFlags session;
+  apps::add_version_flag(app, "crashlink-solver");
   app.add_option("--connect", o.endpoint,
                  "the coordinator's endpoint: tcp://host:port, ipc://path or inproc://name")
       ->required();
@@ -36,7 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
-  std::string coupling = "layer";
+  std::string coupling = apps::SharedDefaults::coupling;
   app.add_option("--coupling", coupling,
                  "layer (default) | paper: the coupling scheme; the coordinator's must be the same")
       ->check(CLI::IsMember({"layer", "paper"}))
@@ -45,7 +50,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : run::kExitInput;
+    return apps::parse_error_exit(app, e, "crashlink-solver");
   }
   o.session = session.options();
   o.offer_lane = !no_lane;

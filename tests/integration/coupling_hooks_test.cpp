@@ -11,7 +11,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <utility>
 
+#include "solver/core/errors.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/test_models.h"
 
@@ -138,4 +141,65 @@ TEST(CouplingHooks, LayerSplitAtCommonStepReproducesMono) {
       "A %.6e J, C %.6e J (input %.6e J); balance mono %.2e A %.2e C %.2e\n",
       worst / scale, ea.coupling_work_J, ec.coupling_work_J, em.external_work_J, em.balance_error(),
       ea.balance_error(), ec.balance_error());
+}
+
+namespace {
+
+/// The first two numbers "X s" after `after` in `what` (0 where absent).
+std::pair<double, double> two_steps_after(const std::string& what, const std::string& after) {
+  std::pair<double, double> v{0.0, 0.0};
+  auto at = what.find(after);
+  if (at == std::string::npos) return v;
+  at += after.size();
+  for (double* x : {&v.first, &v.second}) {
+    const auto start = what.find_first_of("0123456789", at);
+    if (start == std::string::npos) break;
+    std::size_t used = 0;
+    *x = std::stod(what.substr(start), &used);
+    at = start + used;
+    if (what.compare(at, 2, " s") != 0) {  // not a step
+      *x = 0.0;
+      return v;
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+// A coordinator's step a hair above what a domain allows (a fixed step planned from the initial
+// stable step, 1e-9 above the stable step as it has shrunk since; the README's by-hand recipe at
+// --step-safety 1 stopped so at 3.56 ms) is refused, and the message prints the two steps as two
+// different numbers, the imposed one the larger. Both were printed with 7 digits before, the same
+// number twice ("imposed dt = 2.209825e-06 s, but this domain's stable step is 2.209825e-06 s").
+TEST(CouplingHooks, RefusedImposedStepPrintsBothStepsApart) {
+  auto m = bar_piece(0, 10, true);
+  integration::Solver s(m, "body");
+  s.initialize();
+  const double allowed = s.dt_s();
+  for (const double excess : {2e-9, 1e-6, 1.0}) {
+    const double imposed = allowed * (1.0 + excess);
+    try {
+      s.impose_step(imposed);
+      ADD_FAILURE() << "a step " << excess << " above the allowed one was taken";
+    } catch (const NumericalError& e) {
+      const std::string what = e.what();
+      const auto [shown_imposed, shown_allowed] = two_steps_after(what, "imposed dt = ");
+      EXPECT_GT(shown_imposed, shown_allowed) << what;
+      EXPECT_NEAR(shown_imposed, imposed, 0.1 * excess * allowed) << what;
+      EXPECT_NEAR(shown_allowed, allowed, 0.1 * excess * allowed) << what;
+      EXPECT_NE(what.find("part 'bar'"), std::string::npos) << what;  // which element sets it
+    }
+  }
+  // the same for a step committed at the start of an owner step (variable `layer` steps)
+  const double stable = s.dt_stable_s();
+  try {
+    s.impose_committed_step(stable * (1.0 + 2e-9));
+    ADD_FAILURE() << "a committed step above the stable one was taken";
+  } catch (const NumericalError& e) {
+    const std::string what = e.what();
+    const auto [shown_committed, shown_stable] = two_steps_after(what, "the step ");
+    EXPECT_GT(shown_committed, shown_stable) << what;
+    EXPECT_NEAR(shown_stable, stable, 0.1 * 2e-9 * stable) << what;
+  }
 }

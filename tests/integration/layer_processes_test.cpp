@@ -283,9 +283,11 @@ static void multi_bar_case(Scheme scheme, bool lanes) {
   const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
   const auto out = dir / "out";
   std::string log;
-  const int code = run_pieces(
-      scheme, scenario, out, "multi",
-      {{"fine", {"--max-step", "1e-6"}}, {"coarse", {"--max-step", "2e-6"}}}, log, lanes);
+  // --step-safety 1: LayerNetworkOptions' (crashlink-solver's default is 0.9, as crashlink run's)
+  const int code = run_pieces(scheme, scenario, out, "multi",
+                              {{"fine", {"--max-step", "1e-6", "--step-safety", "1"}},
+                               {"coarse", {"--max-step", "2e-6", "--step-safety", "1"}}},
+                              log, lanes);
   ASSERT_EQ(code, 0) << log;
   EXPECT_NE(log.find(lanes ? "layer vectors daemon to daemon (lanes)"
                            : "layer vectors through the coordinator"),
@@ -328,8 +330,10 @@ static void multi_bar_variable_case(Scheme scheme, bool lanes) {
   const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
   const auto out = dir / "out";
   std::string log;
-  const int code =
-      run_pieces(scheme, scenario, out, "multi", {{"fine", {}}, {"coarse", {}}}, log, lanes, true);
+  // --step-safety 1: LayerNetworkOptions' (crashlink-solver's default is 0.9, as crashlink run's)
+  const std::vector<std::string> safety{"--step-safety", "1"};
+  const int code = run_pieces(scheme, scenario, out, "multi",
+                              {{"fine", safety}, {"coarse", safety}}, log, lanes, true);
   ASSERT_EQ(code, 0) << log;
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;

@@ -323,7 +323,8 @@ struct Case {
 Case bar_case() {
   return {"bar",
           bar_yaml(6.0e-3),
-          {{"fine", {"--max-step", "1e-6"}}, {"coarse", {"--max-step", "2e-6"}}}};
+          {{"fine", {"--max-step", "1e-6", "--step-safety", "1"}},
+           {"coarse", {"--max-step", "2e-6", "--step-safety", "1"}}}};
 }
 
 Case plate_case() {

@@ -101,7 +101,8 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
   std::vector<std::unique_ptr<Child>> ds;
   for (const auto& [name, step] : cap)
     ds.push_back(start_solver(endpoint, name, scenario, out,
-                              {"--coupling", "paper", "--max-step", fmt::format("{:.17g}", step)}));
+                              {"--coupling", "paper", "--max-step", fmt::format("{:.17g}", step),
+                               "--step-safety", "1"}));  // as inproc (ro.step_safety is 1 here)
   EXPECT_TRUE(ro.steps == nullptr && ro.cycles == nullptr && !ro.split && !ro.variable_steps &&
               ro.step_safety == 1.0)
       << "processes run multi at fixed steps here";

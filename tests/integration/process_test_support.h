@@ -165,10 +165,11 @@ inline int exit_code(int status) {
   return -1000;
 }
 
-/// A child process; stdout and stderr go to one pipe read by a thread (output()).
+/// A child process; stdout and stderr go to one pipe read by a thread (output()). It runs in
+/// `cwd` when given (relative paths in argv then resolve there).
 class Child {
  public:
-  explicit Child(std::vector<std::string> argv) {
+  explicit Child(std::vector<std::string> argv, const std::string& cwd = {}) {
     int fds[2];
     if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe2 failed");
     std::vector<char*> args;
@@ -179,6 +180,7 @@ class Child {
     if (pid_ == 0) {
       prctl(PR_SET_PDEATHSIG, SIGKILL);
       if (getppid() != parent) _exit(127);
+      if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(127);
       dup2(fds[1], 1);
       dup2(fds[1], 2);
       execv(args[0], args.data());
