@@ -81,7 +81,7 @@ TEST(GuardFloor, ADomainTheWaveHasNotReachedIsNotStopped) {
 // The same bar as a scenario over processes (`crashlink run --mode split`, the run of the
 // issue): every daemon reads the whole scenario, so the far domain's guard knows the model's
 // energy and the run ends with exit 0 (before the floor: exit 3, "far: energy balance error 100 %
-// ... at cycle 499", kinetic 2e-323 J).
+// ... at cycle 499", kinetic 2e-323 J); the start prints the run's estimate.
 TEST(GuardFloor, ASplitRunOverProcessesReachesTheEnd) {
   const auto dir = fresh_dir("guard-floor");
   const RemoveIfPassed cleanup{dir};
@@ -124,6 +124,7 @@ domains:
   ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
   EXPECT_EQ(exit_code(*st), 0) << run.output();
   EXPECT_EQ(run.output().find("energy was created"), std::string::npos) << run.output();
+  EXPECT_NE(run.output().find("estimated ~"), std::string::npos) << run.output();
 }
 
 // The floor does not blind the guard: a domain of small energy (1e-9 of the model's 1 J) that
