@@ -17,6 +17,7 @@
 #include "solver/gather/gather_results.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
+#include "solver/model/run_estimate.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/exit_codes.h"
 
@@ -137,6 +138,11 @@ int run_coupled(const RunCommandOptions& o) {
       o.mode.c_str(), o.coupling.c_str(), o.transport.c_str(), domains.size(),
       fmt::format("{}", fmt::join(domains, "', '")).c_str(), o.out.c_str());
   std::fflush(stdout);
+  // What the run will cost at the smallest element step (model/run_estimate.h): an upper bound
+  // for multi, whose coarse domains take fewer cycles.
+  if (!o.quiet)
+    fmt::print(stderr, "crashlink run: estimated {}\n",
+               model::describe(model::estimate_run(model, model::estimated_stable_step_s(model))));
 
   LaunchOptions lo;
   lo.scenario = o.scenario;

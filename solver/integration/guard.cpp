@@ -1,5 +1,6 @@
 #include "solver/integration/guard.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/core/errors.h"
@@ -25,6 +26,19 @@ std::size_t fastest_node(const double* v, std::size_t n) {
 
 }  // namespace
 
+std::string early_stop_hint(const GuardContext& c) {
+  if (c.cycle >= kEarlyStopCycles) return "";
+  return fmt::format(
+      " Stopped within the first {} cycles: check the units of thickness, modulus, density, "
+      "velocities (SI: m, Pa, kg/m^3, m/s).",
+      kEarlyStopCycles);
+}
+
+double guarded_balance_error(const EnergyAccount& e, double floor_J) {
+  const double reference = std::max(e.reference_J, floor_J);
+  return reference > 0.0 ? e.balance_J() / reference : 0.0;
+}
+
 void check_finite_velocities(const model::Model& m, const double* v, const GuardContext& c) {
   const std::size_t n = m.nodes.count();
   for (std::size_t i = 0; i < 3 * n; ++i) {
@@ -32,15 +46,16 @@ void check_finite_velocities(const model::Model& m, const double* v, const Guard
       throw NumericalError(fmt::format(
           "{}: velocity of node {} is {} at cycle {}, t = {:.6e} s (dt = {:.3e} s). The solution "
           "blew up: check the time step scale (default 0.9 of the stable step), penalty and "
-          "hourglass settings, and the elements around this node.",
-          c.domain, m.nodes.id[i / 3], v[i], c.cycle, c.time_s, c.dt_s));
+          "hourglass settings, and the elements around this node.{}",
+          c.domain, m.nodes.id[i / 3], v[i], c.cycle, c.time_s, c.dt_s, early_stop_hint(c)));
     }
   }
 }
 
-void check_energy_balance(const model::Model& m, const EnergyAccount& e, double tolerance,
+void check_energy_balance(const model::Model& m, const EnergyAccount& e, const BalanceBound& bound,
                           const double* v, const GuardContext& c) {
-  const double err = e.balance_error();
+  const double err = guarded_balance_error(e, bound.floor_J);
+  const double tolerance = bound.tolerance;
   if (std::isfinite(err) && std::abs(err) <= tolerance) return;
   const std::size_t i = fastest_node(v, m.nodes.count());
   const double speed =
@@ -49,11 +64,12 @@ void check_energy_balance(const model::Model& m, const EnergyAccount& e, double 
       "{}: energy balance error {:.3g} % exceeds the bound {:.3g} % at cycle {}, t = {:.6e} s "
       "(dt = {:.3e} s): kinetic {:.6e} J, internal {:.6e} J, hourglass {:.6e} J, external work "
       "{:.6e} J, initial {:.6e} J. {} The fastest node is {} ({:.4g} m/s). Likely cause: a step "
-      "above the stable limit (controls.dt_scale), a too stiff penalty, or an unstable coupling.",
+      "above the stable limit (controls.dt_scale), a too stiff penalty, or an unstable "
+      "coupling.{}",
       c.domain, 100.0 * err, 100.0 * tolerance, c.cycle, c.time_s, c.dt_s, e.kinetic_J,
       e.internal_J, e.hourglass_J, e.external_work_J, e.initial_total_J,
       err > 0 ? "Energy was created: the run went unstable." : "Energy was lost.", m.nodes.id[i],
-      speed));
+      speed, early_stop_hint(c)));
 }
 
 }  // namespace crashlink::integration

@@ -17,12 +17,29 @@ struct GuardContext {
   std::string domain = "model";
 };
 
+/// The energy balance's bound: |balance_J| <= tolerance x max(reference_J, floor_J).
+struct BalanceBound {
+  double tolerance = 0.05;  ///< Controls::energy_tolerance [-]
+  double floor_J = 0.0;     ///< the model's scale under the reference (energy_scale.h) [J]
+};
+
+/// A guard stop at a cycle below this is most likely a unit mistake in the input (a thickness in
+/// mm, a modulus in GPa): the message says so (early_stop_hint).
+inline constexpr std::int64_t kEarlyStopCycles = 10;
+
+/// " Stopped within the first N cycles: check the units ..." when c.cycle < kEarlyStopCycles,
+/// else "": ready to append to a guard message.
+std::string early_stop_hint(const GuardContext& c);
+
 /// Throws NumericalError if any of v[3n] is not finite, naming the first such node (user id).
 void check_finite_velocities(const model::Model& m, const double* v, const GuardContext& c);
 
-/// Throws NumericalError if |balance error| exceeds the tolerance; `v` [3n] locates the node
-/// with the largest speed, reported as the likely seat of the instability.
-void check_energy_balance(const model::Model& m, const EnergyAccount& e, double tolerance,
+/// The error the guard bounds: balance_J / max(reference_J, floor_J) (0 while both are 0).
+double guarded_balance_error(const EnergyAccount& e, double floor_J);
+
+/// Throws NumericalError if |guarded_balance_error| exceeds the tolerance; `v` [3n] locates the
+/// node with the largest speed, reported as the likely seat of the instability.
+void check_energy_balance(const model::Model& m, const EnergyAccount& e, const BalanceBound& bound,
                           const double* v, const GuardContext& c);
 
 }  // namespace crashlink::integration

@@ -6,6 +6,7 @@
 
 #include "solver/core/errors.h"
 #include "solver/integration/central_difference.h"
+#include "solver/integration/energy_scale.h"
 
 namespace crashlink::integration {
 
@@ -294,6 +295,8 @@ void Solver::initialize() {
     if (inertia_[i] > 0.0) inv_inertia_[i] = 1.0 / inertia_[i];
   }
   apply_initial_velocities();
+  guard_floor_J_ = kGuardFloorFraction *
+                   std::max(model_.controls.model_energy_scale_J, model_energy_scale_J(*this));
   contacts_.clear();
   for (const auto& c : model_.contacts) contacts_.emplace_back(model_, c, mass_.data());
   contact_steps_.assign(contacts_.size(), {});
@@ -538,7 +541,8 @@ void Solver::begin_cycle() {
   if (!std::isfinite(energy_.kinetic_J)) check_finite_velocities(model_, v_.data(), ctx);
   if (cycle_ == 0) energy_.initial_total_J = energy_.total_J();
   energy_.update_reference();
-  check_energy_balance(model_, energy_, model_.controls.energy_tolerance, v_.data(), ctx);
+  check_energy_balance(model_, energy_, {model_.controls.energy_tolerance, guard_floor_J_},
+                       v_.data(), ctx);
   begun_ = true;
 }
 

@@ -163,6 +163,8 @@ class Solver {
   /// Energies at t^n: consistent after begin_cycle() (between end_cycle() and the next
   /// begin_cycle() the work terms are already at t^{n+1} while the kinetic energy is not).
   const EnergyAccount& energy() const { return energy_; }
+  /// The floor under the guard's reference energy [J] (energy_scale.h), after initialize().
+  double guard_floor_J() const { return guard_floor_J_; }
   const model::Model& model() const { return model_; }
   const std::string& domain_name() const { return domain_; }
 
@@ -279,6 +281,10 @@ class Solver {
   std::vector<PrescribedDof> prescribed_;
 
   EnergyAccount energy_;
+  /// The guard's floor under energy_.reference_J [J]: kGuardFloorFraction x the larger of the
+  /// model's energy scale (Controls::model_energy_scale_J) and this solver's own
+  /// (energy_scale.h); set by initialize(), constant.
+  double guard_floor_J_ = 0.0;
   double time_s_ = 0.0;
   std::int64_t cycle_ = 0;
   double dt_ = 0.0, dt_prev_ = 0.0, dt_min_ = 0.0, dt_stable_ = 0.0;

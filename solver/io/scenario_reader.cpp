@@ -45,7 +45,7 @@ std::vector<std::int32_t> ScenarioBuild::part_nodes(int p) const {
 
 void read_controls(const YamlNode& c, model::Controls& out) {
   c.expect_keys({"end_time", "dt_scale", "dt_max", "history_interval", "field_interval",
-                 "bulk_viscosity", "energy_tolerance", "gravity"});
+                 "bulk_viscosity", "energy_tolerance", "gravity", "plausibility_checks"});
   out.end_time_s = c.required("end_time", "simulated time in s, e.g. 0.01").positive();
   if (auto v = c.optional("dt_scale")) {
     out.dt_scale = v->positive();
@@ -140,6 +140,8 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
     // The section readers check everything with a line number first; this is the safety net.
     throw InputError(name_for_messages, 1, "(model)", e.what());
   }
+  if (root.required("controls").boolean_or("plausibility_checks", true))
+    detail::check_plausibility(root, b);
   return std::move(b.model);
 }
 

@@ -43,6 +43,9 @@ void read_rigid_bodies(const std::optional<YamlNode>& bodies, ScenarioBuild& b);
 void read_contacts(const YamlNode& contacts, ScenarioBuild& b);
 void read_probes(const YamlNode& probes, ScenarioBuild& b);
 void read_domains(const YamlNode& domains, ScenarioBuild& b);
+/// After every section: refuses values implausible for their neighbours, likely unit mistakes
+/// (scenario_plausibility.cpp; off with controls.plausibility_checks: false).
+void check_plausibility(const YamlNode& root, const ScenarioBuild& b);
 
 /// A node selection: a mapping {part, box: {min, max}} or {nodes: [ids]} (see node_sets in
 /// docs/scenario-format.md). Fails if it selects no node.

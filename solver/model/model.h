@@ -139,7 +139,11 @@ struct Controls {
   /// only). Off by default: LS-DYNA's convention, no viscous pressure in expansion.
   bool bulk_linear_in_expansion = false;
   double energy_tolerance = 0.05;  ///< guard: |balance error| / reference energy
-  Vec3 gravity_m_s2{};             ///< body acceleration
+  /// The whole model's energy scale [J] (integration/energy_scale.h), under the guard's reference
+  /// energy as a floor: set by the decomposition in every domain's sub-model so that a domain at
+  /// rest is judged at the model's scale; 0 (a scenario, a single domain): the solver's own.
+  double model_energy_scale_J = 0.0;
+  Vec3 gravity_m_s2{};  ///< body acceleration
 };
 
 /// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds

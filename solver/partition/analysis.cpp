@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "solver/core/errors.h"
+#include "solver/integration/energy_scale.h"
 #include "solver/integration/solver.h"
 #include "solver/partition/partition_detail.h"
 
@@ -124,6 +125,8 @@ Analysis analyse(const model::Model& g) {
   integration::Solver solver(g, "global");
   solver.initialize();
   a.mass_kg = solver.mass();
+  a.energy_scale_J =
+      std::max(g.controls.model_energy_scale_J, integration::model_energy_scale_J(solver));
   const double inf = std::numeric_limits<double>::infinity();
   a.part_dt_s.assign(g.parts.size(), inf);
   for (std::size_t p = 0; p < g.parts.size(); ++p)

@@ -29,6 +29,9 @@ struct Analysis {
   std::vector<double> orig_dt_s;         ///< [domains] min over the domain's parts
   std::vector<double> mass_kg;           ///< [n] natural lumped mass over the whole model
   std::vector<int> body_of_part;         ///< [parts] rigid body index or -1
+  /// The whole model's energy scale [J] (integration::model_energy_scale_J), every domain's
+  /// guard floor (Controls::model_energy_scale_J).
+  double energy_scale_J = 0.0;
 
   std::size_t domain_count() const { return domain_name.size(); }
   std::size_t element_count() const { return elem_part.size(); }

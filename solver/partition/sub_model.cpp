@@ -27,6 +27,7 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
   m.name = out.name;
   m.materials = g.materials;  // all of them: simpler, and material indices stay global
   m.controls = g.controls;
+  m.controls.model_energy_scale_J = a.energy_scale_J;  // the guard judges at the model's scale
 
   // Nodes.
   const std::size_t n = a.node_count();

@@ -6,6 +6,7 @@
 #include "solver/core/errors.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_writer.h"
+#include "solver/model/run_estimate.h"
 #include "solver/run/cpu_clock.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/progress.h"
@@ -33,6 +34,11 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   Progress progress(stderr, model.controls.end_time_s, options.progress);
   try {
     solver.initialize();
+    // What the run will cost, from the first stable step (model/run_estimate.h): an end time or a
+    // mesh in the wrong unit shows here before hours are spent.
+    if (options.progress)
+      fmt::print(stderr, "{}: estimated {}\n", options.domain_name,
+                 model::describe(model::estimate_run(model, solver.dt_s())));
     for (;;) {
       solver.begin_cycle();  // state at t^n complete; guard passed
       recorder.sample();

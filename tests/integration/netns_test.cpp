@@ -450,7 +450,8 @@ TEST(NetworkCut, LinkDownIsDetectedOnBothSides) {
   if (!net.ok()) GTEST_SKIP() << "network namespaces not available: " << net.reason();
   const auto dir = fresh_dir("netns-cut");
   const RemoveIfPassed cleanup{dir};
-  const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(10.0));  // minutes long
+  const std::string scenario =
+      write_file(dir / "bar.yaml", stopped_early(bar_yaml(10.0)));  // minutes long
   const auto out = dir / "out";
   const std::vector<std::pair<std::string, std::vector<std::string>>> domains{
       {"fine", {"--step-safety", "0.9"}}, {"coarse", {"--step-safety", "0.9"}}};

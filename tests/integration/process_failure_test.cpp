@@ -44,7 +44,7 @@ class ProcessFailure : public ::testing::TestWithParam<FailureCase> {
   void start(const std::string& label) {
     dir_ = fresh_dir(label + "-" + std::string(transport::scheme_name(scheme())) +
                      (paper() ? "-paper" : ""));
-    scenario_ = write_file(dir_ / "bar.yaml", bar_yaml(10.0));
+    scenario_ = write_file(dir_ / "bar.yaml", stopped_early(bar_yaml(10.0)));
     out_ = dir_ / "out";
     std::vector<std::string> coupling;
     if (paper()) coupling = {"--coupling", "paper"};

@@ -123,6 +123,16 @@ probes:
 )");
 }
 
+/// `yaml` (bar_yaml, plate_yaml) for a run meant to be stopped long before its end time (a kill,
+/// a network cut): an end time of seconds is then meant, so the reader's plausibility checks
+/// (docs/scenario-format.md) are turned off under `controls`.
+inline std::string stopped_early(std::string yaml) {
+  const auto at = yaml.find("controls:\n");
+  if (at == std::string::npos) throw std::runtime_error("no controls section");
+  yaml.insert(at + 10, "  plausibility_checks: false\n");
+  return yaml;
+}
+
 /// A 1 mm steel shell plate 0.2 x 0.1 m cut along x = 0.1: part "left" and part "right" (10 mm
 /// elements each, merged on the cut), the right edge clamped, an out-of-plane force pulse on the
 /// left edge and an in-plane one; domains left / right.
