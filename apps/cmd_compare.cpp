@@ -40,6 +40,28 @@ std::int64_t elements_of(const TimingRecord& t) {
   return sum;
 }
 
+/// The two files are runs of one model (the same node ids and parts with the same elements) and
+/// in the order reference, run (a mono reference is never the second file); InputError otherwise.
+void check_pair(const std::string& ref_path, const TimingRecord& ref, const std::string& run_path,
+                const TimingRecord& run) {
+  if (ref.domains.size() > 1 && run.domains.size() == 1)
+    throw InputError(fmt::format(
+        "compare: the first file is the reference and the second the run to compare; {} is a "
+        "coupled run ({} domains) and {} a single-domain one: swap them",
+        ref_path, ref.domains.size(), run_path));
+  const io::ResultReader a(ref_path), b(run_path);
+  const auto na = a.node_ids(), nb = b.node_ids();
+  const auto pa = a.mesh_parts(), pb = b.mesh_parts();
+  bool same = na == nb && pa.size() == pb.size();
+  for (std::size_t i = 0; same && i < pa.size(); ++i)
+    same = pa[i].name == pb[i].name && pa[i].element_ids == pb[i].element_ids;
+  if (!same)
+    throw InputError(fmt::format(
+        "compare: {} ({} nodes, {} parts) and {} ({} nodes, {} parts) are not runs of the same "
+        "model (node ids or parts' elements differ); compare runs of one scenario",
+        ref_path, na.size(), pa.size(), run_path, nb.size(), pb.size()));
+}
+
 }  // namespace
 
 CLI::App* add_compare_command(CLI::App& app, CompareOptions& options) {
@@ -61,6 +83,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& options) {
 Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   const TimingRecord ref = timing_of(options.reference);
   const TimingRecord run = timing_of(options.run);
+  check_pair(options.reference, ref, options.run, run);
   Comparison c;
   c.cpu_reference_s = ref.total_cpu_seconds();
   c.cpu_run_s = run.total_cpu_seconds();

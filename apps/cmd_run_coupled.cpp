@@ -3,6 +3,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -94,10 +95,15 @@ void print_energy(std::FILE* f, const std::string& h5, bool complete) {
                  "%.6g  external work %.6g  total %.6g\n",
                  e.time_s, e.kinetic_energy_J, e.internal_energy_J, e.hourglass_energy_J,
                  e.contact_energy_J, e.external_work_J, e.total_energy_J);
-    // The coupling's own work: energy the scheme put in (> 0) or took out, of the initial total.
+    // The coupling's own work: energy the scheme put in (> 0) or took out, as a share of the
+    // energy the model had to carry: the larger of its initial total and the external work done
+    // on it (a driven model starts at rest: a share of E0 = 0 would mean nothing).
     const double e0 = g.front().total_energy_J;
-    std::fprintf(f, "coupling work %.6g J (%+.3f %% of the initial total energy)\n",
-                 e.coupling_work_J, e0 != 0.0 ? 100.0 * e.coupling_work_J / e0 : 0.0);
+    const double scale = std::max(std::abs(e0), std::abs(e.external_work_J));
+    std::fprintf(
+        f, "coupling work %.6g J (%+.3f %% of the %s)\n", e.coupling_work_J,
+        scale > 0.0 ? 100.0 * e.coupling_work_J / scale : 0.0,
+        std::abs(e.external_work_J) > std::abs(e0) ? "external work" : "initial total energy");
     std::fprintf(f, "energy balance error %.4f %% of the largest energy%s\n",
                  100.0 * e.energy_balance_error,
                  complete ? "" : " (the run failed: some domains' histories are incomplete)");
@@ -121,9 +127,24 @@ int run_coupled(const RunCommandOptions& o) {
   const auto model = io::read_scenario(o.scenario);
   const auto dec =
       partition::decompose(model, paper ? partition::Scheme::Paper : partition::Scheme::Layer);
-  std::vector<std::string> domains;
+  std::vector<std::string> domains, emptied;
   for (const auto& d : dec.domains) {
-    if (!d.empty()) domains.push_back(d.name);
+    if (!d.empty()) {
+      domains.push_back(d.name);
+    } else {
+      emptied.push_back(d.name);
+    }
+  }
+  if (!model.domains.empty() && !emptied.empty()) {
+    // The scenario has its domains; the cut left some without an element of their own.
+    throw InputError(fmt::format(
+        "--mode {}: the {} cut of {} leaves domain(s) '{}' empty: the fine side of an interface "
+        "takes the coarse side's first layer of elements, and here that layer is the whole "
+        "domain; give '{}' more than one element across the interface (a finer mesh or more "
+        "parts), or merge it into its neighbour, or use --mode mono (`crashlink advise {}` "
+        "shows the cuts that work)",
+        o.mode, paper ? "paper" : "layer", o.scenario, fmt::join(emptied, "', '"),
+        fmt::join(emptied, "', '"), o.scenario));
   }
   if (domains.size() < 2) {
     throw InputError(fmt::format(

@@ -169,6 +169,11 @@ class ProcessRun {
       }
     }
     wait_all();
+    // The coordinator removes them at its end; a coordinator that was killed cannot.
+    std::error_code ec;
+    fs::remove(endpoint_file, ec);
+    if (bind.rfind("ipc://", 0) == 0 && fs::is_socket(bind.substr(6), ec))
+      fs::remove(bind.substr(6), ec);
     r.stopped_on_request = stopped_on_request_;
     for (auto& c : children_) r.pieces.push_back(c.outcome);
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();

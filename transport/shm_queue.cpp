@@ -3,11 +3,13 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <linux/futex.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -55,7 +57,11 @@ ShmMapping::ShmMapping(std::string path, std::size_t bytes, bool create)
   }
   void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
   const int e = errno;
-  ::close(fd);
+  if (create && p != MAP_FAILED && ::flock(fd, LOCK_SH | LOCK_NB) == 0) {
+    lock_fd_ = fd;  // held until release(): the mark of a live owner
+  } else {
+    ::close(fd);
+  }
   if (p == MAP_FAILED) {
     throw TransportError("shm://" + path_,
                          fmt::format("cannot map {} ({} bytes): {}", file, bytes, errno_text(e)));
@@ -66,8 +72,10 @@ ShmMapping::ShmMapping(std::string path, std::size_t bytes, bool create)
 void ShmMapping::release() noexcept {
   if (data_ != nullptr) ::munmap(data_, size_);
   if (owner_) ::unlink(path_.c_str());
+  if (lock_fd_ >= 0) ::close(lock_fd_);
   data_ = nullptr;
   owner_ = false;
+  lock_fd_ = -1;
 }
 
 ShmMapping::~ShmMapping() {
@@ -78,7 +86,8 @@ ShmMapping::ShmMapping(ShmMapping&& o) noexcept
     : path_(std::move(o.path_)),
       data_(std::exchange(o.data_, nullptr)),
       size_(o.size_),
-      owner_(std::exchange(o.owner_, false)) {}
+      owner_(std::exchange(o.owner_, false)),
+      lock_fd_(std::exchange(o.lock_fd_, -1)) {}
 
 ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
   if (this != &o) {
@@ -87,8 +96,37 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
     data_ = std::exchange(o.data_, nullptr);
     size_ = o.size_;
     owner_ = std::exchange(o.owner_, false);
+    lock_fd_ = std::exchange(o.lock_fd_, -1);
   }
   return *this;
+}
+
+std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !e.is_regular_file(ec)) continue;
+    const auto tmp = name.rfind(".tmp");
+    if (tmp != std::string::npos) {
+      // PATH.tmp<pid>: being written by <pid>, or left by it
+      const std::string digits = name.substr(tmp + 4);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+      const auto pid = static_cast<pid_t>(std::stol(digits));
+      if (::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    } else {
+      const int fd = ::open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
+      if (fd < 0) continue;
+      const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+      // removed while locked by us: a creator that publishes under this name meanwhile replaces
+      // the name (rename), never this file
+      if (!held && std::filesystem::remove(e.path(), ec)) ++removed;
+      ::close(fd);
+      continue;
+    }
+    if (std::filesystem::remove(e.path(), ec)) ++removed;
+  }
+  return removed;
 }
 
 namespace {

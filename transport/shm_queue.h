@@ -25,7 +25,9 @@
 
 namespace crashlink::transport {
 
-/// A mapped file (shared, read-write); unmapped (and unlinked if owned) on destruction.
+/// A mapped file (shared, read-write); unmapped (and unlinked if owned) on destruction. The owner
+/// (creator) holds a shared flock on it while it lives, so that reclaim_orphan_shm_files can tell
+/// the file of a process that died (SIGKILL leaves it behind) from a live one.
 class ShmMapping {
  public:
   ShmMapping() = default;
@@ -47,7 +49,13 @@ class ShmMapping {
   void* data_ = nullptr;
   std::size_t size_ = 0;
   bool owner_ = false;
+  int lock_fd_ = -1;  ///< owner: the open file that holds the flock
 };
+
+/// Removes the files under `dir` named `prefix`* whose owner died: a final name that no process
+/// holds a flock on, and a PATH.tmp<pid> of a pid that no longer exists. Returns how many were
+/// removed. Never throws. The coordinator calls it at its start (for "/dev/shm", "crashlink-").
+std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix);
 
 class ShmDoorbell {
  public:

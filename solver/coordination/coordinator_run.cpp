@@ -137,6 +137,7 @@ class Coordinator {
       r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
     }
     remove_lane_files();
+    remove_session_files();
     r.cpu_seconds = run_cpu_seconds();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
     close_history(r);
@@ -195,6 +196,7 @@ class Coordinator {
     config.ticks_per_second = o_.ticks_per_second;
     config.options = o_.session;
     link_ = std::make_unique<transport::CoordinatorLink>(o_.bind, config);
+    reclaim_orphan_lanes();
     if (!o_.endpoint_file.empty())
       write_file_atomically(o_.endpoint_file, link_->endpoint() + "\n");
     if (o_.log != nullptr) {
@@ -490,6 +492,32 @@ class Coordinator {
     }
     if (rep.checkpoint()) checkpoints_->announced(rep.time_ticks());
     checkpoints_->write_when_complete(*router_, *history_, run_cpu_seconds());
+  }
+
+  /// The shared-memory lane files that runs killed before their clean-up left in /dev/shm (a
+  /// SIGKILLed launcher takes its pieces with it: nobody removed their 4 MB rings).
+  void reclaim_orphan_lanes() const {
+    if (o_.bind.rfind("ipc://", 0) != 0) return;
+    const std::size_t n = transport::reclaim_orphan_shm_files("/dev/shm", "crashlink-");
+    if (n > 0 && o_.log != nullptr) {
+      std::fprintf(o_.log,
+                   "crashlink-coordinator: removed %zu shared-memory lane file(s) in /dev/shm "
+                   "left by runs that were killed\n",
+                   n);
+      std::fflush(o_.log);
+    }
+  }
+
+  /// What the run made beside its results: the endpoint file, and the ipc socket (ZeroMQ leaves
+  /// it). Only the socket this coordinator bound: an ipc:// path, no wildcard.
+  void remove_session_files() const {
+    std::error_code ec;
+    if (!o_.endpoint_file.empty()) std::filesystem::remove(o_.endpoint_file, ec);
+    const std::string ipc = "ipc://";
+    if (link_ && o_.bind.rfind(ipc, 0) == 0 && o_.bind.find('*') == std::string::npos) {
+      const std::string path = o_.bind.substr(ipc.size());
+      if (std::filesystem::is_socket(path, ec)) std::filesystem::remove(path, ec);
+    }
   }
 
   /// Shared-memory lanes of daemons that died leave their files behind: remove them.

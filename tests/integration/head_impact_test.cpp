@@ -67,22 +67,26 @@ TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
   EXPECT_GT(hic_mono, 500.0);  // the wiper hit makes it a hard impact
   EXPECT_NEAR(hic_multi, hic_mono, 0.03 * hic_mono);
 
-  // Several pairs: one line each and the medians. (mono, multi) and (multi, mono): gains g and
-  // 1/g, median (g + 1/g) / 2 (the mean of the middle two); an odd count of files is refused.
+  // Several pairs: one line each and the medians. (mono, multi) and (mono, mono): gains g and 1,
+  // median (g + 1) / 2 (the mean of the middle two); an odd count of files is refused, and so is
+  // a swapped pair (multi, mono), whose "gain" 1/g read as a share of the ideal (issue 20).
   {
     const std::string crashlink = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink compare ";
     const std::string mono_h5 = (dir / "reference" / "result.h5").string();
     const std::string multi_h5 = (dir / "result.h5").string();
     int st = -1;
     const std::string two =
-        run_command(crashlink + mono_h5 + " " + multi_h5 + " " + multi_h5 + " " + mono_h5, st);
+        run_command(crashlink + mono_h5 + " " + multi_h5 + " " + mono_h5 + " " + mono_h5, st);
     ASSERT_EQ(st, 0) << two;
     const auto at = two.find("\nmedian ");
     ASSERT_NE(at, std::string::npos) << two;
     std::istringstream row(two.substr(at + 8));
     double ref_cpu = 0.0, run_cpu = 0.0, median_gain = 0.0;
     row >> ref_cpu >> run_cpu >> median_gain;
-    EXPECT_NEAR(median_gain, 0.5 * (gain + 1.0 / gain), 2e-3) << two;
+    EXPECT_NEAR(median_gain, 0.5 * (gain + 1.0), 2e-3) << two;
+    const std::string swapped = run_command(crashlink + multi_h5 + " " + mono_h5, st);
+    EXPECT_EQ(WEXITSTATUS(st), 2) << swapped;
+    EXPECT_NE(swapped.find("swap them"), std::string::npos) << swapped;
     const std::string odd = run_command(crashlink + mono_h5 + " " + multi_h5 + " " + mono_h5, st);
     EXPECT_NE(st, 0) << odd;
     EXPECT_NE(odd.find("in pairs"), std::string::npos) << odd;

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -168,4 +169,37 @@ TEST(LaneEndpoint, FollowsTheSession) {
   CurveOptions forced;
   forced.force = true;
   EXPECT_EQ(lane_endpoint_for("ipc:///tmp/run/coordinator.sock", "wiper", forced), "");
+}
+
+// Issue 20 item 12: a SIGKILLed run leaves its rings behind (nobody is left to remove them); the
+// next run's coordinator removes exactly the files whose owner died. A live owner holds a flock
+// on its file, so another run's lanes on the same machine are left alone.
+TEST(ShmOrphans, OnlyTheFilesOfDeadOwnersAreReclaimed) {
+  Folder f("orphans");
+  const std::string live = f.prefix() + ".from.live";
+  const ShmQueue owned = ShmQueue::create(live, 4096);
+
+  // a ring whose owner process died: created in a child that exits without its destructors
+  const std::string dead = f.prefix() + ".from.dead";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    [[maybe_unused]] auto* leaked = new ShmQueue(ShmQueue::create(dead, 4096));
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(std::filesystem::exists(dead));
+  // a half-written file of that dead process, and one of this live process
+  const std::string dead_tmp = f.prefix() + ".bell.tmp" + std::to_string(child);
+  const std::string live_tmp = f.prefix() + ".bell.tmp" + std::to_string(::getpid());
+  std::ofstream(dead_tmp) << "x";
+  std::ofstream(live_tmp) << "x";
+
+  EXPECT_EQ(reclaim_orphan_shm_files(f.dir.string(), "lane"), 2u);
+  EXPECT_FALSE(std::filesystem::exists(dead));
+  EXPECT_FALSE(std::filesystem::exists(dead_tmp));
+  EXPECT_TRUE(std::filesystem::exists(live)) << "a live owner's ring was removed";
+  EXPECT_TRUE(std::filesystem::exists(live_tmp));
+  EXPECT_EQ(reclaim_orphan_shm_files(f.dir.string(), "other-prefix"), 0u);
+  EXPECT_EQ(owned.path(), live);
 }
