@@ -41,7 +41,12 @@ DaemonLink::DaemonLink(std::string_view endpoint, const wire::Hello& hello,
                       hello.domain(),
                       static_cast<double>(options_.handshake_timeout.count()) * 1e-3));
     }
-    auto r = dealer_.receive(left);
+    if (options_.stop != nullptr && options_.stop->load())
+      throw StopRequested(
+          fmt::format("domain '{}': stopped on request while waiting for the "
+                      "coordinator's answer to its Hello",
+                      hello.domain()));
+    auto r = dealer_.receive(std::min(left, std::chrono::milliseconds{100}));
     if (!r) continue;
     if (!r->ok()) {
       throw ProtocolError(kCoordinator,

@@ -63,4 +63,11 @@ class RemoteError : public crashlink::Error {
   std::string domain_;
 };
 
+/// A wait given up because SessionOptions::stop was set (SIGINT / SIGTERM): not a failure of the
+/// peer, the caller ends as stopped on request.
+class StopRequested : public crashlink::Error {
+ public:
+  using crashlink::Error::Error;
+};
+
 }  // namespace crashlink::transport

@@ -5,6 +5,7 @@
 //   from either side when it has sent nothing for heartbeat_interval; a peer that has sent
 //   nothing at all for peer_timeout is dead; Bye ends a session cleanly, Error ends it loudly.
 // coordinator_link.h and daemon_link.h implement the two ends.
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -26,6 +27,9 @@ struct SessionOptions {
   /// Daemon: how long to wait for the coordinator's answer to its Hello (the coordinator may start
   /// after the daemons).
   std::chrono::milliseconds handshake_timeout{10000};
+  /// Polled at least every 100 ms while a daemon waits for the answer to its Hello; set (by a
+  /// SIGINT / SIGTERM handler): the wait ends with StopRequested. Not owned; may be null.
+  const std::atomic<bool>* stop = nullptr;
   SocketOptions socket;
 
   /// Throws TransportError (naming `endpoint`) unless 0 < heartbeat_interval < peer_timeout and

@@ -5,6 +5,7 @@
 #include <linux/futex.h>
 #include <sys/file.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -107,20 +108,37 @@ std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& 
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0 || !e.is_regular_file(ec)) continue;
-    const auto tmp = name.rfind(".tmp");
-    if (tmp != std::string::npos) {
-      // PATH.tmp<pid>: being written by <pid>, or left by it
-      const std::string digits = name.substr(tmp + 4);
+    // PATH.tmp<pid> (being written by <pid>) and PATH.orphan<pid> (being removed by <pid>): the
+    // pid's own business while it lives
+    const auto tmp = name.rfind(".tmp"), moving = name.rfind(".orphan");
+    const auto mark = tmp != std::string::npos      ? tmp + 4
+                      : moving != std::string::npos ? moving + 7
+                                                    : tmp;
+    if (mark != std::string::npos) {
+      const std::string digits = name.substr(mark);
       if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
       const auto pid = static_cast<pid_t>(std::stol(digits));
       if (::kill(pid, 0) == 0 || errno != ESRCH) continue;
     } else {
       const int fd = ::open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
       if (fd < 0) continue;
-      const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
-      // removed while locked by us: a creator that publishes under this name meanwhile replaces
-      // the name (rename), never this file
-      if (!held && std::filesystem::remove(e.path(), ec)) ++removed;
+      if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+        // Nobody holds it. Move the name aside first (atomic) and remove it only if it is the
+        // file we locked: a live run publishing under the same name meanwhile (a rename over it)
+        // gets its file back at once.
+        const std::string aside = fmt::format("{}.orphan{}", e.path().string(), ::getpid());
+        struct stat locked {
+        }, moved{};
+        if (::fstat(fd, &locked) == 0 && ::rename(e.path().c_str(), aside.c_str()) == 0) {
+          if (::stat(aside.c_str(), &moved) == 0 && moved.st_ino == locked.st_ino &&
+              moved.st_dev == locked.st_dev) {
+            ::unlink(aside.c_str());
+            ++removed;
+          } else {
+            ::rename(aside.c_str(), e.path().c_str());
+          }
+        }
+      }
       ::close(fd);
       continue;
     }

@@ -91,6 +91,9 @@ class Daemon {
       connect();
       loop();
       finish();
+    } catch (const transport::StopRequested&) {
+      failure = Failure{run::kExitStopped, wire::ERROR_CODE_STOPPED, true,
+                        fmt::format("{}: stopped on request (signal)", where())};
     } catch (const Stopped&) {
       failure = Failure{run::kExitStopped, wire::ERROR_CODE_STOPPED, true,
                         fmt::format("{}: stopped on request (signal)", where())};
@@ -279,8 +282,10 @@ class Daemon {
   }
 
   void connect() {
+    auto session = o_.session;
+    session.stop = o_.stop;
     link_ = std::make_unique<transport::DaemonLink>(
-        o_.endpoint, transport::daemon_hello(o_.domain, hash_), o_.session);
+        o_.endpoint, transport::daemon_hello(o_.domain, hash_), session);
     tps_ = link_->coordinator_hello().ticks_per_second();
     if (tps_ < 1) {
       throw transport::ProtocolError(
@@ -392,9 +397,23 @@ class Daemon {
     return e;
   }
 
+  /// link_->receive(timeout) in waits of at most 100 ms, checking the stop flag between them (the
+  /// peer timeout is the link's own, from the last message heard, not from this call).
+  std::optional<wire::Envelope> receive_or_stop(std::chrono::milliseconds timeout) {
+    const auto deadline = Clock::now() + timeout;
+    for (;;) {
+      if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
+      const auto slice =
+          std::clamp(left, std::chrono::milliseconds{0}, std::chrono::milliseconds{100});
+      auto m = link_->receive(slice);
+      if (m || left <= slice) return m;
+    }
+  }
+
   wire::Setup await_setup() {
     for (;;) {
-      auto m = link_->receive(o_.session.peer_timeout);
+      auto m = receive_or_stop(o_.session.peer_timeout);
       if (!m) continue;  // receive() itself throws when the coordinator is silent
       if (m->has_setup()) return m->setup();
       throw transport::ProtocolError(
@@ -671,7 +690,7 @@ class Daemon {
         continue;
       }
       const auto t0 = Clock::now();
-      auto m = link_->receive(o_.session.peer_timeout);
+      auto m = receive_or_stop(o_.session.peer_timeout);
       wait_s_ += seconds_since(t0);
       if (m) deliver(*m);
     }
@@ -768,7 +787,8 @@ class Daemon {
   /// the session exists, a short handshake is tried so that the run stops at once.
   void tell(const Failure& f) {
     try {
-      if (!link_ && !hash_.empty()) {
+      // (not for a stop on request: it must end within 1 s, and the coordinator has its own)
+      if (!link_ && !hash_.empty() && f.code != wire::ERROR_CODE_STOPPED) {
         auto quick = o_.session;
         quick.handshake_timeout =
             std::min(quick.handshake_timeout, std::chrono::milliseconds{2000});

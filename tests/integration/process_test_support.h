@@ -235,6 +235,12 @@ class Child {
       if (got == pid_) {
         status_ = st;
         exited_at_ = Clock::now();
+        // The reader thread may not have read the last lines yet: wait for the end of the output
+        // (bounded: a grandchild that outlives the child keeps the pipe open). Without this a
+        // test read the output of a finished run without its last lines (LayerProcesses.SplitBar*
+        // missed "coordinator: CPU", now and then under load).
+        std::unique_lock lock(m_);
+        cv_.wait_for(lock, 5s, [&] { return eof_; });
         break;
       }
       if (Clock::now() >= deadline) return std::nullopt;

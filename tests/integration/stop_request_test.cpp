@@ -15,6 +15,7 @@
 #include "solver/io/result_reader.h"
 #include "solver/run/exit_codes.h"
 #include "tests/integration/process_test_support.h"
+#include "transport/endpoint.h"
 
 namespace {
 
@@ -93,5 +94,48 @@ INSTANTIATE_TEST_SUITE_P(Runs, StopRequest,
                                            StopCase{"multi_inproc_term", "multi", "inproc",
                                                     SIGTERM}),
                          [](const ::testing::TestParamInfo<StopCase>& i) { return i.param.name; });
+
+// A daemon still waiting: for the coordinator's answer to its Hello (no coordinator), and for its
+// Setup (the other domain never joins). Before, the first waited out its handshake timeout (30 s
+// and exit 5), the second its peer timeout per wait.
+TEST(StopRequest, AWaitingDaemonStopsAtOnceAndTheCoordinatorWithIt) {
+  const fs::path dir = fresh_dir("stop_waiting");
+  const std::string scenario =
+      crashlink::proc_test::write_file(dir / "bar.yaml", crashlink::proc_test::bar_yaml(1e-3));
+  {
+    // nobody listens on the discard port of the loopback: the Hello goes unanswered
+    Child alone(
+        crashlink::proc_test::solver_args("tcp://127.0.0.1:9", "fine", scenario, dir / "alone"));
+    ASSERT_FALSE(alone.wait(1s).has_value()) << alone.output();
+    const auto sent = std::chrono::steady_clock::now();
+    alone.signal(SIGTERM);
+    const auto st = alone.wait(20s);
+    ASSERT_TRUE(st.has_value()) << alone.output();
+    const double took = std::chrono::duration<double>(alone.exited_at() - sent).count();
+    std::printf("[measured] a daemon waiting for the Hello's answer stopped %.3f s after SIGTERM\n",
+                took);
+    EXPECT_EQ(exit_code(*st), crashlink::run::kExitStopped) << alone.output();
+    EXPECT_LT(took, 2.0) << alone.output();
+  }
+  std::string endpoint;
+  auto coordinator = crashlink::proc_test::start_coordinator(
+      crashlink::proc_test::bind_endpoint(crashlink::transport::Scheme::tcp, dir), scenario,
+      dir / "out", "multi", endpoint);
+  Child fine(crashlink::proc_test::solver_args(endpoint, "fine", scenario, dir / "out"));
+  // registered and waiting for the Setup, which needs the other domain too
+  ASSERT_FALSE(fine.wait(1500ms).has_value()) << fine.output();
+  const auto sent = std::chrono::steady_clock::now();
+  fine.signal(SIGTERM);
+  const auto st = fine.wait(20s);
+  ASSERT_TRUE(st.has_value()) << fine.output();
+  const double took = std::chrono::duration<double>(fine.exited_at() - sent).count();
+  std::printf("[measured] a daemon waiting for its Setup stopped %.3f s after SIGTERM\n", took);
+  EXPECT_EQ(exit_code(*st), crashlink::run::kExitStopped) << fine.output();
+  EXPECT_LT(took, 2.0) << fine.output();
+  const auto cs = coordinator->wait(20s);
+  ASSERT_TRUE(cs.has_value()) << coordinator->output();
+  EXPECT_EQ(exit_code(*cs), crashlink::run::kExitStopped) << coordinator->output();
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+}
 
 }  // namespace
