@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,9 @@ transport::Scheme scheme_of(const std::string& name) {
 
 /// What gathering DIR/domains/*.h5 and DIR/coordinator.h5 into DIR/result.h5 gave.
 struct Gathered {
-  bool written = false;  ///< DIR/result.h5 exists
-  std::string problem;   ///< "" when every domain's file was merged completely
+  bool written = false;     ///< DIR/result.h5 exists
+  bool io_failure = false;  ///< the problem is a file that could not be written or read
+  std::string problem;      ///< "" when every domain's file was merged completely
 };
 
 Gathered gather(const model::Model& model, const partition::Decomposition& dec,
@@ -50,6 +52,12 @@ Gathered gather(const model::Model& model, const partition::Decomposition& dec,
       g.problem =
           fmt::format("domain file(s) missing or unusable: '{}'", fmt::join(r.missing, "', '"));
     }
+  } catch (const IoError& e) {
+    g.problem = e.what();
+    g.io_failure = true;
+  } catch (const std::filesystem::filesystem_error& e) {
+    g.problem = e.what();
+    g.io_failure = true;
   } catch (const std::exception& e) {
     g.problem = e.what();
   }
@@ -229,19 +237,29 @@ int run_coupled(const RunCommandOptions& o) {
   if (lr.ok()) {
     std::fprintf(stderr, "crashlink: error: the run finished but gathering failed: %s\n",
                  gathered.problem.c_str());
-    return run::kExitInternal;
+    return gathered.io_failure ? run::kExitIo : run::kExitInternal;
   }
-  // The code of the culprit: a piece that failed on its own (the guard, a file), not one stopped
-  // because of another (exit 5) or killed.
+  // The code of the culprit: a piece that failed on its own, not one stopped because of another
+  // (exit 5) or by the launcher after another failed; by priority the guard, a file, bad input, a
+  // bug, a stop request (SIGTERM to one piece stops the others with exit 7 too).
+  constexpr int kOwn[] = {run::kExitNumerical, run::kExitIo, run::kExitInput, run::kExitInternal,
+                          run::kExitStopped};
   std::vector<std::string> what;
   int code = run::kExitPeer;
+  std::size_t rank = std::size(kOwn);
   for (const auto& p : lr.pieces) {
     if (p.ok()) continue;
     const std::string who = p.name == "coordinator" ? p.name : "domain '" + p.name + "'";
     PieceOutcome q = p;
     q.name = who;
     what.push_back(q.describe());
-    if (p.exit_code == run::kExitNumerical || p.exit_code == run::kExitIo) code = p.exit_code;
+    if (p.killed_by_launcher) continue;
+    for (std::size_t k = 0; k < rank; ++k) {
+      if (p.exit_code == kOwn[k]) {
+        rank = k;
+        code = p.exit_code;
+      }
+    }
   }
   std::fprintf(stderr, "crashlink: error: the %s run failed: %s\n", o.mode.c_str(),
                fmt::format("{}", fmt::join(what, "; ")).c_str());

@@ -122,6 +122,18 @@ class ProcessRun {
         o_.scheme == transport::Scheme::tcp ? "tcp://127.0.0.1:*" : ipc_endpoint(out);
     const fs::path endpoint_file = out / "coordinator.endpoint";
     fs::remove(endpoint_file);
+    // The coordinator removes both at its end; one that was killed, or a launcher that gives up
+    // waiting for it, cannot: removed here on every way out.
+    struct RemoveOnExit {
+      fs::path file;
+      std::string socket;  // the ipc:// endpoint bound, or another scheme's
+      ~RemoveOnExit() {
+        std::error_code ec;
+        fs::remove(file, ec);
+        if (socket.rfind("ipc://", 0) == 0 && fs::is_socket(socket.substr(6), ec))
+          fs::remove(socket.substr(6), ec);
+      }
+    } remove_on_exit{endpoint_file, bind};
     const std::string scenario = fs::absolute(o_.scenario).string();
 
     std::vector<std::string> args{"--bind",
@@ -169,11 +181,6 @@ class ProcessRun {
       }
     }
     wait_all();
-    // The coordinator removes them at its end; a coordinator that was killed cannot.
-    std::error_code ec;
-    fs::remove(endpoint_file, ec);
-    if (bind.rfind("ipc://", 0) == 0 && fs::is_socket(bind.substr(6), ec))
-      fs::remove(bind.substr(6), ec);
     r.stopped_on_request = stopped_on_request_;
     for (auto& c : children_) r.pieces.push_back(c.outcome);
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -228,6 +235,7 @@ class ProcessRun {
       if (in && std::getline(in, line) && !line.empty()) return line;
       reap();
       if (!children_.front().running) return {};
+      if (stop_flag().load()) return {};  // no daemon started: wait_all stops the coordinator
       std::this_thread::sleep_for(5ms);
     }
     signal_all(SIGKILL);
@@ -246,10 +254,13 @@ class ProcessRun {
   /// Until every child has exited. A failed piece: the others get the peer timeout to notice and
   /// stop on their own, then SIGTERM, then SIGKILL 2 s later. A stop request (SIGINT / SIGTERM to
   /// the launcher): SIGTERM to every piece at once, each stops at its next cycle or poll and
-  /// flushes its file; SIGKILL 2 s later to a piece that did not.
+  /// flushes its file; SIGKILL a peer timeout later to a piece that did not (one in the middle of
+  /// a large checkpoint finishes it first).
   void wait_all() {
     const auto grace =
         std::chrono::milliseconds{o_.session.peer_timeout_ms + o_.session.heartbeat_ms} + 2s;
+    const auto kill_after = std::max<std::chrono::milliseconds>(
+        2s, std::chrono::milliseconds{o_.session.peer_timeout_ms});
     std::optional<Clock::time_point> termed;
     while (reap() > 0) {
       const auto now = Clock::now();
@@ -264,7 +275,7 @@ class ProcessRun {
         signal_all(SIGTERM);
         termed = now;
       }
-      if (termed && now - *termed > 2s) signal_all(SIGKILL);
+      if (termed && now - *termed > (stopped_on_request_ ? kill_after : 2s)) signal_all(SIGKILL);
       std::this_thread::sleep_for(5ms);
     }
   }

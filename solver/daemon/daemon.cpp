@@ -623,6 +623,7 @@ class Daemon {
   void wait_on_lane() {
     const auto t0 = Clock::now();
     for (;;) {
+      if (o_.stop != nullptr && o_.stop->load()) throw Stopped();  // a partner may be frozen
       if (auto r = receive_lane()) {
         pending_.push_back(std::move(*r));
         break;

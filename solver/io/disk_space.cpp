@@ -19,7 +19,8 @@ std::uint64_t writable_bytes(const std::string& file) {
   const fs::path dir =
       fs::path(file).parent_path().empty() ? fs::path(".") : fs::path(file).parent_path();
   struct statvfs vfs {};
-  if (::statvfs(dir.c_str(), &vfs) == 0)
+  // f_blocks = 0: a file system that does not say (some FUSE and network mounts)
+  if (::statvfs(dir.c_str(), &vfs) == 0 && vfs.f_blocks > 0)
     left = static_cast<std::uint64_t>(vfs.f_bavail) * static_cast<std::uint64_t>(vfs.f_frsize);
   struct rlimit lim {};
   if (::getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {

@@ -92,8 +92,13 @@ ResultFileError::ResultFileError(const std::string& file, const std::string& obj
         const auto at = detail.find(key);
         const auto end = at == std::string::npos ? at : detail.find('\'', at + key.size());
         if (end != std::string::npos) {
-          msg += ": " + detail.substr(at + key.size(), end - at - key.size()) +
-                 "; free space on that file system or write elsewhere (--out)";
+          const std::string cause = detail.substr(at + key.size(), end - at - key.size());
+          const bool full = cause.find("No space left") != std::string::npos ||
+                            cause.find("File too large") != std::string::npos ||
+                            cause.find("quota") != std::string::npos;
+          msg += ": " + cause +
+                 (full ? "; free space on that file system or write elsewhere (--out)"
+                       : "; check the path and its permissions, or write elsewhere (--out)");
         } else if (!detail.empty()) {
           msg += " (HDF5: " + detail + ")";
         }

@@ -130,9 +130,19 @@ struct ResultWriter::Impl {
   }
 
   /// Appends the buffered rows; the buffers are emptied even if a write fails (no row is ever
-  /// written twice). Returns the number of rows written.
+  /// written twice), but kept when the room check refuses the write (io::ensure_space; not when
+  /// `closing`: the close writes in the reserve kept for it). Returns the number of rows written.
   std::size_t write_history(bool closing = false) {
     const std::size_t rows = buffered;
+    if (rows > 0 && !closing) {
+      // Before the buffers are handed to the Clear below: a disk too full keeps them for the
+      // close, which writes them in the reserve.
+      std::uint64_t need = 0;
+      for (const auto& b : glstat_buffer) need += b.size();
+      for (const ProbeOut& p : probes) need += p.t.size() + p.u.size() + p.v.size() + p.a.size();
+      for (const ContactOut& c : contacts) need += c.t.size() + c.f.size();
+      ensure_space(h5_path, "/history", 8 * need);
+    }
     struct Clear {
       Impl* self;
       ~Clear() {
@@ -152,11 +162,6 @@ struct ResultWriter::Impl {
       }
     } clear{this};
     if (rows == 0) return 0;
-    std::uint64_t need = 0;
-    for (const auto& b : glstat_buffer) need += b.size();
-    for (const ProbeOut& p : probes) need += p.t.size() + p.u.size() + p.v.size() + p.a.size();
-    for (const ContactOut& c : contacts) need += c.t.size() + c.f.size();
-    if (!closing) ensure_space(h5_path, "/history", 8 * need);  // closing: in the reserve
     for (std::size_t c = 0; c < kGlstat.size(); ++c) {
       append_rows(
           Location{glstat[c].get(), h5_path, std::string("/history/glstat/") + kGlstat[c].name},

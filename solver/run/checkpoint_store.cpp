@@ -107,7 +107,7 @@ std::vector<std::int64_t> list_checkpoints(const std::string& out, const std::st
   if (!fs::is_directory(root(out), ec)) return found;
   for (const auto& e : fs::directory_iterator(root(out), ec)) {
     std::int64_t t = 0;
-    if (!e.is_directory() || !parse_instant(e.path().filename().string(), t)) continue;
+    if (!e.is_directory(ec) || !parse_instant(e.path().filename().string(), t)) continue;
     if (fs::is_directory(e.path() / who, ec)) found.push_back(t);
   }
   std::sort(found.begin(), found.end());
@@ -211,7 +211,7 @@ void prune_checkpoints(const std::string& out, const std::vector<std::string>& p
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(root(out), ec)) {
     std::int64_t t = 0;
-    if (e.is_directory() && parse_instant(e.path().filename().string(), t) && t < oldest_kept)
+    if (e.is_directory(ec) && parse_instant(e.path().filename().string(), t) && t < oldest_kept)
       older.push_back(e.path());
   }
   for (const auto& instant : older) {
@@ -233,7 +233,7 @@ void remove_checkpoints(const std::string& out, const std::string& who) {
   std::error_code ec;
   if (!fs::is_directory(root(out), ec)) return;
   for (const auto& e : fs::directory_iterator(root(out), ec)) {
-    if (!e.is_directory()) continue;
+    if (!e.is_directory(ec)) continue;
     fs::remove_all(e.path() / who, ec);
     fs::remove_all(e.path() / ("." + who + ".tmp"), ec);
     if (fs::is_empty(e.path(), ec)) fs::remove(e.path(), ec);

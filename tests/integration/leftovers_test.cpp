@@ -35,11 +35,19 @@ std::set<std::string> shm_files() {
   return names;
 }
 
+// Domain names no other test uses: the rings of this test's runs are the /dev/shm files named
+// after them (other tests' runs come and go in /dev/shm meanwhile, under ctest -j2).
 std::string bar(const fs::path& dir, double end_time_s) {
   return crashlink::proc_test::write_file(
       dir / "bar.yaml",
-      crashlink::proc_test::bar_parts_yaml("leftbar", end_time_s,
-                                           {{"left", 0.0, 0.2, 20}, {"right", 0.2, 0.4, 10}}));
+      crashlink::proc_test::bar_parts_yaml(
+          "leftbar", end_time_s, {{"leftover1", 0.0, 0.2, 20}, {"leftover2", 0.2, 0.4, 10}}));
+}
+
+bool ours(const std::string& path) {
+  return (path.find(".leftover1.") != std::string::npos ||
+          path.find(".leftover2.") != std::string::npos) &&
+         path.find(".tmp") == std::string::npos && path.find(".orphan") == std::string::npos;
 }
 
 TEST(Leftovers, AnIpcRunRemovesItsSocketAndEndpointFile) {
@@ -58,7 +66,6 @@ TEST(Leftovers, AnIpcRunRemovesItsSocketAndEndpointFile) {
 TEST(Leftovers, RingsOfAKilledRunAreRemovedByTheNextRun) {
   if (!fs::is_directory("/dev/shm")) GTEST_SKIP() << "no /dev/shm: lanes are files in OUT";
   const fs::path dir = fresh_dir("left_shm");
-  const std::set<std::string> before = shm_files();
   std::vector<std::string> theirs;
   {
     Child run({bin("crashlink"), "run", bar(dir, 1.0), "--mode", "multi", "--quiet", "--out",
@@ -67,7 +74,7 @@ TEST(Leftovers, RingsOfAKilledRunAreRemovedByTheNextRun) {
     while (std::chrono::steady_clock::now() < deadline) {
       theirs.clear();
       for (const auto& f : shm_files())
-        if (!before.count(f)) theirs.push_back(f);
+        if (ours(f)) theirs.push_back(f);
       if (theirs.size() >= 4) break;  // each domain's bell and ring
       ASSERT_FALSE(run.wait(20ms).has_value()) << run.output();
     }
@@ -75,15 +82,14 @@ TEST(Leftovers, RingsOfAKilledRunAreRemovedByTheNextRun) {
     run.signal(SIGKILL);  // the launcher; its pieces die with it (PR_SET_PDEATHSIG)
     ASSERT_TRUE(run.wait(10s).has_value());
   }
-  std::this_thread::sleep_for(200ms);  // the pieces' own SIGKILL is delivered asynchronously
-  for (const auto& f : theirs) EXPECT_TRUE(fs::exists(f)) << f << " removed by nobody?";
+  // (another test's coordinator starting meanwhile may reclaim them first: only their absence
+  // after the next run is checked)
 
   int status = -1;
   const std::string out = run_command(bin("crashlink") + " run " + bar(dir, 2e-4) +
                                           " --mode multi --out " + (dir / "next").string(),
                                       status);
   ASSERT_EQ(status, 0) << out;
-  EXPECT_NE(out.find("left by runs that were killed"), std::string::npos) << out;
   for (const auto& f : theirs) EXPECT_FALSE(fs::exists(f)) << f << " still there after a run";
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }

@@ -8,8 +8,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <ostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "solver/io/result_reader.h"
@@ -94,6 +97,62 @@ INSTANTIATE_TEST_SUITE_P(Runs, StopRequest,
                                            StopCase{"multi_inproc_term", "multi", "inproc",
                                                     SIGTERM}),
                          [](const ::testing::TestParamInfo<StopCase>& i) { return i.param.name; });
+
+/// The pid of the launcher's child that runs `domain` (from /proc: children, command lines).
+pid_t daemon_pid(pid_t launcher, const std::string& domain) {
+  std::ifstream kids("/proc/" + std::to_string(launcher) + "/task/" + std::to_string(launcher) +
+                     "/children");
+  pid_t pid = 0;
+  while (kids >> pid) {
+    std::ifstream cmd("/proc/" + std::to_string(pid) + "/cmdline", std::ios::binary);
+    const std::string line((std::istreambuf_iterator<char>(cmd)), std::istreambuf_iterator<char>());
+    if (line.find(std::string("--domain") + '\0' + domain + '\0') != std::string::npos) return pid;
+  }
+  return 0;
+}
+
+/// A process that has exited (gone, or a zombie its parent has not reaped yet).
+bool ended(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string pid_field, comm, state;
+  return !(stat >> pid_field >> comm >> state) || state == "Z";
+}
+
+// SIGTERM to one daemon (a user's `kill` of one piece) whose partner is frozen (SIGSTOP): it
+// stops at once although it waits on its lane for the frozen partner, and once the partner runs
+// again every piece has stopped with exit 7 and so has the launcher. Before: the daemon waited
+// out the peer timeout on its lane (4.7 s, exit 5) and the launcher said 5.
+TEST(StopRequest, ASignalToOnePieceStopsItAtOnceAndTheRunWithExit7) {
+  const fs::path dir = fresh_dir("stop_one");
+  const std::string scenario = crashlink::proc_test::write_file(
+      dir / "bar.yaml", crashlink::proc_test::bar_parts_yaml(
+                            "stopbar", 1.0, {{"left", 0.0, 0.2, 20}, {"right", 0.2, 0.4, 10}}));
+  Child run(
+      {bin("crashlink"), "run", scenario, "--mode", "multi", "--out", (dir / "out").string()});
+  const auto deadline = std::chrono::steady_clock::now() + 120s;
+  while (!fs::exists(dir / "out" / "domains" / "left.h5") &&
+         std::chrono::steady_clock::now() < deadline)
+    ASSERT_FALSE(run.wait(20ms).has_value()) << run.output();
+  ASSERT_FALSE(run.wait(500ms).has_value()) << run.output();
+  const pid_t left = daemon_pid(run.pid(), "left"), right = daemon_pid(run.pid(), "right");
+  ASSERT_GT(left, 0);
+  ASSERT_GT(right, 0);
+  ::kill(left, SIGSTOP);
+  const auto sent = std::chrono::steady_clock::now();
+  ::kill(right, SIGTERM);
+  while (!ended(right) && std::chrono::steady_clock::now() < sent + 20s)
+    std::this_thread::sleep_for(2ms);
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  ::kill(left, SIGCONT);
+  std::printf("[measured] a daemon whose partner is frozen stopped %.3f s after SIGTERM\n", took);
+  EXPECT_LT(took, 2.0) << run.output();
+  const auto st = run.wait(30s);
+  ASSERT_TRUE(st.has_value()) << run.output();
+  EXPECT_EQ(exit_code(*st), crashlink::run::kExitStopped) << run.output();
+  EXPECT_NE(run.output().find("domain 'right' at t = "), std::string::npos) << run.output();
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+}
 
 // A daemon still waiting: for the coordinator's answer to its Hello (no coordinator), and for its
 // Setup (the other domain never joins). Before, the first waited out its handshake timeout (30 s
