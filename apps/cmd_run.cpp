@@ -35,7 +35,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");
   run->add_option("--join-timeout-ms", o.join_timeout_ms,
-                  "split/multi: every daemon must have joined within this time, ms")
+                  "split/multi: every daemon must have joined and registered within this "
+                  "time, ms")
       ->check(CLI::Range(1, 86400000))
       ->capture_default_str();
   run->add_option("--step-safety", o.step_safety,

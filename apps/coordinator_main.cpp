@@ -42,7 +42,9 @@ int main(int argc, char** argv) {
   app.add_option("--endpoint-file", o.endpoint_file,
                  "write the bound endpoint (with the real port) to this file once listening");
   app.add_option("--join-timeout-ms", join_timeout_ms,
-                 "every domain must have joined and registered within this time, ms")
+                 "every domain must have joined and registered within this time, ms (a daemon "
+                 "silent for --timeout-ms before its Register is dropped: its domain may join "
+                 "again until then)")
       ->check(CLI::Range(1, 86400000))
       ->capture_default_str();
   app.add_flag("--progress", progress, "progress line on stderr (the slowest domain's time)");

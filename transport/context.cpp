@@ -6,6 +6,7 @@
 #include <climits>
 #include <utility>
 
+#include "solver/core/log_escape.h"
 #include "transport/detail/zmq.h"
 #include "transport/received.h"
 
@@ -85,13 +86,7 @@ std::size_t Payload::size() const {
 }
 
 std::string printable_peer(std::string_view routing_id) {
-  const bool printable =
-      !routing_id.empty() && std::all_of(routing_id.begin(), routing_id.end(),
-                                         [](char c) { return c >= 0x20 && c < 0x7f; });
-  if (printable) return std::string(routing_id);
-  std::string hex = "0x";
-  for (const char c : routing_id) hex += fmt::format("{:02x}", static_cast<unsigned char>(c));
-  return hex;
+  return core::log_escape(routing_id);
 }
 
 }  // namespace crashlink::transport

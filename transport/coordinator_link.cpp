@@ -54,8 +54,8 @@ std::optional<Incoming> CoordinatorLink::poll(std::chrono::milliseconds timeout)
 
 std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_point now) {
   const std::string& id = received.peer;
-  const auto it = peers_.find(id);
-  Peer* peer = it == peers_.end() ? nullptr : &it->second;
+  const auto d = domain_of_.find(id);
+  Peer* peer = d == domain_of_.end() ? nullptr : &peers_.at(d->second);
   if (peer != nullptr && peer->active) peer->last_heard = now;  // any message at all counts
   if (!received.ok()) {
     const std::string text =
@@ -67,8 +67,8 @@ std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_
   wire::Envelope& envelope = received.envelope;
   if (envelope.has_hello()) {
     if (peer != nullptr && peer->active) {
-      const std::string text =
-          fmt::format("domain '{}' sent a second Hello in the middle of its session; refused", id);
+      const std::string text = fmt::format(
+          "domain '{}' sent a second Hello in the middle of its session; refused", d->second);
       notice(id, text);
       reply_error(id, wire::ERROR_CODE_PROTOCOL, text);
       return std::nullopt;
@@ -78,10 +78,10 @@ std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_
   }
   if (peer == nullptr || !peer->active) {
     const char* what = peer == nullptr ? "before its Hello" : "after the end of its session";
-    const std::string text = fmt::format(
-        "peer '{}' sent a {} {}; dropped (every connection starts with a Hello)",
-        printable_peer(id),
-        wire::Envelope::descriptor()->FindFieldByNumber(envelope.body_case())->name(), what);
+    const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(envelope.body_case());
+    const std::string text =
+        fmt::format("peer '{}' sent a {} {}; dropped (every connection starts with a Hello)",
+                    printable_peer(id), field != nullptr ? field->name() : "empty Envelope", what);
     notice(id, text);
     if (peer == nullptr) reply_error(id, wire::ERROR_CODE_PROTOCOL, text);
     return std::nullopt;
@@ -90,7 +90,9 @@ std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_
     case wire::Envelope::kHeartbeat:
       return std::nullopt;
     case wire::Envelope::kError:
-      if (envelope.error().domain().empty()) envelope.mutable_error()->set_domain(id);
+      // The daemon's own name for itself is a string from the network: the session's domain is
+      // the one its Hello was accepted for.
+      envelope.mutable_error()->set_domain(d->second);
       peer->active = false;
       break;
     case wire::Envelope::kBye:
@@ -99,12 +101,14 @@ std::optional<Incoming> CoordinatorLink::handle(Received& received, Clock::time_
     default:
       break;
   }
-  return Incoming{id, std::move(envelope), std::move(received.payload)};
+  return Incoming{d->second, std::move(envelope), std::move(received.payload)};
 }
 
 void CoordinatorLink::handshake(const std::string& routing_id, const wire::Hello& hello,
                                 Clock::time_point now) {
-  if (auto refusal = check_hello(hello, routing_id, config_.scenario_hash, config_.domains)) {
+  auto refusal = check_hello(hello, config_.scenario_hash, config_.domains);
+  if (!refusal) refusal = check_free(hello.domain(), now);
+  if (refusal) {
     notice(routing_id, fmt::format("refused Hello from '{}': {}", printable_peer(routing_id),
                                    refusal->message()));
     wire::Envelope e;
@@ -123,8 +127,60 @@ void CoordinatorLink::handshake(const std::string& routing_id, const wire::Hello
   h->set_role(wire::PEER_ROLE_COORDINATOR);
   h->set_ticks_per_second(config_.ticks_per_second);
   router_.send(routing_id, reply);
-  peers_[routing_id] = Peer{now, now, true};
+  Peer& peer = peers_[hello.domain()];
+  if (!peer.routing_id.empty()) domain_of_.erase(peer.routing_id);  // its earlier session's
+  peer = Peer{routing_id, now, now, now, true};
+  domain_of_[routing_id] = hello.domain();
   ++joins_;
+}
+
+std::optional<wire::Error> CoordinatorLink::check_free(const std::string& domain,
+                                                       Clock::time_point now) const {
+  auto held = [&](std::string text) {
+    wire::Error e;
+    e.set_code(wire::ERROR_CODE_DOMAIN_HELD);
+    e.set_message(std::move(text));
+    e.set_domain(domain);
+    return std::optional<wire::Error>(std::move(e));
+  };
+  const auto it = peers_.find(domain);
+  if (it != peers_.end() && it->second.active) {
+    return held(fmt::format(
+        "domain '{}' is already held by a daemon in this run (connection '{}', joined {:.1f} s "
+        "ago, last heard {:.1f} s ago); a domain has one daemon: this one is refused and the "
+        "running one goes on; fix: stop this daemon, or start it with another --domain (the "
+        "scenario's domains are '{}')",
+        domain, printable_peer(it->second.routing_id),
+        static_cast<double>(since(it->second.joined, now).count()) * 1e-3,
+        static_cast<double>(since(it->second.last_heard, now).count()) * 1e-3,
+        fmt::join(config_.domains, "', '")));
+  }
+  if (const auto s = sealed_.find(domain); s != sealed_.end()) {
+    return held(fmt::format(
+        "domain '{}' has already run in this run (its daemon registered {:.1f} s ago and its "
+        "session has ended); a domain has one daemon per run: this one is refused; fix: start a "
+        "new run (a new coordinator) for another attempt",
+        domain, static_cast<double>(since(s->second, now).count()) * 1e-3));
+  }
+  return std::nullopt;
+}
+
+void CoordinatorLink::seal(std::string_view domain) {
+  sealed_.try_emplace(std::string(domain), Clock::now());
+}
+
+void CoordinatorLink::drop(std::string_view domain, wire::ErrorCode code, const std::string& text) {
+  const auto it = peers_.find(std::string(domain));
+  if (it == peers_.end() || !it->second.active) return;
+  const std::string id = it->second.routing_id;
+  notice(id, text);
+  try {
+    router_.send(id, make_error(code, text, std::string(domain)));
+  } catch (const TransportError& x) {
+    notice(id, x.what());  // gone already
+  }
+  domain_of_.erase(id);
+  peers_.erase(it);  // missing() again: a new daemon may join (unless sealed)
 }
 
 void CoordinatorLink::reply_error(const std::string& routing_id, wire::ErrorCode code,
@@ -144,7 +200,7 @@ void CoordinatorLink::send(std::string_view domain, const wire::Envelope& envelo
                                      "ended (Bye or Error)",
                                      domain));
   }
-  router_.send(domain, envelope);
+  router_.send(it->second.routing_id, envelope);
   it->second.last_sent = Clock::now();
   if (envelope.has_bye() || envelope.has_error()) it->second.active = false;
 }
@@ -165,7 +221,7 @@ void CoordinatorLink::forward(std::string_view domain, Incoming& message) {
     send(domain, message.envelope);  // ends that session: keep send()'s bookkeeping
     return;
   }
-  router_.forward(domain, std::move(message.payload));
+  router_.forward(it->second.routing_id, std::move(message.payload));
   it->second.last_sent = Clock::now();
 }
 
@@ -234,16 +290,16 @@ std::vector<Notice> CoordinatorLink::take_notices() {
 }
 
 void CoordinatorLink::send_heartbeats(Clock::time_point now) {
-  for (auto& [id, peer] : peers_) {
+  for (auto& [domain, peer] : peers_) {
     if (!peer.active || now - peer.last_sent < config_.options.heartbeat_interval) continue;
     heartbeat_.mutable_heartbeat()->set_sequence(++heartbeat_sequence_);
     peer.last_sent = now;
     try {
       // Never wait: a full queue means the peer is not reading; the timeout will tell.
-      (void)router_.try_send(id, heartbeat_);
+      (void)router_.try_send(peer.routing_id, heartbeat_);
     } catch (const TransportError& x) {
       // Disconnected: the peer timeout will name it; keep serving the others.
-      notice(id, fmt::format("heartbeat to domain '{}' failed: {}", id, x.what()));
+      notice(peer.routing_id, fmt::format("heartbeat to domain '{}' failed: {}", domain, x.what()));
     }
   }
 }

@@ -15,6 +15,12 @@
 // reports it with the domain's name. Refused Hellos and bytes that are not Envelopes are answered
 // with an Error to the sender and recorded as notices (take_notices()), never thrown; so are the
 // daemons the CURVE handshake refused (Router::take_refusals(): their key and address).
+//
+// Sessions: a daemon's routing id names its connection (DaemonLink: "<domain>#<random>"), the
+// Hello names its domain. A domain is held by one session at a time: a Hello for a domain whose
+// session is open, or that seal() closed, is refused (ERROR_CODE_DOMAIN_HELD) and the running
+// session is not touched. drop() ends a session from this side and frees its domain.
+// Every string of a peer in a notice or an error text is escaped (core::log_escape).
 // One thread at a time.
 #include <chrono>
 #include <cstdint>
@@ -89,6 +95,14 @@ class CoordinatorLink {
   /// Throws PeerTimeoutError naming every dead domain (dead_peers()), if any.
   void check_alive() const;
 
+  /// No new session for `domain` from now on (its daemon registered: the run counts on that
+  /// session, also after its Bye): a Hello for it is refused with ERROR_CODE_DOMAIN_HELD.
+  void seal(std::string_view domain);
+  /// Ends `domain`'s open session from this side: sends it an Error with `code` and `text` (best
+  /// effort), records a notice, and frees the domain for a new Hello (unless sealed). No effect
+  /// on a domain without an open session.
+  void drop(std::string_view domain, wire::ErrorCode code, const std::string& text);
+
   /// The notices recorded since the last call (at most 1000 are kept; older ones are counted).
   std::vector<Notice> take_notices();
   std::uint64_t dropped_notices() const { return dropped_notices_; }
@@ -96,6 +110,8 @@ class CoordinatorLink {
  private:
   using Clock = std::chrono::steady_clock;
   struct Peer {
+    std::string routing_id;  // the connection of the domain's latest session
+    Clock::time_point joined;
     Clock::time_point last_heard;
     Clock::time_point last_sent;
     bool active = false;  // handshake done and no Bye/Error since
@@ -103,6 +119,8 @@ class CoordinatorLink {
 
   std::optional<Incoming> handle(Received& received, Clock::time_point now);
   void handshake(const std::string& routing_id, const wire::Hello& hello, Clock::time_point now);
+  /// ERROR_CODE_DOMAIN_HELD when `domain` has an open session or is sealed, else nullopt.
+  std::optional<wire::Error> check_free(const std::string& domain, Clock::time_point now) const;
   void reply_error(const std::string& routing_id, wire::ErrorCode code, const std::string& text);
   void send_heartbeats(Clock::time_point now);
   Clock::time_point next_heartbeat() const;
@@ -111,7 +129,9 @@ class CoordinatorLink {
 
   CoordinatorConfig config_;
   Router router_;
-  std::unordered_map<std::string, Peer> peers_;
+  std::unordered_map<std::string, Peer> peers_;                // domain -> its latest session
+  std::unordered_map<std::string, std::string> domain_of_;     // routing id -> domain (latest only)
+  std::unordered_map<std::string, Clock::time_point> sealed_;  // domain -> when seal()ed
   std::deque<Incoming> queued_;
   std::vector<Notice> notices_;
   std::uint64_t dropped_notices_ = 0;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <random>
 #include <utility>
 
 #include "transport/errors.h"
@@ -20,9 +22,17 @@ std::string body_name(const wire::Envelope& e) {
 
 }  // namespace
 
+std::string session_routing_id(std::string_view domain) {
+  std::random_device random;
+  const std::uint64_t nonce = (static_cast<std::uint64_t>(random()) << 32) ^ random();
+  return fmt::format("{}#{:016x}", domain.substr(0, 200), nonce);
+}
+
 DaemonLink::DaemonLink(std::string_view endpoint, const wire::Hello& hello,
                        const SessionOptions& options)
-    : options_(options), dealer_(endpoint, hello.domain(), options.socket) {
+    : options_(options),
+      domain_(hello.domain()),
+      dealer_(endpoint, session_routing_id(hello.domain()), options.socket) {
   options_.validate(dealer_.endpoint());
   heartbeat_.mutable_heartbeat();
   wire::Envelope e;

@@ -1,5 +1,8 @@
 #pragma once
-// Daemon end of the session (session.h) over a Dealer whose routing id is the domain name.
+// Daemon end of the session (session.h) over a Dealer whose routing id names this connection:
+// "<domain>#<16 random hex digits>" (session_routing_id), so that a second daemon started for the
+// same domain is a second connection, which the coordinator refuses without touching the first
+// (ZeroMQ would hand the first one's routing id over to it: ROUTER_HANDOVER, router.h).
 //
 //   DaemonLink link(endpoint, daemon_hello("wiper", hash));   // handshake; throws on refusal
 //   link.send(register_envelope);
@@ -25,6 +28,9 @@
 
 namespace crashlink::transport {
 
+/// A fresh routing id for a session of `domain`: its first 200 bytes, '#', 16 random hex digits.
+std::string session_routing_id(std::string_view domain);
+
 class DaemonLink {
  public:
   /// Connects to `endpoint` as hello.domain() and performs the handshake. Throws RemoteError (the
@@ -34,7 +40,8 @@ class DaemonLink {
              const SessionOptions& options = {});
 
   const std::string& endpoint() const { return dealer_.endpoint(); }
-  const std::string& domain() const { return dealer_.routing_id(); }
+  const std::string& domain() const { return domain_; }
+  const std::string& routing_id() const { return dealer_.routing_id(); }
   const wire::Hello& coordinator_hello() const { return coordinator_hello_; }
   /// False after a Bye or Error was sent or received.
   bool open() const { return open_; }
@@ -63,6 +70,7 @@ class DaemonLink {
   void send_heartbeat_if_idle(Clock::time_point now);
 
   SessionOptions options_;
+  std::string domain_;
   Dealer dealer_;
   wire::Hello coordinator_hello_;
   Clock::time_point last_heard_;

@@ -28,6 +28,7 @@ struct Dealer::Impl {
   zmq::socket_t socket;
   std::string endpoint;
   std::string routing_id;
+  std::string name;  // for messages: the routing id up to its first '#' (the domain)
   zmq::message_t message;
   std::optional<CurveClientKeys> curve;
   // tcp and ipc: handshake events, so that a refusal is reported at once (check_handshake()).
@@ -61,13 +62,14 @@ Dealer::Dealer(std::string_view endpoint, std::string_view routing_id, const Soc
   }
   impl_->endpoint = parsed.text;
   impl_->routing_id = std::string(routing_id);
+  impl_->name = printable_peer(routing_id.substr(0, routing_id.find('#')));
   try {
     impl_->socket = zmq::socket_t(detail::process_context(), zmq::socket_type::dealer);
     detail::configure(impl_->socket, options);
     impl_->socket.set(zmq::sockopt::routing_id, zmq::buffer(routing_id.data(), routing_id.size()));
     impl_->curve = curve_client_keys(parsed, options.curve);
     if (impl_->curve) {
-      require_curve(fmt::format("domain '{}' connecting to {}", routing_id, parsed.text));
+      require_curve(fmt::format("domain '{}' connecting to {}", impl_->name, parsed.text));
       impl_->socket.set(zmq::sockopt::curve_serverkey, impl_->curve->server_key);
       impl_->socket.set(zmq::sockopt::curve_publickey, impl_->curve->public_key);
       impl_->socket.set(zmq::sockopt::curve_secretkey, impl_->curve->secret_key);
@@ -83,7 +85,7 @@ Dealer::Dealer(std::string_view endpoint, std::string_view routing_id, const Soc
 void Dealer::Impl::refused(const std::string& why) const {
   throw CurveRefusedError(endpoint, fmt::format("the coordinator refused the connection of domain "
                                                 "'{}': {}",
-                                                routing_id, why));
+                                                name, why));
 }
 
 void Dealer::Impl::check_handshake() {

@@ -1,9 +1,9 @@
 #pragma once
 // Daemon side of the wire (DESIGN.md §3): a ZeroMQ DEALER connected to the coordinator's ROUTER,
-// routing id = the domain name (so the coordinator addresses it by name), one Envelope per
-// ZeroMQ message. Connecting never blocks (ZeroMQ connects and reconnects in the background);
-// receive() always has a timeout; bytes that are not an Envelope come back as a Received with
-// error() set. CURVE (curve_policy.h): on any non-loopback tcp endpoint, or when
+// routing id = the session's name ("<domain>#<random>", DaemonLink; a lane's: the domain), one
+// Envelope per ZeroMQ message. Connecting never blocks (ZeroMQ connects and reconnects in the
+// background); receive() always has a timeout; bytes that are not an Envelope come back as a
+// Received with error() set. CURVE (curve_policy.h): on any non-loopback tcp endpoint, or when
 // SocketOptions::curve.force, the Dealer is a CURVE client; over tcp and ipc a socket monitor
 // watches the security handshake and receive() throws CurveRefusedError as soon as the
 // coordinator refuses it (key not authorised, wrong server key, CURVE on one side only).
@@ -23,7 +23,8 @@ namespace crashlink::transport {
 class Dealer {
  public:
   /// Connects to `endpoint` (parse_endpoint(…, Use::connect)) as `routing_id` (1-255 bytes, not
-  /// starting with a zero byte). Throws TransportError; with CURVE on, CurveConfigError or
+  /// starting with a zero byte; a session's is "<domain>#<random>", and messages name the domain:
+  /// the routing id up to its first '#'). Throws TransportError; with CURVE on, CurveConfigError or
   /// CurveKeyFileError (a key missing or unusable).
   Dealer(std::string_view endpoint, std::string_view routing_id, const SocketOptions& options = {});
   ~Dealer();

@@ -4,6 +4,8 @@
 
 #include <utility>
 
+#include "solver/core/log_escape.h"
+
 namespace crashlink::transport {
 
 namespace {
@@ -12,10 +14,13 @@ double seconds(std::chrono::milliseconds t) {
   return static_cast<double>(t.count()) * 1e-3;
 }
 
+// The peer's strings are escaped: this text is printed (core::log_escape).
 std::string remote_text(const wire::Error& e) {
-  const std::string code = wire::ErrorCode_Name(e.code());
-  if (e.domain().empty()) return fmt::format("{}: {}", code, e.message());
-  return fmt::format("{} (domain '{}'): {}", code, e.domain(), e.message());
+  std::string code = wire::ErrorCode_Name(e.code());
+  if (code.empty()) code = fmt::format("error code {}", static_cast<int>(e.code()));
+  const std::string message = core::log_escape(e.message(), core::kLogTextBytes);
+  if (e.domain().empty()) return fmt::format("{}: {}", code, message);
+  return fmt::format("{} (domain '{}'): {}", code, core::log_escape(e.domain()), message);
 }
 
 }  // namespace
@@ -40,6 +45,6 @@ ProtocolError::ProtocolError(std::string peer, const std::string& what)
     : Error(what), peer_(std::move(peer)) {}
 
 RemoteError::RemoteError(const wire::Error& error)
-    : Error(remote_text(error)), code_(error.code()), domain_(error.domain()) {}
+    : Error(remote_text(error)), code_(error.code()), domain_(core::log_escape(error.domain())) {}
 
 }  // namespace crashlink::transport

@@ -51,7 +51,7 @@ class ProtocolError : public crashlink::Error {
 
 /// The peer sent an Error message (DESIGN.md §3): a refused Hello (version or scenario mismatch,
 /// unknown domain) or a failure during the run. what() is the peer's text, which gives the values
-/// and the fix; code() and domain() are the message's fields.
+/// and the fix, escaped (core::log_escape); code() and domain() (escaped) are the message's fields.
 class RemoteError : public crashlink::Error {
  public:
   explicit RemoteError(const wire::Error& error);

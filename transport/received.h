@@ -38,8 +38,8 @@ struct Received {
   bool ok() const { return error.empty(); }
 };
 
-/// A routing id fit for a message: printable ASCII as is, otherwise "0x" + hex (ZeroMQ's
-/// generated ids start with a zero byte).
+/// A routing id fit for a message: core::log_escape (printable ASCII as is, every other byte as
+/// \xNN, bounded; ZeroMQ's generated ids start with \x00).
 std::string printable_peer(std::string_view routing_id);
 
 }  // namespace crashlink::transport

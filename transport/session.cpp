@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "proto/protocol_version.h"
+#include "solver/core/log_escape.h"
 #include "transport/errors.h"
 
 namespace crashlink::transport {
@@ -32,17 +33,17 @@ wire::Hello daemon_hello(std::string_view domain, std::string_view scenario_hash
   return h;
 }
 
-std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_view routing_id,
-                                       std::string_view scenario_hash,
+std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_view scenario_hash,
                                        std::span<const std::string> domains) {
+  // The peer's own strings are escaped: they go into the coordinator's log (core::log_escape).
+  const std::string domain = core::log_escape(hello.domain());
   auto refuse = [&](wire::ErrorCode code, std::string text) {
     wire::Error e;
     e.set_code(code);
     e.set_message(std::move(text));
-    e.set_domain(hello.domain());
+    e.set_domain(domain);
     return std::optional<wire::Error>(std::move(e));
   };
-  const std::string& domain = hello.domain();
   if (hello.role() != wire::PEER_ROLE_DAEMON) {
     return refuse(wire::ERROR_CODE_PROTOCOL,
                   fmt::format("Hello from '{}' with role {}: only daemons (PEER_ROLE_DAEMON) "
@@ -60,20 +61,13 @@ std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_vie
     return refuse(wire::ERROR_CODE_SCENARIO_MISMATCH,
                   fmt::format("daemon '{}' has scenario hash '{}', the coordinator has '{}'; fix: "
                               "start every process with the same scenario file (same content)",
-                              domain, hello.scenario_hash(), scenario_hash));
+                              domain, core::log_escape(hello.scenario_hash()), scenario_hash));
   }
-  if (std::find(domains.begin(), domains.end(), domain) == domains.end()) {
+  if (std::find(domains.begin(), domains.end(), hello.domain()) == domains.end()) {
     return refuse(wire::ERROR_CODE_MODEL,
                   fmt::format("unknown domain '{}': the scenario's domains are '{}'; fix: start "
                               "the daemon with one of these names",
                               domain, fmt::join(domains, "', '")));
-  }
-  if (domain != routing_id) {
-    return refuse(
-        wire::ERROR_CODE_PROTOCOL,
-        fmt::format("Hello for domain '{}' from a socket with routing id '{}': a daemon's "
-                    "routing id must be its domain name (use DaemonLink)",
-                    domain, routing_id));
   }
   return std::nullopt;
 }

@@ -41,10 +41,10 @@ struct SessionOptions {
 wire::Hello daemon_hello(std::string_view domain, std::string_view scenario_hash);
 
 /// The coordinator's checks of a daemon's Hello, in this order: role, protocol version, scenario
-/// hash, domain known, domain == routing id. Returns the Error to send back (code, message with
-/// both values and the fix, domain), or nullopt to accept.
-std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_view routing_id,
-                                       std::string_view scenario_hash,
+/// hash, domain known. Returns the Error to send back (code, message with both values and the
+/// fix, domain; the peer's strings escaped, core::log_escape), or nullopt to accept. Whether the
+/// domain is free is the link's check (CoordinatorLink: ERROR_CODE_DOMAIN_HELD).
+std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_view scenario_hash,
                                        std::span<const std::string> domains);
 
 /// An Envelope holding `message` (one of the wire messages).

@@ -26,6 +26,7 @@
 #include "solver/coordination/paper_cut.h"
 #include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
+#include "solver/core/log_escape.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
@@ -244,6 +245,7 @@ class Coordinator {
       }
       auto in = link_->poll(std::min<std::chrono::milliseconds>(
           100ms, std::chrono::ceil<std::chrono::milliseconds>(deadline - now)));
+      drop_silent_unregistered();
       log_notices();
       link_->check_alive();
       if (!in) continue;
@@ -269,6 +271,7 @@ class Coordinator {
       }
       regs_[static_cast<std::size_t>(k)] = e.registration();
       registered_[static_cast<std::size_t>(k)] = true;
+      link_->seal(in->domain);  // the run counts on this session: no second daemon for it
       ++count;
     }
     coordinator::InterfaceTable table;
@@ -336,6 +339,25 @@ class Coordinator {
           o_.variable_steps ? "variable steps (each its own proposal), planned first" : "steps",
           steps.c_str(), lanes_ ? "daemon to daemon (lanes)" : "through the coordinator");
       std::fflush(o_.log);
+    }
+  }
+
+  /// Before the run: a domain that said Hello but has been silent for the peer timeout without
+  /// registering (a daemon that died or hangs during its start, or a peer that only said Hello)
+  /// loses its session and the domain waits for a daemon again, up to the join timeout; the
+  /// waiting coordinator goes on. A registered domain that goes silent stops the run
+  /// (check_alive()): the others' Setups depend on it.
+  void drop_silent_unregistered() {
+    for (const auto& d : link_->dead_peers()) {
+      const int k = index_of(d);
+      if (k < 0 || registered_[static_cast<std::size_t>(k)]) continue;
+      link_->drop(
+          d, wire::ERROR_CODE_TIMEOUT,
+          fmt::format("domain '{}' said Hello and then nothing for {:.1f} s (peer timeout), no "
+                      "Register: its session is dropped and the domain waits for a daemon until "
+                      "the join timeout ({:.1f} s after the start)",
+                      d, std::chrono::duration<double>(o_.session.peer_timeout).count(),
+                      std::chrono::duration<double>(o_.join_timeout).count()));
     }
   }
 
@@ -424,7 +446,8 @@ class Coordinator {
                 protocol_stop(in->domain,
                               fmt::format("domain '{}' said Bye ({}) at tick {} before the end "
                                           "of the `paper` run",
-                                          in->domain, e.bye().reason(), exchange_->latest(k)));
+                                          in->domain, core::log_escape(e.bye().reason()),
+                                          exchange_->latest(k)));
               exchange_->final_energy(k, e.bye().report().energy(), e.bye().report().time_ticks());
             }
             bye(k, e.bye());
@@ -575,7 +598,7 @@ class Coordinator {
 
   [[noreturn]] void remote_error(const transport::Incoming& in) {
     const auto& err = in.envelope.error();
-    const std::string domain = err.domain().empty() ? in.domain : err.domain();
+    const std::string& domain = in.domain;  // the session's (CoordinatorLink::poll)
     const int code = err.code() == wire::ERROR_CODE_NUMERICAL ? run::kExitNumerical
                      : err.code() == wire::ERROR_CODE_MODEL   ? run::kExitInput
                      : err.code() == wire::ERROR_CODE_STOPPED ? run::kExitStopped
@@ -585,7 +608,8 @@ class Coordinator {
                        err.code(),
                        {in.domain},
                        fmt::format("coordinator: domain '{}' failed ({}): {}", domain,
-                                   wire::ErrorCode_Name(err.code()), err.message())});
+                                   wire::ErrorCode_Name(err.code()),
+                                   core::log_escape(err.message(), core::kLogTextBytes))});
   }
 
   [[noreturn]] void protocol_stop(const std::string& domain, const std::string& what) {

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "solver/core/errors.h"
+#include "solver/core/log_escape.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/apply_setup.h"
@@ -99,7 +100,8 @@ class Daemon {
                         fmt::format("{}: stopped on request (signal)", where())};
     } catch (const transport::RemoteError& e) {
       const bool refused = e.code() == wire::ERROR_CODE_VERSION_MISMATCH ||
-                           e.code() == wire::ERROR_CODE_SCENARIO_MISMATCH;
+                           e.code() == wire::ERROR_CODE_SCENARIO_MISMATCH ||
+                           e.code() == wire::ERROR_CODE_DOMAIN_HELD;
       const int exit_code = refused                                ? run::kExitInput
                             : e.code() == wire::ERROR_CODE_STOPPED ? run::kExitStopped
                                                                    : run::kExitPeer;
@@ -251,18 +253,7 @@ class Daemon {
       dom_ = std::make_unique<cosim::LayerDomain>(
           cosim::build_layer_domain(*dec_, *model_, o_.domain));
     }
-    const auto& sub = solver()->model();
-    elements_ = static_cast<std::int64_t>(sub.element_count());
-
-    io::ResultWriterOptions wo;
-    wo.file_stem = o_.domain;  // DIR/domains/<domain>.h5, what solver/gather reads back
-    // A daemon may be killed by a failure elsewhere: keep at most a second of history unwritten.
-    wo.history_flush_wall_s = 1.0;
-    writer_ = std::make_unique<io::ResultWriter>(
-        (std::filesystem::path(o_.out_dir) / "domains").string(), sub, wo);
-    h5_path_ = writer_->h5_path();
-    recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *solver());
-
+    elements_ = static_cast<std::int64_t>(solver()->model().element_count());
     solver()->initialize();
     initialized_ = true;
     std::vector<std::string> damaged;
@@ -272,6 +263,21 @@ class Daemon {
                    "crashlink-solver: domain '%s': checkpoint damaged, not offered for a restart: "
                    "%s\n",
                    o_.domain.c_str(), d.c_str());
+  }
+
+  /// DIR/domains/<domain>.h5 and its recorder. Opened once the coordinator has accepted our
+  /// Hello: a second daemon started for a domain that is running (refused: ERROR_CODE_DOMAIN_HELD)
+  /// must not truncate the running daemon's file.
+  void open_output() {
+    io::ResultWriterOptions wo;
+    wo.file_stem = o_.domain;  // DIR/domains/<domain>.h5, what solver/gather reads back
+    // A daemon may be killed by a failure elsewhere: keep at most a second of history unwritten.
+    wo.history_flush_wall_s = 1.0;
+    writer_ = std::make_unique<io::ResultWriter>(
+        (std::filesystem::path(o_.out_dir) / "domains").string(), solver()->model(), wo);
+    h5_path_ = writer_->h5_path();
+    recorder_ = std::make_unique<run::DomainRecorder>(*writer_, *solver());
+    link_->keep_alive();  // a large mesh takes a while to write
   }
 
   /// Every domain of the cut, and the coordinator when it keeps state (a cut with an interface).
@@ -293,6 +299,7 @@ class Daemon {
                                      "expected >= 1",
                                      tps_));
     }
+    open_output();
     if (!o_.paper) open_own_lane();
     link_->send(register_message());
     const wire::Setup setup = await_setup();
@@ -567,7 +574,8 @@ class Daemon {
               "coordinator",
               fmt::format("the Setup of domain '{}' gives '{}' the shared-memory "
                           "lane {}, but this daemon's lane is {}",
-                          o_.domain, lane.domain(), lane.endpoint(), lane_endpoint_));
+                          o_.domain, core::log_escape(lane.domain()),
+                          core::log_escape(lane.endpoint(), core::kLogTextBytes), lane_endpoint_));
         }
         // Its vectors to us, created before it can send: room for 8 of the largest (two 3-vectors
         // of doubles per J node, plus the envelope).
@@ -719,7 +727,8 @@ class Daemon {
       throw transport::ProtocolError(
           "lane", fmt::format("domain '{}' got {} on its lane {} from '{}'; a lane carries only "
                               "its partners' layer vectors",
-                              o_.domain, ok ? body_name(e) : what, lane_endpoint_, peer));
+                              o_.domain, ok ? body_name(e) : what, lane_endpoint_,
+                              transport::printable_peer(peer)));
     }
     return e;
   }
@@ -741,7 +750,7 @@ class Daemon {
         throw transport::ProtocolError(
             "coordinator", fmt::format("the coordinator ended the session ({}) before domain '{}' "
                                        "reached the end time",
-                                       e.bye().reason(), o_.domain));
+                                       core::log_escape(e.bye().reason()), o_.domain));
       }
       throw transport::ProtocolError(
           "coordinator",

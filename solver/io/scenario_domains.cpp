@@ -4,6 +4,8 @@
 #include <map>
 
 #include "solver/core/errors.h"
+#include "solver/core/log_escape.h"
+#include "solver/io/scenario_names.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io::detail {
@@ -20,7 +22,23 @@ void read_domains(const YamlNode& section, ScenarioBuild& b) {
     section.fail(
         "lists no domain; give `name: {parts: [...]}` per domain, or remove the section "
         "for a single-domain run");
+  std::map<std::string, Where> folded;  // lower-case name -> the first domain with it
   for (const auto& [name, entry] : entries) {
+    // A domain's name becomes file and folder names (solver/io/scenario_names.h).
+    if (const std::string why = file_name_problem(name); !why.empty())
+      entry.fail(
+          fmt::format("domain name '{}' cannot be a file name (DIR/domains/<name>.h5, "
+                      "checkpoint folders): {}",
+                      core::log_escape(name), why));
+    std::string lower = name;
+    for (char& c : lower)
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    if (const auto [it, fresh] = folded.try_emplace(lower, Where{name, entry.line()}); !fresh)
+      entry.fail(
+          fmt::format("domain name '{}' differs from '{}' (line {}) only in letter case; "
+                      "their files would be one on a case-insensitive file system: "
+                      "rename one",
+                      name, it->second.domain, it->second.line));
     entry.expect_keys({"parts"});
     model::Domain d;
     d.name = name;

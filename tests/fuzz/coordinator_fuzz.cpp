@@ -67,8 +67,10 @@ class Coordinator {
     if (!transport::detail::parse(message, e).empty()) return;  // refused, logged
     auto peer = active_.find(id);
     if (e.has_hello()) {
-      if (peer != active_.end() && peer->second) return;  // second Hello: refused
-      if (transport::check_hello(e.hello(), id, hash_, cut_.names)) return;  // refused
+      if (peer != active_.end() && peer->second) return;                 // second Hello: refused
+      if (transport::check_hello(e.hello(), hash_, cut_.names)) return;  // refused
+      // The harness names each connection by its domain (CoordinatorLink maps the two).
+      if (e.hello().domain() != id) return;
       active_[id] = true;
       return;
     }

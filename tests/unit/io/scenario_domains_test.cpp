@@ -93,5 +93,38 @@ TEST(ScenarioDomains, Mistakes) {
                "rigid body 'dummy' has part 'head' in domain 'a' and part 'neck' in domain 'b'");
 }
 
+TEST(ScenarioDomains, NamesThatCannotBeFileNamesAreRefusedAtTheirLine) {
+  // Issue 20: `Wischer/ü` passed the reader and the run died in H5Fcreate ("internal error").
+  const std::string rest = "  b: {parts: [plate, frame]}\n";
+  auto domain = [&](const std::string& name) {
+    return "domains:\n  " + name + ": {parts: [head, neck]}\n" + rest;
+  };
+  expect_error(domain("\"Wischer/\xc3\xbc\""), "Wischer", "domains.Wischer/\xc3\xbc",
+               "domain name 'Wischer/\\xc3\\xbc' cannot be a file name (DIR/domains/<name>.h5, "
+               "checkpoint folders): character 8, '/', is not allowed: a name that becomes a file "
+               "name is 1 to 64 characters, each an ASCII letter, a digit, '_', '-' or '.', not "
+               "starting with '.'; fix: rename it, e.g. 'Wischer__'");
+  expect_error(domain("\"W\xc3\xbcscher\""), "scher", "domains.W\xc3\xbcscher",
+               "character 2, a non-ASCII character (bytes \\xc3\\xbc), is not allowed");
+  expect_error(domain("\".hidden\""), ".hidden", "domains..hidden", "it starts with '.'");
+  expect_error(domain("\"..\""), "\"..\"", "domains...", "it starts with '.'");
+  expect_error(domain("\"a b\""), "a b", "domains.a b", "character 2, ' ', is not allowed");
+  expect_error(domain("\"a\\tb\""), "a\\tb", "domains.a\tb",
+               "character 2, a control character (byte \\x09), is not allowed");
+  expect_error(domain(std::string(65, 'x')), std::string(65, 'x'),
+               "domains." + std::string(65, 'x'), "it has 65 characters, more than 64");
+  expect_error(domain("coordinator"), "coordinator:", "domains.coordinator",
+               "'coordinator' is the coordinator's own checkpoint folder");
+  expect_error("domains:\n  car: {parts: [head, neck]}\n  Car: {parts: [plate, frame]}\n",
+               "Car:", "domains.Car",
+               "domain name 'Car' differs from 'car' (line 26) only in letter case");
+  // What the rule allows.
+  const auto m = parse_scenario(kScene + "domains:\n  Wischer_2-a.v1: {parts: [head, neck]}\n" +
+                                    "  " + std::string(64, 'x') + ": {parts: [plate, frame]}\n",
+                                "ok.yaml");
+  ASSERT_EQ(m.domains.size(), 2u);
+  EXPECT_EQ(m.domains[0].name, "Wischer_2-a.v1");
+}
+
 }  // namespace
 }  // namespace crashlink::io

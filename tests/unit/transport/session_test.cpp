@@ -201,7 +201,53 @@ TEST_P(Session, VersionMismatchIsRefusedWithBothValues) {
   EXPECT_FALSE(coordinator->joined("car"));
   const auto notices = coordinator->take_notices();
   ASSERT_EQ(notices.size(), 1u);
-  EXPECT_EQ(notices[0].peer, "car");
+  // The peer is named by its connection: the domain and the session's random part.
+  EXPECT_EQ(notices[0].peer.rfind("car#", 0), 0u) << notices[0].peer;
+  EXPECT_EQ(notices[0].peer.size(), 4u + 16u) << notices[0].peer;
+}
+
+TEST_P(Session, SecondDaemonForAHeldDomainIsRefusedAndTheFirstGoesOn) {
+  DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
+  ASSERT_TRUE(coordinator->joined("car"));
+  const RemoteError e = refusal(*coordinator, daemon_hello("car", kHash));
+  EXPECT_EQ(e.code(), wire::ERROR_CODE_DOMAIN_HELD);
+  EXPECT_TRUE(has(e.what(), "domain 'car' is already held")) << e.what();
+  EXPECT_TRUE(has(e.what(), "fix:")) << e.what();
+  // The first session is untouched: both ways.
+  EXPECT_TRUE(coordinator->joined("car"));
+  car.send(free_state(1, {1.0}));
+  const Incoming in = next_incoming(*coordinator);
+  EXPECT_EQ(in.domain, "car");
+  EXPECT_TRUE(in.envelope.has_free_state());
+  coordinator->send("car", free_state(2, {2.0}));
+  const auto back = car.receive(5s);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->free_state().time_ticks(), 2);
+}
+
+TEST_P(Session, SealedDomainIsRefusedAfterItsSessionEnded) {
+  DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
+  coordinator->seal("car");
+  car.bye("done");
+  while (coordinator->joined("car")) (void)coordinator->poll(10ms);
+  const RemoteError e = refusal(*coordinator, daemon_hello("car", kHash));
+  EXPECT_EQ(e.code(), wire::ERROR_CODE_DOMAIN_HELD);
+  EXPECT_TRUE(has(e.what(), "has already run")) << e.what();
+}
+
+TEST_P(Session, DroppedDomainCanJoinAgain) {
+  DaemonLink first = connect_daemon(*coordinator, daemon_hello("wiper", kHash));
+  coordinator->drop("wiper", wire::ERROR_CODE_TIMEOUT, "domain 'wiper' dropped for the test");
+  EXPECT_FALSE(coordinator->joined("wiper"));
+  EXPECT_EQ(coordinator->missing(), (std::vector<std::string>{"car", "wiper", "head"}));
+  EXPECT_THROW(
+      {
+        while (first.receive(5s)) {
+        }
+      },
+      RemoteError);
+  DaemonLink second = connect_daemon(*coordinator, daemon_hello("wiper", kHash));
+  EXPECT_TRUE(coordinator->joined("wiper"));
 }
 
 TEST_P(Session, ScenarioMismatchIsRefusedWithBothValues) {
@@ -413,18 +459,26 @@ INSTANTIATE_TEST_SUITE_P(AllTransports, Session, kAllSchemes, scheme_test_name);
 
 TEST(CheckHello, AcceptsAMatchingDaemonAndChecksInOrder) {
   const std::vector<std::string> domains = {"car", "wiper"};
-  EXPECT_FALSE(check_hello(daemon_hello("car", "h"), "car", "h", domains).has_value());
+  EXPECT_FALSE(check_hello(daemon_hello("car", "h"), "h", domains).has_value());
   auto coordinator_role = daemon_hello("car", "h");
   coordinator_role.set_role(wire::PEER_ROLE_COORDINATOR);
-  EXPECT_EQ(check_hello(coordinator_role, "car", "h", domains)->code(), wire::ERROR_CODE_PROTOCOL);
+  EXPECT_EQ(check_hello(coordinator_role, "h", domains)->code(), wire::ERROR_CODE_PROTOCOL);
   auto both_wrong = daemon_hello("car", "x");
   both_wrong.set_protocol_version(0);
-  EXPECT_EQ(check_hello(both_wrong, "car", "h", domains)->code(),
+  EXPECT_EQ(check_hello(both_wrong, "h", domains)->code(),
             wire::ERROR_CODE_VERSION_MISMATCH);  // the version first: the rest may mean nothing
-  const auto wrong_id = check_hello(daemon_hello("car", "h"), "wiper", "h", domains);
-  ASSERT_TRUE(wrong_id.has_value());
-  EXPECT_EQ(wrong_id->code(), wire::ERROR_CODE_PROTOCOL);
-  EXPECT_TRUE(has(wrong_id->message(), "routing id 'wiper'"));
+}
+
+TEST(CheckHello, ThePeersStringsAreEscapedInTheRefusal) {
+  const std::vector<std::string> domains = {"car"};
+  const auto r =
+      check_hello(daemon_hello("x\ndone: all domains finished\x1b[2J", "h"), "h", domains);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->message().find('\n'), std::string::npos) << r->message();
+  EXPECT_EQ(r->message().find('\x1b'), std::string::npos) << r->message();
+  EXPECT_TRUE(has(r->message(), "unknown domain 'x\\x0adone: all domains finished\\x1b[2J'"))
+      << r->message();
+  EXPECT_EQ(r->domain(), "x\\x0adone: all domains finished\\x1b[2J");
 }
 
 TEST(SessionOptionsCheck, IntervalMustBeShorterThanTimeout) {
