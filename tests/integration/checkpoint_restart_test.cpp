@@ -64,6 +64,15 @@ double time_reached(const fs::path& out) {
   return t;
 }
 
+/// The chain fine | mid | coarse (5 / 10 / 30 mm hexes), 0.6 ms, written into `dir`.
+std::string chain3_scenario(const fs::path& dir) {
+  return crashlink::proc_test::write_file(
+      dir / "chain.yaml",
+      crashlink::proc_test::bar_parts_yaml(
+          "chain3", 6.0e-4,
+          {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+}
+
 /// Histories, probes, contacts and the last field state to the bit; at least `min_states` field
 /// states.
 void expect_same_results(const std::string& ref_h5, const std::string& run_h5,
@@ -183,11 +192,7 @@ TEST_P(CheckpointRestart, KilledRunResumedEqualsUninterruptedRun) {
 // The run with checkpoints, resumed from its newest, ends as the run without them, to the bit.
 TEST(CheckpointRestartChain, VariableStepsRestartedFromTheNewestCheckpointIsTheSameRun) {
   const fs::path dir = fresh_dir("ckpt_chain");
-  const std::string scenario = crashlink::proc_test::write_file(
-      dir / "chain.yaml",
-      crashlink::proc_test::bar_parts_yaml(
-          "chain3", 6.0e-4,
-          {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+  const std::string scenario = chain3_scenario(dir);
   const std::string run = bin("crashlink") + " run " + scenario +
                           " --mode multi --quiet --variable-steps --step-safety 0.8 ";
   int status = -1;
@@ -228,11 +233,7 @@ TEST(CheckpointRestartChain, VariableStepsRestartedFromTheNewestCheckpointIsTheS
 // copy and exited 0 with other field values.
 TEST(CheckpointRestartChain, ADamagedNewestCheckpointIsReportedAndThePreviousOneUsed) {
   const fs::path dir = fresh_dir("ckpt_damaged");
-  const std::string scenario = crashlink::proc_test::write_file(
-      dir / "chain.yaml",
-      crashlink::proc_test::bar_parts_yaml(
-          "chain3", 6.0e-4,
-          {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+  const std::string scenario = chain3_scenario(dir);
   const std::string run = bin("crashlink") + " run " + scenario + " --mode multi --quiet ";
   int status = -1;
   const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
