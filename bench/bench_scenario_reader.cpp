@@ -1,9 +1,11 @@
 // Memory and time of the scenario reader on long lists (issue 20, item 13; docs/benchmarks.md
 // "Scenario reader"). Generates a scenario per size whose bulk is one list of N values, then runs
 // each in a fresh process (this program again, --read FILE) that does what every process of a
-// run does with the scenario: io::scenario_hash, then io::read_scenario. The child reports its
-// times and its peak resident memory (VmHWM) against its resident memory before reading (VmRSS);
-// one line per size: input MB, seconds, peak and growth, and both per input MB.
+// run does with the scenario: io::read_scenario_with_hash (the model and the scenario hash from
+// one parse; until issue 20 item 13, io::scenario_hash and io::read_scenario parsed it twice).
+// The child reports its time and its peak resident memory (VmHWM) against its resident memory
+// before reading (VmRSS); one line per size: input MB, seconds, peak and growth, and both per
+// input MB.
 //
 //   bench_scenario_reader [--sizes 1e6,4e6,13e6] [--list ids|curve] [--style flow|block]
 //                         [--dir DIR (/tmp)] [--keep]
@@ -32,7 +34,6 @@
 #include <string_view>
 #include <vector>
 
-#include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 
 extern char** environ;
@@ -129,8 +130,7 @@ void generate(const std::string& path, std::size_t n, const Options& o) {
   const bool block = o.style == "block";
   if (o.list == "ids") {
     out << "node_sets:\n  listed:\n    nodes:";
-    write_list(out, n, block, "      ",
-               [](std::size_t k) { return (k * 7919) % kNodes + 1; });
+    write_list(out, n, block, "      ", [](std::size_t k) { return (k * 7919) % kNodes + 1; });
     out << "boundary:\n  - {nodes: listed, fix: [z]}\n";
   } else {
     const std::size_t points = n / 2;
@@ -159,24 +159,21 @@ std::uint64_t fnv(std::uint64_t h, const void* data, std::size_t bytes) {
   return h;
 }
 
-/// The child: hash and read like a daemon; one line "bytes hash_s read_s hwm_kib base_kib sum".
+/// The child: reads like a daemon; one line "bytes seconds hwm_kib base_kib sum hash".
 int read_one(const std::string& path) {
   const long base = status_kib("VmRSS");
   const auto t0 = Clock::now();
-  const std::string hash = io::scenario_hash(path);
+  const auto [model, hash] = io::read_scenario_with_hash(path);
   const auto t1 = Clock::now();
-  const auto model = io::read_scenario(path);
-  const auto t2 = Clock::now();
   const long hwm = status_kib("VmHWM");
   std::uint64_t sum = fnv(14695981039346656037ULL, model.fixed.data(), model.fixed.size());
   for (const auto& pv : model.prescribed_velocities) {
     sum = fnv(sum, pv.velocity.t_s.data(), pv.velocity.t_s.size() * sizeof(double));
     sum = fnv(sum, pv.velocity.value.data(), pv.velocity.value.size() * sizeof(double));
   }
-  const double hash_s = std::chrono::duration<double>(t1 - t0).count();
-  const double read_s = std::chrono::duration<double>(t2 - t1).count();
-  fmt::print("{} {:.3f} {:.3f} {} {} {:016x} {}\n", std::filesystem::file_size(path), hash_s,
-             read_s, hwm, base, sum, hash);
+  const double seconds = std::chrono::duration<double>(t1 - t0).count();
+  fmt::print("{} {:.3f} {} {} {:016x} {}\n", std::filesystem::file_size(path), seconds, hwm, base,
+             sum, hash);
   return 0;
 }
 
@@ -189,8 +186,8 @@ std::string run_child(const std::string& path) {
   posix_spawn_file_actions_adddup2(&actions, pipefd[1], 1);
   posix_spawn_file_actions_addclose(&actions, pipefd[0]);
   std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  std::vector<char*> argv{self.data(), const_cast<char*>("--read"),
-                          const_cast<char*>(path.c_str()), nullptr};
+  std::vector<char*> argv{self.data(), const_cast<char*>("--read"), const_cast<char*>(path.c_str()),
+                          nullptr};
   pid_t pid = 0;
   if (posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ) != 0)
     usage("cannot start the child");
@@ -214,24 +211,25 @@ int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   if (!o.read.empty()) return read_one(o.read);
   fmt::print(
-      "list={} style={}: per process, scenario_hash + read_scenario (peak = VmHWM, growth = "
-      "VmHWM - VmRSS before)\n"
-      "{:>10} {:>9} {:>8} {:>8} {:>9} {:>9} {:>8} {:>8}  {}\n",
-      o.list, o.style, "values", "input MB", "hash s", "read s", "peak MiB", "growth", "MiB/MB",
-      "s/MB", "checksum");
+      "list={} style={}: per process, read_scenario_with_hash (peak = VmHWM, growth = VmHWM - "
+      "VmRSS before)\n"
+      "{:>10} {:>9} {:>8} {:>9} {:>9} {:>8} {:>8}  {}\n",
+      o.list, o.style, "values", "input MB", "seconds", "peak MiB", "growth", "MiB/MB", "s/MB",
+      "checksum, hash");
   for (const double size : o.sizes) {
     const auto n = static_cast<std::size_t>(size);
-    const std::string path = fmt::format("{}/reader_bench_{}_{}_{}.yaml", o.dir, o.list, o.style, n);
+    const std::string path =
+        fmt::format("{}/reader_bench_{}_{}_{}.yaml", o.dir, o.list, o.style, n);
     generate(path, n, o);
     std::istringstream line(run_child(path));
-    double bytes = 0, hash_s = 0, read_s = 0, hwm = 0, base = 0;
+    double bytes = 0, seconds = 0, hwm = 0, base = 0;
     std::string sum, hash;
-    line >> bytes >> hash_s >> read_s >> hwm >> base >> sum >> hash;
+    line >> bytes >> seconds >> hwm >> base >> sum >> hash;
     if (!line) usage("unreadable child line for " + path);
     const double mb = bytes / 1e6;
-    fmt::print("{:>10} {:>9.1f} {:>8.2f} {:>8.2f} {:>9.1f} {:>9.1f} {:>8.2f} {:>8.3f}  {} {}\n",
-               n, mb, hash_s, read_s, hwm / 1024, (hwm - base) / 1024, (hwm - base) / 1024 / mb,
-               (hash_s + read_s) / mb, sum, hash);
+    fmt::print("{:>10} {:>9.1f} {:>8.2f} {:>9.1f} {:>9.1f} {:>8.2f} {:>8.3f}  {} {}\n", n, mb,
+               seconds, hwm / 1024, (hwm - base) / 1024, (hwm - base) / 1024 / mb, seconds / mb,
+               sum, hash);
     std::fflush(stdout);
     if (!o.keep) std::filesystem::remove(path);
   }
