@@ -161,8 +161,9 @@ class Coordinator {
   double run_cpu_seconds() const { return cpu_before_ + cpu_seconds() - cpu0_; }
 
   void prepare() {
-    const std::string hash = io::scenario_hash(o_.scenario);
-    model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
+    auto read = io::read_scenario_with_hash(o_.scenario);  // one parse for both
+    const std::string hash = std::move(read.hash);
+    model_ = std::make_unique<model::Model>(std::move(read.model));
     const auto dec = partition::decompose(
         *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer);
     if (!o_.drift && !o_.paper)

@@ -243,8 +243,9 @@ class Daemon {
 
   /// Scenario, cut, this domain's solver, its result file.
   void prepare() {
-    hash_ = io::scenario_hash(o_.scenario);
-    model_ = std::make_unique<model::Model>(io::read_scenario(o_.scenario));
+    auto read = io::read_scenario_with_hash(o_.scenario);  // one parse for both
+    hash_ = std::move(read.hash);
+    model_ = std::make_unique<model::Model>(std::move(read.model));
     dec_ = std::make_unique<partition::Decomposition>(partition::decompose(
         *model_, o_.paper ? partition::Scheme::Paper : partition::Scheme::Layer));
     if (o_.paper) {

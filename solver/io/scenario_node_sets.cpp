@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "solver/core/errors.h"
 #include "solver/io/scenario_sections.h"
@@ -29,6 +30,40 @@ std::pair<Vec3, Vec3> bounds(const model::Model& m, const std::vector<std::int32
   return {lo, hi};
 }
 
+/// Model::node_index (first node with the id, -1 if none) in constant time: it scans every node,
+/// so a list of ids would cost ids x nodes. A table over [lowest, highest id] when the ids are
+/// that dense (generated ids run 1, 2, ...), else a hash map.
+class NodeIdIndex {
+ public:
+  explicit NodeIdIndex(const model::Model& m) {
+    const auto& ids = m.nodes.id;
+    if (ids.empty()) return;
+    const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
+    const auto span = static_cast<std::uint64_t>(*hi - *lo);
+    if (span <= 4 * static_cast<std::uint64_t>(ids.size()) + 1024) {
+      lowest_ = *lo;
+      table_.assign(span + 1, -1);
+      for (std::size_t i = ids.size(); i-- > 0;)
+        table_[static_cast<std::size_t>(ids[i] - lowest_)] = static_cast<int>(i);
+    } else {
+      for (std::size_t i = ids.size(); i-- > 0;) map_[ids[i]] = static_cast<int>(i);
+    }
+  }
+  int operator()(std::int64_t id) const {
+    if (!table_.empty()) {
+      if (id < lowest_ || static_cast<std::uint64_t>(id - lowest_) >= table_.size()) return -1;
+      return table_[static_cast<std::size_t>(id - lowest_)];
+    }
+    const auto it = map_.find(id);
+    return it == map_.end() ? -1 : it->second;
+  }
+
+ private:
+  std::int64_t lowest_ = 0;
+  std::vector<int> table_;
+  std::unordered_map<std::int64_t, int> map_;
+};
+
 std::string format_box(const std::pair<Vec3, Vec3>& b) {
   return fmt::format("min [{:g}, {:g}, {:g}], max [{:g}, {:g}, {:g}]", b.first[0], b.first[1],
                      b.first[2], b.second[0], b.second[1], b.second[2]);
@@ -52,21 +87,26 @@ std::vector<std::int32_t> read_selection(const YamlNode& sel, const ScenarioBuil
     for (const char* k : {"part", "box"})
       if (auto v = sel.optional(k))
         v->fail("an explicit 'nodes' list cannot be combined with 'part' or 'box'; use one");
-    std::vector<std::int32_t> out;
-    for (const auto& item : ids->items("node ids")) {
-      const std::int64_t id = item.integer();
-      const int i = m.node_index(id);
+    // A list may hold millions of ids (issue 20, item 13): each is marked on the model's nodes,
+    // which gives the sorted unique indices without a copy of the list.
+    const YamlList list = ids->list("node ids");
+    const NodeIdIndex index_of(m);
+    std::vector<std::uint8_t> listed(m.nodes.count(), 0);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::int64_t id = list.integer(k);
+      const int i = index_of(id);
       if (i < 0)
-        item.fail(
+        list[k].fail(
             fmt::format("node id {} is not in the model (ids run from {} to {} after mesh "
                         "generation; see docs/scenario-format.md, 'Numbering')",
                         id, m.nodes.id.empty() ? 0 : m.nodes.id.front(),
                         m.nodes.id.empty() ? 0 : m.nodes.id.back()));
-      out.push_back(i);
+      listed[static_cast<std::size_t>(i)] = 1;
     }
-    if (out.empty()) ids->fail("empty node list; give at least one node id");
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (list.size() == 0) ids->fail("empty node list; give at least one node id");
+    std::vector<std::int32_t> out;
+    for (std::size_t i = 0; i < listed.size(); ++i)
+      if (listed[i]) out.push_back(static_cast<std::int32_t>(i));
     return out;
   }
   const auto part = sel.optional("part");

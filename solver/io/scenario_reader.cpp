@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <memory>
 
 #include "solver/core/errors.h"
+#include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io {
@@ -96,16 +97,11 @@ void read_coupling(const YamlNode& c, ScenarioBuild& b) {
 
 }  // namespace detail
 
-model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages) {
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(name_for_messages, e.mark.is_null() ? 1 : e.mark.line + 1, "(yaml syntax)",
-                     e.msg + "; check the indentation and the ':' after each key");
-  }
-  const YamlNode root(doc, name_for_messages);
-  if (!doc.IsMap())
+namespace {
+
+model::Model build_model(YamlTree tree, const std::string& name_for_messages) {
+  const YamlNode root(std::make_shared<const YamlTree>(std::move(tree)), name_for_messages);
+  if (!root.is_map())
     root.fail("a scenario is a mapping of sections (name, controls, materials, parts, ...)");
   root.expect_keys({"name", "description", "controls", "materials", "parts", "node_sets",
                     "boundary", "prescribed_velocity", "loads", "initial_velocity", "rigid_bodies",
@@ -145,15 +141,36 @@ model::Model parse_scenario(const std::string& yaml_text, const std::string& nam
   return std::move(b.model);
 }
 
-model::Model read_scenario(const std::string& path) {
+}  // namespace
+
+model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages) {
+  return build_model(YamlTree::parse(yaml_text, name_for_messages), name_for_messages);
+}
+
+namespace {
+
+/// The file parsed as it is read: its text is never held whole.
+YamlTree parse_file(const std::string& path, const std::string& cannot_open) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(
-        path, 0, "(file)",
-        "cannot open the scenario file; check the path (scenarios live in scenarios/)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), path);
+  if (!in) throw InputError(path, 0, "(file)", cannot_open);
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  return YamlTree::parse(in, ec ? 0 : static_cast<std::size_t>(bytes), path);
+}
+
+}  // namespace
+
+model::Model read_scenario(const std::string& path) {
+  return build_model(
+      parse_file(path,
+                 "cannot open the scenario file; check the path (scenarios live in scenarios/)"),
+      path);
+}
+
+ScenarioWithHash read_scenario_with_hash(const std::string& path) {
+  YamlTree tree = parse_file(path, "cannot open the scenario file; check the path");
+  std::string hash = scenario_hash_of_tree(tree);
+  return {build_model(std::move(tree), path), std::move(hash)};
 }
 
 }  // namespace crashlink::io

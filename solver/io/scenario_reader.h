@@ -12,8 +12,16 @@ namespace crashlink::io {
 /// (already passed through model::validate).
 model::Model read_scenario(const std::string& path);
 
-/// Same, from YAML text; `name_for_messages` stands for the file name in error messages and is
-/// the model's default name.
+/// read_scenario and scenario_hash (scenario_hash.h) of the file, from one parse: what every
+/// process of a multi-domain run needs (a failure to open the file says so as scenario_hash).
+struct ScenarioWithHash {
+  model::Model model;
+  std::string hash;
+};
+ScenarioWithHash read_scenario_with_hash(const std::string& path);
+
+/// Same as read_scenario, from YAML text; `name_for_messages` stands for the file name in error
+/// messages and is the model's default name.
 model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages);
 
 }  // namespace crashlink::io

@@ -5,15 +5,15 @@
 #include <limits>
 
 #include "solver/core/errors.h"
+#include "solver/io/yaml_scalar.h"
 
 namespace crashlink::io {
 
 namespace {
 
-int line_of(const YAML::Node& n, int fallback) {
-  if (!n.IsDefined()) return fallback;
-  const YAML::Mark mk = n.Mark();
-  return mk.is_null() ? fallback : mk.line + 1;  // yaml-cpp marks are 0-based
+int line_of(const YamlTree& tree, YamlTree::Handle h, int fallback) {
+  const std::uint32_t line = tree.line(h);
+  return line == 0 ? fallback : static_cast<int>(line);
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -59,20 +59,25 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   return n.empty() ? std::string() : " did you mean '" + n + "'?";
 }
 
-YamlNode::YamlNode(YAML::Node root, const std::string& file)
-    : node_(std::move(root)),
+YamlNode::YamlNode(std::shared_ptr<const YamlTree> tree, const std::string& file)
+    : tree_(std::move(tree)),
+      node_(tree_->root()),
       path_(),
       file_(std::make_shared<const std::string>(file)),
-      line_(line_of(node_, 1)) {}
+      line_(line_of(*tree_, node_, 1)) {}
 
-YamlNode::YamlNode(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
-                   int line)
-    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)), line_(line) {}
+YamlNode::YamlNode(std::shared_ptr<const YamlTree> tree, YamlTree::Handle node, std::string path,
+                   std::shared_ptr<const std::string> file, int line)
+    : tree_(std::move(tree)),
+      node_(node),
+      path_(std::move(path)),
+      file_(std::move(file)),
+      line_(line) {}
 
-YamlNode YamlNode::child(const YAML::Node& key, const YAML::Node& value,
+YamlNode YamlNode::child(YamlTree::Handle key, YamlTree::Handle value,
                          const std::string& name) const {
-  const int line = line_of(key, line_of(value, line_));
-  return YamlNode(value, path_.empty() ? name : path_ + "." + name, file_, line);
+  const int line = line_of(*tree_, key, line_of(*tree_, value, line_));
+  return YamlNode(tree_, value, path_.empty() ? name : path_ + "." + name, file_, line);
 }
 
 void YamlNode::fail(const std::string& what) const {
@@ -80,10 +85,19 @@ void YamlNode::fail(const std::string& what) const {
 }
 
 std::string YamlNode::describe() const {
-  if (!node_.IsDefined() || node_.IsNull()) return "nothing";
-  if (node_.IsMap()) return "a mapping";
-  if (node_.IsSequence()) return "a list";
-  return "'" + node_.Scalar() + "'";
+  switch (kind()) {
+    case YamlTree::Kind::map:
+      return "a mapping";
+    case YamlTree::Kind::sequence:
+      return "a list";
+    case YamlTree::Kind::scalar: {
+      std::string quoted = "'";  // (not "'" + ... + "'": g++ 12 warns -Wrestrict on it)
+      quoted += tree_->scalar(node_);
+      return quoted += "'";
+    }
+    default:
+      return "nothing";
+  }
 }
 
 void YamlNode::expect_keys(std::initializer_list<const char*> allowed) const {
@@ -107,31 +121,60 @@ void YamlNode::expect_keys(const std::vector<std::string>& allowed) const {
 }
 
 std::vector<std::pair<std::string, YamlNode>> YamlNode::entries(const std::string& what) const {
-  if (!node_.IsMap())
+  if (!is_map())
     fail("expected a mapping (key: value lines)" + (what.empty() ? "" : " of " + what) + ", got " +
          describe());
   std::vector<std::pair<std::string, YamlNode>> out;
-  for (const auto& kv : node_) {
-    if (!kv.first.IsScalar())
-      YamlNode(kv.first, path_, file_, line_of(kv.first, line_))
+  for (std::size_t i = 0; i < tree_->size(node_); ++i) {
+    const YamlTree::Handle key = tree_->key(node_, i);
+    if (tree_->kind(key) != YamlTree::Kind::scalar)
+      YamlNode(tree_, key, path_, file_, line_of(*tree_, key, line_))
           .fail("a key must be a plain word, not a list or mapping");
-    const std::string key = kv.first.Scalar();
-    out.emplace_back(key, child(kv.first, kv.second, key));
+    std::string name(tree_->scalar(key));
+    YamlNode value = child(key, tree_->value(node_, i), name);
+    out.emplace_back(std::move(name), std::move(value));
   }
   return out;
 }
 
 std::vector<YamlNode> YamlNode::items(const std::string& what) const {
-  if (!node_.IsSequence())
+  const YamlList all = list(what);
+  std::vector<YamlNode> out;
+  out.reserve(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) out.push_back(all[i]);
+  return out;
+}
+
+YamlList YamlNode::list(const std::string& what) const {
+  if (!is_sequence())
     fail("expected a list" + (what.empty() ? "" : " of " + what) + ", got " + describe() +
          "; write [a, b, ...] or one '- item' per line");
-  std::vector<YamlNode> out;
-  std::size_t i = 0;
-  for (const auto& item : node_) {
-    out.push_back(YamlNode(item, fmt::format("{}[{}]", path_, i), file_, line_of(item, line_)));
-    ++i;
-  }
-  return out;
+  return YamlList(*this);
+}
+
+YamlNode YamlList::operator[](std::size_t i) const {
+  const YamlTree& tree = *seq_.tree_;
+  const YamlTree::Handle item = tree.item(seq_.node_, i);
+  return YamlNode(seq_.tree_, item, fmt::format("{}[{}]", seq_.path_, i), seq_.file_,
+                  line_of(tree, item, seq_.line_));
+}
+
+std::int64_t YamlList::integer(std::size_t i) const {
+  const YamlTree& tree = *seq_.tree_;
+  const YamlTree::Handle item = tree.item(seq_.node_, i);
+  std::int64_t v = 0;
+  if (tree.kind(item) == YamlTree::Kind::scalar && scalar_to_int64(tree.scalar(item), v)) return v;
+  return (*this)[i].integer();  // fails with the item's path and line
+}
+
+double YamlList::number(std::size_t i) const {
+  const YamlTree& tree = *seq_.tree_;
+  const YamlTree::Handle item = tree.item(seq_.node_, i);
+  double v = 0.0;
+  if (tree.kind(item) == YamlTree::Kind::scalar && scalar_to_double(tree.scalar(item), v) &&
+      std::isfinite(v))
+    return v;
+  return (*this)[i].number();  // fails with the item's path and line
 }
 
 bool YamlNode::has(const std::string& key) const {
@@ -139,9 +182,12 @@ bool YamlNode::has(const std::string& key) const {
 }
 
 std::optional<YamlNode> YamlNode::optional(const std::string& key) const {
-  if (!node_.IsMap()) fail("expected a mapping (key: value lines), got " + describe());
-  for (const auto& kv : node_)
-    if (kv.first.IsScalar() && kv.first.Scalar() == key) return child(kv.first, kv.second, key);
+  if (!is_map()) fail("expected a mapping (key: value lines), got " + describe());
+  for (std::size_t i = 0; i < tree_->size(node_); ++i) {
+    const YamlTree::Handle k = tree_->key(node_, i);
+    if (tree_->kind(k) == YamlTree::Kind::scalar && tree_->scalar(k) == key)
+      return child(k, tree_->value(node_, i), key);
+  }
   return std::nullopt;
 }
 
@@ -159,7 +205,7 @@ YamlNode YamlNode::required(const std::string& key, const std::string& hint) con
 
 double YamlNode::number() const {
   double v = 0.0;
-  if (!node_.IsScalar() || !YAML::convert<double>::decode(node_, v))
+  if (!is_scalar() || !scalar_to_double(tree_->scalar(node_), v))
     fail("expected a number, got " + describe() +
          "; write a plain number in SI units (e.g. 0.001)");
   if (!std::isfinite(v)) fail("expected a finite number, got " + describe());
@@ -180,7 +226,7 @@ double YamlNode::non_negative() const {
 
 std::int64_t YamlNode::integer() const {
   std::int64_t v = 0;
-  if (!node_.IsScalar() || !YAML::convert<std::int64_t>::decode(node_, v))
+  if (!is_scalar() || !scalar_to_int64(tree_->scalar(node_), v))
     fail("expected an integer, got " + describe());
   return v;
 }
@@ -194,14 +240,14 @@ int YamlNode::positive_int() const {
 
 bool YamlNode::boolean() const {
   bool v = false;
-  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, v))
+  if (!is_scalar() || !scalar_to_bool(tree_->scalar(node_), v))
     fail("expected true or false, got " + describe());
   return v;
 }
 
 std::string YamlNode::text() const {
-  if (!node_.IsScalar()) fail("expected a word or text, got " + describe());
-  return node_.Scalar();
+  if (!is_scalar()) fail("expected a word or text, got " + describe());
+  return std::string(tree_->scalar(node_));
 }
 
 std::string YamlNode::choice(std::initializer_list<const char*> choices) const {
@@ -213,8 +259,10 @@ std::string YamlNode::choice(std::initializer_list<const char*> choices) const {
 }
 
 std::vector<double> YamlNode::numbers(std::size_t min_count) const {
+  const YamlList all = list("numbers");
   std::vector<double> out;
-  for (const auto& item : items("numbers")) out.push_back(item.number());
+  out.reserve(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) out.push_back(all.number(i));
   if (out.size() < min_count)
     fail(fmt::format("expected at least {} numbers, got {}", min_count, out.size()));
   return out;
