@@ -1,6 +1,7 @@
 // `crashlink run` end to end on the CI variant of the main job: exit 0, the summary, a readable
 // result.h5 with the contact history, and HIC15/HIC36 printed for the headform probe.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -9,12 +10,15 @@
 #include <string>
 
 #include "solver/io/result_reader.h"
+#include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
 using crashlink::testing::run_command;
 
 TEST(CliRun, HeadformOnPlatePrintsSummaryAndHic) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_cli_run";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("crashlink_cli_run_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   const std::string cmd = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
                           CRASHLINK_SOURCE_DIR +
@@ -45,7 +49,9 @@ TEST(CliRun, UnknownModeIsRefusedWithExitCode2) {
 // The start of a run prints what it will cost (model/run_estimate.h) on stderr: cycles, CPU and
 // output, so that a mistake in the units shows before hours are spent.
 TEST(CliRun, TheStartPrintsTheEstimate) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_cli_estimate";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_cli_estimate_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   int status = -1;
   const std::string out =
@@ -61,7 +67,9 @@ TEST(CliRun, TheStartPrintsTheEstimate) {
 // A unit mistake the reader refuses (docs/scenario-format.md "Plausibility checks") ends the run
 // before it starts with exit code 2, file:line and the fix.
 TEST(CliRun, AShellThicknessInMmIsRefusedWithExitCode2) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_cli_units";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_cli_units_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::string yaml;

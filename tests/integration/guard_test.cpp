@@ -2,10 +2,12 @@
 // reaches the output (issue 2 acceptance). The same run at the default scale passes the guard.
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <unistd.h>
 
 #include <filesystem>
 
 #include "solver/run/run_single.h"
+#include "tests/integration/process_test_support.h"
 #include "tests/integration/test_models.h"
 
 using namespace crashlink;
@@ -43,7 +45,9 @@ std::vector<double> read_dataset(const std::string& file, const std::string& pat
 }  // namespace
 
 TEST(Guard, TwiceTheStableStepIsCaughtWithoutNaNInOutput) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_guard_unstable";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_guard_unstable_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   auto m = vibrating_bar(1.8);  // 2 x the default safety factor 0.9
   run::RunOptions opt;
   opt.out_dir = dir.string();
@@ -62,7 +66,9 @@ TEST(Guard, TwiceTheStableStepIsCaughtWithoutNaNInOutput) {
 }
 
 TEST(Guard, DefaultStepPasses) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_guard_stable";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_guard_stable_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   auto m = vibrating_bar(0.9);
   run::RunOptions opt;
   opt.out_dir = dir.string();

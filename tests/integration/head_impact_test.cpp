@@ -12,6 +12,7 @@
 // (the contact lost across the domains, a link not transmitted) changes HIC by tens of per cent
 // (without the wiper hit the peak is ~220 g instead of ~500 g) and the impulse entirely.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "solver/io/result_reader.h"
+#include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
 namespace {
@@ -40,7 +42,9 @@ double number_after(const std::string& text, const std::string& key, std::size_t
 }  // namespace
 
 TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_head_impact_small";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_head_impact_small_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   const std::string cmd = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " +
                           CRASHLINK_SOURCE_DIR +
@@ -130,7 +134,9 @@ TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
 // measured +60 % on HIC15): the trade-off the chart shows. A refinement of the wiper bar
 // (--refine wiper_bar=100: 4 mm long hexes) raises the step ratio and runs its own mono and multi.
 TEST(HeadImpact, SweepOfTheSmallSceneWritesTheChart) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_sweep_small";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_sweep_small_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   int status = -1;
   const std::string out = run_command(

@@ -3,6 +3,7 @@
 // `paper` runs the bar (at r = 1 as mono does) and refuses the plate's shell links. The physics of
 // the map is asserted by LayerStability.* (layer_stability_test.cpp) and PaperScheme.*.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -11,10 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
 TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
-  const auto dir = std::filesystem::temp_directory_path() / "crashlink_stability_map";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_stability_map_" + std::to_string(::getpid()));
+  const crashlink::proc_test::RemoveIfPassed cleanup{dir};
   std::filesystem::remove_all(dir);
   int status = -1;
   const std::string out = crashlink::testing::run_command(
