@@ -6,8 +6,10 @@
 #include "apps/cmd_hic.h"
 #include "apps/stop_signal.h"
 #include "solver/core/errors.h"
+#include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/exit_codes.h"
+#include "solver/run/mono_checkpoints.h"
 #include "solver/run/run_single.h"
 
 namespace crashlink::apps {
@@ -49,21 +51,24 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "comparison table (crashlink compare)")
       ->check(CLI::IsMember({"mono"}));
   run->add_option("--checkpoint-interval", o.checkpoint_interval_s,
-                  "split/multi: every process writes a checkpoint every this much simulated "
-                  "time, s (rounded to a multiple of every domain's step) into OUT/checkpoints")
+                  "every process (mono: the run) writes a checkpoint every this much simulated "
+                  "time, s (split/multi: rounded to a multiple of every domain's step; mono: at "
+                  "the first cycle at or after each multiple) into OUT/checkpoints")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   run->add_flag("--no-lanes", o.no_lanes,
                 "split/multi: the layer vectors go through the coordinator instead of daemon to "
                 "daemon (docs/processes.md \"Lanes\"; for comparison)");
   run->add_option("--restart", o.restart,
-                  "split/multi: resume the run in this folder (its --out) from the newest "
-                  "checkpoint every process has; same scenario, mode and step safety");
+                  "resume the run in this folder (its --out) from the newest checkpoint every "
+                  "process has; same scenario and mode (split/multi: and step safety)");
   add_session_flags(*run, o.session);
   return run;
 }
 
 int run_run(const RunCommandOptions& o) {
+  if (!o.restart.empty() && !o.reference.empty())
+    throw InputError("run: --restart continues one run: use it without --reference");
   if (!o.reference.empty()) {
     if (o.mode == "mono") {
       throw InputError(
@@ -85,25 +90,25 @@ int run_run(const RunCommandOptions& o) {
     compare_runs(c);
     return 0;
   }
-  if (!o.restart.empty() && (o.mode == "mono" || !o.reference.empty())) {
-    throw InputError(
-        "run: --restart resumes a coupled run: use it with the --mode (split or multi) of the "
-        "run that wrote the checkpoints, without --reference");
-  }
-  if (!o.restart.empty()) {
+  if (!o.restart.empty() && o.mode != "mono") {
+    run::refuse_mono_checkpoints(o.restart, run::RunOptions().domain_name);
     RunCommandOptions r = o;
     r.out = o.restart;  // --restart DIR continues the run in DIR
     return run_coupled(r);
   }
   if (o.mode != "mono") return run_coupled(o);
+  const std::string out = o.restart.empty() ? o.out : o.restart;
   const auto model = io::read_scenario(o.scenario);
   std::printf("crashlink run: %s (%zu nodes, %zu elements, end time %.4g s) -> %s\n",
               model.name.c_str(), model.nodes.count(), model.element_count(),
-              model.controls.end_time_s, o.out.c_str());
+              model.controls.end_time_s, out.c_str());
   std::fflush(stdout);
   run::RunOptions opt;
-  opt.out_dir = o.out;
+  opt.out_dir = out;
   opt.progress = !o.quiet;
+  opt.checkpoint_interval_s = o.checkpoint_interval_s;
+  opt.restart = !o.restart.empty();
+  opt.scenario_hash = io::scenario_hash(o.scenario);
   install_stop_handlers();
   opt.stop = &stop_flag();
   const auto summary = run::run_single_domain(model, opt);

@@ -11,9 +11,9 @@
 //     the wall time against the sum of the CPU times.
 //   --reference mono (split | multi only): afterwards, the same scene in `mono` into
 //     DIR/reference/, then the paper's Table 1 of the two (`crashlink compare`, cmd_compare.h).
-//   --checkpoint-interval S (split | multi): checkpoints of every process every S of simulated
+//   --checkpoint-interval S: checkpoints of every process (mono: of the run) every S of simulated
 //     time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest one every
-//     process has, and ends as the uninterrupted run would have (docs/processes.md).
+//     process has, and ends as the uninterrupted run would have (docs/checkpoints.md).
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -36,9 +36,9 @@ struct RunCommandOptions {
   double step_safety = SharedDefaults::step_safety;
   /// "" or "mono": run the reference too and compare (split/multi only).
   std::string reference;
-  /// split/multi: checkpoints every this much simulated time [s] (0: none).
+  /// checkpoints every this much simulated time [s] (0: none).
   double checkpoint_interval_s = SharedDefaults::checkpoint_interval_s;
-  /// split/multi: resume the run in this folder from its newest complete checkpoint (--out).
+  /// resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
   bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
   bool no_drift = false;        ///< `paper`: drift correction [11] off

@@ -21,13 +21,13 @@
 #include "solver/daemon/apply_setup.h"
 #include "solver/daemon/layer_wire.h"
 #include "solver/daemon/paper_port.h"
-#include "solver/io/result_replay.h"
 #include "solver/io/result_writer.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/checkpoint_store.h"
 #include "solver/run/cpu_clock.h"
+#include "solver/run/domain_checkpoint.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/exit_codes.h"
 #include "transport/curve_errors.h"
@@ -176,61 +176,34 @@ class Daemon {
   /// interval, with every message up to this instant sent and consumed (LayerStepper::save_state).
   /// The result file's rows so far go along as a copy, so a restart rebuilds its file from it.
   void write_checkpoint() {
-    const auto t0 = Clock::now();
     const cosim::Tick T = stepper_->time();
     send_report(true);  // the interface history up to T, which the coordinator's checkpoint holds
-    const std::string dir = run::begin_checkpoint(o_.out_dir, T, o_.domain);
-    recorder_->flush();
-    run::copy_into_checkpoint(writer_->h5_path(), dir);
-    core::StateWriter w;
-    w.put_string("scenario_hash", hash_);
-    w.put_string("domain", o_.domain);
-    w.put_int("time_ticks", T);
-    const auto sched = recorder_->schedule();
-    w.put_double("recorder.next_history_s", sched.next_history_s);
-    w.put_double("recorder.next_field_s", sched.next_field_s);
-    w.put_double("recorder.last_field_time_s", sched.last_field_time_s);
-    w.put_double("run.cpu_seconds", run_cpu_seconds());
-    w.put_double("run.wait_seconds", wait_s_);
-    solver()->save_state(w);
-    stepper_->save_state(w);
-    w.save((std::filesystem::path(dir) / "state.bin").string());
-    run::commit_checkpoint(o_.out_dir, T, o_.domain, checkpoint_pieces());
-    std::fprintf(stderr,
-                 "crashlink-solver: domain '%s': checkpoint at t = %.6e s (cycle %lld), %.1f MB "
-                 "of state, %.0f ms\n",
-                 o_.domain.c_str(), stepper_->seconds(T), static_cast<long long>(solver()->cycle()),
-                 static_cast<double>(w.bytes()) / 1e6, 1e3 * seconds_since(t0));
+    run::write_domain_checkpoint(checkpoint_site(), T, stepper_->seconds(T), *recorder_, *solver(),
+                                 run_cpu_seconds(), [this](core::StateWriter& w) {
+                                   w.put_double("run.wait_seconds", wait_s_);
+                                   stepper_->save_state(w);
+                                 });
   }
 
   /// Resumes from this domain's checkpoint at T (the coordinator's choice, from our Register).
   void restore(cosim::Tick T) {
-    const std::string dir = run::checkpoint_folder(o_.out_dir, T, o_.domain);
-    const core::StateReader r((std::filesystem::path(dir) / "state.bin").string());
-    if (r.get_string("scenario_hash") != hash_ || r.get_string("domain") != o_.domain ||
-        r.get_int("time_ticks") != T) {
-      throw CheckpointError(fmt::format(
-          "checkpoint {}: written for domain '{}' at {} ticks of scenario {}; this is domain '{}' "
-          "at {} ticks of scenario {}: restart with the scenario file that wrote it",
-          r.path(), r.get_string("domain"), r.get_int("time_ticks"), r.get_string("scenario_hash"),
-          o_.domain, T, hash_));
-    }
-    solver()->restore_state(r);
-    stepper_->restore_state(r);
-    recorder_->restore_schedule({r.get_double("recorder.next_history_s"),
-                                 r.get_double("recorder.next_field_s"),
-                                 r.get_double("recorder.last_field_time_s")});
-    cpu_before_ = r.get_double("run.cpu_seconds");
-    wait_s_ = r.get_double("run.wait_seconds");
-    const auto copied = io::replay_results(
-        (std::filesystem::path(dir) / std::filesystem::path(writer_->h5_path()).filename())
-            .string(),
-        *writer_, solver()->model(), solver()->time_s());
-    std::fprintf(stderr,
-                 "crashlink-solver: domain '%s': restarted from the checkpoint at t = %.6e s "
-                 "(cycle %lld; %zu history rows and %zu field states kept)\n",
-                 o_.domain.c_str(), stepper_->seconds(T), static_cast<long long>(solver()->cycle()),
-                 copied.glstat_rows, copied.states);
+    cpu_before_ = run::restore_domain_checkpoint(checkpoint_site(), T, stepper_->seconds(T),
+                                                 *recorder_, *solver(),
+                                                 [this](const core::StateReader& r) {
+                                                   stepper_->restore_state(r);
+                                                   wait_s_ = r.get_double("run.wait_seconds");
+                                                 })
+                      .cpu_seconds;
+  }
+
+  /// This domain's checkpoints: a coupled run's, pruned by every piece of the cut.
+  run::DomainCheckpointSite checkpoint_site() const {
+    return {o_.out_dir,
+            o_.domain,
+            hash_,
+            run::kCoupledKind,
+            checkpoint_pieces(),
+            fmt::format("crashlink-solver: domain '{}'", o_.domain)};
   }
 
   std::string where() const {

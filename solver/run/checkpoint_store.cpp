@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <utility>
 
 #include "solver/core/state_archive.h"
 
@@ -46,6 +47,19 @@ bool parse_instant(const std::string& name, std::int64_t& ticks) {
   if (name.size() != 20 || !std::all_of(name.begin(), name.end(), ::isdigit)) return false;
   ticks = std::stoll(name);
   return true;
+}
+
+/// The instant folders OUT/checkpoints/<T>, each with its T, in no order.
+std::vector<std::pair<std::int64_t, fs::path>> instant_folders(const std::string& out) {
+  std::vector<std::pair<std::int64_t, fs::path>> found;
+  std::error_code ec;
+  if (!fs::is_directory(root(out), ec)) return found;
+  for (const auto& e : fs::directory_iterator(root(out), ec)) {
+    std::int64_t t = 0;
+    if (e.is_directory(ec) && parse_instant(e.path().filename().string(), t))
+      found.emplace_back(t, e.path());
+  }
+  return found;
 }
 
 constexpr const char* kManifest = "MANIFEST";
@@ -104,14 +118,24 @@ std::string checkpoint_folder(const std::string& out, std::int64_t ticks, const 
 std::vector<std::int64_t> list_checkpoints(const std::string& out, const std::string& who) {
   std::vector<std::int64_t> found;
   std::error_code ec;
-  if (!fs::is_directory(root(out), ec)) return found;
-  for (const auto& e : fs::directory_iterator(root(out), ec)) {
-    std::int64_t t = 0;
-    if (!e.is_directory(ec) || !parse_instant(e.path().filename().string(), t)) continue;
-    if (fs::is_directory(e.path() / who, ec)) found.push_back(t);
-  }
+  for (const auto& [t, folder] : instant_folders(out))
+    if (fs::is_directory(folder / who, ec)) found.push_back(t);
   std::sort(found.begin(), found.end());
   return found;
+}
+
+std::vector<std::string> checkpoint_owners(const std::string& out) {
+  std::vector<std::string> who;
+  std::error_code ec;
+  for (const auto& instant : instant_folders(out)) {
+    for (const auto& piece : fs::directory_iterator(instant.second, ec)) {
+      const std::string name = piece.path().filename().string();
+      if (piece.is_directory() && !name.starts_with(".")) who.push_back(name);  // not a .tmp
+    }
+  }
+  std::sort(who.begin(), who.end());
+  who.erase(std::unique(who.begin(), who.end()), who.end());
+  return who;
 }
 
 std::string verify_checkpoint(const std::string& folder) {
@@ -207,14 +231,9 @@ void prune_checkpoints(const std::string& out, const std::vector<std::string>& p
   const auto complete = complete_instants(out, pieces);
   if (keep == 0 || complete.size() < keep) return;
   const std::int64_t oldest_kept = complete[complete.size() - keep];
-  std::vector<fs::path> older;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(root(out), ec)) {
-    std::int64_t t = 0;
-    if (e.is_directory(ec) && parse_instant(e.path().filename().string(), t) && t < oldest_kept)
-      older.push_back(e.path());
-  }
-  for (const auto& instant : older) {
+  for (const auto& [t, instant] : instant_folders(out)) {
+    if (t >= oldest_kept) continue;
     for (const auto& who : whose) {
       fs::remove_all(instant / who, ec);
       fs::remove_all(instant / ("." + who + ".tmp"), ec);

@@ -25,6 +25,9 @@ std::vector<std::string> checkpoint_pieces(std::vector<std::string> domains, boo
 std::string checkpoint_folder(const std::string& out, std::int64_t ticks, const std::string& who);
 /// The instants with a complete (renamed) checkpoint of `who`, ascending; files not checked.
 std::vector<std::int64_t> list_checkpoints(const std::string& out, const std::string& who);
+/// The pieces with a complete checkpoint at some instant in OUT, sorted (what a restart is offered:
+/// a mono run's domain, or a coupled run's domains and coordinator).
+std::vector<std::string> checkpoint_owners(const std::string& out);
 /// Those of list_checkpoints whose files all match their MANIFEST, ascending. Each damaged one
 /// adds "FOLDER: reason" to `damaged` (if given).
 std::vector<std::int64_t> list_sound_checkpoints(const std::string& out, const std::string& who,

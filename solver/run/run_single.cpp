@@ -9,6 +9,7 @@
 #include "solver/model/run_estimate.h"
 #include "solver/run/cpu_clock.h"
 #include "solver/run/domain_recorder.h"
+#include "solver/run/mono_checkpoints.h"
 #include "solver/run/progress.h"
 
 namespace crashlink::run {
@@ -26,11 +27,16 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   sum.elements = static_cast<std::int64_t>(model.element_count());
   sum.end_time_s = model.controls.end_time_s;
 
+  MonoCheckpoints checkpoints(
+      {options.out_dir, options.domain_name, options.scenario_hash, options.checkpoint_interval_s});
+  // before the result file is opened (truncated): a refused restart leaves the folder as it was
+  const std::int64_t restart_at = options.restart ? checkpoints.choose_restart() : -1;
   io::ResultWriter writer(options.out_dir, model);
   sum.result_h5 = writer.h5_path();
   sum.result_xdmf = writer.xdmf_path();
   integration::Solver solver(model, options.domain_name);
   DomainRecorder recorder(writer, solver);
+  double cpu_before = 0.0;  // of the runs before the checkpoint restarted from
   Progress progress(stderr, model.controls.end_time_s, options.progress);
   try {
     solver.initialize();
@@ -39,6 +45,11 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
     if (options.progress)
       fmt::print(stderr, "{}: estimated {}\n", options.domain_name,
                  model::describe(model::estimate_run(model, solver.dt_s())));
+    if (options.restart) {
+      cpu_before = checkpoints.restore(restart_at, recorder, solver);
+    } else {
+      checkpoints.start_fresh();
+    }
     for (;;) {
       solver.begin_cycle();  // state at t^n complete; guard passed
       recorder.sample();
@@ -48,6 +59,8 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
         break;
       }
       solver.end_cycle();
+      if (checkpoints.enabled())
+        checkpoints.after_cycle(recorder, solver, cpu_before + process_cpu_seconds() - cpu0);
       progress.update(solver.time_s(), solver.cycle(), solver.dt_s());
     }
     recorder.finish();  // also when stopped: the state at t^n passed the guard
@@ -62,7 +75,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   if (sum.stopped) sum.end_time_s = solver.time_s();
   sum.dt_min_s = solver.dt_min_s();
   sum.energy = solver.energy();
-  sum.cpu_seconds = process_cpu_seconds() - cpu0;
+  sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
   writer.write_timing(
       sum.wall_seconds, 0.0,

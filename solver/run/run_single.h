@@ -17,6 +17,12 @@ struct RunOptions {
   /// Polled every cycle (SIGINT / SIGTERM handler's flag); set: the run stops there, flushes
   /// and closes its file, and comes back with stopped = true.
   const std::atomic<bool>* stop = nullptr;
+  /// Checkpoints (mono_checkpoints.h): one every this much simulated time [s] (0: none).
+  double checkpoint_interval_s = 0.0;
+  /// Resume the run in out_dir from its newest intact checkpoint (CheckpointError without one).
+  bool restart = false;
+  /// io::scenario_hash of the scenario file: recorded in the checkpoints, checked on a restart.
+  std::string scenario_hash;
 };
 
 struct RunSummary {
@@ -25,7 +31,7 @@ struct RunSummary {
   std::int64_t elements = 0;
   double end_time_s = 0.0;
   double dt_min_s = 0.0;
-  double cpu_seconds = 0.0;
+  double cpu_seconds = 0.0;  ///< with a restart, that of the runs before the checkpoint too
   double wall_seconds = 0.0;
   integration::EnergyAccount energy;
   std::string result_h5;
@@ -41,7 +47,7 @@ struct RunSummary {
 /// Runs the model; output sampled at controls.history_interval_s / field_interval_s. On a
 /// NumericalError the history so far, the last (finite) state and the timing are written, the
 /// file is closed, and the summary comes back with failed = true (nothing is thrown).
-/// Other errors (input, I/O) propagate.
+/// Other errors (input, I/O, a refused checkpoint) propagate.
 RunSummary run_single_domain(const model::Model& model, const RunOptions& options);
 
 /// Prints the end-of-run table (cycles, CPU, step, energy balance, files) to `out`.

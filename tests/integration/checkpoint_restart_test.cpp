@@ -10,7 +10,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +17,7 @@
 #include "solver/io/result_reader.h"
 #include "solver/run/checkpoint_store.h"
 #include "tests/integration/process_test_support.h"
+#include "tests/integration/result_compare.h"
 #include "tests/integration/shell_command.h"
 
 namespace {
@@ -27,6 +27,7 @@ using namespace std::chrono_literals;
 using crashlink::proc_test::bin;
 using crashlink::proc_test::Child;
 using crashlink::proc_test::fresh_dir;
+using crashlink::testing::expect_same_results;
 using crashlink::testing::run_command;
 
 const std::string kScenario =
@@ -71,44 +72,6 @@ std::string chain3_scenario(const fs::path& dir) {
       crashlink::proc_test::bar_parts_yaml(
           "chain3", 6.0e-4,
           {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
-}
-
-/// Histories, probes, contacts and the last field state to the bit; at least `min_states` field
-/// states.
-void expect_same_results(const std::string& ref_h5, const std::string& run_h5,
-                         std::size_t min_states = 3) {
-  const crashlink::io::ResultReader a(ref_h5), b(run_h5);
-  const auto ga = a.glstat(), gb = b.glstat();
-  ASSERT_EQ(ga.size(), gb.size());
-  for (std::size_t i = 0; i < ga.size(); ++i) {
-    ASSERT_EQ(ga[i].time_s, gb[i].time_s) << "row " << i;
-    ASSERT_EQ(ga[i].kinetic_energy_J, gb[i].kinetic_energy_J) << "row " << i;
-    ASSERT_EQ(ga[i].internal_energy_J, gb[i].internal_energy_J) << "row " << i;
-    ASSERT_EQ(ga[i].contact_energy_J, gb[i].contact_energy_J) << "row " << i;
-    ASSERT_EQ(ga[i].coupling_work_J, gb[i].coupling_work_J) << "row " << i;
-  }
-  for (const auto& name : a.probe_names()) {
-    const auto pa = a.probe(name), pb = b.probe(name);
-    EXPECT_EQ(pa.time_s, pb.time_s) << name;
-    EXPECT_EQ(pa.displacement_m, pb.displacement_m) << name;
-    EXPECT_EQ(pa.velocity_m_s, pb.velocity_m_s) << name;
-    EXPECT_EQ(pa.acceleration_m_s2, pb.acceleration_m_s2) << name;
-  }
-  for (const auto& name : a.contact_names()) {
-    EXPECT_EQ(a.contact(name).force_N, b.contact(name).force_N) << name;
-  }
-  ASSERT_EQ(a.state_count(), b.state_count());
-  ASSERT_GE(a.state_count(), min_states);
-  const auto last = a.state_count() - 1;
-  const auto sa = a.state(last), sb = b.state(last);
-  EXPECT_EQ(sa.time_s, sb.time_s);
-  EXPECT_EQ(sa.displacement_m, sb.displacement_m);
-  EXPECT_EQ(sa.velocity_m_s, sb.velocity_m_s);
-  ASSERT_EQ(sa.parts.size(), sb.parts.size());
-  for (std::size_t p = 0; p < sa.parts.size(); ++p) {
-    EXPECT_EQ(sa.parts[p].eps_p, sb.parts[p].eps_p) << sa.parts[p].link;
-    EXPECT_EQ(sa.parts[p].stress_Pa, sb.parts[p].stress_Pa) << sa.parts[p].link;
-  }
 }
 
 /// Fixed steps, and variable ones (each domain its own proposal; the checkpoints at the body's
@@ -247,13 +210,7 @@ TEST(CheckpointRestartChain, ADamagedNewestCheckpointIsReportedAndThePreviousOne
   const fs::path copy =
       fs::path(crashlink::run::checkpoint_folder(ck.string(), instants.back(), "mid")) / "mid.h5";
   ASSERT_TRUE(fs::exists(copy));
-  {
-    std::fstream io(copy, std::ios::in | std::ios::out | std::ios::binary);
-    io.seekg(static_cast<std::streamoff>(fs::file_size(copy) / 2));
-    const char c = static_cast<char>(io.get());
-    io.seekp(static_cast<std::streamoff>(fs::file_size(copy) / 2));
-    io.put(static_cast<char>(c ^ 0x10));
-  }
+  crashlink::proc_test::flip_middle_byte(copy);
   const std::string out = run_command(run + every + "--restart " + ck.string(), status);
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("checkpoint damaged, not offered for a restart"), std::string::npos) << out;

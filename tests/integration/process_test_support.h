@@ -70,6 +70,16 @@ inline std::string write_file(const std::filesystem::path& path, const std::stri
   return path.string();
 }
 
+/// Damages a file as a disk or a hand might: the byte in its middle with one bit flipped.
+inline void flip_middle_byte(const std::filesystem::path& file) {
+  const auto at = static_cast<std::streamoff>(std::filesystem::file_size(file) / 2);
+  std::fstream io(file, std::ios::in | std::ios::out | std::ios::binary);
+  io.seekg(at);
+  const char c = static_cast<char>(io.get());
+  io.seekp(at);
+  io.put(static_cast<char>(c ^ 0x10));
+}
+
 /// One part of a steel bar of hexes along x (50 x 50 mm section): [x0, x0 + length] m.
 struct BarPart {
   std::string name;

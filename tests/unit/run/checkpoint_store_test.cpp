@@ -1,5 +1,6 @@
 // run/checkpoint_store.h: a piece that runs ahead of the others never removes an instant that
-// a restart still needs, and a checkpoint whose files changed after its commit is found.
+// a restart still needs, a checkpoint whose files changed after its commit is found, and the
+// pieces that own checkpoints are listed.
 #include "solver/run/checkpoint_store.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <vector>
 
 using crashlink::run::begin_checkpoint;
+using crashlink::run::checkpoint_owners;
 using crashlink::run::commit_checkpoint;
 using crashlink::run::complete_instants;
 using crashlink::run::list_checkpoints;
@@ -125,4 +127,17 @@ TEST(CheckpointStore, AFileChangedAfterTheCommitIsFoundAndNamed) {
   damaged.clear();
   EXPECT_TRUE(list_sound_checkpoints(f.out(), "body", &damaged).empty());
   EXPECT_NE(damaged.back().find("no MANIFEST"), std::string::npos) << damaged.back();
+}
+
+// What a restart is offered (a mono run refuses a coupled run's folder and the reverse, by the
+// pieces in it): every piece with a committed checkpoint, once each, sorted; a piece still writing
+// (its .tmp folder) is not one.
+TEST(CheckpointStore, OwnersAreThePiecesWithACommittedCheckpoint) {
+  Folder f("ckstore_owners");
+  EXPECT_TRUE(checkpoint_owners(f.out()).empty());
+  const std::vector<std::string> pieces = {"wiper", "body", "coordinator"};
+  for (const std::int64_t t : {10, 20}) write_piece(f.out(), t, "wiper", pieces);
+  write_piece(f.out(), 10, "body", pieces);
+  (void)begin_checkpoint(f.out(), 20, "coordinator");  // not committed
+  EXPECT_EQ(checkpoint_owners(f.out()), (std::vector<std::string>{"body", "wiper"}));
 }
