@@ -153,14 +153,20 @@ bool Router::Impl::send(std::string_view peer, zmq::message_t& payload, zmq::sen
     (void)socket.send(payload, zmq::send_flags::none);
     return true;
   } catch (const zmq::error_t& e) {
+    // a daemon's session id is "<domain>#<hex>": name the domain first, as the logs do
+    const std::string_view domain = peer.substr(0, peer.find('#'));
+    const std::string who =
+        domain.size() == peer.size()
+            ? fmt::format("'{}'", printable_peer(peer))
+            : fmt::format("'{}' (session '{}')", printable_peer(domain), printable_peer(peer));
     if (e.num() == EHOSTUNREACH) {
       throw TransportError(endpoint,
-                           fmt::format("send to '{}': no such peer connected (it never connected "
+                           fmt::format("send to {}: no such peer connected (it never connected "
                                        "or has disconnected)",
-                                       printable_peer(peer)));
+                                       who));
     }
-    throw TransportError(endpoint, fmt::format("send to '{}': {} (errno {})", printable_peer(peer),
-                                               e.what(), e.num()));
+    throw TransportError(endpoint,
+                         fmt::format("send to {}: {} (errno {})", who, e.what(), e.num()));
   }
 }
 
