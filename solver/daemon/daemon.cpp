@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <deque>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "solver/core/errors.h"
@@ -230,6 +232,7 @@ class Daemon {
     elements_ = static_cast<std::int64_t>(solver()->model().element_count());
     solver()->initialize();
     initialized_ = true;
+    read_injected_fault();
     std::vector<std::string> damaged;
     checkpoints_ = run::list_sound_checkpoints(o_.out_dir, o_.domain, &damaged);
     for (const auto& d : damaged)
@@ -259,6 +262,24 @@ class Daemon {
     std::vector<std::string> names;
     for (const auto& d : dec_->domains) names.push_back(d.name);
     return run::checkpoint_pieces(std::move(names), !dec_->interfaces.empty());
+  }
+
+  /// CRASHLINK_INJECT_INTERNAL_ERROR=DOMAIN:CYCLE makes this domain throw an unexpected exception
+  /// at that cycle: the one way to see, end to end, what a bug does to a run (exit 4 here, 5 for
+  /// the others, 4 from the launcher; docs/processes.md "Exit codes"). Ignored unless it names
+  /// this domain.
+  void read_injected_fault() {
+    const char* v = std::getenv("CRASHLINK_INJECT_INTERNAL_ERROR");
+    if (v == nullptr) return;
+    const std::string s(v);
+    const auto colon = s.rfind(':');
+    if (colon == std::string::npos || s.substr(0, colon) != o_.domain) return;
+    try {
+      injected_fault_cycle_ = std::stoll(s.substr(colon + 1));
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("CRASHLINK_INJECT_INTERNAL_ERROR='{}': expected DOMAIN:CYCLE",
+                                   core::log_escape(s)));
+    }
   }
 
   void connect() {
@@ -632,6 +653,10 @@ class Daemon {
     auto next_service = Clock::now() + service_every;
     auto on_sample = [&] {
       if (o_.stop != nullptr && o_.stop->load()) throw Stopped();
+      if (injected_fault_cycle_ >= 0 && solver()->cycle() >= injected_fault_cycle_)
+        throw std::logic_error(fmt::format(
+            "injected at cycle {} by CRASHLINK_INJECT_INTERNAL_ERROR (a test of exit code 4)",
+            solver()->cycle()));
       recorder_->sample();
       link_->keep_alive();
       // Between waits (a fine domain takes several steps per message), read what arrived: the
@@ -829,7 +854,10 @@ class Daemon {
   std::vector<std::int64_t> checkpoints_;  ///< instants of our complete checkpoints (Register)
   cosim::Tick checkpoint_every_ = 0;       ///< the coordinator's interval, ticks (0: none)
   cosim::Tick next_checkpoint_ = 0;
-  double cpu_before_ = 0.0;  ///< CPU of the runs before the checkpoint restarted from
+  double cpu_before_ = 0.0;
+  std::int64_t injected_fault_cycle_ =
+      -1;  ///< CRASHLINK_INJECT_INTERNAL_ERROR's cycle here  ///< CPU of the runs before the
+           ///< checkpoint restarted from
 };
 
 }  // namespace
