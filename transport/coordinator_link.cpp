@@ -275,7 +275,12 @@ std::vector<std::string> CoordinatorLink::dead_peers() const {
   return out;
 }
 
-void CoordinatorLink::check_alive() const {
+void CoordinatorLink::check_alive() {
+  if (dead_peers().empty()) return;
+  while (auto received = router_.receive(std::chrono::milliseconds{0})) {
+    collect_refusals();
+    if (auto in = handle(*received, Clock::now())) queued_.push_back(std::move(*in));
+  }
   const auto dead = dead_peers();
   if (dead.empty()) return;
   const auto silent = since(peers_.at(dead.front()).last_heard, Clock::now());

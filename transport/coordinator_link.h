@@ -92,8 +92,10 @@ class CoordinatorLink {
 
   /// Joined domains silent for longer than the peer timeout, in configuration order.
   std::vector<std::string> dead_peers() const;
-  /// Throws PeerTimeoutError naming every dead domain (dead_peers()), if any.
-  void check_alive() const;
+  /// Throws PeerTimeoutError naming every dead domain (dead_peers()), if any, after reading what
+  /// waits in the socket (kept for poll()): a coordinator that was not scheduled for the peer
+  /// timeout (a loaded machine) finds the daemons' heartbeats queued and must not call them dead.
+  void check_alive();
 
   /// No new session for `domain` from now on (its daemon registered: the run counts on that
   /// session, also after its Bye): a Hello for it is refused with ERROR_CODE_DOMAIN_HELD.

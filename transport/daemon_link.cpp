@@ -93,6 +93,11 @@ void DaemonLink::bye(std::string reason) {
 }
 
 std::optional<wire::Envelope> DaemonLink::receive(std::chrono::milliseconds timeout) {
+  if (!inbox_.empty()) {
+    auto e = std::move(inbox_.front());
+    inbox_.pop_front();
+    return e;
+  }
   if (!open_) {
     throw ProtocolError(kCoordinator,
                         fmt::format("domain '{}': receive after the session with {} ended (Bye "
@@ -104,6 +109,7 @@ std::optional<wire::Envelope> DaemonLink::receive(std::chrono::milliseconds time
     auto now = Clock::now();
     send_heartbeat_if_idle(now);
     check_coordinator(now);
+    if (!inbox_.empty()) return receive(timeout);
     // Wake up for the next heartbeat and for the peer timeout, whichever comes first.
     const auto until =
         std::min({deadline, last_sent_ + options_.heartbeat_interval,
@@ -112,29 +118,33 @@ std::optional<wire::Envelope> DaemonLink::receive(std::chrono::milliseconds time
                                std::chrono::milliseconds{0});
     if (auto r = dealer_.receive(wait)) {
       last_heard_ = Clock::now();
-      if (!r->ok()) {
-        throw ProtocolError(kCoordinator, fmt::format("the coordinator at {} sent domain '{}' {}",
-                                                      endpoint(), domain(), r->error));
-      }
-      switch (r->envelope.body_case()) {
-        case wire::Envelope::kHeartbeat:
-          break;
-        case wire::Envelope::kError:
-          open_ = false;
-          throw RemoteError(r->envelope.error());
-        case wire::Envelope::kHello:
-          throw ProtocolError(kCoordinator,
-                              fmt::format("the coordinator at {} sent domain '{}' a second Hello "
-                                          "in the middle of the session",
-                                          endpoint(), domain()));
-        case wire::Envelope::kBye:
-          open_ = false;
-          return std::move(r->envelope);
-        default:
-          return std::move(r->envelope);
-      }
+      if (auto e = accept(*r)) return e;
     }
     if (Clock::now() >= deadline) return std::nullopt;
+  }
+}
+
+std::optional<wire::Envelope> DaemonLink::accept(Received& r) {
+  if (!r.ok()) {
+    throw ProtocolError(kCoordinator, fmt::format("the coordinator at {} sent domain '{}' {}",
+                                                  endpoint(), domain(), r.error));
+  }
+  switch (r.envelope.body_case()) {
+    case wire::Envelope::kHeartbeat:
+      return std::nullopt;
+    case wire::Envelope::kError:
+      open_ = false;
+      throw RemoteError(r.envelope.error());
+    case wire::Envelope::kHello:
+      throw ProtocolError(kCoordinator,
+                          fmt::format("the coordinator at {} sent domain '{}' a second Hello "
+                                      "in the middle of the session",
+                                      endpoint(), domain()));
+    case wire::Envelope::kBye:
+      open_ = false;
+      return std::move(r.envelope);
+    default:
+      return std::move(r.envelope);
   }
 }
 
@@ -144,7 +154,16 @@ void DaemonLink::keep_alive() {
   check_coordinator(now);
 }
 
-void DaemonLink::check_coordinator(Clock::time_point now) const {
+void DaemonLink::check_coordinator(Clock::time_point now) {
+  if (now - last_heard_ <= options_.peer_timeout) return;
+  // What came while this process was not running counts: read it before judging.
+  while (open_) {
+    auto r = dealer_.receive(std::chrono::milliseconds{0});
+    if (!r) break;
+    last_heard_ = Clock::now();
+    if (auto e = accept(*r)) inbox_.push_back(std::move(*e));
+  }
+  now = Clock::now();
   if (now - last_heard_ > options_.peer_timeout) {
     throw PeerTimeoutError(
         endpoint(), kCoordinator,

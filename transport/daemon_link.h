@@ -18,6 +18,7 @@
 // One thread at a time.
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,7 +67,13 @@ class DaemonLink {
 
  private:
   using Clock = std::chrono::steady_clock;
-  void check_coordinator(Clock::time_point now) const;
+  /// Throws PeerTimeoutError when nothing came for the peer timeout, after reading what waits in
+  /// the socket (kept for receive()): a process that was not scheduled for that long (a loaded
+  /// machine) finds the coordinator's heartbeats queued, and must not call it dead.
+  void check_coordinator(Clock::time_point now);
+  /// A received message: nullopt for a Heartbeat, the Envelope otherwise (a Bye ends the
+  /// session); throws for an Error, bytes that are not an Envelope, a second Hello.
+  std::optional<wire::Envelope> accept(Received& r);
   void send_heartbeat_if_idle(Clock::time_point now);
 
   SessionOptions options_;
@@ -78,6 +85,7 @@ class DaemonLink {
   bool open_ = false;
   std::uint64_t heartbeat_sequence_ = 0;
   wire::Envelope heartbeat_;
+  std::deque<wire::Envelope> inbox_;  ///< read by check_coordinator, for receive()
 };
 
 }  // namespace crashlink::transport

@@ -378,6 +378,43 @@ TEST_P(Session, HeartbeatsKeepAnIdleSessionAlive) {
   EXPECT_TRUE(coordinator->take_notices().empty());
 }
 
+// A process that was not scheduled for longer than the peer timeout (a loaded machine) finds its
+// peer's heartbeats queued in the socket: it reads them before calling the peer dead. Before, the
+// coordinator (check_alive) and the daemon (keep_alive, receive) judged by the last message they
+// had read, and a run on a machine kept busy by a CPU hog was stopped with "silent for 1.025 s"
+// although every process was alive (Sessions.SecondDaemonForARunningDomain... under load).
+TEST_P(Session, APeerWhoseHeartbeatsWaitUnreadIsNotCalledDead) {
+  DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
+  wire::Envelope beat;
+  beat.mutable_heartbeat();
+  {
+    // the coordinator reads nothing for twice the peer timeout while car keeps sending
+    std::atomic<bool> done{false};
+    std::thread sender([&] {
+      while (!done.load()) {
+        car.send(beat);
+        std::this_thread::sleep_for(fast_options().heartbeat_interval);
+      }
+    });
+    std::this_thread::sleep_for(2 * fast_options().peer_timeout);
+    EXPECT_NO_THROW(coordinator->check_alive());
+    done = true;
+    sender.join();
+  }
+  {
+    // car reads nothing for twice the peer timeout while the coordinator keeps sending
+    std::atomic<bool> done{false};
+    std::thread polling([&] {
+      while (!done.load()) (void)coordinator->poll(10ms);
+    });
+    std::this_thread::sleep_for(2 * fast_options().peer_timeout);
+    EXPECT_NO_THROW(car.keep_alive());
+    EXPECT_NO_THROW((void)car.receive(0ms));
+    done = true;
+    polling.join();
+  }
+}
+
 TEST_P(Session, TimeoutsAreHonoured) {
   DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
   for (auto timeout : {0ms, 120ms}) {
