@@ -85,7 +85,9 @@ void DaemonLink::send(const wire::Envelope& envelope) {
 }
 
 void DaemonLink::send_error(wire::ErrorCode code, std::string message) {
-  send(make_error(code, std::move(message), domain()));
+  (void)dealer_.try_send(make_error(code, std::move(message), domain()));
+  last_sent_ = Clock::now();
+  open_ = false;
 }
 
 void DaemonLink::bye(std::string reason) {

@@ -49,7 +49,10 @@ class DaemonLink {
 
   /// Sends one Envelope; a Bye or an Error ends the session. Throws TransportError.
   void send(const wire::Envelope& envelope);
-  /// Reports a failure of this daemon to the coordinator and ends the session.
+  /// Reports a failure of this daemon to the coordinator and ends the session. Never waits: the
+  /// Error is queued if the connection can take it (the socket's linger delivers it at close),
+  /// and dropped if the coordinator is gone or not reading (its own timeout tells it). A blocking
+  /// send here held a stopped daemon the send timeout (5 s) when the coordinator had ended first.
   void send_error(wire::ErrorCode code, std::string message);
   /// Ends the session cleanly.
   void bye(std::string reason);
