@@ -50,6 +50,19 @@ std::string long_bar(const std::filesystem::path& dir) {
 }
 
 /// Everything `c` wrote, once it has exited (the reader thread may lag behind the exit).
+/// The real daemons 'fine' and 'coarse' join the waiting coordinator and run the scenario to its
+/// end: every process exits 0.
+void run_real_daemons_to_the_end(const std::string& endpoint, const std::string& scenario,
+                                 const std::filesystem::path& dir, Child& coordinator) {
+  auto fine = start_solver(endpoint, "fine", scenario, dir / "out", {"--step-safety", "0.9"});
+  auto coarse = start_solver(endpoint, "coarse", scenario, dir / "out", {"--step-safety", "0.9"});
+  for (auto* c : {fine.get(), coarse.get(), &coordinator}) {
+    const auto st = c->wait(60s);
+    ASSERT_TRUE(st.has_value()) << c->output();
+    EXPECT_EQ(exit_code(*st), 0) << c->output();
+  }
+}
+
 std::string full_output(Child& c) {
   (void)c.wait_for_output("\x01 end of output \x01", 5s);  // returns at the end of the output
   return c.output();
@@ -181,13 +194,7 @@ TEST_P(Sessions, HelloThenSilenceBeforeTheRegisterDoesNotEndTheWaitingCoordinato
   EXPECT_EQ(told->code(), wire::ERROR_CODE_TIMEOUT);
   EXPECT_TRUE(has(told->message(), "said Hello and then nothing")) << told->message();
   // The real daemons then run the scenario to its end: 'fine' joins again.
-  auto fine = start_solver(endpoint, "fine", scenario, dir / "out", {"--step-safety", "0.9"});
-  auto coarse = start_solver(endpoint, "coarse", scenario, dir / "out", {"--step-safety", "0.9"});
-  for (auto* c : {fine.get(), coarse.get(), coordinator.get()}) {
-    const auto st = c->wait(60s);
-    ASSERT_TRUE(st.has_value()) << c->output();
-    EXPECT_EQ(exit_code(*st), 0) << c->output();
-  }
+  run_real_daemons_to_the_end(endpoint, scenario, dir, *coordinator);
   const std::string log = full_output(*coordinator);
   EXPECT_TRUE(has(log, "notice: domain 'fine' said Hello and then nothing for 1.0 s")) << log;
 }
@@ -212,13 +219,7 @@ TEST_P(Sessions, ForgedNamesAreLoggedEscapedOnOneLine) {
     EXPECT_EQ(answer->envelope.error().message().find('\n'), std::string::npos)
         << answer->envelope.error().message();
   }
-  auto fine = start_solver(endpoint, "fine", scenario, dir / "out", {"--step-safety", "0.9"});
-  auto coarse = start_solver(endpoint, "coarse", scenario, dir / "out", {"--step-safety", "0.9"});
-  for (auto* c : {fine.get(), coarse.get(), coordinator.get()}) {
-    const auto st = c->wait(60s);
-    ASSERT_TRUE(st.has_value()) << c->output();
-    EXPECT_EQ(exit_code(*st), 0) << c->output();
-  }
+  run_real_daemons_to_the_end(endpoint, scenario, dir, *coordinator);
   const std::string log = full_output(*coordinator);
   std::printf("[measured] %s: the coordinator's log:\n%s\n", name().c_str(), log.c_str());
   EXPECT_TRUE(has(log,

@@ -7,18 +7,12 @@
 
 #include "solver/core/errors.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/unit/io/yaml_marker.h"
 
 namespace crashlink::io {
 namespace {
 
-/// 1-based line of the first occurrence of `marker` in `text`.
-int line_of(const std::string& text, const std::string& marker) {
-  const auto pos = text.find(marker);
-  EXPECT_NE(pos, std::string::npos) << "marker '" << marker << "' not in the test text";
-  int line = 1;
-  for (std::size_t i = 0; i < pos; ++i) line += text[i] == '\n' ? 1 : 0;
-  return line;
-}
+using testing::line_of;
 
 /// Parses `yaml` as "bad.yaml"; expects an InputError at the line of `marker`, for `key`, whose
 /// message also contains `fragment`.

@@ -8,17 +8,12 @@
 
 #include "solver/core/errors.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/unit/io/yaml_marker.h"
 
 namespace crashlink::io {
 namespace {
 
-int line_of(const std::string& text, const std::string& marker) {
-  const auto pos = text.find(marker);
-  EXPECT_NE(pos, std::string::npos) << "marker '" << marker << "' not in the test text";
-  int line = 1;
-  for (std::size_t i = 0; i < pos; ++i) line += text[i] == '\n' ? 1 : 0;
-  return line;
-}
+using testing::line_of;
 
 void expect_refused(const std::string& yaml, const std::string& marker, const std::string& key,
                     const std::string& fix) {
