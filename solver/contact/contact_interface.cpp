@@ -154,6 +154,29 @@ struct ContactInterface::Impl {
   std::vector<double> wake_m;      // [ns] sleeping until travelled_m reaches this (header)
   std::int64_t slept = 0;          // node tests skipped (diagnostics)
   std::vector<double> seg_size_m;  // [nseg] sqrt of the reference area
+  // The forces this interface applied at the last compute (node, force [N] xyz), for its work
+  // over the next step, and its contact energy so far (ContactStep::energy_J).
+  std::vector<std::int32_t> applied_node;
+  std::vector<double> applied_N;
+  double energy_J = 0.0;
+
+  /// dt sum over the applied forces of F . v (v = v^{n+1/2}, so dt v = u^{n+1} - u^n) [J].
+  double applied_work(const double* v, double dt) const {
+    double w = 0.0;
+    for (std::size_t e = 0; e < applied_node.size(); ++e) {
+      const double* vi = v + 3 * static_cast<std::size_t>(applied_node[e]);
+      w += applied_N[3 * e] * vi[0] + applied_N[3 * e + 1] * vi[1] + applied_N[3 * e + 2] * vi[2];
+    }
+    return w * dt;
+  }
+  void apply(double* f, std::int32_t node, const double* F, double scale) {
+    double* fi = f + 3 * static_cast<std::size_t>(node);
+    applied_node.push_back(node);
+    for (int a = 0; a < 3; ++a) {
+      fi[a] += scale * F[a];
+      applied_N.push_back(scale * F[a]);
+    }
+  }
   // min m_eff / k over the candidate pairs (the step bound): it changes only with the candidate
   // list (a sort) and, for soft stiffness, with dt; cached for those.
   double min_ratio = 0.0;
@@ -347,6 +370,10 @@ std::int64_t ContactInterface::slept_node_cycles() const {
 ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
   Impl& s = *impl_;
   ContactStep out;
+  // Work of the forces of t^n over this step (the first half of the trapezoid rule).
+  const double work_old = dt > 0.0 ? s.applied_work(v, dt) : 0.0;
+  s.applied_node.clear();
+  s.applied_N.clear();
   if (dt > 0.0) {
     s.dt_last_s = dt;
     double v2 = 0.0;
@@ -489,6 +516,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     const double best_k =
         s.pair_stiffness(k, best.i, reduced_mass(s.slave_mass_kg[k], s.seg_mass_kg[best.i]));
     const double fn = best_k * best.g;
+    out.potential_J += 0.5 * best_k * best.g * best.g;
     double F[3];
     for (int a = 0; a < 3; ++a) F[a] = fn * best.dir[a];
     if (s.friction.active()) {
@@ -505,17 +533,13 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     } else {
       ft[0] = ft[1] = ft[2] = 0.0;
     }
-    double* fs = f + 3 * static_cast<std::size_t>(sn);
-    for (int a = 0; a < 3; ++a) {
-      fs[a] += F[a];
-      res[a] += F[a];
-    }
-    for (int b = 0; b < 4; ++b) {
-      if (best.pr.N[b] == 0.0) continue;
-      double* fm = f + 3 * static_cast<std::size_t>(q[b]);
-      for (int a = 0; a < 3; ++a) fm[a] -= best.pr.N[b] * F[a];
-    }
+    s.apply(f, sn, F, 1.0);
+    for (int a = 0; a < 3; ++a) res[a] += F[a];
+    for (int b = 0; b < 4; ++b)
+      if (best.pr.N[b] != 0.0) s.apply(f, q[b], F, -best.pr.N[b]);
   }
+  if (dt > 0.0) s.energy_J -= 0.5 * (work_old + s.applied_work(v, dt));
+  out.energy_J = s.energy_J;
   for (int a = 0; a < 3; ++a) out.resultant_N[a] = res[a];
   out.dt_stable_s = std::isfinite(min_ratio) ? std::sqrt(2.0 * min_ratio) : kInf;
   return out;
@@ -536,6 +560,9 @@ void ContactInterface::save_state(core::StateWriter& w, const std::string& prefi
   w.put(prefix + "ft_N", std::span<const double>(s.ft_N));
   w.put(prefix + "side", std::span<const std::int8_t>(s.side));
   w.put(prefix + "last", std::span<const std::int32_t>(s.last));
+  w.put(prefix + "applied_node", std::span<const std::int32_t>(s.applied_node));
+  w.put(prefix + "applied_N", std::span<const double>(s.applied_N));
+  w.put_double(prefix + "energy_J", s.energy_J);
 }
 
 void ContactInterface::restore_state(const core::StateReader& r, const std::string& prefix) {
@@ -555,6 +582,9 @@ void ContactInterface::restore_state(const core::StateReader& r, const std::stri
   r.get_exact(prefix + "ft_N", s.ft_N);
   r.get_exact(prefix + "side", s.side);
   r.get_exact(prefix + "last", s.last);
+  r.get(prefix + "applied_node", s.applied_node);
+  r.get(prefix + "applied_N", s.applied_N);
+  s.energy_J = r.get_double(prefix + "energy_J");
   std::fill(s.wake_m.begin(), s.wake_m.end(), 0.0);  // every node tested again: same results
 }
 

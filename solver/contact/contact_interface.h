@@ -17,6 +17,12 @@ struct ContactStep {
   double dt_stable_s = 0.0;  ///< bound from the penalty springs (no safety factor); inf if none
   double resultant_N[3] = {0.0, 0.0, 0.0};  ///< sum of the forces on the slave side [N]
   std::int64_t active_pairs = 0;            ///< slave nodes in contact this cycle
+  double potential_J = 0.0;  ///< sum of 1/2 k g^2 over the active pairs at t^{n+1} [J]
+  /// This interface's contact energy at t^{n+1}: minus the work its forces have done since the
+  /// start, trapezoid rule per step (as /history/glstat/contact_energy sums all interfaces).
+  /// Frictionless, it equals potential_J up to the step's error; below zero the contact has
+  /// created energy [J].
+  double energy_J = 0.0;
 };
 
 class ContactInterface {

@@ -101,20 +101,38 @@ struct RigidBody {
   Vec3 centre_m{};  ///< centre of mass if given
 };
 
-/// Penalty node-to-segment contact (master/slave), [1] and §2.1 of Bourel 2005: slave nodes
-/// against the segments of master parts (shell quads/triangles with thickness offsets on both
-/// sides, exterior faces of hexahedra). Friction: Coulomb with exponential decay from static to
-/// dynamic, mu = mu_d + (mu_s - mu_d) exp(-decay |v_rel|).
+/// How a contact pairs its surfaces (solver/contact/contact_interface.cpp).
+enum class ContactKind : std::uint8_t {
+  /// one pass: the slave nodes against the master segments (LS-DYNA NODES_TO_SURFACE)
+  NodeToSurface,
+  /// two passes: also the master surface's nodes against the slave surface's segments, the
+  /// faces made of slave nodes (LS-DYNA SURFACE_TO_SURFACE, the crash codes' default)
+  SurfaceToSurface,
+  /// one surface against itself: the master parts' nodes against their own segments, the
+  /// segments around each node excluded (LS-DYNA SINGLE_SURFACE / AUTOMATIC_SINGLE_SURFACE)
+  SingleSurface,
+};
+
+/// Penalty contact, [1] and §2.1 of Bourel 2005: slave nodes against the segments of master
+/// parts (shell quads/triangles with thickness offsets on both sides, exterior faces of
+/// hexahedra), and for two-pass contact the master nodes against the slave faces. Friction:
+/// Coulomb with exponential decay from static to dynamic, mu = mu_d + (mu_s - mu_d)
+/// exp(-decay |v_rel|).
 struct Contact {
   std::string name;
-  std::vector<std::int32_t> slave_nodes;  ///< node indices
+  ContactKind kind = ContactKind::SurfaceToSurface;
+  std::vector<std::int32_t> slave_nodes;  ///< node indices (SingleSurface: unused)
   std::vector<int> master_parts;          ///< part indices whose elements give the segments
-  double penalty_scale = 0.1;             ///< scale factor on the segment stiffness [-]
-  bool soft = false;                      ///< also a stiffness from nodal mass and step
-  double soft_scale = 0.1;                ///< scale on k_soft = m / dt^2 [-]
-  double static_friction = 0.0;           ///< mu_s [-]
-  double dynamic_friction = 0.0;          ///< mu_d [-]
-  double friction_decay_s_m = 0.0;        ///< decay coefficient [s/m]
+  /// SurfaceToSurface: the slave faces, 4 node indices each (a triangle repeats its third);
+  /// empty: derived from the model (contact::slave_faces), as the partition does on the whole
+  /// model before cutting it, so that a sub-model's cut faces never count as surface.
+  std::vector<std::int32_t> slave_faces;
+  double penalty_scale = 0.1;       ///< scale factor on the segment stiffness [-]
+  bool soft = false;                ///< also a stiffness from nodal mass and step
+  double soft_scale = 0.1;          ///< scale on k_soft = m / dt^2 [-]
+  double static_friction = 0.0;     ///< mu_s [-]
+  double dynamic_friction = 0.0;    ///< mu_d [-]
+  double friction_decay_s_m = 0.0;  ///< decay coefficient [s/m]
 };
 
 /// A point whose history is written to /history/probes/<name>.
