@@ -1,12 +1,13 @@
 #pragma once
 // One contact interface (model::Contact) as the integrator sees it: built once, then called every
-// cycle at t^{n+1} after the element forces. Node-to-segment penalty with Coulomb friction;
-// search in linear time with buckets, re-sorted when nodes may have travelled far enough.
+// cycle at t^{n+1} after the element forces. Penalty with Coulomb friction in one or two passes
+// of nodes against segments (contact_pass.h); search in linear time with buckets.
 //
 // Layouts: x, v, f are interleaved xyz [3n] over all nodes of the domain.
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "solver/core/state_archive.h"
 #include "solver/model/model.h"
@@ -14,7 +15,9 @@
 namespace crashlink::contact {
 
 struct ContactStep {
-  double dt_stable_s = 0.0;  ///< bound from the penalty springs (no safety factor); inf if none
+  /// The springs' own critical step 2 sqrt(m_eff / k), least over the candidate pairs (no
+  /// safety factor; inf if none). The solver combines it with the elements' (solver.cpp).
+  double dt_stable_s = 0.0;
   double resultant_N[3] = {0.0, 0.0, 0.0};  ///< sum of the forces on the slave side [N]
   std::int64_t active_pairs = 0;            ///< slave nodes in contact this cycle
   double potential_J = 0.0;  ///< sum of 1/2 k g^2 over the active pairs at t^{n+1} [J]
@@ -39,6 +42,11 @@ class ContactInterface {
   /// taken (friction's elastic predictor uses v * dt).
   ContactStep compute(const double* x, const double* v, double dt, double* f);
 
+  /// The step the soft stiffness is sized with (contact_pass.cpp pair_stiffness): the domain's
+  /// stable step at the start, before any contact. Set once; later calls are ignored (a
+  /// restarted run keeps its checkpoint's).
+  void set_step_reference(double dt0_s);
+
   /// Checkpoints: the search state (candidates, travel since the last sort), the friction
   /// history and the contact memory of every slave node, under `prefix`.
   void save_state(core::StateWriter& w, const std::string& prefix) const;
@@ -51,6 +59,10 @@ class ContactInterface {
   std::size_t segment_count() const;
   /// Diagnostics: slave-node tests skipped so far by sleeping nodes (contact_interface.cpp).
   std::int64_t slept_node_cycles() const;
+  /// Every node the interface acts on (its passes' nodes and segment nodes), sorted.
+  std::vector<std::int32_t> nodes() const;
+  /// 1 (node-to-surface, single-surface, or two-pass without slave faces) or 2.
+  std::size_t pass_count() const;
 
  private:
   struct Impl;

@@ -53,11 +53,105 @@ double segment_max_diagonal(const double* x, const std::int32_t* q) {
   return std::max(norm(c - a), norm(d - b));
 }
 
+namespace {
+
+/// One face of an element: a shell element itself, or one of a hexahedron's six faces.
+struct FaceRef {
+  std::array<std::int32_t, 4> key;  ///< sorted node indices
+  std::uint32_t part, element;
+  std::uint8_t face;  ///< hex face (kHexFaces), 255 for a shell
+};
+
+/// Every shell element and every hexahedron face of the model, sorted by key (then part,
+/// element): a hexahedron face whose key appears once is exterior.
+std::vector<FaceRef> model_faces(const model::Model& m, bool with_shells) {
+  std::vector<FaceRef> faces;
+  for (std::size_t p = 0; p < m.parts.size(); ++p) {
+    const auto& part = m.parts[p];
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (part.kind == model::ElementKind::Shell4) {
+        if (!with_shells) continue;
+        FaceRef r{};
+        for (int a = 0; a < 4; ++a)
+          r.key[static_cast<std::size_t>(a)] =
+              part.connectivity[4 * e + static_cast<std::size_t>(a)];
+        std::sort(r.key.begin(), r.key.end());
+        r.part = static_cast<std::uint32_t>(p);
+        r.element = static_cast<std::uint32_t>(e);
+        r.face = 255;
+        faces.push_back(r);
+        continue;
+      }
+      for (std::uint8_t f = 0; f < 6; ++f) {
+        FaceRef r{};
+        for (int a = 0; a < 4; ++a)
+          r.key[static_cast<std::size_t>(a)] =
+              part.connectivity[8 * e + static_cast<std::size_t>(kHexFaces[f][a])];
+        std::sort(r.key.begin(), r.key.end());
+        r.part = static_cast<std::uint32_t>(p);
+        r.element = static_cast<std::uint32_t>(e);
+        r.face = f;
+        faces.push_back(r);
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const FaceRef& a, const FaceRef& b) {
+    if (a.key != b.key) return a.key < b.key;
+    if (a.part != b.part) return a.part < b.part;
+    return a.element < b.element;
+  });
+  return faces;
+}
+
+/// The face's nodes in element order (hex faces: outward normal).
+std::array<std::int32_t, 4> face_nodes(const model::Model& m, const FaceRef& f) {
+  const auto& part = m.parts[f.part];
+  std::array<std::int32_t, 4> q{};
+  if (f.face == 255) {
+    for (int a = 0; a < 4; ++a)
+      q[static_cast<std::size_t>(a)] =
+          part.connectivity[4 * f.element + static_cast<std::size_t>(a)];
+  } else {
+    const std::int32_t* conn = &part.connectivity[8 * static_cast<std::size_t>(f.element)];
+    for (int a = 0; a < 4; ++a) q[static_cast<std::size_t>(a)] = conn[kHexFaces[f.face][a]];
+  }
+  return q;
+}
+
+/// Appends face f (nodes q) to the set with its offset, depth and stiffness.
+void push_face(const model::Model& m, const FaceRef& f, const std::array<std::int32_t, 4>& q,
+               double penalty_scale, SegmentSet& s) {
+  const double* x0 = m.nodes.x0.data();
+  const auto& part = m.parts[f.part];
+  const double K = m.materials[static_cast<std::size_t>(part.material)].bulk_modulus_Pa();
+  const bool rigid = is_rigid(m, part);
+  const double A = segment_area(x0, q.data());
+  double k = 0.0, offset = 0.0, depth = 0.0;
+  const bool shell = f.face == 255;
+  if (shell) {
+    k = shell_stiffness(penalty_scale, K, A, segment_max_diagonal(x0, q.data()));
+    offset = 0.5 * part.thickness_m;
+  } else {
+    const double V = hex_volume(x0, &part.connectivity[8 * static_cast<std::size_t>(f.element)]);
+    k = solid_face_stiffness(penalty_scale, K, A, V);
+    depth = 0.5 * V / A;
+  }
+  s.nodes.insert(s.nodes.end(), q.begin(), q.end());
+  s.offset_m.push_back(offset);
+  s.depth_m.push_back(depth);
+  s.stiffness_N_m.push_back(rigid ? 0.0 : k);
+  s.rigid_stiffness_N_m.push_back(k);
+  s.two_sided.push_back(shell ? 1 : 0);
+  s.rigid.push_back(rigid ? 1 : 0);
+}
+
+}  // namespace
+
 SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_parts,
                           double penalty_scale) {
   SegmentSet s;
-  const double* x0 = m.nodes.x0.data();
   std::vector<std::uint8_t> is_master(m.parts.size(), 0);
+  bool any_hex = false;
   for (int p : master_parts) {
     if (p < 0 || static_cast<std::size_t>(p) >= m.parts.size())
       throw ModelError(
@@ -65,87 +159,85 @@ SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_
                       "parts)",
                       p, m.parts.size()));
     is_master[static_cast<std::size_t>(p)] = 1;
+    any_hex = any_hex || m.parts[static_cast<std::size_t>(p)].kind == model::ElementKind::Hex8;
   }
-  auto push = [&](const std::array<std::int32_t, 4>& q, double offset, double depth, double k,
-                  double k_rigid, bool two_sided, bool rigid) {
-    s.nodes.insert(s.nodes.end(), q.begin(), q.end());
-    s.offset_m.push_back(offset);
-    s.depth_m.push_back(depth);
-    s.stiffness_N_m.push_back(rigid ? 0.0 : k);
-    s.rigid_stiffness_N_m.push_back(k_rigid);
-    s.two_sided.push_back(two_sided ? 1 : 0);
-    s.rigid.push_back(rigid ? 1 : 0);
-  };
-
-  // Shells: every element of a master part.
+  // Shells: every element of a master part, in part and element order.
   for (std::size_t p = 0; p < m.parts.size(); ++p) {
     const auto& part = m.parts[p];
     if (!is_master[p] || part.kind != model::ElementKind::Shell4) continue;
-    const double K = m.materials[static_cast<std::size_t>(part.material)].bulk_modulus_Pa();
-    const bool rigid = is_rigid(m, part);
     for (std::size_t e = 0; e < part.element_count(); ++e) {
-      const std::int32_t* c = &part.connectivity[4 * e];
-      const double A = segment_area(x0, c);
-      const double k = shell_stiffness(penalty_scale, K, A, segment_max_diagonal(x0, c));
-      push({c[0], c[1], c[2], c[3]}, 0.5 * part.thickness_m, 0.0, k, k, true, rigid);
+      const FaceRef f{{}, static_cast<std::uint32_t>(p), static_cast<std::uint32_t>(e), 255};
+      push_face(m, f, face_nodes(m, f), penalty_scale, s);
     }
   }
-
-  // Hexahedra: faces used by exactly one Hex8 of the whole model (sorted node keys).
-  struct FaceRef {
-    std::array<std::int32_t, 4> key;
-    std::uint32_t part, element;
-    std::uint8_t face;
-  };
-  std::vector<FaceRef> faces;
-  bool any_master_hex = false;
-  for (std::size_t p = 0; p < m.parts.size(); ++p)
-    if (is_master[p] && m.parts[p].kind == model::ElementKind::Hex8) any_master_hex = true;
-  if (any_master_hex) {
-    for (std::size_t p = 0; p < m.parts.size(); ++p) {
-      const auto& part = m.parts[p];
-      if (part.kind != model::ElementKind::Hex8) continue;
-      for (std::size_t e = 0; e < part.element_count(); ++e)
-        for (std::uint8_t f = 0; f < 6; ++f) {
-          FaceRef r{};
-          for (int a = 0; a < 4; ++a)
-            r.key[static_cast<std::size_t>(a)] =
-                part.connectivity[8 * e + static_cast<std::size_t>(kHexFaces[f][a])];
-          std::sort(r.key.begin(), r.key.end());
-          r.part = static_cast<std::uint32_t>(p);
-          r.element = static_cast<std::uint32_t>(e);
-          r.face = f;
-          faces.push_back(r);
-        }
-    }
-    std::sort(faces.begin(), faces.end(), [](const FaceRef& a, const FaceRef& b) {
-      if (a.key != b.key) return a.key < b.key;
-      if (a.part != b.part) return a.part < b.part;
-      return a.element < b.element;
-    });
+  // Hexahedra: faces used by exactly one Hex8 of the whole model.
+  if (any_hex) {
+    const auto faces = model_faces(m, false);
     for (std::size_t i = 0; i < faces.size();) {
       std::size_t j = i + 1;
       while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-      const FaceRef& f = faces[i];
-      if (j == i + 1 && is_master[f.part]) {
-        const auto& part = m.parts[f.part];
-        const std::int32_t* conn = &part.connectivity[8 * static_cast<std::size_t>(f.element)];
-        std::array<std::int32_t, 4> q{};
-        for (int a = 0; a < 4; ++a) q[static_cast<std::size_t>(a)] = conn[kHexFaces[f.face][a]];
-        const double K = m.materials[static_cast<std::size_t>(part.material)].bulk_modulus_Pa();
-        const double A = segment_area(x0, q.data());
-        const double V = hex_volume(x0, conn);
-        const double k = solid_face_stiffness(penalty_scale, K, A, V);
-        push(q, 0.0, 0.5 * V / A, k, k, false, is_rigid(m, part));
-      }
+      if (j == i + 1 && is_master[faces[i].part])
+        push_face(m, faces[i], face_nodes(m, faces[i]), penalty_scale, s);
       i = j;
     }
   }
-  // Order segments spatially-agnostic but deterministic: as built (parts, then elements).
   if (s.size() == 0)
     throw ModelError(
         "contact master parts give no segment (no shell element and no exterior "
         "hexahedron face); list the parts whose surface the slave nodes hit");
+  return s;
+}
+
+std::vector<std::int32_t> slave_faces(const model::Model& m,
+                                      const std::vector<std::int32_t>& nodes) {
+  std::vector<std::uint8_t> in(m.nodes.count(), 0);
+  for (auto i : nodes)
+    if (i >= 0 && static_cast<std::size_t>(i) < in.size()) in[static_cast<std::size_t>(i)] = 1;
+  std::vector<std::int32_t> out;
+  const auto faces = model_faces(m, true);
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    const FaceRef& f = faces[i];
+    const bool all_in =
+        in[static_cast<std::size_t>(f.key[0])] && in[static_cast<std::size_t>(f.key[1])] &&
+        in[static_cast<std::size_t>(f.key[2])] && in[static_cast<std::size_t>(f.key[3])];
+    // a shell element, or a hexahedron face used once (exterior)
+    if (all_in && (f.face == 255 || j == i + 1)) {
+      const auto q = face_nodes(m, f);
+      out.insert(out.end(), q.begin(), q.end());
+    }
+    i = j;
+  }
+  return out;
+}
+
+SegmentSet build_faces(const model::Model& m, const std::vector<std::int32_t>& faces,
+                       double penalty_scale) {
+  SegmentSet s;
+  if (faces.empty()) return s;
+  const auto all = model_faces(m, true);
+  for (std::size_t k = 0; k + 3 < faces.size(); k += 4) {
+    std::array<std::int32_t, 4> q{faces[k], faces[k + 1], faces[k + 2], faces[k + 3]};
+    FaceRef probe{};
+    probe.key = q;
+    std::sort(probe.key.begin(), probe.key.end());
+    auto it = std::lower_bound(all.begin(), all.end(), probe,
+                               [](const FaceRef& a, const FaceRef& b) { return a.key < b.key; });
+    // the element whose face has this orientation (a cut model may hold only one of two hexes)
+    const FaceRef* found = nullptr;
+    for (; it != all.end() && it->key == probe.key; ++it)
+      if (face_nodes(m, *it) == q || it->face == 255) {
+        found = &*it;
+        break;
+      }
+    if (!found)
+      throw ModelError(fmt::format(
+          "contact face with nodes {} {} {} {} belongs to no element of this model (internal "
+          "error: slave faces are taken from the model's elements)",
+          q[0], q[1], q[2], q[3]));
+    push_face(m, *found, q, penalty_scale, s);
+  }
   return s;
 }
 

@@ -56,6 +56,18 @@ double segment_max_diagonal(const double* x, const std::int32_t* q);
 SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_parts,
                           double penalty_scale);
 
+/// The faces made of the given nodes only: shell elements with all four nodes in the set and
+/// exterior hexahedron faces (used by one Hex8 of the model) with all four in the set, outward;
+/// 4 node indices per face, in model order. The slave surface of a two-pass contact.
+std::vector<std::int32_t> slave_faces(const model::Model& m,
+                                      const std::vector<std::int32_t>& nodes);
+
+/// Segments for explicit faces (4 node indices each, as slave_faces gives them), with the
+/// offset, depth and stiffness of the element each face belongs to. Throws ModelError if a face
+/// belongs to no element.
+SegmentSet build_faces(const model::Model& m, const std::vector<std::int32_t>& faces,
+                       double penalty_scale);
+
 /// Outward faces of a Hex8 in LS-DYNA order (bottom, top, then the four sides).
 inline constexpr int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                         {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};

@@ -318,7 +318,11 @@ void Solver::initialize() {
       ++e;
     interior_end_[p] = e == ne ? ne : e / elements::kElementBatch * elements::kElementBatch;
   }
+  const bool record = record_element_steps_;
+  record_element_steps_ = record || !contacts_.empty();
   compute_forces(0.0);
+  record_element_steps_ = record;
+  set_contact_step_references();
   compute_contact_forces(0.0);
   compute_external_forces(0.0);
   compute_accelerations();
@@ -381,15 +385,54 @@ void Solver::compute_forces(double dt, ElementSpan span) {
   }
 }
 
+void Solver::set_contact_step_references() {
+  // Each contact's soft springs are sized with dt_scale x the least stable step of the elements
+  // on its nodes at the start (contact_pass.cpp pair_stiffness): a property of the contact's own
+  // elements, the same in mono and in whichever domain of a cut model holds the contact.
+  std::vector<std::uint8_t> mark(n_, 0);
+  for (auto& c : contacts_) {
+    const auto nodes = c.nodes();
+    for (auto i : nodes) mark[static_cast<std::size_t>(i)] = 1;
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < parts_.size(); ++p) {
+      const auto& steps = parts_[p].element_dt_s;
+      if (steps.empty()) continue;
+      const auto& part = model_.parts[p];
+      const auto k = static_cast<std::size_t>(model::nodes_per_element(part.kind));
+      for (std::size_t e = 0; e < steps.size(); ++e)
+        for (std::size_t a = 0; a < k; ++a)
+          if (mark[static_cast<std::size_t>(part.connectivity[k * e + a])]) {
+            least = std::min(least, steps[e]);
+            break;
+          }
+    }
+    for (auto i : nodes) mark[static_cast<std::size_t>(i)] = 0;
+    if (!std::isfinite(least)) least = dt_stable_;  // rigid on rigid: the domain's step
+    if (std::isfinite(least)) c.set_step_reference(model_.controls.dt_scale * least);
+  }
+}
+
 void Solver::compute_contact_forces(double dt) {
   if (contacts_.empty()) return;
   std::fill(f_cont_.begin(), f_cont_.end(), 0.0);
+  // The penalty springs add to the highest frequency of the nodes they hold: a node of the
+  // critical element on a spring of frequency w_c vibrates at up to sqrt(w_e^2 + w_c^2) (the
+  // largest eigenvalue of a sum of positive semi-definite stiffnesses is at most the sum of
+  // theirs). The step dt = s dt_e (s = controls.dt_scale, w_e dt_e = 2) is stable while
+  // (2 s)^2 + (w_c dt)^2 <= 4, i.e. dt <= 2 sqrt(1 - s^2) / w_c = dt_c sqrt(1 - s^2) (dt_c =
+  // 2 / w_c, the springs' own critical step): as a stable step before the factor s,
+  //   dt_stable <= dt_c sqrt(1 - s^2) / s     (0.48 dt_c at s = 0.9; s taken <= 0.95).
+  // A minimum, so that every domain of a cut model bounds its own springs as mono does; a soft
+  // spring (k = 0.1 m / dt^2, w_c dt = 0.32) never binds, a stiff one on a light node does: the
+  // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up (issue 21).
+  const double sf = std::min(model_.controls.dt_scale, 0.95);
+  const double share = std::sqrt(1.0 - sf * sf) / sf;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());
-    // Penalty springs bound the step like elements do (their bound carries no safety factor).
-    if (contact_steps_[k].dt_stable_s < dt_stable_) {
-      dt_stable_ = contact_steps_[k].dt_stable_s;
-      critical_part_ = model_.parts.size();  // "no element": reported as the contact below
+    const double bound = share * contact_steps_[k].dt_stable_s;
+    if (bound < dt_stable_) {
+      dt_stable_ = bound;
+      critical_part_ = model_.parts.size();  // "no element": reported as the contact
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }
   }

@@ -207,6 +207,7 @@ class Solver {
   void apply_ghost_motion();
   void compute_external_forces(double t);
   void compute_contact_forces(double dt);  // f_cont at the current configuration
+  void set_contact_step_references();      // the soft springs' step (needs element_dt_s)
   void compute_accelerations();
   double kinetic_energy() const;
   /// sum + m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} of nodes [i0, i1), in node

@@ -128,7 +128,7 @@ struct Contact {
   /// model before cutting it, so that a sub-model's cut faces never count as surface.
   std::vector<std::int32_t> slave_faces;
   double penalty_scale = 0.1;       ///< scale factor on the segment stiffness [-]
-  bool soft = false;                ///< also a stiffness from nodal mass and step
+  bool soft = true;                 ///< also a stiffness from nodal mass and step
   double soft_scale = 0.1;          ///< scale on k_soft = m / dt^2 [-]
   double static_friction = 0.0;     ///< mu_s [-]
   double dynamic_friction = 0.0;    ///< mu_d [-]

@@ -2,6 +2,7 @@
 // indices local; nodes are numbered in ascending global order.
 #include <algorithm>
 
+#include "solver/contact/segments.h"
 #include "solver/core/errors.h"
 #include "solver/partition/partition_detail.h"
 
@@ -174,7 +175,21 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
   for (std::size_t c = 0; c < g.contacts.size(); ++c) {
     if (pl.contact_domain[c] != d) continue;
     model::Contact lc = g.contacts[c];
+    // Two-pass: the slave faces are taken on the whole model, where a face between two
+    // hexahedra of different domains is not surface (in the sub-model it looks exterior).
+    // The `paper` scheme's contact domain holds copies of the other domain's slave nodes, not
+    // their elements: one pass there (docs/paper-scheme.md).
+    const bool copies = std::any_of(lc.slave_nodes.begin(), lc.slave_nodes.end(), [&](Index i) {
+      return role[static_cast<std::size_t>(i)] == kCopy;
+    });
+    if (lc.kind == model::ContactKind::SurfaceToSurface && copies) {
+      lc.kind = model::ContactKind::NodeToSurface;
+      lc.slave_faces.clear();
+    }
+    if (lc.kind == model::ContactKind::SurfaceToSurface && lc.slave_faces.empty())
+      lc.slave_faces = contact::slave_faces(g, lc.slave_nodes);
     for (auto& s : lc.slave_nodes) s = local(s);
+    for (auto& s : lc.slave_faces) s = local(s);
     for (int& p : lc.master_parts) {
       if (!whole_part(p))
         throw ModelError(

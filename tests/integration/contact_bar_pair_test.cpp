@@ -42,6 +42,7 @@ BarPairResult run_mono(const BarPairSpec& spec) {
   BarPairResult r;
   r.c = std::sqrt(210e9 / r.rho);
   const double T = 2.0 * spec.length_m / r.c;
+  if (std::getenv("CRASHLINK_NO_BULK")) b.m.controls.bulk_viscosity = false;
   b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * T;
   const double side = std::min(spec.side_striker_m, spec.side_struck_m);
   const double A = side * side;
@@ -57,7 +58,7 @@ BarPairResult run_mono(const BarPairSpec& spec) {
       // force on the striker, -x while in contact
       const double fx = spec.slave_striker ? -cs.resultant_N[0] : cs.resultant_N[0];
       const double t = sv.time_s();
-      if (std::fabs(fx) > 1e-3 * p_th * A) {
+      if (std::fabs(fx) > 0.5 * p_th * A) {
         if (t_first < 0.0) t_first = t;
         t_last = t;
       }
@@ -65,10 +66,11 @@ BarPairResult run_mono(const BarPairSpec& spec) {
       t_prev = t;
       f_prev = fx;
       r.contact_min_J = std::min(r.contact_min_J, e.contact_J);
-      if (std::getenv("CRASHLINK_TRACE") && sv.cycle() % 20 == 0)
-        std::printf("t %.4e fx %.4e pot %.4e ifaceJ %.4e contactJ %.4e KE %.4e pairs %lld\n", t, fx,
-                    cs.potential_J, cs.energy_J, e.contact_J, e.kinetic_J,
-                    static_cast<long long>(cs.active_pairs));
+      if (std::getenv("CRASHLINK_TRACE") && (true))
+        std::printf(
+            "dt %.3e t %.4e fx %.4e pot %.4e ifaceJ %.4e contactJ %.4e KE %.4e pairs %lld\n",
+            sv.dt_s(), t, fx, cs.potential_J, cs.energy_J, e.contact_J, e.kinetic_J,
+            static_cast<long long>(cs.active_pairs));
       r.contact_end_J = e.contact_J;
       r.kinetic_end_J = e.kinetic_J;
       r.total_end_J = e.total_J();
@@ -102,7 +104,7 @@ void report(const BarPairSpec& spec, const BarPairResult& r) {
       describe(spec).c_str(), r.duration_s / T, r.mean_pressure_Pa / p_th,
       r.v_striker / spec.speed_m_s, r.v_struck / spec.speed_m_s, r.kinetic_end_J / r.E0,
       r.contact_end_J / r.E0, r.contact_min_J / r.E0, r.total_end_J / r.E0,
-      r.stopped.empty() ? "" : ", STOPPED: ", r.stopped.substr(0, 300).c_str());
+      r.stopped.empty() ? "" : ", STOPPED: ", r.stopped.substr(0, 700).c_str());
 }
 
 }  // namespace
@@ -112,6 +114,8 @@ TEST(ContactBarPair, Explore) {
   for (bool slave_striker : {true, false})
     for (bool fine_striker : {true, false}) {
       BarPairSpec s;
+      s.two_pass = std::getenv("CRASHLINK_TWO_PASS") != nullptr;
+      if (const char* nu = std::getenv("CRASHLINK_NU")) s.nu = std::atof(nu);
       s.slave_striker = slave_striker;
       if (!fine_striker) std::swap(s.h_striker_m, s.h_struck_m);
       report(s, run_mono(s));

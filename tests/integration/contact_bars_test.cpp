@@ -122,10 +122,14 @@ TEST(ContactBars, DurationPressureVelocitySwapEnergy) {
 
 TEST(ContactBars, FrictionlessContactEnergyReturns) {
   // Contact energy = minus the work of the contact forces: a frictionless penalty spring gives
-  // back what it stored; after separation it must be below 1 % of its peak.
+  // back what it stored. What remains after separation is the trapezoid rule's error when a
+  // spring engages or lets go between two steps (1/2 k g^n |g^{n+1}| per node, of either sign):
+  // 2.6 % of the peak here with issue 21's stiffer springs (two passes, k_soft), -0.05 % of E0
+  // (issue 21 allows 0.5 % of E0); it stays below 5 % of the peak and 0.5 % of E0.
   const BarImpact& r = bars();
   ASSERT_GT(r.contact_peak_J, 0.0);
-  EXPECT_LT(std::fabs(r.contact_end_J), 0.01 * r.contact_peak_J)
+  EXPECT_LT(std::fabs(r.contact_end_J), 0.005 * r.E0);
+  EXPECT_LT(std::fabs(r.contact_end_J), 0.05 * r.contact_peak_J)
       << "peak " << r.contact_peak_J << " J, after separation " << r.contact_end_J << " J";
   std::printf("bars: contact energy peak %.4e J, after separation %.4e J (%.3f %%)\n",
               r.contact_peak_J, r.contact_end_J,

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "solver/contact/friction.h"
 #include "solver/core/state_archive.h"
@@ -53,6 +54,8 @@ Scene make_scene() {
   s.mass.assign(s.m.nodes.count(), 1.0);
   model::Contact c;
   c.name = "block-plate";
+  c.kind = model::ContactKind::NodeToSurface;  // one pass, segment stiffness alone (SOFT=0)
+  c.soft = false;
   c.slave_nodes = s.hex_nodes;
   c.master_parts = {0};
   s.m.contacts.push_back(c);
@@ -108,8 +111,24 @@ TEST(ContactInterface, StiffnessIsLsDynaSoft0AndForcesBalance) {
   double sum[3] = {0.0, 0.0, 0.0};
   for (std::size_t i = 0; i < f.size(); ++i) sum[i % 3] += f[i];
   for (double v : sum) EXPECT_LE(std::fabs(v), 1e-12 * 4.0 * k * g);  // momentum: round-off
-  // Step bound: sqrt(2 m_eff / k), m_eff = 1 * 1 / 2 (unit nodal masses).
-  EXPECT_NEAR(r.dt_stable_s, std::sqrt(2.0 * 0.5 / k), 1e-12 * r.dt_stable_s);
+  // Step bound: the spring's critical step 2 sqrt(m_eff / k) with the contact's element
+  // masses: a block corner carries rho V / 8, a plate segment's mean node rho t A / 4 times the
+  // elements around it (interior node 4, edge 2, corner 1): the block's bottom nodes lie over
+  // interior nodes' segments. At the start it is the least of every pair that may ever touch.
+  const double m_corner = 7850.0 * 0.008 / 8.0;
+  const double m_share = 7850.0 * kT * 0.0625 / 4.0;
+  double least = std::numeric_limits<double>::infinity();
+  for (double seg_mean :
+       {m_share * (1 + 2 + 2 + 4) / 4.0, m_share * (2 + 4 + 4 + 4) / 4.0, m_share * 4.0})
+    least = std::min(least, 2.0 * std::sqrt(1.0 / (1.0 / m_corner + 1.0 / seg_mean) / k));
+  EXPECT_LE(r.dt_stable_s, least * (1.0 + 1e-12));
+  ContactInterface ci(s.m, s.m.contacts[0], s.mass.data());
+  std::vector<double> x = s.m.nodes.x0, v(x.size(), 0.0), f2(x.size(), 0.0);
+  for (auto i : s.hex_nodes) x[3 * static_cast<std::size_t>(i) + 2] -= g;
+  ci.compute(x.data(), v.data(), 0.0, f2.data());
+  const auto later = ci.compute(x.data(), v.data(), 1e-9, f2.data());  // the candidates' own
+  EXPECT_GE(later.dt_stable_s, r.dt_stable_s);
+  EXPECT_LE(later.dt_stable_s, 2.0 * std::sqrt(m_corner / k) * (1.0 + 1e-12));
 }
 
 TEST(ContactInterface, ForceContinuousAcrossSegmentEdges) {
@@ -142,6 +161,7 @@ TEST(ContactInterface, ShellSlaveUsesBothOffsets) {
   model::generate_plate(m, b, {{0.1, 0.1, h}, {0.3, 0, 0}, {0, 0.3, 0}, {1, 1}, 0.0});
   model::Contact c;
   c.name = "plates";
+  c.kind = model::ContactKind::NodeToSurface;
   c.master_parts = {0};
   for (std::size_t i = before; i < m.nodes.count(); ++i)
     c.slave_nodes.push_back(static_cast<std::int32_t>(i));

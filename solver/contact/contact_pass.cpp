@@ -1,0 +1,526 @@
+// One contact pass: nodes against segments, penalty (§2.1 of Bourel 2005: penalty [BEL 00]).
+//
+// Per cycle, for every node s of the pass and its candidate segments (bucket_search.h):
+//   closest point x_c, shape functions N_a, unit normal n (projection.h); h = o_s + o_m
+//   (thickness offsets: half the shell thickness around the node, t/2 of a shell segment, 0 for
+//   solids); distance d from the segment's mid-surface; penetration g = h - d.
+//   The pair is the candidate with the NEAREST closest point among those with g > 0 (beyond
+//   round-off, 1e-10 of the segment size): g is then h minus the distance to the surface, a
+//   function of the configuration alone (no memory of earlier segments), continuous as the node
+//   slides from one segment to the next, so the penalty force below is the gradient of the
+//   potential 1/2 k g^2 and gives back what it stored (a rule "keep last cycle's segment" made
+//   g jump when it let go, creating energy: issue 21).
+//     F_n = k g n on the node, -N_a F_n on the segment's nodes      (Belytschko, Liu & Moran,
+//   Nonlinear Finite Elements for Continua and Structures (2000), 10.4.3 penalty; Hallquist,
+//   LS-DYNA Theory Manual, "Penalty method": f_s = -k_i l n_i, f_m^i = N_i f_s).
+//   sum_a N_a = 1: momentum is conserved to round-off.
+// Friction: friction.h, history F_t per node, stick stiffness = the same k.
+//
+// Sides: shells are two-sided; the side is the sign of (x_s - x_c).n when contact starts and is
+// kept while the node stays in contact (a node pushed past the mid-surface is pushed back, not
+// through); solid faces are one-sided (outward normal) and accept penetrations up to depth_m
+// (half the element's thickness). Off the edges of a segment the direction x_s - x_c replaces n
+// (rounded edges: continuous force around a convex edge).
+//
+// Search re-sorted only when needed. A pair (s, i) can come into contact only if x_s lies within
+// the reach of segment i, i.e. inside its node box inflated by h (+ depth for solid faces). The
+// sort inflates it further by `margin`. Since the sort every node has moved at most D = sum dt^n
+// max_j |v_j^{n+1/2}|; the candidate list is complete while 2 D <= margin.
+// Sleeping nodes: when all of node s's candidates were rejected by the box or slab test, G = min
+// over them of a lower bound of (distance - reach) > 0; the distance shrinks by at most 2 D'
+// after a further travel D', so the node is skipped until D' reaches G / 2.
+#include "solver/contact/contact_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/contact/projection.h"
+#include "solver/core/errors.h"
+
+namespace crashlink::contact {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The slab between the planes n . x = lo and hi (n the diagonals' normal, values relative to
+/// node 0) that holds the segment xa (4 nodes; a triangle repeats its third), and sp = n . p.
+struct Slab {
+  double lo = 0.0, hi = 0.0, sp = 0.0, len = 0.0;  ///< len = |n|; 0: degenerate
+};
+
+Slab slab_of(const double* xa, const double* p) {
+  double d1[3], d2[3];
+  for (int d = 0; d < 3; ++d) {
+    d1[d] = xa[6 + d] - xa[d];
+    d2[d] = xa[9 + d] - xa[3 + d];
+  }
+  const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                       d1[0] * d2[1] - d1[1] * d2[0]};
+  Slab s;
+  s.len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(s.len > 0.0)) return s;
+  for (int a = 1; a < 4; ++a) {
+    const double v = n[0] * (xa[3 * a] - xa[0]) + n[1] * (xa[3 * a + 1] - xa[1]) +
+                     n[2] * (xa[3 * a + 2] - xa[2]);
+    s.lo = std::min(s.lo, v);
+    s.hi = std::max(s.hi, v);
+  }
+  s.sp = n[0] * (p[0] - xa[0]) + n[1] * (p[1] - xa[1]) + n[2] * (p[2] - xa[2]);
+  return s;
+}
+
+/// True when p is farther than `reach` from every point of the segment xa (it lies in its slab).
+bool beyond_slab(const double* xa, const double* p, double reach) {
+  const Slab s = slab_of(xa, p);
+  if (!(s.len > 0.0)) return false;  // degenerate: let the projection decide
+  const double margin = reach * s.len;
+  return s.sp < s.lo - margin || s.sp > s.hi + margin;
+}
+
+/// A lower bound of (distance from p to the segment xa) - reach from the node box and the slab.
+double gap_beyond_reach(const double* xa, const double* p, double reach) {
+  double gap = -kInf;
+  for (int d = 0; d < 3; ++d) {
+    const double lo = std::min(std::min(xa[d], xa[3 + d]), std::min(xa[6 + d], xa[9 + d]));
+    const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
+    gap = std::max(gap, std::max(lo - p[d], p[d] - hi));
+  }
+  const Slab s = slab_of(xa, p);
+  if (s.len > 0.0) gap = std::max(gap, std::max(s.lo - s.sp, s.sp - s.hi) / s.len);
+  return gap - reach - 1e-9 * (std::fabs(gap) + reach);
+}
+
+}  // namespace
+
+double AppliedForces::work(const double* v, double dt) const {
+  double w = 0.0;
+  for (std::size_t e = 0; e < node.size(); ++e) {
+    const double* vi = v + 3 * static_cast<std::size_t>(node[e]);
+    w += force_N[3 * e] * vi[0] + force_N[3 * e + 1] * vi[1] + force_N[3 * e + 2] * vi[2];
+  }
+  return w * dt;
+}
+
+ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
+                         const NodeProperties& np, bool self)
+    : seg_(std::move(seg)), nodes_(std::move(nodes)), self_(self) {
+  const std::size_t n = m.nodes.count();
+  const double* x0 = m.nodes.x0.data();
+  const std::size_t ns = nodes_.size();
+  node_offset_m_.resize(ns);
+  node_k_N_m_.resize(ns);
+  node_mass_kg_.resize(ns);
+  double max_offset = 0.0;
+  for (std::size_t k = 0; k < ns; ++k) {
+    const auto i = static_cast<std::size_t>(nodes_[k]);
+    node_offset_m_[k] = np.half_thickness_m[i];
+    node_k_N_m_[k] = np.stiffness_N_m[i];
+    node_mass_kg_[k] = np.mass_kg[i];
+    max_offset = std::max(max_offset, np.half_thickness_m[i]);
+  }
+  const std::size_t nseg = seg_.size();
+  seg_mass_kg_.resize(nseg);
+  seg_size_m_.resize(nseg);
+  double size_sum = 0.0;
+  for (std::size_t i = 0; i < nseg; ++i) {
+    const std::int32_t* q = &seg_.nodes[4 * i];
+    const int nn = seg_.triangle(i) ? 3 : 4;
+    double ms = 0.0;
+    for (int a = 0; a < nn; ++a) ms += np.mass_kg[static_cast<std::size_t>(q[a])];
+    seg_mass_kg_[i] = ms / nn;
+    size_sum += segment_max_diagonal(x0, q);
+    seg_size_m_[i] = std::sqrt(segment_area(x0, q));
+  }
+  // Margin: a quarter of the mean segment size (a sort every ~margin / (2 |v|max dt) cycles).
+  margin_m_ = nseg > 0 ? 0.25 * size_sum / static_cast<double>(nseg) : 0.0;
+  reach_m_.resize(nseg);
+  contact_reach_m_.resize(nseg);
+  for (std::size_t i = 0; i < nseg; ++i) {
+    const double h = seg_.offset_m[i] + max_offset;
+    contact_reach_m_[i] = seg_.two_sided[i] ? h : h + seg_.depth_m[i];
+    reach_m_[i] = contact_reach_m_[i] + margin_m_;
+  }
+  std::vector<std::uint8_t> mark(n, 0);
+  for (auto i : nodes_) mark[static_cast<std::size_t>(i)] = 1;
+  for (auto i : seg_.nodes) mark[static_cast<std::size_t>(i)] = 1;
+  for (std::size_t i = 0; i < n; ++i)
+    if (mark[i]) moving_.push_back(static_cast<std::int32_t>(i));
+  ft_N_.assign(3 * ns, 0.0);
+  side_.assign(ns, 0);
+  wake_m_.assign(ns, 0.0);
+  if (self_) {
+    // Skipped for node s: every segment sharing a node with a segment that holds s (its own
+    // segments and their neighbours, which lie within about one element of it).
+    std::vector<std::int32_t> start(n + 1, 0);
+    for (auto i : seg_.nodes) ++start[static_cast<std::size_t>(i) + 1];
+    for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+    std::vector<std::int32_t> segs_of(static_cast<std::size_t>(start[n]));
+    std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < nseg; ++i)
+      for (int a = 0; a < 4; ++a) {
+        if (a == 3 && seg_.triangle(i)) continue;
+        const auto node = static_cast<std::size_t>(seg_.nodes[4 * i + static_cast<std::size_t>(a)]);
+        segs_of[static_cast<std::size_t>(fill[node]++)] = static_cast<std::int32_t>(i);
+      }
+    excl_offset_.assign(ns + 1, 0);
+    std::vector<std::int32_t> list;
+    for (std::size_t k = 0; k < ns; ++k) {
+      list.clear();
+      const auto s = static_cast<std::size_t>(nodes_[k]);
+      for (auto a = start[s]; a < start[s + 1]; ++a) {
+        const auto own = static_cast<std::size_t>(segs_of[static_cast<std::size_t>(a)]);
+        for (int b = 0; b < 4; ++b) {
+          const auto nb =
+              static_cast<std::size_t>(seg_.nodes[4 * own + static_cast<std::size_t>(b)]);
+          for (auto c = start[nb]; c < start[nb + 1]; ++c)
+            list.push_back(segs_of[static_cast<std::size_t>(c)]);
+        }
+      }
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      excluded_.insert(excluded_.end(), list.begin(), list.end());
+      excl_offset_[k + 1] = static_cast<std::int32_t>(excluded_.size());
+    }
+  }
+}
+
+/// Pair stiffness (issue 21, docs/scenario-format.md "contacts"):
+///   k = max(k_segment, k_soft),
+///   k_segment the segment's (LS-DYNA SOFT=0: solids s K A^2 / V, shells s K A / max diagonal);
+///             a rigid segment: the node's own elements' (node_properties.h), both rigid: the
+///             rigid segment's own moduli;
+///   k_soft    soft_scale m_eff / dt0^2 (LS-DYNA SOFT=1, "0.5 SOFSCL m / dt^2"; here the reduced
+///             mass of the node and the segment's mean nodal mass), dt0 the domain's stable
+///             step at the start (set_step_reference): fixed for the run, so that k never
+///             changes during a contact (a k following the step would change the energy
+///             1/2 k g^2 it stores).
+/// k_soft lifts the springs of light nodes, soft materials and dissimilar meshes, where the
+/// segment's value lets the faces sink into each other; the springs bound the step
+/// (ContactStep::dt_stable_s, combined with the elements' by the solver).
+double ContactPass::pair_stiffness(std::size_t k, std::size_t i, double m_eff,
+                                   const StiffnessRule& rule) const {
+  double kp = seg_.rigid[i] ? node_k_N_m_[k] : seg_.stiffness_N_m[i];
+  if (!(kp > 0.0)) kp = seg_.rigid_stiffness_N_m[i];
+  if (rule.soft && rule.dt0_s > 0.0 && std::isfinite(m_eff))
+    kp = std::max(kp, rule.soft_scale * m_eff / (rule.dt0_s * rule.dt0_s));
+  return kp;
+}
+
+/// The largest k / m_eff any pair of this pass could ever have [1/s^2], whatever comes into
+/// contact: each term of k = max(...) over m_eff = 1 / (1/m_s + 1/m_i), bounded by mixing the
+/// extremes of both sides: k_seg / m_eff <= max_i k_i / m_i + max_i k_i max_s 1 / m_s, the same
+/// for a node's own k on rigid segments, soft_scale / dt0^2 for k_soft. At the start the
+/// solver plans with it (a `layer` run keeps its planned steps), later cycles with the
+/// candidates' own values, never larger.
+double ContactPass::max_stiffness_over_mass(const StiffnessRule& rule) const {
+  const auto inv = [](double m) { return m > 0.0 && std::isfinite(m) ? 1.0 / m : 0.0; };
+  double seg_k_over_m = 0.0, seg_k = 0.0, seg_inv = 0.0, rigid_k = 0.0, rigid_k_over_m = 0.0;
+  double rigid_inv = 0.0;
+  bool any_rigid = false;
+  for (std::size_t i = 0; i < seg_.size(); ++i) {
+    const double im = inv(seg_mass_kg_[i]);
+    if (seg_.rigid[i]) {
+      any_rigid = true;
+      rigid_inv = std::max(rigid_inv, im);
+      rigid_k = std::max(rigid_k, seg_.rigid_stiffness_N_m[i]);
+      rigid_k_over_m = std::max(rigid_k_over_m, seg_.rigid_stiffness_N_m[i] * im);
+    } else {
+      seg_k = std::max(seg_k, seg_.stiffness_N_m[i]);
+      seg_k_over_m = std::max(seg_k_over_m, seg_.stiffness_N_m[i] * im);
+      seg_inv = std::max(seg_inv, im);
+    }
+  }
+  double node_inv = 0.0, own_k = 0.0, own_k_over_m = 0.0;
+  bool any_mass = false;
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    if (!(node_mass_kg_[k] > 0.0)) continue;  // a `paper` copy: its pairs bound no step
+    any_mass = true;
+    const double im = inv(node_mass_kg_[k]);
+    node_inv = std::max(node_inv, im);
+    own_k = std::max(own_k, node_k_N_m_[k]);
+    own_k_over_m = std::max(own_k_over_m, node_k_N_m_[k] * im);
+  }
+  double w2 = seg_k_over_m + seg_k * node_inv;
+  if (any_rigid) {
+    w2 = std::max(w2, own_k_over_m + own_k * rigid_inv);
+    w2 = std::max(w2, rigid_k_over_m + rigid_k * node_inv);  // both rigid
+  }
+  if (rule.soft && rule.dt0_s > 0.0) w2 = std::max(w2, rule.soft_scale / (rule.dt0_s * rule.dt0_s));
+  return !any_mass || seg_.size() == 0 ? 0.0 : w2;
+}
+
+double ContactPass::min_mass_over_stiffness(const StiffnessRule& rule) {
+  if (min_ratio_sorts_ == sorts && min_ratio_dt0_ == rule.dt0_s) return min_ratio_;
+  double r = kInf;
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const std::int32_t sn = nodes_[k];
+    for (auto c = static_cast<std::size_t>(cand_.offset[k]);
+         c < static_cast<std::size_t>(cand_.offset[k + 1]); ++c) {
+      const auto i = static_cast<std::size_t>(cand_.segment[c]);
+      const std::int32_t* q = &seg_.nodes[4 * i];
+      if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
+      const double meff = reduced_mass(node_mass_kg_[k], seg_mass_kg_[i]);
+      const double kp = pair_stiffness(k, i, meff, rule);
+      if (kp > 0.0 && meff > 0.0) r = std::min(r, meff / kp);
+    }
+  }
+  min_ratio_ = r;
+  min_ratio_sorts_ = sorts;
+  min_ratio_dt0_ = rule.dt0_s;
+  return r;
+}
+
+void ContactPass::sort(const double* x) {
+  const SearchInput in{x,          nodes_.data(), nodes_.size(), seg_.nodes.data(), reach_m_.data(),
+                       seg_.size()};
+  bucket_search(in, cand_, work_);
+  if (self_) {  // drop each node's own and neighbouring segments (both lists sorted)
+    std::size_t out = 0;
+    std::int32_t begin = 0;
+    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      const auto* e0 = excluded_.data() + excl_offset_[k];
+      const auto* e1 = excluded_.data() + excl_offset_[k + 1];
+      const auto c0 = static_cast<std::size_t>(begin),
+                 c1 = static_cast<std::size_t>(cand_.offset[k + 1]);
+      begin = cand_.offset[k + 1];
+      cand_.offset[k] = static_cast<std::int32_t>(out);
+      for (std::size_t c = c0; c < c1; ++c) {
+        const std::int32_t sgi = cand_.segment[c];
+        while (e0 != e1 && *e0 < sgi) ++e0;
+        if (e0 != e1 && *e0 == sgi) continue;
+        cand_.segment[out++] = sgi;
+      }
+    }
+    cand_.offset[nodes_.size()] = static_cast<std::int32_t>(out);
+    cand_.segment.resize(out);
+  }
+  travelled_m_ = 0.0;
+  std::fill(wake_m_.begin(), wake_m_.end(), 0.0);
+  need_sort_ = false;
+  ++sorts;
+}
+
+/// Node k against segment i at xa: the signed distance rule of the header. Returns false when
+/// the segment cannot be the node's nearest surface (deeper than half its element below a
+/// one-sided face); otherwise the projection, the penetration g = h - d, the unit direction of
+/// the push on the node and the shell side, and last_dist_ = the node's distance to the segment.
+///   inside the segment (or within 1e-6 of its size off the normal through the closest point):
+///     d = (x_s - x_c) . n (shells: on the node's side), push along n;
+///   off an edge, outside (or a shell): d = |x_s - x_c|, push along x_s - x_c (rounded edge);
+///   off an edge, behind a one-sided face: d = -|x_s - x_c|, push towards x_c (a node at the
+///     bottom of a pit its own push made in the master face projects off the edges of every
+///     face around it, and is inside).
+bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const double* p,
+                           Projection& pr, double& g, double* dir, int& side) {
+  pr = seg_.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
+  const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
+  const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
+  const double rl = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  const double h = node_offset_m_[k] + seg_.offset_m[i];
+  const bool two = seg_.two_sided[i] != 0;
+  // A node straight above the shared edge of two faces projects onto that edge of both, the
+  // faces slightly warped by the deformation: it counts as inside both (a side face caught such
+  // nodes of issue 21's bars at a millimetre's depth).
+  const double lateral2 = std::max(0.0, rl * rl - dn * dn);
+  const double tol = 1e-6 * seg_size_m_[i];
+  const bool use_normal = pr.interior || lateral2 <= tol * tol;
+  double d = 0.0;
+  side = 0;
+  if (use_normal) {
+    int sgn = 1;
+    if (two) {
+      sgn = side_[k] != 0 ? side_[k] : (dn >= 0.0 ? 1 : -1);
+      if (sgn * dn < -h) sgn = -sgn;  // crossed by more than h: take the nearer side
+      side = sgn;
+    } else if (dn < -seg_.depth_m[i]) {
+      return false;  // deeper than half the element: not this face
+    }
+    d = sgn * dn;
+    last_dist_ = std::fabs(dn);
+    for (int a = 0; a < 3; ++a) dir[a] = sgn * pr.normal[a];
+  } else if (two || dn > -tol) {  // on the face's plane within round-off: outside
+    side = two ? (dn >= 0.0 ? 1 : -1) : 0;
+    d = rl;
+    last_dist_ = rl;
+    for (int a = 0; a < 3; ++a) dir[a] = r[a] / rl;
+  } else {
+    if (rl > seg_.depth_m[i]) return false;
+    d = -rl;
+    last_dist_ = rl;
+    for (int a = 0; a < 3; ++a) dir[a] = -r[a] / rl;
+  }
+  g = h - d;
+  return true;
+}
+
+void ContactPass::compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
+                          const StiffnessRule& rule, double* f, AppliedForces& applied,
+                          PassResult& out) {
+  if (dt > 0.0) {
+    double v2 = 0.0;
+    for (auto i : moving_) {
+      const double* vi = v + 3 * static_cast<std::size_t>(i);
+      v2 = std::max(v2, vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
+    }
+    travelled_m_ += dt * std::sqrt(v2);
+    if (2.0 * travelled_m_ > margin_m_) need_sort_ = true;
+  }
+  if (need_sort_) sort(x);
+  const std::size_t ns = nodes_.size();
+  for (std::size_t k = 0; k < ns; ++k) {
+    const auto b0 = static_cast<std::size_t>(cand_.offset[k]);
+    const auto b1 = static_cast<std::size_t>(cand_.offset[k + 1]);
+    double* ft = &ft_N_[3 * k];
+    const bool asleep = travelled_m_ < wake_m_[k];
+    slept += asleep ? 1 : 0;
+    if (b0 == b1 || asleep) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      side_[k] = 0;
+      continue;
+    }
+    const std::int32_t sn = nodes_[k];
+    const double* p = x + 3 * static_cast<std::size_t>(sn);
+    // The nearest candidate (ties within 1e-9 of the segment size kept together, up to kTies).
+    constexpr int kTies = 4;
+    struct Hit {
+      double g = 0.0;
+      double dir[3] = {0.0, 0.0, 0.0};
+      Projection pr;
+      std::size_t i = 0;
+      int side = 0;
+    };
+    Hit hits[kTies];
+    int nhits = 0;
+    double best_dist = kInf, tie_tol = 0.0;
+    double sleep_gap = kInf;
+    for (std::size_t c = b0; c < b1; ++c) {
+      const auto i = static_cast<std::size_t>(cand_.segment[c]);
+      const std::int32_t* q = &seg_.nodes[4 * i];
+      if (q[0] == sn || q[1] == sn || q[2] == sn || q[3] == sn) continue;  // own segment
+      const double reach = contact_reach_m_[i];
+      bool out_box = false;
+      double xa[12];
+      for (int a = 0; a < 4; ++a)
+        for (int d = 0; d < 3; ++d)
+          xa[3 * a + d] = x[3 * static_cast<std::size_t>(q[a]) + static_cast<std::size_t>(d)];
+      for (int d = 0; d < 3 && !out_box; ++d) {
+        const double lo = std::min(std::min(xa[d], xa[3 + d]), std::min(xa[6 + d], xa[9 + d]));
+        const double hi = std::max(std::max(xa[d], xa[3 + d]), std::max(xa[6 + d], xa[9 + d]));
+        out_box = p[d] < lo - reach || p[d] > hi + reach;
+      }
+      if (out_box || beyond_slab(xa, p, reach)) {
+        sleep_gap = std::min(sleep_gap, gap_beyond_reach(xa, p, reach));
+        continue;
+      }
+      sleep_gap = 0.0;
+      Hit hit;
+      if (!classify(k, i, xa, p, hit.pr, hit.g, hit.dir, hit.side)) continue;
+      const double dist = last_dist_;
+      const double size = seg_size_m_[i];
+      // Touching a face it does not penetrate, within round-off: no witness of being outside
+      // (a slave edge node of two flush bars lies on the master's side plane, at distance ~0
+      // from it, and inside the end face it hits).
+      if (!(hit.g > 1e-10 * size) && dist <= 1e-9 * size) continue;
+      hit.i = i;
+      if (dist < best_dist - tie_tol) {
+        best_dist = dist;
+        tie_tol = 1e-9 * size;
+        hits[0] = hit;
+        nhits = 1;
+      } else if (dist <= best_dist + tie_tol && nhits < kTies) {
+        hits[nhits++] = hit;
+      }
+    }
+    // Contact when the nearest segments all say penetrating (beyond round-off, 1e-10 of the
+    // segment size). A tie that disagrees is a node in front of a face and level with the
+    // plane of the face beside it, off that one's edge: outside (a convex edge).
+    bool inside = nhits > 0;
+    for (int t = 0; t < nhits; ++t) inside = inside && hits[t].g > 1e-10 * seg_size_m_[hits[t].i];
+    if (!inside) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      side_[k] = 0;
+      if (nhits == 0 && sleep_gap > 0.0 && std::isfinite(sleep_gap))
+        wake_m_[k] = travelled_m_ + 0.5 * sleep_gap;
+      continue;
+    }
+    ++out.active_pairs;
+    side_[k] = static_cast<std::int8_t>(hits[0].side);
+    // Tied nearest segments (a node straight below a vertex or an edge of a convex master, by
+    // symmetry): the mean direction, the force shared equally, so that mirror images get
+    // mirror forces whatever the order of the segments.
+    double dir[3] = {0.0, 0.0, 0.0};
+    for (int t = 0; t < nhits; ++t)
+      for (int a = 0; a < 3; ++a) dir[a] += hits[t].dir[a];
+    const double dl = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (dl > 0.0)
+      for (int a = 0; a < 3; ++a) dir[a] /= dl;
+    else
+      for (int a = 0; a < 3; ++a) dir[a] = hits[0].dir[a];
+    const double g = hits[0].g;
+    const double kp =
+        pair_stiffness(k, hits[0].i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[hits[0].i]), rule);
+    const double fn = kp * g;
+    out.potential_J += 0.5 * kp * g * g;
+    double F[3];
+    for (int a = 0; a < 3; ++a) F[a] = fn * dir[a];
+    if (friction.active()) {
+      double vrel[3];
+      const double* vs = v + 3 * static_cast<std::size_t>(sn);
+      for (int a = 0; a < 3; ++a) {
+        double vm = 0.0;
+        for (int t = 0; t < nhits; ++t) {
+          const std::int32_t* q = &seg_.nodes[4 * hits[t].i];
+          for (int b = 0; b < 4; ++b)
+            vm += hits[t].pr.N[b] *
+                  v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
+        }
+        vrel[a] = vs[a] - vm / nhits;
+      }
+      friction_update(friction, dir, vrel, kp, dt, fn, ft);
+      for (int a = 0; a < 3; ++a) F[a] += ft[a];
+    } else {
+      ft[0] = ft[1] = ft[2] = 0.0;
+    }
+    applied.apply(f, sn, F, 1.0);
+    for (int a = 0; a < 3; ++a) out.resultant_N[a] += F[a];
+    const double share = 1.0 / nhits;
+    for (int t = 0; t < nhits; ++t) {
+      const std::int32_t* q = &seg_.nodes[4 * hits[t].i];
+      const int nn = seg_.triangle(hits[t].i) ? 3 : 4;
+      for (int b = 0; b < nn; ++b)
+        if (hits[t].pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * hits[t].pr.N[b]);
+    }
+  }
+}
+
+void ContactPass::save_state(core::StateWriter& w, const std::string& prefix) const {
+  w.put_double(prefix + "travelled_m", travelled_m_);
+  w.put_bool(prefix + "need_sort", need_sort_);
+  w.put_int(prefix + "sorts", sorts);
+  w.put(prefix + "cand.offset", std::span<const std::int32_t>(cand_.offset));
+  w.put(prefix + "cand.segment", std::span<const std::int32_t>(cand_.segment));
+  w.put(prefix + "ft_N", std::span<const double>(ft_N_));
+  w.put(prefix + "side", std::span<const std::int8_t>(side_));
+}
+
+void ContactPass::restore_state(const core::StateReader& r, const std::string& prefix,
+                                const std::string& name) {
+  travelled_m_ = r.get_double(prefix + "travelled_m");
+  need_sort_ = r.get_bool(prefix + "need_sort");
+  sorts = r.get_int(prefix + "sorts");
+  r.get(prefix + "cand.offset", cand_.offset);
+  r.get(prefix + "cand.segment", cand_.segment);
+  if (!cand_.offset.empty() && cand_.offset.size() != nodes_.size() + 1)
+    throw CheckpointError(
+        fmt::format("checkpoint {}: contact '{}' has {} nodes in a pass, the checkpoint's "
+                    "candidate list {}",
+                    r.path(), name, nodes_.size(), cand_.offset.size() - 1));
+  r.get_exact(prefix + "ft_N", ft_N_);
+  r.get_exact(prefix + "side", side_);
+  std::fill(wake_m_.begin(), wake_m_.end(), 0.0);  // every node tested again: same results
+  min_ratio_sorts_ = -1;
+}
+
+}  // namespace crashlink::contact

@@ -1,0 +1,115 @@
+#pragma once
+// One pass of a contact: a set of nodes against a set of segments (contact_interface.cpp says
+// how passes make one-pass, two-pass and single-surface contact). Search, pair selection and
+// penalty forces per cycle; the formulas are on the functions in contact_pass.cpp.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/contact/bucket_search.h"
+#include "solver/contact/friction.h"
+#include "solver/contact/node_properties.h"
+#include "solver/contact/projection.h"
+#include "solver/contact/segments.h"
+#include "solver/core/state_archive.h"
+
+namespace crashlink::contact {
+
+/// The pair stiffness rule (contact_pass.cpp, pair_stiffness) and what it needs.
+struct StiffnessRule {
+  bool soft = true;         ///< also k_soft = soft_scale m_eff / dt0^2
+  double soft_scale = 0.1;  ///< LS-DYNA SOFSCL
+  double dt0_s = 0.0;       ///< the domain's stable step at the start (0: not known yet)
+};
+
+/// The forces one compute() applied (node, force xyz [N]): the interface's work over the next
+/// step comes from them (ContactStep::energy_J).
+struct AppliedForces {
+  std::vector<std::int32_t> node;
+  std::vector<double> force_N;  ///< [3 entries]
+  void clear() {
+    node.clear();
+    force_N.clear();
+  }
+  /// f[node] += scale F, recorded.
+  void apply(double* f, std::int32_t i, const double* F, double scale) {
+    double* fi = f + 3 * static_cast<std::size_t>(i);
+    node.push_back(i);
+    for (int a = 0; a < 3; ++a) {
+      fi[a] += scale * F[a];
+      force_N.push_back(scale * F[a]);
+    }
+  }
+  /// dt sum of F . v over the entries (v = v^{n+1/2}: dt v = u^{n+1} - u^n) [J].
+  double work(const double* v, double dt) const;
+};
+
+/// What a pass adds to the interface's step: resultant on its nodes, pairs, potential.
+struct PassResult {
+  double resultant_N[3] = {0.0, 0.0, 0.0};
+  std::int64_t active_pairs = 0;
+  double potential_J = 0.0;
+};
+
+class ContactPass {
+ public:
+  /// `nodes` the pass's (slave) nodes, `seg` its segments; `self`: single-surface, the
+  /// segments of each node's own elements and their neighbours are skipped.
+  ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
+              const NodeProperties& np, bool self);
+
+  void compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
+               const StiffnessRule& rule, double* f, AppliedForces& applied, PassResult& out);
+  /// Smallest m_eff / k over the candidate pairs [s^2] (infinity without candidates).
+  double min_mass_over_stiffness(const StiffnessRule& rule);
+  /// Largest k / m_eff any pair could have [1/s^2] (contact_pass.cpp).
+  double max_stiffness_over_mass(const StiffnessRule& rule) const;
+
+  void save_state(core::StateWriter& w, const std::string& prefix) const;
+  void restore_state(const core::StateReader& r, const std::string& prefix,
+                     const std::string& name);
+
+  std::int64_t sorts = 0;
+  std::int64_t slept = 0;  ///< node tests skipped by sleeping nodes (diagnostics)
+  std::size_t candidate_pairs() const { return cand_.pairs(); }
+  std::size_t segment_count() const { return seg_.size(); }
+  std::size_t node_count() const { return nodes_.size(); }
+  const std::vector<std::int32_t>& nodes() const { return nodes_; }
+  const SegmentSet& segments() const { return seg_; }
+
+ private:
+  double pair_stiffness(std::size_t k, std::size_t i, double m_eff,
+                        const StiffnessRule& rule) const;
+  void sort(const double* x);
+  bool classify(std::size_t k, std::size_t i, const double* xa, const double* p, Projection& pr,
+                double& g, double* dir, int& side);
+  double last_dist_ = 0.0;  // classify's distance of the node to the segment [m]
+
+  SegmentSet seg_;
+  std::vector<std::int32_t> nodes_;      // [ns]
+  std::vector<double> node_offset_m_;    // [ns]
+  std::vector<double> node_k_N_m_;       // [ns]
+  std::vector<double> node_mass_kg_;     // [ns]
+  std::vector<double> seg_mass_kg_;      // [nseg]
+  std::vector<double> reach_m_;          // [nseg] box inflation for the search
+  std::vector<double> contact_reach_m_;  // [nseg] box inflation for contact
+  std::vector<double> seg_size_m_;       // [nseg] sqrt of the reference area
+  std::vector<std::int32_t> moving_;     // nodes whose speed bounds the travel
+  // single surface: segments skipped for node k, excluded_[excl_offset_[k] .. [k+1]) sorted
+  bool self_ = false;
+  std::vector<std::int32_t> excl_offset_, excluded_;
+  double margin_m_ = 0.0;
+  double travelled_m_ = 0.0;
+  bool need_sort_ = true;
+  CandidateList cand_;
+  BucketWork work_;
+  std::vector<double> ft_N_;       // [3 ns] friction history
+  std::vector<std::int8_t> side_;  // [ns] shell side while in contact (+1, -1; 0 = none)
+  std::vector<double> wake_m_;     // [ns] sleeping until travelled_m_ reaches this
+  // min m_eff / k over the candidates, cached per sort (and dt0, which is set once)
+  double min_ratio_ = 0.0;
+  std::int64_t min_ratio_sorts_ = -1;
+  double min_ratio_dt0_ = -1.0;
+};
+
+}  // namespace crashlink::contact
