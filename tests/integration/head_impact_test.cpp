@@ -115,17 +115,46 @@ TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
   EXPECT_GT(impulse(hood_wiper_mono), 1.0) << "the hood must hit the wiper";
   EXPECT_NEAR(impulse(hood_wiper), impulse(hood_wiper_mono), 0.2 * impulse(hood_wiper_mono));
 
+  // Contact energy per interface (issue 21): in both files at their contacts' sample times, and
+  // in both summaries (multi, then mono) with every interface.
+  for (const auto* file : {&multi, &mono}) {
+    for (const auto& name : file->contact_names()) {
+      const auto c = file->contact(name);
+      EXPECT_EQ(c.energy_J.size(), c.time_s.size()) << name;
+      EXPECT_GT(c.energy_J.size(), 0u) << name;
+    }
+  }
+  std::printf("[measured] hood_wiper contact energy at the end: mono %.4g J, multi %.4g J\n",
+              hood_wiper_mono.energy_J.back(), hood_wiper.energy_J.back());
+  std::size_t summaries = 0;
+  for (auto at = out.find("contact energy [J] at the end:"); at != std::string::npos;
+       at = out.find("contact energy [J] at the end:", at + 1)) {
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    EXPECT_NE(line.find("'hood_wiper'"), std::string::npos) << line;
+    ++summaries;
+  }
+  EXPECT_EQ(summaries, 2u) << out;
+
   // The report of the multi run (README): every PNG written and non-empty.
   const std::string report =
       std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink report " + (dir / "result.h5").string();
   const std::string report_out = run_command(report, status);
   ASSERT_EQ(status, 0) << report_out;
   for (const char* png : {"head_acceleration.png", "energy.png", "interface_drift.png",
-                          "contact_forces.png", "head_cfc1000.csv"}) {
+                          "contact_forces.png", "head_cfc1000.csv", "contact_forces_cfc180.csv"}) {
     const auto path = dir / "report" / png;
     ASSERT_TRUE(std::filesystem::exists(path)) << path << "\n" << report_out;
     EXPECT_GT(std::filesystem::file_size(path), 1000u) << path;
   }
+  // The contact forces are plotted after CFC 180 (the CSV the plot reads says so per row).
+  std::ifstream csv(dir / "report" / "contact_forces_cfc180.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "contact,filter,time_ms,force_kN");
+  std::map<std::string, std::size_t> filtered;  // contact -> rows filtered by CFC 180
+  while (std::getline(csv, row))
+    if (row.find(",CFC 180,") != std::string::npos) ++filtered[row.substr(0, row.find(','))];
+  EXPECT_GT(filtered["hood_wiper"], 100u);
 }
 
 // `crashlink sweep` on the CI variant (README): every configuration runs, the CSV has a finite
