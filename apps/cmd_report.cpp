@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "apps/contact_force_csv.h"
 #include "apps/python_script.h"
 #include "apps/result_head.h"
 #include "solver/core/errors.h"
@@ -40,6 +41,13 @@ int run_report(const ReportOptions& options) {
                                             fmt::format("{:.6g}", 1e3 * m.hic15.t1_s), "--t2",
                                             fmt::format("{:.6g}", 1e3 * m.hic15.t2_s)})
       args.push_back(std::move(a));
+  }
+  if (!reader.contact_names().empty()) {
+    const fs::path csv = out / "contact_forces_cfc180.csv";
+    write_contact_force_csv(csv.string(), reader, "report");
+    std::printf("%s\n", csv.string().c_str());
+    args.push_back("--contacts");
+    args.push_back(csv.string());
   }
   return run_python_script("report.py", "CRASHLINK_REPORT_SCRIPT", args, "report");
 }

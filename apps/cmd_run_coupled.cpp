@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,10 +18,12 @@
 #include "solver/coordination/coordinator_run.h"
 #include "solver/core/errors.h"
 #include "solver/gather/gather_results.h"
+#include "solver/gather/history_merge.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/model/run_estimate.h"
 #include "solver/partition/decomposition.h"
+#include "solver/run/energy_summary.h"
 #include "solver/run/exit_codes.h"
 
 namespace crashlink::apps {
@@ -92,7 +95,7 @@ void print_timing(std::FILE* f, const TimingRecord& t, const LaunchResult& lr) {
                t.domains.size());
 }
 
-void print_energy(std::FILE* f, const std::string& h5, bool complete) {
+void print_energy(std::FILE* f, const model::Model& model, const std::string& h5, bool complete) {
   try {
     io::ResultReader reader(h5);
     const auto g = reader.glstat();
@@ -112,9 +115,21 @@ void print_energy(std::FILE* f, const std::string& h5, bool complete) {
         f, "coupling work %.6g J (%+.3f %% of the %s)\n", e.coupling_work_J,
         scale > 0.0 ? 100.0 * e.coupling_work_J / scale : 0.0,
         std::abs(e.external_work_J) > std::abs(e0) ? "external work" : "initial total energy");
-    std::fprintf(f, "energy balance error %.4f %% of the largest energy%s\n",
-                 100.0 * e.energy_balance_error,
-                 complete ? "" : " (the run failed: some domains' histories are incomplete)");
+    // Each contact's energy: the last row of its domain's history (energy_summary.h).
+    run::EnergySummary s;
+    s.reference_J = gather::balance_reference_J(g);
+    s.balance_J = e.energy_balance_error * s.reference_J;
+    for (const auto& c : model.contacts) {
+      double energy_J = std::numeric_limits<double>::quiet_NaN();  // not in the file: unknown
+      try {
+        const io::ContactHistory h = reader.contact(c.name);
+        if (!h.energy_J.empty()) energy_J = h.energy_J.back();
+      } catch (const Error&) {
+      }
+      s.contacts.push_back({c.name, energy_J});
+    }
+    run::print_energy_summary(
+        f, s, complete ? "" : " (the run failed: some domains' histories are incomplete)");
   } catch (const std::exception& x) {
     std::fprintf(f, "energy: %s could not be read: %s\n", h5.c_str(), x.what());
   }
@@ -205,7 +220,7 @@ int run_coupled(const RunCommandOptions& o) {
   }
   print_timing(stdout, *timing, lr);
   if (gathered.written) {
-    print_energy(stdout, result_h5, lr.ok() && gathered.problem.empty());
+    print_energy(stdout, model, result_h5, lr.ok() && gathered.problem.empty());
     std::printf("result: %s%s%s\n", result_h5.c_str(), gathered.problem.empty() ? "" : "; ",
                 gathered.problem.c_str());
   } else {

@@ -79,19 +79,40 @@ GlstatMerge merge_glstat(const std::vector<std::vector<io::GlstatSample>>& serie
   return out;
 }
 
+namespace {
+
+/// E0 of the balance: total - external work - coupling work of the first row.
+double initial_energy_J(const io::GlstatSample& first) {
+  return first.total_energy_J - first.external_work_J - first.coupling_work_J;
+}
+
+/// The reference after row g: the largest energy seen so far (energy.h update_reference).
+double updated_reference_J(double reference, const io::GlstatSample& g, double e0) {
+  return std::max({reference, std::abs(g.kinetic_energy_J), std::abs(g.internal_energy_J),
+                   std::abs(e0 + g.external_work_J), std::abs(g.external_work_J)});
+}
+
+}  // namespace
+
 void recompute_balance_error(std::vector<io::GlstatSample>& rows) {
   if (rows.empty()) return;
   // Balance of energy.h: total - E0 - external work - coupling work (the coupling's work is
   // energy put in or taken out by the scheme, not integration error; it has its own column).
-  const double e0 =
-      rows.front().total_energy_J - rows.front().external_work_J - rows.front().coupling_work_J;
+  const double e0 = initial_energy_J(rows.front());
   double reference = 0.0;
   for (io::GlstatSample& g : rows) {
-    reference = std::max({reference, std::abs(g.kinetic_energy_J), std::abs(g.internal_energy_J),
-                          std::abs(e0 + g.external_work_J), std::abs(g.external_work_J)});
+    reference = updated_reference_J(reference, g, e0);
     const double balance = g.total_energy_J - e0 - g.external_work_J - g.coupling_work_J;
     g.energy_balance_error = reference > 0.0 ? balance / reference : 0.0;
   }
+}
+
+double balance_reference_J(const std::vector<io::GlstatSample>& rows) {
+  if (rows.empty()) return 0.0;
+  const double e0 = initial_energy_J(rows.front());
+  double reference = 0.0;
+  for (const io::GlstatSample& g : rows) reference = updated_reference_J(reference, g, e0);
+  return reference;
 }
 
 }  // namespace crashlink::gather

@@ -44,4 +44,9 @@ GlstatMerge merge_glstat(const std::vector<std::vector<io::GlstatSample>>& serie
 /// the largest of |kinetic|, |internal|, |E0 + external|, |external| seen so far.
 void recompute_balance_error(std::vector<io::GlstatSample>& rows);
 
+/// The reference of recompute_balance_error at the last row: the largest of |kinetic|,
+/// |internal|, |E0 + external|, |external| over the rows [J] (0 without rows). The E0 of the
+/// summary's percentages (solver/run/energy_summary.h).
+double balance_reference_J(const std::vector<io::GlstatSample>& rows);
+
 }  // namespace crashlink::gather

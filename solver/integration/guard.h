@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "solver/integration/contact_creation.h"
 #include "solver/integration/energy.h"
 #include "solver/model/model.h"
 
@@ -34,12 +35,21 @@ std::string early_stop_hint(const GuardContext& c);
 /// Throws NumericalError if any of v[3n] is not finite, naming the first such node (user id).
 void check_finite_velocities(const model::Model& m, const double* v, const GuardContext& c);
 
-/// The error the guard bounds: balance_J / max(reference_J, floor_J) (0 while both are 0).
+/// The balance part of the guard's error: balance_J / max(reference_J, floor_J) (0 while both
+/// are 0); signed (> 0: created).
 double guarded_balance_error(const EnergyAccount& e, double floor_J);
 
-/// Throws NumericalError if |guarded_balance_error| exceeds the tolerance; `v` [3n] locates the
-/// node with the largest speed, reported as the likely seat of the instability.
+/// The error the guard bounds: (|balance_J| + created_J) / max(reference_J, floor_J), created_J
+/// the energy the contacts created (contact_creation.h), which the balance books as negative
+/// contact energy and so cannot see. Lost and created energy do not cancel. >= 0 (or NaN).
+double guarded_error(const EnergyAccount& e, double floor_J, double created_J);
+
+/// Throws NumericalError if guarded_error exceeds the tolerance; `v` [3n] locates the node with
+/// the largest speed, reported as the likely seat of an instability; `created` (this solver's
+/// interfaces, m.contacts order) names the contact that created the most energy, with what it
+/// created in J and in % of the reference.
 void check_energy_balance(const model::Model& m, const EnergyAccount& e, const BalanceBound& bound,
-                          const double* v, const GuardContext& c);
+                          const double* v, const GuardContext& c,
+                          const ContactCreation& created = {});
 
 }  // namespace crashlink::integration

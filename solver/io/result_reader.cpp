@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 
 #include "solver/io/hdf5_handles.h"
@@ -290,12 +291,15 @@ ContactHistory ResultReader::contact(const std::string& name) const {
   ContactHistory h;
   h.name = it->name;
   h.link = it->link;
-  std::array<std::size_t, 2> rows{};
+  std::array<std::size_t, 3> rows{};
   h.time_s = read_doubles(at, "time", 0, &rows[0]);
   h.force_N = read_doubles(at, "force", 3, &rows[1]);
-  const std::size_t k = std::min(rows[0], rows[1]);  // common prefix
+  const bool energy = link_exists(at, "energy");  // absent in files before 2026-11-26
+  if (energy) h.energy_J = read_doubles(at, "energy", 0, &rows[2]);
+  const std::size_t k = std::min({rows[0], rows[1], energy ? rows[2] : rows[0]});  // common prefix
   h.time_s.resize(k);
   h.force_N.resize(3 * k);
+  if (energy) h.energy_J.resize(k);
   return h;
 }
 
@@ -413,8 +417,11 @@ std::vector<ProbeSample> probe_samples(const ProbeHistory& h, std::size_t k) {
 
 std::vector<ContactSample> contact_samples(const ContactHistory& h, std::size_t k) {
   std::vector<ContactSample> rows(k);
-  for (std::size_t r = 0; r < k; ++r)
+  const bool energy = h.energy_J.size() >= k;
+  for (std::size_t r = 0; r < k; ++r) {
     for (std::size_t c = 0; c < 3; ++c) rows[r].force_N[c] = h.force_N[3 * r + c];
+    rows[r].energy_J = energy ? h.energy_J[r] : std::numeric_limits<double>::quiet_NaN();
+  }
   return rows;
 }
 

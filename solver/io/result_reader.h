@@ -33,12 +33,14 @@ struct ProbeHistory {
   std::size_t size() const { return time_s.size(); }
 };
 
-/// One contact's history: resultant force on the slave side, global frame.
+/// One contact's history: resultant force on the slave side, global frame, and the interface's
+/// contact energy (below zero: energy the contact created).
 struct ContactHistory {
   std::string name;  ///< the user's name (group attribute "name"; the link name if absent)
   std::string link;  ///< HDF5 group name under /history/contacts
-  std::vector<double> time_s;   ///< [k]
-  std::vector<double> force_N;  ///< [3k]
+  std::vector<double> time_s;    ///< [k]
+  std::vector<double> force_N;   ///< [3k]
+  std::vector<double> energy_J;  ///< [k]; empty in files written before the dataset existed
   std::size_t size() const { return time_s.size(); }
 };
 
@@ -76,7 +78,8 @@ struct TimingData {
 };
 
 /// The first k rows of a history as the writer takes them (ResultWriter::append_probe_rows /
-/// append_contact_rows): what the gather and a restart copy from one file into another.
+/// append_contact_rows): what the gather and a restart copy from one file into another. A contact
+/// history without energy (an older file) gives energy_J = NaN: not known, not 0.
 std::vector<ProbeSample> probe_samples(const ProbeHistory& h, std::size_t k);
 std::vector<ContactSample> contact_samples(const ContactHistory& h, std::size_t k);
 
@@ -109,8 +112,8 @@ class ResultReader {
 
   /// The contacts' user names under /history/contacts, in link order.
   std::vector<std::string> contact_names() const;
-  /// The contact with this user name or link name (rows: the common prefix of time and force);
-  /// throws InputError naming the contacts the file has if there is none.
+  /// The contact with this user name or link name (rows: the common prefix of time, force and
+  /// energy if present); throws InputError naming the contacts the file has if there is none.
   ContactHistory contact(const std::string& name) const;
 
   /// /mesh/node_ids [n].

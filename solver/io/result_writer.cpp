@@ -99,8 +99,8 @@ struct ProbeOut {
 
 struct ContactOut {
   std::string path;  // /history/contacts/<name>
-  DatasetHandle time, force;
-  std::vector<double> t, f;  // buffered rows: [k], [3k]
+  DatasetHandle time, force, energy;
+  std::vector<double> t, f, e;  // buffered rows: [k], [3k], [k]
 };
 
 }  // namespace
@@ -140,7 +140,7 @@ struct ResultWriter::Impl {
       std::uint64_t need = 0;
       for (const auto& b : glstat_buffer) need += b.size();
       for (const ProbeOut& p : probes) need += p.t.size() + p.u.size() + p.v.size() + p.a.size();
-      for (const ContactOut& c : contacts) need += c.t.size() + c.f.size();
+      for (const ContactOut& c : contacts) need += c.t.size() + c.f.size() + c.e.size();
       ensure_space(h5_path, "/history", 8 * need);
     }
     struct Clear {
@@ -156,6 +156,7 @@ struct ResultWriter::Impl {
         for (auto& c : self->contacts) {
           c.t.clear();
           c.f.clear();
+          c.e.clear();
         }
         self->buffered = 0;
         self->last_flush = Clock::now();
@@ -176,6 +177,7 @@ struct ResultWriter::Impl {
     for (ContactOut& c : contacts) {
       append_rows(Location{c.time.get(), h5_path, c.path + "/time"}, c.t, 0);
       append_rows(Location{c.force.get(), h5_path, c.path + "/force"}, c.f, 3);
+      append_rows(Location{c.energy.get(), h5_path, c.path + "/energy"}, c.e, 0);
     }
     return rows;
   }
@@ -272,6 +274,7 @@ struct ResultWriter::Impl {
       write_attribute(at, "name", m.contacts[i].name);
       out.time = create_extendible(at, "time", 0, chunk, "s");
       out.force = create_extendible(at, "force", 3, chunk, "N");
+      out.energy = create_extendible(at, "energy", 0, chunk, "J");
       contacts.push_back(std::move(out));
     }
   }
@@ -351,6 +354,7 @@ void ResultWriter::append_history(const GlstatSample& g, const std::vector<Probe
     ContactOut& c = w.contacts[i];
     c.t.push_back(g.time_s);
     c.f.insert(c.f.end(), contacts[i].force_N, contacts[i].force_N + 3);
+    c.e.push_back(contacts[i].energy_J);
   }
   if (probes.size() != w.probes.size()) {
     throw ResultFileError(h5_path_, "/history/probes",
@@ -434,10 +438,14 @@ void ResultWriter::append_contact_rows(std::size_t contact, std::span<const doub
                     contact, w.contacts.size(), time_s.size(), rows.size()));
   }
   ContactOut& c = w.contacts[contact];
-  std::vector<double> f;
-  for (const ContactSample& r : rows) f.insert(f.end(), r.force_N, r.force_N + 3);
+  std::vector<double> f, e;
+  for (const ContactSample& r : rows) {
+    f.insert(f.end(), r.force_N, r.force_N + 3);
+    e.push_back(r.energy_J);
+  }
   append_rows(Location{c.time.get(), h5_path_, c.path + "/time"}, time_s, 0);
   append_rows(Location{c.force.get(), h5_path_, c.path + "/force"}, f, 3);
+  append_rows(Location{c.energy.get(), h5_path_, c.path + "/energy"}, e, 0);
   w.flush_file();
 }
 

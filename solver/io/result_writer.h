@@ -50,9 +50,12 @@ struct ProbeSample {
   double acceleration_m_s2[3] = {0.0, 0.0, 0.0};
 };
 
-/// One contact row: resultant force on the slave side of an interface, global frame.
+/// One contact row: resultant force on the slave side of an interface, global frame, and the
+/// interface's contact energy (contact::ContactStep::energy_J: minus the work of its forces since
+/// the start; below zero the contact has created energy).
 struct ContactSample {
   double force_N[3] = {0.0, 0.0, 0.0};
+  double energy_J = 0.0;
 };
 
 /// Element results of one part; an empty span means "not available" (not written).
@@ -105,7 +108,7 @@ class ResultWriter {
   ~ResultWriter();  ///< close(); never throws (a failure is printed to stderr)
 
   /// Buffers one history row; `probes` has one sample per model.probes and `contacts` one per
-  /// model.contacts (/history/contacts/<name>/{time, force}), same order.
+  /// model.contacts (/history/contacts/<name>/{time, force, energy}), same order.
   /// May flush (see ResultWriterOptions).
   void append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes,
                       const std::vector<ContactSample>& contacts = {});

@@ -156,7 +156,7 @@ struct Controls {
   /// Q1 term in expansion too (Abaqus/Explicit's linear bulk viscosity; Q2 stays compression
   /// only). Off by default: LS-DYNA's convention, no viscous pressure in expansion.
   bool bulk_linear_in_expansion = false;
-  double energy_tolerance = 0.05;  ///< guard: |balance error| / reference energy
+  double energy_tolerance = 0.05;  ///< guard: (|balance| + contact-created) / reference energy
   /// The whole model's energy scale [J] (integration/energy_scale.h), under the guard's reference
   /// energy as a floor: set by the decomposition in every domain's sub-model so that a domain at
   /// rest is judged at the model's scale; 0 (a scenario, a single domain): the solver's own.

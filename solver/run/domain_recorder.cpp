@@ -57,8 +57,9 @@ void DomainRecorder::write_history() {
   }
   contacts_.resize(s.contact_steps().size());
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    for (std::size_t d = 0; d < 3; ++d)
-      contacts_[k].force_N[d] = s.contact_steps()[k].resultant_N[d];
+    const contact::ContactStep& c = s.contact_steps()[k];
+    for (std::size_t d = 0; d < 3; ++d) contacts_[k].force_N[d] = c.resultant_N[d];
+    contacts_[k].energy_J = c.energy_J;
   }
   writer_.append_history(glstat(s), probes_, contacts_);
 }

@@ -1,5 +1,7 @@
 #include "solver/run/run_single.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <vector>
 
@@ -75,6 +77,8 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   if (sum.stopped) sum.end_time_s = solver.time_s();
   sum.dt_min_s = solver.dt_min_s();
   sum.energy = solver.energy();
+  for (std::size_t k = 0; k < model.contacts.size() && k < solver.contact_steps().size(); ++k)
+    sum.contacts.push_back({model.contacts[k].name, solver.contact_steps()[k].energy_J});
   sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
   writer.write_timing(
@@ -93,14 +97,13 @@ void print_summary(std::FILE* out, const RunSummary& s) {
   std::fprintf(out, "coordinator: none (one domain); wall %.3f s\n", s.wall_seconds);
   const auto& e = s.energy;
   std::fprintf(out,
-               "energy [J]: initial %.6g  kinetic %.6g  internal %.6g  hourglass %.6g  "
-               "external work %.6g  total %.6g\n",
-               e.initial_total_J, e.kinetic_J, e.internal_J, e.hourglass_J, e.external_work_J,
-               e.total_J());
+               "energy [J]: initial %.6g  kinetic %.6g  internal %.6g  hourglass %.6g  contact "
+               "%.6g  external work %.6g  total %.6g\n",
+               e.initial_total_J, e.kinetic_J, e.internal_J, e.hourglass_J, e.contact_J,
+               e.external_work_J, e.total_J());
   const double hg_share = e.internal_J != 0.0 ? 100.0 * e.hourglass_J / e.internal_J : 0.0;
-  std::fprintf(
-      out, "energy balance error %.4f %% of the largest energy; hourglass %.2f %% of internal\n",
-      100.0 * e.balance_error(), hg_share);
+  print_energy_summary(out, {e.balance_J(), e.reference_J, s.contacts},
+                       fmt::format("; hourglass {:.2f} % of internal", hg_share));
   std::fprintf(out, "result: %s\n        %s\n", s.result_h5.c_str(), s.result_xdmf.c_str());
   if (s.failed) std::fprintf(out, "RUN FAILED: %s\n", s.failure.c_str());
   if (s.stopped)

@@ -4,9 +4,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "solver/integration/energy.h"
 #include "solver/model/model.h"
+#include "solver/run/energy_summary.h"
 
 namespace crashlink::run {
 
@@ -34,6 +36,8 @@ struct RunSummary {
   double cpu_seconds = 0.0;  ///< with a restart, that of the runs before the checkpoint too
   double wall_seconds = 0.0;
   integration::EnergyAccount energy;
+  /// Each interface's contact energy at the end (model.contacts order; ContactStep::energy_J).
+  std::vector<ContactEnergy> contacts;
   std::string result_h5;
   std::string result_xdmf;
   bool failed = false;   ///< the guard stopped the run
@@ -50,7 +54,8 @@ struct RunSummary {
 /// Other errors (input, I/O, a refused checkpoint) propagate.
 RunSummary run_single_domain(const model::Model& model, const RunOptions& options);
 
-/// Prints the end-of-run table (cycles, CPU, step, energy balance, files) to `out`.
+/// Prints the end-of-run table (cycles, CPU, step, energies, the contact energy of every
+/// interface and what each created, energy balance, files) to `out` (energy_summary.h).
 void print_summary(std::FILE* out, const RunSummary& s);
 
 }  // namespace crashlink::run

@@ -599,6 +599,33 @@ TEST(GatherResults, ContactHistoryComesFromTheDomainHoldingIt) {
   EXPECT_LE(de, 1e-9 * e_max);
   EXPECT_LE(dp, 1e-9);
   EXPECT_LE(du, 1e-9);
+
+  // /history/contacts/<name>/energy (issue 21): the interface's own energy. With one contact it
+  // is glstat's contact_energy, in mono and gathered (from the domain that computes the contact,
+  // at that domain's sample times), and the two runs agree.
+  const auto e_mono = r.doubles(c + "/energy");
+  const auto e_gather = g.doubles(c + "/energy");
+  const auto total_mono = r.doubles("/history/glstat/contact_energy");
+  const auto total_gather = g.doubles("/history/glstat/contact_energy");
+  ASSERT_EQ(e_mono.size(), r.doubles(c + "/time").size());
+  ASSERT_EQ(e_gather.size(), g.doubles(c + "/time").size());
+  ASSERT_EQ(e_mono.size(), total_mono.size());
+  ASSERT_EQ(e_gather.size(), total_gather.size());
+  double de_mono = 0.0, de_gather = 0.0, de_runs = 0.0, e_abs = 0.0;
+  for (std::size_t i = 0; i < e_mono.size(); ++i) {
+    e_abs = std::max(e_abs, std::abs(total_mono[i]));
+    de_mono = std::max(de_mono, std::abs(e_mono[i] - total_mono[i]));
+    de_gather = std::max(de_gather, std::abs(e_gather[i] - total_gather[i]));
+    de_runs = std::max(de_runs, std::abs(e_gather[i] - e_mono[i]));
+  }
+  std::printf(
+      "[measured] block_on_plate energy vs glstat contact_energy (max %.3e J): mono %.3e J, "
+      "gathered %.3e J; gathered vs mono %.3e J; at the end %.6e J\n",
+      e_abs, de_mono, de_gather, de_runs, e_mono.back());
+  EXPECT_GT(e_abs, 1e-6 * e_max) << "the contact should hold energy";
+  EXPECT_LE(de_mono, 1e-9 * e_max);
+  EXPECT_LE(de_gather, 1e-9 * e_max);
+  EXPECT_LE(de_runs, 1e-9 * e_max);
 }
 
 // Domains sampled at different instants (each on its own step grid): glstat summed on the times

@@ -115,17 +115,46 @@ TEST(HeadImpact, SmallSceneMultiMatchesMonoAndPrintsTable1) {
   EXPECT_GT(impulse(hood_wiper_mono), 1.0) << "the hood must hit the wiper";
   EXPECT_NEAR(impulse(hood_wiper), impulse(hood_wiper_mono), 0.2 * impulse(hood_wiper_mono));
 
+  // Contact energy per interface (issue 21): in both files at their contacts' sample times, and
+  // in both summaries (multi, then mono) with every interface.
+  for (const auto* file : {&multi, &mono}) {
+    for (const auto& name : file->contact_names()) {
+      const auto c = file->contact(name);
+      EXPECT_EQ(c.energy_J.size(), c.time_s.size()) << name;
+      EXPECT_GT(c.energy_J.size(), 0u) << name;
+    }
+  }
+  std::printf("[measured] hood_wiper contact energy at the end: mono %.4g J, multi %.4g J\n",
+              hood_wiper_mono.energy_J.back(), hood_wiper.energy_J.back());
+  std::size_t summaries = 0;
+  for (auto at = out.find("contact energy [J] at the end:"); at != std::string::npos;
+       at = out.find("contact energy [J] at the end:", at + 1)) {
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    EXPECT_NE(line.find("'hood_wiper'"), std::string::npos) << line;
+    ++summaries;
+  }
+  EXPECT_EQ(summaries, 2u) << out;
+
   // The report of the multi run (README): every PNG written and non-empty.
   const std::string report =
       std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink report " + (dir / "result.h5").string();
   const std::string report_out = run_command(report, status);
   ASSERT_EQ(status, 0) << report_out;
   for (const char* png : {"head_acceleration.png", "energy.png", "interface_drift.png",
-                          "contact_forces.png", "head_cfc1000.csv"}) {
+                          "contact_forces.png", "head_cfc1000.csv", "contact_forces_cfc180.csv"}) {
     const auto path = dir / "report" / png;
     ASSERT_TRUE(std::filesystem::exists(path)) << path << "\n" << report_out;
     EXPECT_GT(std::filesystem::file_size(path), 1000u) << path;
   }
+  // The contact forces are plotted after CFC 180 (the CSV the plot reads says so per row).
+  std::ifstream csv(dir / "report" / "contact_forces_cfc180.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "contact,filter,time_ms,force_kN");
+  std::map<std::string, std::size_t> filtered;  // contact -> rows filtered by CFC 180
+  while (std::getline(csv, row))
+    if (row.find(",CFC 180,") != std::string::npos) ++filtered[row.substr(0, row.find(','))];
+  EXPECT_GT(filtered["hood_wiper"], 100u);
 }
 
 // `crashlink sweep` on the CI variant (README): every configuration runs, the CSV has a finite
@@ -155,30 +184,48 @@ TEST(HeadImpact, SweepOfTheSmallSceneWritesTheChart) {
     std::string name, cell;
     std::getline(ss, name, ',');
     text[name] = line;
-    if (line.find(",,") != std::string::npos && name.rfind("paper", 0) == 0) continue;  // stopped
+    if (line.find(",,") != std::string::npos) continue;  // stopped: no figures, a note
     for (int k = 0; k < 11 && std::getline(ss, cell, ','); ++k)
       row[name].push_back(std::stod(cell));
   }
   // The paper scheme at multi's ratio (3 on this scene): stopped by its guard, with the time and
-  // the guard's message in the row (measured: at about 3.7 ms of 12), or run to the end.
+  // the guard's message in the row (measured: at about 3.7 ms of 12), or run to the end. Since
+  // energy created by contacts counts in the domains' guards (issue 21), the wiper domain's guard
+  // may stop it first (measured: 'hood_wiper' created 0.30 J, 6 % of the domain's E0, at 3.62 ms).
   for (const char* name : {"paper", "paper_no_drift"}) {
     ASSERT_EQ(text.count(name), 1u) << out;
     if (row.count(name) == 0) {
-      EXPECT_NE(text[name].find("went unstable"), std::string::npos) << text[name];
+      EXPECT_TRUE(text[name].find("went unstable") != std::string::npos ||
+                  text[name].find("created by contacts") != std::string::npos)
+          << text[name];
       EXPECT_NE(text[name].find("H/h = 3"), std::string::npos) << text[name];
     }
     row.erase(name);
   }
-  ASSERT_EQ(row.size(), 6u) << out;
+  // Conventional mass scaling of the wiper: cheaper and wrong (below), or stopped by the guard
+  // because a contact created energy (issue 21: counted in the guard since; measured: the
+  // heavier wiper's 'headform_hood' went from +8.6 J to -24.2 J, 11.4 % of E0, at 4.1 ms; the
+  // full scene's mass scaling was stopped by the guard before, docs/head-impact.md).
+  ASSERT_EQ(text.count("mass_scaled"), 1u) << out;
+  const bool mass_scaled_stopped = row.count("mass_scaled") == 0;
+  if (mass_scaled_stopped) {
+    EXPECT_NE(text["mass_scaled"].find("stopped by the guard"), std::string::npos)
+        << text["mass_scaled"];
+    EXPECT_NE(text["mass_scaled"].find("created by contacts"), std::string::npos)
+        << text["mass_scaled"];
+  }
+  ASSERT_EQ(row.size(), mass_scaled_stopped ? 5u : 6u) << out;
   for (const auto& [name, v] : row) {
     ASSERT_EQ(v.size(), 11u) << name;
     for (double x : v) EXPECT_TRUE(std::isfinite(x)) << name;
   }
-  EXPECT_EQ(row["mono"][1], 1.0);                    // cpu_over_mono
-  EXPECT_LT(row["mass_scaled"][1], 1.0);             // cheaper ...
-  EXPECT_GT(std::abs(row["mass_scaled"][4]), 10.0);  // ... and wrong: HIC15 error %
-  EXPECT_GT(row["mass_scaled"][9], 0.0);             // added mass, kg
-  EXPECT_LT(std::abs(row["multi"][4]), 3.0);         // HIC15 error %, as the test above
+  EXPECT_EQ(row["mono"][1], 1.0);  // cpu_over_mono
+  if (!mass_scaled_stopped) {
+    EXPECT_LT(row["mass_scaled"][1], 1.0);             // cheaper ...
+    EXPECT_GT(std::abs(row["mass_scaled"][4]), 10.0);  // ... and wrong: HIC15 error %
+    EXPECT_GT(row["mass_scaled"][9], 0.0);             // added mass, kg
+  }
+  EXPECT_LT(std::abs(row["multi"][4]), 3.0);  // HIC15 error %, as the test above
   // the refined scene: its own mono is its reference, its step ratio is larger (measured 4.30
   // against 2.71), multi's HIC15 still within 3 % of that mono (measured -0.80 %)
   EXPECT_EQ(row["mono_wiper_bar100"][1], 1.0);

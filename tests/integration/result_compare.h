@@ -33,6 +33,7 @@ inline void expect_same_results(const std::string& ref_h5, const std::string& ru
   }
   for (const auto& name : a.contact_names()) {
     EXPECT_EQ(a.contact(name).force_N, b.contact(name).force_N) << name;
+    EXPECT_EQ(a.contact(name).energy_J, b.contact(name).energy_J) << name;
   }
   ASSERT_EQ(a.state_count(), b.state_count());
   ASSERT_GE(a.state_count(), min_states);
