@@ -133,6 +133,9 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
     size_sum += segment_max_diagonal(x0, q);
     seg_size_m_[i] = std::sqrt(segment_area(x0, q));
   }
+  gap_cap_m_ = kInf;
+  for (std::size_t i = 0; i < nseg; ++i)
+    if (!seg_.two_sided[i]) gap_cap_m_ = std::min(gap_cap_m_, seg_.depth_m[i]);
   // Margin: a quarter of the mean segment size (a sort every ~margin / (2 |v|max dt) cycles).
   margin_m_ = nseg > 0 ? 0.25 * size_sum / static_cast<double>(nseg) : 0.0;
   reach_m_.resize(nseg);
@@ -346,7 +349,12 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
     last_dist_ = rl;
     for (int a = 0; a < 3; ++a) dir[a] = r[a] / rl;
   } else {
-    if (rl > seg_.depth_m[i]) return false;
+    // Only within the least half-thickness of all the pass's faces: every face whose edge or
+    // corner the node is that near is then within its own reach, a candidate too, and the nearest
+    // rule sees it. Farther, a node in front of a small face beside a deep one (the end face
+    // of a bar out of its 0.5 mm reach, the 10 mm-deep side face still a candidate) would be
+    // taken for 5 mm inside.
+    if (rl > std::min(seg_.depth_m[i], gap_cap_m_)) return false;
     d = -rl;
     last_dist_ = rl;
     for (int a = 0; a < 3; ++a) dir[a] = -r[a] / rl;

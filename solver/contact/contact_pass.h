@@ -84,6 +84,7 @@ class ContactPass {
   bool classify(std::size_t k, std::size_t i, const double* xa, const double* p, Projection& pr,
                 double& g, double* dir, int& side);
   double last_dist_ = 0.0;  // classify's distance of the node to the segment [m]
+  double gap_cap_m_ = 0.0;  // least depth of the one-sided faces [m] (classify)
 
   SegmentSet seg_;
   std::vector<std::int32_t> nodes_;      // [ns]
