@@ -1,5 +1,5 @@
-// The `contacts` section (docs/scenario-format.md): penalty node-to-segment contacts with
-// Coulomb friction, one model::Contact per entry.
+// The `contacts` section (docs/scenario-format.md): penalty contacts (two-pass, one-pass or
+// single-surface) with Coulomb friction, one model::Contact per entry.
 #include "solver/contact/segments.h"
 #include "solver/core/errors.h"
 #include "solver/io/scenario_sections.h"
@@ -9,14 +9,35 @@ namespace crashlink::io::detail {
 void read_contacts(const YamlNode& section, ScenarioBuild& b) {
   auto& m = b.model;
   for (const auto& [name, entry] :
-       section.entries("contacts (name: {slave, master, penalty_scale, soft, friction})")) {
-    entry.expect_keys({"slave", "master", "penalty_scale", "soft", "friction"});
+       section.entries("contacts (name: {type, slave, master, penalty_scale, soft, friction})")) {
+    entry.expect_keys({"type", "slave", "master", "penalty_scale", "soft", "friction"});
     model::Contact c;
     c.name = name;
-    c.slave_nodes = read_node_reference(
-        entry.required("slave", "a node set name or a selection such as {part: plate}"), b);
-    const auto master =
-        entry.required("master", "the parts whose surface the slave nodes hit, e.g. [plate]");
+    if (auto t = entry.optional("type")) {
+      const std::string k = t->text();
+      if (k == "surface_to_surface")
+        c.kind = model::ContactKind::SurfaceToSurface;
+      else if (k == "node_to_surface")
+        c.kind = model::ContactKind::NodeToSurface;
+      else if (k == "single_surface")
+        c.kind = model::ContactKind::SingleSurface;
+      else
+        t->fail("unknown contact type '" + k +
+                "'; use surface_to_surface (two passes, the default), node_to_surface (one "
+                "pass: the slave nodes against the master surface) or single_surface (the "
+                "master parts against themselves)");
+    }
+    const bool self = c.kind == model::ContactKind::SingleSurface;
+    if (self) {
+      if (auto sl = entry.optional("slave"))
+        sl->fail("a single_surface contact has no slave: list its parts under master");
+    } else {
+      c.slave_nodes = read_node_reference(
+          entry.required("slave", "a node set name or a selection such as {part: plate}"), b);
+    }
+    const auto master = entry.required(
+        "master", self ? "the parts whose surface folds onto itself, e.g. [tube]"
+                       : "the parts whose surface the slave nodes hit, e.g. [plate]");
     if (master.is_sequence()) {
       for (const auto& pn : master.items("part names")) {
         const int p = read_part_reference(pn, b);

@@ -12,6 +12,7 @@
 
 #include "solver/model/mesh_generators.h"
 #include "solver/model/model.h"
+#include "solver/model/node_merging.h"
 
 namespace crashlink::testing {
 
@@ -54,15 +55,29 @@ inline BarPair make_bar_pair(const BarPairSpec& s) {
                        n_along(s.h_striker_m),
                        {ns, ns}});
   const std::size_t n_striker = m.nodes.count();
-  p.name = "struck";
   const int nb = n_across(s.side_struck_m, s.h_struck_m);
-  model::generate_bar(m, p,
-                      {{0.0, 0.0, 0.0},
-                       0,
-                       s.length_m,
-                       {s.side_struck_m, s.side_struck_m},
-                       n_along(s.h_struck_m),
-                       {nb, nb}});
+  const double side_b = s.side_struck_m;
+  if (s.domains) {
+    // The master face in a part of its own (the first 2 element layers): `layer` moves the
+    // master part into the finer domain, and a whole bar there would leave its domain empty.
+    p.name = "struck_face";
+    const double lf = 2.0 * s.h_struck_m;
+    model::generate_bar(m, p, {{0.0, 0.0, 0.0}, 0, lf, {side_b, side_b}, 2, {nb, nb}});
+    const std::size_t before = m.nodes.count();
+    p.name = "struck";
+    model::generate_bar(m, p,
+                        {{lf, 0.0, 0.0},
+                         0,
+                         s.length_m - lf,
+                         {side_b, side_b},
+                         n_along(s.h_struck_m) - 2,
+                         {nb, nb}});
+    model::merge_coincident_nodes(m, before, 1e-9);
+  } else {
+    p.name = "struck";
+    model::generate_bar(
+        m, p, {{0.0, 0.0, 0.0}, 0, s.length_m, {side_b, side_b}, n_along(s.h_struck_m), {nb, nb}});
+  }
   for (std::size_t i = 0; i < m.nodes.count(); ++i)
     (i < n_striker ? b.striker : b.struck).push_back(static_cast<std::int32_t>(i));
   model::Contact c;
@@ -99,7 +114,7 @@ inline BarPair make_bar_pair(const BarPairSpec& s) {
   c.kind = s.two_pass ? model::ContactKind::SurfaceToSurface : model::ContactKind::NodeToSurface;
   m.contacts.push_back(c);
   m.controls.end_time_s = 0.0;  // set by the caller
-  if (s.domains) m.domains = {{"striker", {0}}, {"struck", {1}}};
+  if (s.domains) m.domains = {{"striker", {0}}, {"struck", {1, 2}}};
   return b;
 }
 

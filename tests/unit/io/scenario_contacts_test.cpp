@@ -46,6 +46,40 @@ TEST(ScenarioContacts, ValuesMapOntoTheModel) {
   EXPECT_DOUBLE_EQ(c.friction_decay_s_m, 5.0);
 }
 
+TEST(ScenarioContacts, TypeSelectsThePassesAndDefaultsToTwoPassWithSoftStiffness) {
+  const auto m = parse_scenario(kScene + R"(contacts:
+  two:
+    slave: {part: block}
+    master: plate
+  one:
+    type: node_to_surface
+    slave: {part: block}
+    master: plate
+  self:
+    type: single_surface
+    master: [plate]
+)",
+                                "ok.yaml");
+  ASSERT_EQ(m.contacts.size(), 3u);
+  EXPECT_EQ(m.contacts[0].kind, model::ContactKind::SurfaceToSurface);
+  EXPECT_TRUE(m.contacts[0].soft);
+  EXPECT_EQ(m.contacts[1].kind, model::ContactKind::NodeToSurface);
+  EXPECT_EQ(m.contacts[2].kind, model::ContactKind::SingleSurface);
+  EXPECT_TRUE(m.contacts[2].slave_nodes.empty());
+  // the unknown type on its line (16); a slave given to a single-surface contact on its own (17)
+  const std::pair<const char*, int> bad[] = {
+      {"    type: two_pass\n    slave: {part: block}\n    master: plate\n", 16},
+      {"    type: single_surface\n    slave: {part: block}\n    master: plate\n", 17}};
+  for (const auto& [text, line] : bad) {
+    try {
+      (void)parse_scenario(kScene + "contacts:\n  c:\n" + text, "bad.yaml");
+      FAIL() << "accepted " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), line) << e.what();
+    }
+  }
+}
+
 TEST(ScenarioContacts, UnknownMasterPartNamesTheLineAndSuggests) {
   try {
     (void)parse_scenario(kScene + R"(contacts:
