@@ -1,12 +1,13 @@
-// Contact cost per slave node per cycle (ContactInterface::compute: travel check, re-sorts when
-// due, projection, forces) against the master surface size: a square plate of n x n shell
-// segments (10k, 100k, 1M) and the nodes of a second plate of the same size and pitch, offset by
-// a third of an element in plane, hovering at the contact distance with a random vertical
-// jitter of +-5 % of the element size so that about half of them are in contact. Each cycle the
-// slave nodes move by a random velocity of 1e-3 element sizes per step in plane and bounce in
-// a +-5 % band vertically, so that re-sorts happen every ~100 cycles (the rate in a crash run).
-// Linear-time search means the per-node figure stays flat: 1M vs 10k within 1.3x.
-// Items processed = slave nodes x cycles: the reported items_per_second inverted is ns/node/cycle.
+// Contact cost per tested node per cycle, one-pass, two-pass and single-surface,
+// (ContactInterface::compute: travel check, re-sorts when due, projection, forces) against the
+// master surface size: a square plate of n x n shell segments (10k, 100k, 1M) and the nodes of a
+// second plate of the same size and pitch, offset by a third of an element in plane, hovering at
+// the contact distance with a random vertical jitter of +-5 % of the element size so that about
+// half of them are in contact. Each cycle the slave nodes move by a random velocity of 1e-3 element
+// sizes per step in plane and bounce in a +-5 % band vertically, so that re-sorts happen every ~100
+// cycles (the rate in a crash run). Linear-time search means the per-node figure stays flat: 1M vs
+// 10k within 1.3x. Items processed = slave nodes x cycles: the reported items_per_second inverted
+// is ns/node/cycle.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -22,8 +23,14 @@ constexpr double kH = 0.005;  // element size [m]
 constexpr double kT = 0.001;  // shell thickness [m]
 constexpr double kDt = 1e-6;  // step [s]
 
+/// range(1): 0 node-to-surface (one pass), 1 surface-to-surface (two passes: also the master
+/// plate's nodes against the slave plate's faces), 2 single-surface over both plates (every node
+/// against every other segment). Items = the nodes the passes test.
 void BM_ContactPerSlaveNode(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const auto kind = static_cast<model::ContactKind>(state.range(1) == 0   ? 0
+                                                    : state.range(1) == 1 ? 1
+                                                                          : 2);
   model::Model m;
   m.materials.push_back({"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}});
   model::Part p;
@@ -38,8 +45,13 @@ void BM_ContactPerSlaveNode(benchmark::State& state) {
   const std::size_t nn = m.nodes.count();
   model::Contact c;
   c.name = "plates";
+  c.kind = kind;
   c.master_parts = {0};
-  for (std::size_t i = n_master; i < nn; ++i) c.slave_nodes.push_back(static_cast<std::int32_t>(i));
+  if (kind == model::ContactKind::SingleSurface)
+    c.master_parts = {0, 1};
+  else
+    for (std::size_t i = n_master; i < nn; ++i)
+      c.slave_nodes.push_back(static_cast<std::int32_t>(i));
   std::vector<double> mass(nn, 7850.0 * kT * kH * kH), x = m.nodes.x0, v(3 * nn, 0.0), f(3 * nn);
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -65,7 +77,10 @@ void BM_ContactPerSlaveNode(benchmark::State& state) {
     active += step.active_pairs;
     ++cycles;
   }
-  const auto ns = static_cast<std::int64_t>(c.slave_nodes.size());
+  const auto ns = static_cast<std::int64_t>(
+      kind == model::ContactKind::NodeToSurface      ? c.slave_nodes.size()
+      : kind == model::ContactKind::SurfaceToSurface ? c.slave_nodes.size() + n_master
+                                                     : nn);
   state.SetItemsProcessed(state.iterations() * ns);
   state.counters["segments"] = static_cast<double>(ci.segment_count());
   state.counters["slaves"] = static_cast<double>(ns);
@@ -76,9 +91,7 @@ void BM_ContactPerSlaveNode(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_ContactPerSlaveNode)
-    ->Arg(100)
-    ->Arg(316)
-    ->Arg(1000)
+    ->ArgsProduct({{100, 316, 1000}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(300)  // the same cycles at every size: the same share of re-sorts (~2)
     ->Repetitions(3)
