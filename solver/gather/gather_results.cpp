@@ -113,6 +113,30 @@ void write_probes(const model::Model& global, const partition::Decomposition& de
   }
 }
 
+/// into += from, from's rows linearly interpolated at into's times (held at its ends).
+void add_interpolated(const io::ContactHistory& from, io::ContactHistory& into) {
+  if (from.time_s.empty()) return;
+  const bool energy = !from.energy_J.empty() && !into.energy_J.empty();
+  for (std::size_t r = 0; r < into.time_s.size(); ++r) {
+    const double t = into.time_s[r];
+    auto it = std::lower_bound(from.time_s.begin(), from.time_s.end(), t);
+    std::size_t b = static_cast<std::size_t>(it - from.time_s.begin());
+    std::size_t a = b;
+    double w = 0.0;
+    if (b >= from.time_s.size()) {
+      a = b = from.time_s.size() - 1;
+    } else if (b > 0 && from.time_s[b] != t) {
+      a = b - 1;
+      w = (t - from.time_s[a]) / (from.time_s[b] - from.time_s[a]);
+    } else {
+      a = b;
+    }
+    for (std::size_t d = 0; d < 3; ++d)
+      into.force_N[3 * r + d] += (1.0 - w) * from.force_N[3 * a + d] + w * from.force_N[3 * b + d];
+    if (energy) into.energy_J[r] += (1.0 - w) * from.energy_J[a] + w * from.energy_J[b];
+  }
+}
+
 void write_contacts(const model::Model& global, const partition::Decomposition& dec,
                     const std::vector<DomainFile>& files, double t_cut, io::ResultWriter& writer,
                     GatherReport& report) {
@@ -134,6 +158,25 @@ void write_contacts(const model::Model& global, const partition::Decomposition& 
           fmt::format("contact '{}': not read from domain '{}': {}", name, f->name, e.what()));
       continue;
     }
+    // A single-surface contact is computed in every domain holding its parts (each over its own
+    // elements): the force and energy are the sums, the others' rows interpolated linearly in
+    // time onto the first holder's.
+    if (global.contacts[i].kind == model::ContactKind::SingleSurface)
+      for (const DomainFile& o : files) {
+        if (&o == f || !o.reader) continue;
+        const auto& list = dec.domains[static_cast<std::size_t>(o.domain)].model.contacts;
+        if (std::none_of(list.begin(), list.end(), [&](const auto& x) { return x.name == name; }))
+          continue;
+        io::ContactHistory other;
+        try {
+          other = o.reader->contact(name);
+        } catch (const Error& e) {
+          report.notes.push_back(
+              fmt::format("contact '{}': domain '{}' not added: {}", name, o.name, e.what()));
+          continue;
+        }
+        add_interpolated(other, h);
+      }
     const std::size_t k = rows_until(h.time_s, t_cut);
     writer.append_contact_rows(i, std::span<const double>(h.time_s.data(), k),
                                io::contact_samples(h, k));

@@ -144,6 +144,9 @@ ContactSides contact_sides(const Analysis& a, std::size_t ci) {
   const model::Model& g = *a.global;
   const auto& c = g.contacts[ci];
   ContactSides s;
+  // A single-surface contact is computed in every domain holding its parts' elements, each over
+  // its own (sub_model.cpp): no side, no surface to gather, nothing moves for it.
+  if (c.kind == model::ContactKind::SingleSurface) return s;
   for (int p : c.master_parts) {
     const int d = a.part_domain[static_cast<std::size_t>(p)];
     if (s.master_domain >= 0 && d != s.master_domain)

@@ -66,6 +66,11 @@ Decomposition decompose_paper(const Analysis& a) {
   // Contacts: in the master's domain A; slave nodes A does not have become copies in A.
   pl.contact_domain.assign(g.contacts.size(), -1);
   for (std::size_t c = 0; c < g.contacts.size(); ++c) {
+    if (g.contacts[c].kind == model::ContactKind::SingleSurface)
+      throw ModelError(fmt::format(
+          "contact '{}': a single_surface contact is not supported by the `paper` scheme; use "
+          "`layer` (the default), where each domain computes it over its own elements",
+          g.contacts[c].name));
     const ContactSides s = contact_sides(a, c);
     const int A = s.master_domain;
     pl.contact_domain[c] = A;

@@ -173,6 +173,17 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
 
   // Contacts placed here, remapped to local slave nodes and master parts.
   for (std::size_t c = 0; c < g.contacts.size(); ++c) {
+    if (g.contacts[c].kind == model::ContactKind::SingleSurface) {
+      // Over this domain's elements of its parts (moved layers included): folds within a domain
+      // are found, a fold across a cut between two domains is not (docs/scenario-format.md).
+      model::Contact lc = g.contacts[c];
+      lc.master_parts.clear();
+      for (int p : g.contacts[c].master_parts)
+        if (g2l_part[static_cast<std::size_t>(p)] >= 0)
+          lc.master_parts.push_back(g2l_part[static_cast<std::size_t>(p)]);
+      if (!lc.master_parts.empty()) m.contacts.push_back(std::move(lc));
+      continue;
+    }
     if (pl.contact_domain[c] != d) continue;
     model::Contact lc = g.contacts[c];
     // Two-pass: the slave faces are taken on the whole model, where a face between two
