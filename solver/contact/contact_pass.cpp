@@ -4,7 +4,8 @@
 //   closest point x_c, shape functions N_a, unit normal n (projection.h); h = o_s + o_m
 //   (thickness offsets: half the shell thickness around the node, t/2 of a shell segment, 0 for
 //   solids); distance d from the segment's mid-surface; penetration g = h - d.
-//   The pair is the candidate with the NEAREST closest point among those with g > 0 (beyond
+//   The pair is the candidate with the NEAREST closest point of all (classify: the signed
+//   distance to the surface), in contact when every tied nearest one says g > 0 (beyond
 //   round-off, 1e-10 of the segment size): g is then h minus the distance to the surface, a
 //   function of the configuration alone (no memory of earlier segments), continuous as the node
 //   slides from one segment to the next, so the penalty force below is the gradient of the
@@ -127,11 +128,21 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
   for (std::size_t i = 0; i < nseg; ++i) {
     const std::int32_t* q = &seg_.nodes[4 * i];
     const int nn = seg_.triangle(i) ? 3 : 4;
+    // The mean of its nodes' masses before any is fixed (a segment with a clamped corner still
+    // moves on its free nodes; and a boundary condition cut away at a domain's edge must not
+    // change it).
     double ms = 0.0;
-    for (int a = 0; a < nn; ++a) ms += np.mass_kg[static_cast<std::size_t>(q[a])];
+    for (int a = 0; a < nn; ++a) ms += np.unfixed_mass_kg[static_cast<std::size_t>(q[a])];
     seg_mass_kg_[i] = ms / nn;
     size_sum += segment_max_diagonal(x0, q);
     seg_size_m_[i] = std::sqrt(segment_area(x0, q));
+  }
+  seg_key_.resize(nseg);
+  for (std::size_t i = 0; i < nseg; ++i) {
+    for (int a = 0; a < 4; ++a)
+      seg_key_[i][static_cast<std::size_t>(a)] =
+          m.nodes.id[static_cast<std::size_t>(seg_.nodes[4 * i + static_cast<std::size_t>(a)])];
+    std::sort(seg_key_[i].begin(), seg_key_[i].end());
   }
   gap_cap_m_ = kInf;
   for (std::size_t i = 0; i < nseg; ++i)
@@ -157,7 +168,9 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
     // Skipped for node s: every segment sharing a node with a segment that holds s (its own
     // segments and their neighbours, which lie within about one element of it).
     std::vector<std::int32_t> start(n + 1, 0);
-    for (auto i : seg_.nodes) ++start[static_cast<std::size_t>(i) + 1];
+    for (std::size_t i = 0; i < nseg; ++i)  // a triangle's repeated third node counts once
+      for (int a = 0; a < (seg_.triangle(i) ? 3 : 4); ++a)
+        ++start[static_cast<std::size_t>(seg_.nodes[4 * i + static_cast<std::size_t>(a)]) + 1];
     for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
     std::vector<std::int32_t> segs_of(static_cast<std::size_t>(start[n]));
     std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
@@ -235,20 +248,22 @@ double ContactPass::max_stiffness_over_mass(const StiffnessRule& rule) const {
       seg_inv = std::max(seg_inv, im);
     }
   }
-  double node_inv = 0.0, own_k = 0.0, own_k_over_m = 0.0;
+  double node_inv = 0.0, own_k = 0.0, own_k_over_m = 0.0, rigid_node_inv = 0.0;
   bool any_mass = false;
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     if (!(node_mass_kg_[k] > 0.0)) continue;  // a `paper` copy: its pairs bound no step
     any_mass = true;
     const double im = inv(node_mass_kg_[k]);
     node_inv = std::max(node_inv, im);
+    if (!(node_k_N_m_[k] > 0.0)) rigid_node_inv = std::max(rigid_node_inv, im);
     own_k = std::max(own_k, node_k_N_m_[k]);
     own_k_over_m = std::max(own_k_over_m, node_k_N_m_[k] * im);
   }
   double w2 = seg_k_over_m + seg_k * node_inv;
   if (any_rigid) {
     w2 = std::max(w2, own_k_over_m + own_k * rigid_inv);
-    w2 = std::max(w2, rigid_k_over_m + rigid_k * node_inv);  // both rigid
+    if (rigid_node_inv > 0.0)  // both rigid: nodes without own stiffness on rigid segments
+      w2 = std::max(w2, rigid_k_over_m + rigid_k * rigid_node_inv);
   }
   if (rule.soft && rule.dt0_s > 0.0) w2 = std::max(w2, rule.soft_scale / (rule.dt0_s * rule.dt0_s));
   return !any_mass || seg_.size() == 0 ? 0.0 : w2;
@@ -390,18 +405,10 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     }
     const std::int32_t sn = nodes_[k];
     const double* p = x + 3 * static_cast<std::size_t>(sn);
-    // The nearest candidate (ties within 1e-9 of the segment size kept together, up to kTies).
-    constexpr int kTies = 4;
-    struct Hit {
-      double g = 0.0;
-      double dir[3] = {0.0, 0.0, 0.0};
-      Projection pr;
-      std::size_t i = 0;
-      int side = 0;
-    };
-    Hit hits[kTies];
-    int nhits = 0;
-    double best_dist = kInf, tie_tol = 0.0;
+    // Every candidate's verdict first, then the nearest and its ties (within 1e-9 of the largest
+    // segment size among them), taken in the order of their nodes' ids: the same pair, force and
+    // sums whatever the order of the segments in this model (mono or a cut one).
+    hits_.clear();
     double sleep_gap = kInf;
     for (std::size_t c = b0; c < b1; ++c) {
       const auto i = static_cast<std::size_t>(cand_.segment[c]);
@@ -425,27 +432,32 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       sleep_gap = 0.0;
       Hit hit;
       if (!classify(k, i, xa, p, hit.pr, hit.g, hit.dir, hit.side)) continue;
-      const double dist = last_dist_;
+      hit.dist = last_dist_;
       const double size = seg_size_m_[i];
       // Touching a face it does not penetrate, within round-off: no witness of being outside
       // (a slave edge node of two flush bars lies on the master's side plane, at distance ~0
       // from it, and inside the end face it hits).
-      if (!(hit.g > 1e-10 * size) && dist <= 1e-9 * size) continue;
+      if (!(hit.g > 1e-10 * size) && hit.dist <= 1e-9 * size) continue;
       hit.i = i;
-      if (dist < best_dist - tie_tol) {
-        best_dist = dist;
-        tie_tol = 1e-9 * size;
-        hits[0] = hit;
-        nhits = 1;
-      } else if (dist <= best_dist + tie_tol && nhits < kTies) {
-        hits[nhits++] = hit;
-      }
+      hits_.push_back(hit);
     }
+    double best_dist = kInf, tie_size = 0.0;
+    for (const auto& h : hits_) best_dist = std::min(best_dist, h.dist);
+    for (const auto& h : hits_)
+      if (h.dist <= best_dist * (1.0 + 1e-12) + 1e-12)
+        tie_size = std::max(tie_size, seg_size_m_[h.i]);
+    std::size_t nhits = 0;
+    for (std::size_t h = 0; h < hits_.size(); ++h)
+      if (hits_[h].dist <= best_dist + 1e-9 * tie_size) hits_[nhits++] = hits_[h];
+    hits_.resize(nhits);
+    if (nhits > 1)
+      std::sort(hits_.begin(), hits_.end(),
+                [&](const Hit& l, const Hit& r) { return seg_key_[l.i] < seg_key_[r.i]; });
     // Contact when the nearest segments all say penetrating (beyond round-off, 1e-10 of the
     // segment size). A tie that disagrees is a node in front of a face and level with the
     // plane of the face beside it, off that one's edge: outside (a convex edge).
     bool inside = nhits > 0;
-    for (int t = 0; t < nhits; ++t) inside = inside && hits[t].g > 1e-10 * seg_size_m_[hits[t].i];
+    for (const auto& h : hits_) inside = inside && h.g > 1e-10 * seg_size_m_[h.i];
     if (!inside) {
       ft[0] = ft[1] = ft[2] = 0.0;
       side_[k] = 0;
@@ -454,21 +466,23 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       continue;
     }
     ++out.active_pairs;
-    side_[k] = static_cast<std::int8_t>(hits[0].side);
+    side_[k] = static_cast<std::int8_t>(hits_[0].side);
     // Tied nearest segments (a node straight below a vertex or an edge of a convex master, by
-    // symmetry): the mean direction, the force shared equally, so that mirror images get
-    // mirror forces whatever the order of the segments.
+    // symmetry): the mean direction, the force shared equally, the largest penetration and
+    // stiffness of them, so that mirror images get mirror forces.
     double dir[3] = {0.0, 0.0, 0.0};
-    for (int t = 0; t < nhits; ++t)
-      for (int a = 0; a < 3; ++a) dir[a] += hits[t].dir[a];
+    double g = 0.0, kp = 0.0;
+    for (const auto& h : hits_) {
+      for (int a = 0; a < 3; ++a) dir[a] += h.dir[a];
+      g = std::max(g, h.g);
+      kp = std::max(
+          kp, pair_stiffness(k, h.i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[h.i]), rule));
+    }
     const double dl = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
     if (dl > 0.0)
       for (int a = 0; a < 3; ++a) dir[a] /= dl;
     else
-      for (int a = 0; a < 3; ++a) dir[a] = hits[0].dir[a];
-    const double g = hits[0].g;
-    const double kp =
-        pair_stiffness(k, hits[0].i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[hits[0].i]), rule);
+      for (int a = 0; a < 3; ++a) dir[a] = hits_[0].dir[a];
     const double fn = kp * g;
     out.potential_J += 0.5 * kp * g * g;
     double F[3];
@@ -478,13 +492,12 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       const double* vs = v + 3 * static_cast<std::size_t>(sn);
       for (int a = 0; a < 3; ++a) {
         double vm = 0.0;
-        for (int t = 0; t < nhits; ++t) {
-          const std::int32_t* q = &seg_.nodes[4 * hits[t].i];
+        for (const auto& h : hits_) {
+          const std::int32_t* q = &seg_.nodes[4 * h.i];
           for (int b = 0; b < 4; ++b)
-            vm += hits[t].pr.N[b] *
-                  v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
+            vm += h.pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
         }
-        vrel[a] = vs[a] - vm / nhits;
+        vrel[a] = vs[a] - vm / static_cast<double>(nhits);
       }
       friction_update(friction, dir, vrel, kp, dt, fn, ft);
       for (int a = 0; a < 3; ++a) F[a] += ft[a];
@@ -493,12 +506,12 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     }
     applied.apply(f, sn, F, 1.0);
     for (int a = 0; a < 3; ++a) out.resultant_N[a] += F[a];
-    const double share = 1.0 / nhits;
-    for (int t = 0; t < nhits; ++t) {
-      const std::int32_t* q = &seg_.nodes[4 * hits[t].i];
-      const int nn = seg_.triangle(hits[t].i) ? 3 : 4;
+    const double share = 1.0 / static_cast<double>(nhits);
+    for (const auto& h : hits_) {
+      const std::int32_t* q = &seg_.nodes[4 * h.i];
+      const int nn = seg_.triangle(h.i) ? 3 : 4;
       for (int b = 0; b < nn; ++b)
-        if (hits[t].pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * hits[t].pr.N[b]);
+        if (h.pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * h.pr.N[b]);
     }
   }
 }
@@ -525,6 +538,18 @@ void ContactPass::restore_state(const core::StateReader& r, const std::string& p
         fmt::format("checkpoint {}: contact '{}' has {} nodes in a pass, the checkpoint's "
                     "candidate list {}",
                     r.path(), name, nodes_.size(), cand_.offset.size() - 1));
+  bool sound = cand_.offset.empty() ||
+               (cand_.offset.front() == 0 &&
+                static_cast<std::size_t>(cand_.offset.back()) == cand_.segment.size());
+  for (std::size_t k = 1; sound && k < cand_.offset.size(); ++k)
+    sound = cand_.offset[k] >= cand_.offset[k - 1];
+  for (std::size_t c = 0; sound && c < cand_.segment.size(); ++c)
+    sound = cand_.segment[c] >= 0 && static_cast<std::size_t>(cand_.segment[c]) < seg_.size();
+  if (!sound)
+    throw CheckpointError(
+        fmt::format("checkpoint {}: contact '{}': the candidate list ({} pairs) does not fit "
+                    "this model's {} segments; restart from a checkpoint of this scenario",
+                    r.path(), name, cand_.segment.size(), seg_.size()));
   r.get_exact(prefix + "ft_N", ft_N_);
   r.get_exact(prefix + "side", side_);
   std::fill(wake_m_.begin(), wake_m_.end(), 0.0);  // every node tested again: same results

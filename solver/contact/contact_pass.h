@@ -2,6 +2,7 @@
 // One pass of a contact: a set of nodes against a set of segments (contact_interface.cpp says
 // how passes make one-pass, two-pass and single-surface contact). Search, pair selection and
 // penalty forces per cycle; the formulas are on the functions in contact_pass.cpp.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -84,6 +85,15 @@ class ContactPass {
   bool classify(std::size_t k, std::size_t i, const double* xa, const double* p, Projection& pr,
                 double& g, double* dir, int& side);
   double last_dist_ = 0.0;  // classify's distance of the node to the segment [m]
+  struct Hit {              // one candidate's verdict (compute)
+    double g = 0.0, dist = 0.0;
+    double dir[3] = {0.0, 0.0, 0.0};
+    Projection pr;
+    std::size_t i = 0;
+    int side = 0;
+  };
+  std::vector<Hit> hits_;                             // scratch, kept between calls
+  std::vector<std::array<std::int64_t, 4>> seg_key_;  // [nseg] sorted node ids: tie order
   double gap_cap_m_ = 0.0;  // least depth of the one-sided faces [m] (classify)
 
   SegmentSet seg_;

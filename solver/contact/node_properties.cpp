@@ -23,9 +23,9 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
   np.mass_kg.assign(n, 0.0);
   const double* x0 = m.nodes.x0.data();
   // The contact's elements: those of its master parts and those holding a slave node. A cut
-  // model holds all of them in the contact's domain (solver/partition), so masses summed over
-  // them are the same in mono and in that domain (a node shared with a part of another domain
-  // counts only its share from these; the step bound and k_soft use them).
+  // model holds all of them in the contact's domain (solver/partition), so what is taken from
+  // them (offsets, stiffness, masses) is the same in mono and in that domain (a node shared with
+  // a part of another domain counts only these).
   std::vector<std::uint8_t> slave(n, 0), master(m.parts.size(), 0);
   for (auto i : c.slave_nodes)
     if (i >= 0 && static_cast<std::size_t>(i) < n) slave[static_cast<std::size_t>(i)] = 1;
@@ -53,9 +53,10 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
         share = rho * part.thickness_m * A / (tri ? 3.0 : 4.0);
         for (std::size_t a = 0; a < (tri ? 3u : 4u); ++a) {
           const auto i = static_cast<std::size_t>(q[a]);
+          if (!mine) continue;
           np.half_thickness_m[i] = std::max(np.half_thickness_m[i], 0.5 * part.thickness_m);
           if (!rigid) np.stiffness_N_m[i] = std::max(np.stiffness_N_m[i], k);
-          if (mine) np.mass_kg[i] += share;
+          np.mass_kg[i] += share;
         }
         continue;
       }
@@ -69,8 +70,9 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
       const double k = solid_face_stiffness(penalty_scale, K, A, V);
       for (std::size_t a = 0; a < 8; ++a) {
         const auto i = static_cast<std::size_t>(q[a]);
+        if (!mine) continue;
         if (!rigid) np.stiffness_N_m[i] = std::max(np.stiffness_N_m[i], k);
-        if (mine) np.mass_kg[i] += share;
+        np.mass_kg[i] += share;
       }
     }
   }
@@ -93,6 +95,7 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
     }
     for (auto i : nodes) np.mass_kg[static_cast<std::size_t>(i)] = body;
   }
+  np.unfixed_mass_kg = np.mass_kg;
   if (!m.fixed.empty())
     for (std::size_t i = 0; i < n; ++i)
       if ((m.fixed[i] & 7u) == 7u) np.mass_kg[i] = std::numeric_limits<double>::infinity();

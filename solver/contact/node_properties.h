@@ -18,6 +18,7 @@ struct NodeProperties {
   std::vector<double> half_thickness_m;  ///< [n]
   std::vector<double> stiffness_N_m;     ///< [n]
   std::vector<double> mass_kg;           ///< [n]
+  std::vector<double> unfixed_mass_kg;   ///< [n] mass_kg before fixed nodes become infinite
 };
 
 /// For contact c (penalty scale, master parts, slave nodes); `mass` [n] the solver's lumped

@@ -231,11 +231,13 @@ SegmentSet build_faces(const model::Model& m, const std::vector<std::int32_t>& f
         found = &*it;
         break;
       }
-    if (!found)
+    if (!found) {
+      const auto id = [&](std::int32_t i) { return m.nodes.id[static_cast<std::size_t>(i)]; };
       throw ModelError(fmt::format(
-          "contact face with nodes {} {} {} {} belongs to no element of this model (internal "
+          "contact face with node ids {} {} {} {} belongs to no element of this model (internal "
           "error: slave faces are taken from the model's elements)",
-          q[0], q[1], q[2], q[3]));
+          id(q[0]), id(q[1]), id(q[2]), id(q[3])));
+    }
     push_face(m, *found, q, penalty_scale, s);
   }
   return s;

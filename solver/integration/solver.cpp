@@ -389,24 +389,29 @@ void Solver::set_contact_step_references() {
   // Each contact's soft springs are sized with dt_scale x the least stable step of the elements
   // on its nodes at the start (contact_pass.cpp pair_stiffness): a property of the contact's own
   // elements, the same in mono and in whichever domain of a cut model holds the contact.
+  // The contact's elements (as for its masses, node_properties.h): those of its master parts
+  // and those holding a slave node.
   std::vector<std::uint8_t> mark(n_, 0);
-  for (auto& c : contacts_) {
-    const auto nodes = c.nodes();
-    for (auto i : nodes) mark[static_cast<std::size_t>(i)] = 1;
+  for (std::size_t ci = 0; ci < contacts_.size(); ++ci) {
+    auto& c = contacts_[ci];
+    const auto& mc = model_.contacts[ci];
+    for (auto i : mc.slave_nodes) mark[static_cast<std::size_t>(i)] = 1;
     double least = std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < parts_.size(); ++p) {
       const auto& steps = parts_[p].element_dt_s;
       if (steps.empty()) continue;
       const auto& part = model_.parts[p];
+      const bool master = std::find(mc.master_parts.begin(), mc.master_parts.end(),
+                                    static_cast<int>(p)) != mc.master_parts.end();
       const auto k = static_cast<std::size_t>(model::nodes_per_element(part.kind));
-      for (std::size_t e = 0; e < steps.size(); ++e)
-        for (std::size_t a = 0; a < k; ++a)
-          if (mark[static_cast<std::size_t>(part.connectivity[k * e + a])]) {
-            least = std::min(least, steps[e]);
-            break;
-          }
+      for (std::size_t e = 0; e < steps.size(); ++e) {
+        bool mine = master;
+        for (std::size_t a = 0; a < k && !mine; ++a)
+          mine = mark[static_cast<std::size_t>(part.connectivity[k * e + a])] != 0;
+        if (mine) least = std::min(least, steps[e]);
+      }
     }
-    for (auto i : nodes) mark[static_cast<std::size_t>(i)] = 0;
+    for (auto i : mc.slave_nodes) mark[static_cast<std::size_t>(i)] = 0;
     if (!std::isfinite(least)) least = dt_stable_;  // rigid on rigid: the domain's step
     if (std::isfinite(least)) c.set_step_reference(model_.controls.dt_scale * least);
   }
@@ -421,11 +426,11 @@ void Solver::compute_contact_forces(double dt) {
   // theirs). The step dt = s dt_e (s = controls.dt_scale, w_e dt_e = 2) is stable while
   // (2 s)^2 + (w_c dt)^2 <= 4, i.e. dt <= 2 sqrt(1 - s^2) / w_c = dt_c sqrt(1 - s^2) (dt_c =
   // 2 / w_c, the springs' own critical step): as a stable step before the factor s,
-  //   dt_stable <= dt_c sqrt(1 - s^2) / s     (0.48 dt_c at s = 0.9; s taken <= 0.95).
+  //   dt_stable <= dt_c sqrt(1 - s^2) / s     (0.48 dt_c at s = 0.9; s taken <= 0.995).
   // A minimum, so that every domain of a cut model bounds its own springs as mono does; a soft
   // spring (k = 0.1 m / dt^2, w_c dt = 0.32) never binds, a stiff one on a light node does: the
   // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up (issue 21).
-  const double sf = std::min(model_.controls.dt_scale, 0.95);
+  const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());

@@ -253,3 +253,31 @@ TEST(ContactInterface, SleepingNodesGiveTheSameForces) {
               200 * static_cast<int>(m.contacts[0].slave_nodes.size()),
               static_cast<long long>(contacts));
 }
+
+TEST(ContactInterface, SingleSurfaceSeesATriangleOverAQuad) {
+  // One shell part: a 10 mm quad at z = 0 and a triangle 0.6 mm above it (t = 1 mm, so the
+  // mid-surfaces must stay 1 mm apart). Single-surface: the triangle's three nodes press on the
+  // quad (none of the quad's segments is the triangle's own or a neighbour). A triangle's
+  // repeated node once made segment 0 everybody's "own" segment: no pair at all.
+  model::Model m;
+  add_steel(m);
+  const double z = 0.0006;
+  m.nodes.x0 = {0, 0,     0,     0.01, 0,     0,     0.01, 0.01,  0,     0, 0.01,
+                0, 0.002, 0.002, z,    0.008, 0.002, z,    0.005, 0.008, z};
+  m.nodes.id = {1, 2, 3, 4, 5, 6, 7};
+  model::Part p = steel_part("folded", 0.001);
+  p.kind = model::ElementKind::Shell4;
+  p.connectivity = {0, 1, 2, 3, 4, 5, 6, 6};
+  p.element_id = {1, 2};
+  m.parts.push_back(p);
+  m.fixed.assign(m.nodes.count(), 0);
+  model::Contact c;
+  c.name = "self";
+  c.kind = model::ContactKind::SingleSurface;
+  c.master_parts = {0};
+  std::vector<double> mass(m.nodes.count(), 1e-4), v(3 * m.nodes.count(), 0.0), f(v.size(), 0.0);
+  ContactInterface ci(m, c, mass.data());
+  const auto r = ci.compute(m.nodes.x0.data(), v.data(), 0.0, f.data());
+  EXPECT_EQ(r.active_pairs, 3);  // the triangle's nodes; the quad's lie outside the triangle
+  for (std::size_t i = 4; i < 7; ++i) EXPECT_GT(f[3 * i + 2], 0.0) << "node " << i;
+}
