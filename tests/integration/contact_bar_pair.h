@@ -110,7 +110,6 @@ inline BarPair make_bar_pair(const BarPairSpec& s) {
   }
   m.initial_velocities = {v};
   c.master_parts = {s.slave_striker ? 1 : 0};
-  c.soft = std::getenv("CRASHLINK_NOSOFT") == nullptr;
   c.kind = s.two_pass ? model::ContactKind::SurfaceToSurface : model::ContactKind::NodeToSurface;
   m.contacts.push_back(c);
   m.controls.end_time_s = 0.0;  // set by the caller

@@ -39,18 +39,37 @@ double mean_vx(const integration::Solver& s, const std::vector<std::int32_t>& no
   return p / mt;
 }
 
+/// The contact pulse on the striker: duration between the crossings of half the 1-D plateau
+/// (a discrete pulse has sloped edges) and impulse (trapezoid rule) from samples of the resultant.
+struct PulseRecorder {
+  double half_plateau_N = 0.0;
+  double t_first = -1.0, t_last = -1.0, impulse = 0.0, t_prev = 0.0, f_prev = 0.0;
+  void sample(double t, double fx) {
+    if (std::fabs(fx) > half_plateau_N) {
+      if (t_first < 0.0) t_first = t;
+      t_last = t;
+    }
+    impulse += 0.5 * (fx + f_prev) * (t - t_prev);
+    t_prev = t;
+    f_prev = fx;
+  }
+  void finish(double area_m2, BarPairResult& r) const {
+    r.duration_s = t_last - t_first;
+    r.mean_pressure_Pa = r.duration_s > 0.0 ? impulse / (area_m2 * r.duration_s) : 0.0;
+  }
+};
+
 BarPairResult run_mono(const BarPairSpec& spec) {
   BarPair b = make_bar_pair(spec);
   BarPairResult r;
   r.c = std::sqrt(210e9 / r.rho);
   const double T = 2.0 * spec.length_m / r.c;
-  if (std::getenv("CRASHLINK_NO_BULK")) b.m.controls.bulk_viscosity = false;
   b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * T;
   const double side = std::min(spec.side_striker_m, spec.side_struck_m);
   const double A = side * side;
   const double p_th = 0.5 * r.rho * r.c * spec.speed_m_s;
   integration::Solver s(b.m);
-  double t_first = -1.0, t_last = -1.0, impulse = 0.0, t_prev = 0.0, f_prev = 0.0;
+  PulseRecorder pulse{0.5 * p_th * A};
   bool first = true;
   try {
     run(s, [&](const integration::Solver& sv) {
@@ -58,15 +77,7 @@ BarPairResult run_mono(const BarPairSpec& spec) {
       if (first) r.E0 = e.total_J(), first = false;
       const auto& cs = sv.contact_steps()[0];
       // force on the striker, -x while in contact
-      const double fx = spec.slave_striker ? -cs.resultant_N[0] : cs.resultant_N[0];
-      const double t = sv.time_s();
-      if (std::fabs(fx) > 0.5 * p_th * A) {
-        if (t_first < 0.0) t_first = t;
-        t_last = t;
-      }
-      impulse += 0.5 * (fx + f_prev) * (t - t_prev);
-      t_prev = t;
-      f_prev = fx;
+      pulse.sample(sv.time_s(), spec.slave_striker ? -cs.resultant_N[0] : cs.resultant_N[0]);
       r.contact_min_J = std::min(r.contact_min_J, e.contact_J);
       r.contact_end_J = e.contact_J;
       r.kinetic_end_J = e.kinetic_J;
@@ -75,8 +86,7 @@ BarPairResult run_mono(const BarPairSpec& spec) {
   } catch (const std::exception& e) {
     r.stopped = e.what();
   }
-  r.duration_s = t_last - t_first;
-  r.mean_pressure_Pa = r.duration_s > 0.0 ? impulse / (A * r.duration_s) : 0.0;
+  pulse.finish(A, r);
   r.v_striker = mean_vx(s, b.striker);
   r.v_struck = mean_vx(s, b.struck);
   return r;
@@ -136,29 +146,20 @@ BarPairResult run_multi(const BarPairSpec& spec, double* ratio) {
     smin = std::min(smin, st);
   }
   *ratio = smax / smin;
-  double t_first = -1.0, t_last = -1.0, impulse = 0.0, t_prev = 0.0, f_prev = 0.0;
+  PulseRecorder pulse{0.5 * p_th * A};
   try {
     net.run([&](std::size_t k) {
       if (k != kc) return;
       const auto& sv = net.solver(kc);
       const auto& cs = sv.contact_steps()[0];
-      const double fx = spec.slave_striker ? -cs.resultant_N[0] : cs.resultant_N[0];
-      const double t = sv.time_s();
-      if (std::fabs(fx) > 0.5 * p_th * A) {
-        if (t_first < 0.0) t_first = t;
-        t_last = t;
-      }
-      impulse += 0.5 * (fx + f_prev) * (t - t_prev);
-      t_prev = t;
-      f_prev = fx;
+      pulse.sample(sv.time_s(), spec.slave_striker ? -cs.resultant_N[0] : cs.resultant_N[0]);
       r.contact_min_J = std::min(r.contact_min_J, cs.energy_J);
       r.contact_end_J = cs.energy_J;
     });
   } catch (const std::exception& e) {
     r.stopped = e.what();
   }
-  r.duration_s = t_last - t_first;
-  r.mean_pressure_Pa = r.duration_s > 0.0 ? impulse / (A * r.duration_s) : 0.0;
+  pulse.finish(A, r);
   double ps = 0.0, ms = 0.0, pb = 0.0, mb = 0.0, ke = 0.0;
   for (std::size_t g = 0; g < b.m.nodes.count(); ++g) {
     const auto& sv = net.solver(d.owner_solver[g]);

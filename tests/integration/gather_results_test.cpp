@@ -125,8 +125,6 @@ model::Model falling_block() {
   m.controls.history_interval_s = 1e-5;
   m.controls.field_interval_s = 5e-4;
   m.controls.bulk_viscosity = true;
-  if (std::getenv("CRASHLINK_ONE_PASS")) m.contacts[0].kind = model::ContactKind::NodeToSurface;
-  if (std::getenv("CRASHLINK_NOSOFT")) m.contacts[0].soft = false;
   return m;
 }
 
