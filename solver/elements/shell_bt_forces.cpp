@@ -15,10 +15,23 @@
 //     and the write-back.
 //
 // Kinematics at the single in-plane point, in the corotational frame (e1, e2, e3) built from the
-// CURRENT geometry x^{n+1} ([LSTM] BT shell: e3 = r31 x r42 / |.|, e1 = normalised projection of
-// r21, e2 = e3 x e1). The velocity strains use the same geometry (LS-DYNA practice; kernel_io.h
-// asks for the mid-step geometry: the difference is O(dt^2) and this keeps rigid rotations exactly
-// strain-free). Mindlin velocity field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]):
+// CURRENT geometry x^{n+1}: e3 = r31 x r42 / |.| ([LSTM] BT shell), e1 = the normalised
+// r31/|r31| - r42/|r42| (the bisector of the diagonals; for a rectangle numbered as the manual's
+// figure it is along r21, the manual's e1), e2 = e3 x e1 (= the other bisector, along
+// r31/|r31| + r42/|r42|). Not the manual's e1 along r21: an edge's rotation under in-plane shear
+// differs from the other edges', so a frame that follows edge 1-2 rotates the stored stresses
+// differently depending on the corner where the numbering starts, and a mesh and its mirror image
+// (whose elements start at mirrored corners of other edges) drift apart. The bisector frame is the
+// same for every starting corner (a shift by one node turns it by 90 degrees, an exact relabelling
+// of the isotropic response) and is mirrored with the element: a symmetric structure stays
+// symmetric to round-off (issue 21: the sphere dropped on a plate kept the symmetry about x = 0
+// to 1e-13 but lost that about y = 0 at 1e-4 of the impact speed, with e1 along r21; LS-DYNA
+// offers invariant node numbering for the same reason, *CONTROL_SHELL INN). A triangle (n3 == n2)
+// takes the same formula, r31 and r42 being then its edges from nodes 1 and 2 to node 3: its
+// frame still depends on the numbering.
+// The velocity strains use the same geometry (LS-DYNA practice; kernel_io.h asks for the mid-step
+// geometry: the difference is O(dt^2) and this keeps rigid rotations exactly strain-free).
+// Mindlin velocity field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]):
 //   d_xx  = B1.vx,            d_yy = B2.vy,            2d_xy = B2.vx + B1.vy          (membrane)
 //   k_xx  = B1.thy,           k_yy = -B2.thx,          2k_xy = B2.thy - B1.thx        (curvature)
 //   2d_xz = B1.vz + N.thy,    2d_yz = B2.vz - N.thx,   N_I = 1/4                       (shear)
@@ -224,28 +237,32 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
     // ---- corotational frame, local coordinates, B, gamma ([LSTM] BT shell) -------------------
     double e1[3][L], e2[3][L], e3[3][L];
     double A[L], B1[4][L], B2[4][L], Gm[4][L], BB[L], lmax2[L], lmax[L], Le[L];
-    double s3[3][L], nsq[L], len[L];
+    double s3[3][L], nsq[L], len[L], r31[3][L], r42[3][L], n31[L], n42[L], l31[L], l42[L];
     for (std::size_t l = 0; l < L; ++l) {
-      double r31[3], r42[3];
       for (int c = 0; c < 3; ++c) {
-        r31[c] = X[2][c][l] - X[0][c][l];
-        r42[c] = X[3][c][l] - X[1][c][l];
+        r31[c][l] = X[2][c][l] - X[0][c][l];
+        r42[c][l] = X[3][c][l] - X[1][c][l];
       }
-      s3[0][l] = r31[1] * r42[2] - r31[2] * r42[1];
-      s3[1][l] = r31[2] * r42[0] - r31[0] * r42[2];
-      s3[2][l] = r31[0] * r42[1] - r31[1] * r42[0];
+      s3[0][l] = r31[1][l] * r42[2][l] - r31[2][l] * r42[1][l];
+      s3[1][l] = r31[2][l] * r42[0][l] - r31[0][l] * r42[2][l];
+      s3[2][l] = r31[0][l] * r42[1][l] - r31[1][l] * r42[0][l];
       nsq[l] = s3[0][l] * s3[0][l] + s3[1][l] * s3[1][l] + s3[2][l] * s3[2][l];
+      n31[l] = r31[0][l] * r31[0][l] + r31[1][l] * r31[1][l] + r31[2][l] * r31[2][l];
+      n42[l] = r42[0][l] * r42[0][l] + r42[1][l] * r42[1][l] + r42[2][l] * r42[2][l];
     }
     sqrt_lanes(nsq, len, L);
+    sqrt_lanes(n31, l31, L);
+    sqrt_lanes(n42, l42, L);
+    // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, projected on the plane.
     for (std::size_t l = 0; l < L; ++l) {
-      const double inv = 1.0 / len[l];
-      double r21[3];
+      const double inv = 1.0 / len[l], i31 = 1.0 / l31[l], i42 = 1.0 / l42[l];
+      double b[3];
       for (int c = 0; c < 3; ++c) {
-        r21[c] = X[1][c][l] - X[0][c][l];
+        b[c] = r31[c][l] * i31 - r42[c][l] * i42;
         e3[c][l] = s3[c][l] * inv;
       }
-      const double d = r21[0] * e3[0][l] + r21[1] * e3[1][l] + r21[2] * e3[2][l];
-      for (int c = 0; c < 3; ++c) e1[c][l] = r21[c] - d * e3[c][l];
+      const double d = b[0] * e3[0][l] + b[1] * e3[1][l] + b[2] * e3[2][l];
+      for (int c = 0; c < 3; ++c) e1[c][l] = b[c] - d * e3[c][l];
       nsq[l] = e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l];
     }
     sqrt_lanes(nsq, len, L);

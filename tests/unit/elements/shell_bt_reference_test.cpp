@@ -85,6 +85,10 @@ el::KernelResult reference(const model::Part& part, const materials::Material& m
     e3[2] = r31[0] * r42[1] - r31[1] * r42[0];
     const double n3 = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
     for (double& x : e3) x /= n3;
+    // e1 bisects the diagonals (shell_bt_forces.cpp): r31/|r31| - r42/|r42|, projected.
+    const double l31 = std::sqrt(r31[0] * r31[0] + r31[1] * r31[1] + r31[2] * r31[2]);
+    const double l42 = std::sqrt(r42[0] * r42[0] + r42[1] * r42[1] + r42[2] * r42[2]);
+    for (int k = 0; k < 3; ++k) r21[k] = r31[k] / l31 - r42[k] / l42;  // reused: the bisector
     const double d = r21[0] * e3[0] + r21[1] * e3[1] + r21[2] * e3[2];
     for (int k = 0; k < 3; ++k) e1[k] = r21[k] - d * e3[k];
     const double n1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
