@@ -257,7 +257,7 @@ TEST(ContactSpherePlate, Elastic50Measured) {
 
 // Passes since the shell frame is numbering-invariant (lateral 9e-14 v0); before: lateral
 // 9.4e-5 v0, the rest passed (no stop, contact energy >= 0).
-TEST(ContactSpherePlate, DISABLED_Elastic50Acceptance) {
+TEST(ContactSpherePlate, Elastic50Acceptance) {
   expect_acceptance(result_of(50, false), nullptr);
 }
 
@@ -269,7 +269,7 @@ TEST(ContactSpherePlate, J2_50Measured) {
 
 // Passes since the shell frame is numbering-invariant (lateral 3e-13 v0); before: lateral
 // 1.8e-4 v0, the rest passed.
-TEST(ContactSpherePlate, DISABLED_J2_50Acceptance) {
+TEST(ContactSpherePlate, J2_50Acceptance) {
   expect_acceptance(result_of(50, true), nullptr);
 }
 
@@ -284,7 +284,7 @@ TEST(ContactSpherePlate, Elastic200Measured) {
 // Today: lateral 6.6e-2 v0 (v_y -0.65 m/s at the end); an 8.7 kN spike at 3.76 ms, E_c - potential
 // moves by 0.66 J in one cycle, contact energy ends at -0.93 J (-3.1e-2 E0); no stop; the 1 %
 // values are today's own.
-TEST(ContactSpherePlate, DISABLED_Elastic200Acceptance) {
+TEST(ContactSpherePlate, Elastic200Acceptance) {
   if (!long_runs()) GTEST_SKIP() << "200 x 200 (about 2 min): set CRASHLINK_LONG=1";
   expect_acceptance(result_of(200, false), &kToday200Elastic);
 }
