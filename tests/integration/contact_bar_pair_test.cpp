@@ -59,17 +59,29 @@ struct PulseRecorder {
   }
 };
 
-BarPairResult run_mono(const BarPairSpec& spec) {
-  BarPair b = make_bar_pair(spec);
+/// The scene with its end time (the gap closed, then 1.6 x 2L/c), the contact area (the smaller
+/// face) and the pulse recorder at half the 1-D plateau rho c v / 2.
+struct BarScene {
+  BarPair b;
   BarPairResult r;
-  r.c = std::sqrt(210e9 / r.rho);
-  const double T = 2.0 * spec.length_m / r.c;
-  b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * T;
-  const double side = std::min(spec.side_striker_m, spec.side_struck_m);
-  const double A = side * side;
-  const double p_th = 0.5 * r.rho * r.c * spec.speed_m_s;
+  double area_m2 = 0.0;
+  PulseRecorder pulse;
+  explicit BarScene(const BarPairSpec& spec) : b(make_bar_pair(spec)) {
+    r.c = std::sqrt(210e9 / r.rho);
+    b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * 2.0 * spec.length_m / r.c;
+    const double side = std::min(spec.side_striker_m, spec.side_struck_m);
+    area_m2 = side * side;
+    pulse.half_plateau_N = 0.5 * (0.5 * r.rho * r.c * spec.speed_m_s) * area_m2;
+  }
+};
+
+BarPairResult run_mono(const BarPairSpec& spec) {
+  BarScene sc(spec);
+  BarPair& b = sc.b;
+  BarPairResult& r = sc.r;
+  PulseRecorder& pulse = sc.pulse;
+  const double A = sc.area_m2;
   integration::Solver s(b.m);
-  PulseRecorder pulse{0.5 * p_th * A};
   bool first = true;
   try {
     run(s, [&](const integration::Solver& sv) {
@@ -120,14 +132,11 @@ void report(const BarPairSpec& spec, const BarPairResult& r) {
 BarPairResult run_multi(const BarPairSpec& spec, double* ratio) {
   BarPairSpec sp = spec;
   sp.domains = true;
-  BarPair b = make_bar_pair(sp);
-  BarPairResult r;
-  r.c = std::sqrt(210e9 / r.rho);
-  const double T = 2.0 * spec.length_m / r.c;
-  b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * T;
-  const double side = std::min(spec.side_striker_m, spec.side_struck_m);
-  const double A = side * side;
-  const double p_th = 0.5 * r.rho * r.c * spec.speed_m_s;
+  BarScene sc(sp);
+  BarPair& b = sc.b;
+  BarPairResult& r = sc.r;
+  PulseRecorder& pulse = sc.pulse;
+  const double A = sc.area_m2;
   const auto mass = crashlink::testing::lumped_mass(b.m);
   cosim::LayerNetworkOptions o;
   o.step_safety = 0.9;
@@ -146,7 +155,6 @@ BarPairResult run_multi(const BarPairSpec& spec, double* ratio) {
     smin = std::min(smin, st);
   }
   *ratio = smax / smin;
-  PulseRecorder pulse{0.5 * p_th * A};
   try {
     net.run([&](std::size_t k) {
       if (k != kc) return;

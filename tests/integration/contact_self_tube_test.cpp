@@ -27,9 +27,8 @@
 //                 peak included).
 //
 // The tube's single-surface contact (model::ContactKind::SingleSurface, master_parts = the tube,
-// no slave nodes) is not implemented yet: while the contact interface refuses it, the self-contact
-// tests skip with its message. ContactSelfTube.WithoutSelfContact* run today's code on the same
-// scene without it (the ram contact only), for comparison.
+// no slave nodes); ContactSelfTube.WithoutSelfContact* run the same scene without it (the ram
+// contact only), for comparison: there the walls pass through each other.
 //
 // Mesh: 5 mm around; 5 mm along the coarse part, 2 mm along the 60 mm fine part at the struck end
 // (stable steps 2.5 x apart); multi: the two parts in two domains ("coarse", "fine" with the ram),
@@ -65,8 +64,6 @@ double superfolding_force(const TubeSpec& s) {
 }
 
 struct TubeResult {
-  bool skipped = false;
-  std::string skip_reason;
   double E0 = 0.0;
   double pen_max_m = -1.0, t_pen = 0.0;
   double pen_initial_m = 0.0;  ///< at t = 0: < 0 (-t: no node within t of a segment it may touch)
@@ -80,10 +77,6 @@ struct TubeResult {
   double t_end = 0.0, wall_s = 0.0, check_s = 0.0;
   std::string stopped;
 };
-
-bool refuses_self_contact(const std::exception& e) {
-  return std::string(e.what()).find("contact 'self") != std::string::npos;
-}
 
 /// What every run samples: the interfaces' contact energies, the ram, the balance; the
 /// penetration every `sample_dt`.
@@ -149,15 +142,8 @@ TubeResult run_mono(const TubeSpec& spec) {
   const Tube tube = make_tube(spec);
   const auto w0 = std::chrono::steady_clock::now();
   std::unique_ptr<integration::Solver> s;
-  try {
-    s = std::make_unique<integration::Solver>(tube.m);
-    s->initialize();
-  } catch (const ModelError& e) {
-    if (!refuses_self_contact(e)) throw;
-    r.skipped = true;
-    r.skip_reason = e.what();
-    return r;
-  }
+  s = std::make_unique<integration::Solver>(tube.m);
+  s->initialize();
   Sampler smp(tube, spec, r);
   try {
     for (;;) {
@@ -186,15 +172,8 @@ TubeResult run_multi(const TubeSpec& spec) {
   o.variable_steps = true;
   o.step_safety = 0.9;
   std::unique_ptr<cosim::LayerNetwork> net;
-  try {
-    net = std::make_unique<cosim::LayerNetwork>(tube.m, o);
-    net->initialize();
-  } catch (const ModelError& e) {
-    if (!refuses_self_contact(e)) throw;
-    r.skipped = true;
-    r.skip_reason = e.what();
-    return r;
-  }
+  net = std::make_unique<cosim::LayerNetwork>(tube.m, o);
+  net->initialize();
   Sampler smp(tube, spec, r);
   std::size_t k_fine = 0;
   for (std::size_t k = 0; k < net->size(); ++k)
@@ -281,7 +260,6 @@ bool long_runs() {
 void crush(TubeSpec spec, bool multi, const char* label, bool check_force) {
   spec.domains = multi;
   const TubeResult r = multi ? run_multi(spec) : run_mono(spec);
-  if (r.skipped) GTEST_SKIP() << "single-surface contact not available yet: " << r.skip_reason;
   report(label, spec, r);
   expect_acceptance(spec, r, check_force);
 }
