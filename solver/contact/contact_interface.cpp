@@ -87,7 +87,8 @@ ContactInterface::ContactInterface(const model::Model& m, const model::Contact& 
   std::vector<std::int32_t> master_nodes;
   SegmentSet slave_segments;
   if (c.kind == model::ContactKind::SurfaceToSurface) {
-    const auto faces = c.slave_faces.empty() ? slave_faces(m, slave) : c.slave_faces;
+    const auto faces =
+        c.slave_faces.empty() ? slave_faces(m, slave, c.master_parts) : c.slave_faces;
     for (auto i : faces)
       if (i < 0 || static_cast<std::size_t>(i) >= n)
         throw ModelError(fmt::format(

@@ -188,22 +188,35 @@ SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_
   return s;
 }
 
-std::vector<std::int32_t> slave_faces(const model::Model& m,
-                                      const std::vector<std::int32_t>& nodes) {
+std::vector<std::int32_t> slave_faces(const model::Model& m, const std::vector<std::int32_t>& nodes,
+                                      const std::vector<int>& master_parts) {
   std::vector<std::uint8_t> in(m.nodes.count(), 0);
   for (auto i : nodes)
     if (i >= 0 && static_cast<std::size_t>(i) < in.size()) in[static_cast<std::size_t>(i)] = 1;
+  // nodes of the master parts' elements: a face holding one is glued to the master side
+  std::vector<std::uint8_t> master(m.nodes.count(), 0);
+  for (int p : master_parts)
+    if (p >= 0 && static_cast<std::size_t>(p) < m.parts.size())
+      for (auto i : m.parts[static_cast<std::size_t>(p)].connectivity)
+        master[static_cast<std::size_t>(i)] = 1;
   std::vector<std::int32_t> out;
   const auto faces = model_faces(m, true);
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j].key == faces[i].key) ++j;
     const FaceRef& f = faces[i];
-    const bool all_in =
-        in[static_cast<std::size_t>(f.key[0])] && in[static_cast<std::size_t>(f.key[1])] &&
-        in[static_cast<std::size_t>(f.key[2])] && in[static_cast<std::size_t>(f.key[3])];
-    // a shell element, or a hexahedron face used once (exterior)
-    if (all_in && (f.face == 255 || j == i + 1)) {
+    int n_in = 0;
+    bool glued = false;
+    for (auto k : f.key) {
+      n_in += in[static_cast<std::size_t>(k)];
+      glued = glued || master[static_cast<std::size_t>(k)];
+    }
+    const bool shell = f.face == 255;
+    // a shell element with all four nodes in; an exterior hexahedron face (used once) with all
+    // four in, or with some in and none on the master side (the side faces along the slave
+    // face's edges: a tilted face's edge then meets a surface, not a gap between two)
+    const bool take = shell ? n_in == 4 : (j == i + 1 && (n_in == 4 || (n_in > 0 && !glued)));
+    if (take) {
       const auto q = face_nodes(m, f);
       out.insert(out.end(), q.begin(), q.end());
     }

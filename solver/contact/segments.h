@@ -56,11 +56,13 @@ double segment_max_diagonal(const double* x, const std::int32_t* q);
 SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_parts,
                           double penalty_scale);
 
-/// The faces made of the given nodes only: shell elements with all four nodes in the set and
-/// exterior hexahedron faces (used by one Hex8 of the model) with all four in the set, outward;
-/// 4 node indices per face, in model order. The slave surface of a two-pass contact.
-std::vector<std::int32_t> slave_faces(const model::Model& m,
-                                      const std::vector<std::int32_t>& nodes);
+/// The slave surface of a two-pass contact, outward, 4 node indices per face in model order:
+/// shell elements with all four nodes in the set; exterior hexahedron faces (used by one Hex8 of
+/// the model) with all four nodes in the set, or with at least one in the set and none on an
+/// element of a master part (the side faces along the slave face's edges, so that a tilted
+/// face's edge meets a surface; faces glued to the master side stay out).
+std::vector<std::int32_t> slave_faces(const model::Model& m, const std::vector<std::int32_t>& nodes,
+                                      const std::vector<int>& master_parts);
 
 /// Segments for explicit faces (4 node indices each, as slave_faces gives them), with the
 /// offset, depth and stiffness of the element each face belongs to. Throws ModelError if a face

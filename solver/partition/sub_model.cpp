@@ -198,7 +198,7 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
       lc.slave_faces.clear();
     }
     if (lc.kind == model::ContactKind::SurfaceToSurface && lc.slave_faces.empty())
-      lc.slave_faces = contact::slave_faces(g, lc.slave_nodes);
+      lc.slave_faces = contact::slave_faces(g, lc.slave_nodes, lc.master_parts);
     for (auto& s : lc.slave_nodes) s = local(s);
     for (auto& s : lc.slave_faces) s = local(s);
     for (int& p : lc.master_parts) {

@@ -27,6 +27,7 @@ struct BarPairSpec {
   bool two_pass = false;
   bool domains = false;  ///< striker and struck bar in domains "striker", "struck"
   double nu = 0.3;
+  double end_after_2L_c = 1.6;  ///< run length after the gap closes, in units of 2L/c
 };
 
 struct BarPair {

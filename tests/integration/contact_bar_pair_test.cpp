@@ -68,7 +68,8 @@ struct BarScene {
   PulseRecorder pulse;
   explicit BarScene(const BarPairSpec& spec) : b(make_bar_pair(spec)) {
     r.c = std::sqrt(210e9 / r.rho);
-    b.m.controls.end_time_s = spec.gap_m / spec.speed_m_s + 1.6 * 2.0 * spec.length_m / r.c;
+    b.m.controls.end_time_s =
+        spec.gap_m / spec.speed_m_s + spec.end_after_2L_c * 2.0 * spec.length_m / r.c;
     const double side = std::min(spec.side_striker_m, spec.side_struck_m);
     area_m2 = side * side;
     pulse.half_plateau_N = 0.5 * (0.5 * r.rho * r.c * spec.speed_m_s) * area_m2;
@@ -93,6 +94,9 @@ BarPairResult run_mono(const BarPairSpec& spec) {
       r.contact_min_J = std::min(r.contact_min_J, e.contact_J);
       r.contact_end_J = e.contact_J;
       r.kinetic_end_J = e.kinetic_J;
+      if (std::getenv("CRASHLINK_TRACE_BARS"))
+        std::printf("trace t %.4e contact %.5e ke %.5e F %.4e\n", sv.time_s(), e.contact_J / r.E0,
+                    e.kinetic_J / r.E0, cs.resultant_N[0]);
       r.total_end_J = e.total_J();
     });
   } catch (const std::exception& e) {
@@ -277,23 +281,38 @@ TEST(ContactBarPair, OffsetFacesMeetTheImpedanceAnswer) {
 }
 
 // Steel (nu 0.3): lateral inertia makes the 1-D answer approximate (the striker keeps 1.2 % of
-// v as vibration), the energy criteria hold. A 5 degree misalignment (the striker's edge hits
-// first, the bars turn and still touch at the end): no stop, no kinetic energy gained; the
-// contact energy dips to -1.0 % of E0 at the edge impact (issue 21 asks -0.5 %: open).
-TEST(ContactBarPair, PoissonAndMisalignmentMeasured) {
+// v as vibration), the energy criteria hold.
+TEST(ContactBarPair, PoissonRatioKeepsTheEnergyCriteria) {
   BarPairSpec steel = equal_bars(true, true, true);
   steel.nu = 0.3;
   const auto r = run_mono(steel);
   report(steel, r);
   expect_energy(steel, r);
   EXPECT_NEAR(r.v_struck, steel.speed_m_s, 0.02 * steel.speed_m_s);
-  BarPairSpec tilt = equal_bars(true, true, true);
-  tilt.misalignment_deg = 5.0;
-  const auto q = run_mono(tilt);
-  report(tilt, q);
-  EXPECT_TRUE(q.stopped.empty()) << q.stopped;
-  EXPECT_LE(q.kinetic_end_J + q.contact_end_J, 1.005 * q.E0);
-  EXPECT_GE(q.contact_min_J, -0.02 * q.E0);  // measured -0.0101 E0
+}
+
+// A 5 degree misalignment (the striker turned about y: its edge hits first, the bars turn, touch
+// along the face and part at about 2.2 x 2L/c; run to 3 x 2L/c): the energy criteria, mono and
+// multi, each side in turn the finer, 5 and 50 m/s. The edge meets the struck face and the
+// struck face's nodes meet the striker's side faces (slave_faces takes the exterior faces along
+// the slave face's edges): without those faces the contact energy dipped to -1.0 % of E0.
+TEST(ContactBarPair, MisalignedBarsKeepTheEnergyCriteria) {
+  for (double v : {5.0, 50.0})
+    for (bool fine_striker : {true, false}) {
+      BarPairSpec tilt = equal_bars(fine_striker, true, true, v);
+      tilt.misalignment_deg = 5.0;
+      tilt.end_after_2L_c = 3.0;
+      if (const char* e = std::getenv("CRASHLINK_BARS_END")) tilt.end_after_2L_c = std::atof(e);
+      const auto q = run_mono(tilt);
+      report(tilt, q);
+      expect_energy(tilt, q);
+      double ratio = 0.0;
+      const auto qm = run_multi(tilt, &ratio);
+      std::printf("[measured] multi, step ratio %.2f:\n", ratio);
+      report(tilt, qm);
+      EXPECT_GE(ratio, 2.4);
+      expect_energy(tilt, qm);
+    }
 }
 
 // Multi: each bar its own domain (steps 2.5x apart), each in turn the finer, two-pass.
