@@ -297,22 +297,32 @@ TEST(ContactSpherePlate, J2_200Measured) {
 
 // Today: lateral 4.1e-2 v0 (v_x = v_y = +0.117 m/s at the end, the diagonal the issue saw);
 // E_c - potential moves by 0.037 J (1.2e-3 E0) in one cycle at 2.08 ms, contact energy ends at
-// -0.22 J (-7.3e-3 E0); no stop; the 1 % values are today's own.
-TEST(ContactSpherePlate, DISABLED_J2_200Acceptance) {
+// -0.22 J (-7.3e-3 E0); no stop. The issue's 1 % values are the elastic run's; today's J2 peak
+// (5057 N) is the spike of that contact-energy event, not the impact's, so J2 is held to the
+// rest of the item (symmetry, no jump, no negative contact energy, 6 ms) and its figures are
+// printed beside today's (measured: lateral 4e-15 v0, rebound 5.1315 m/s against 5.0869,
+// loading peak 3502.8 N against the spike's 5056.8 N, deflection -13.431 mm against -13.413).
+TEST(ContactSpherePlate, J2_200Acceptance) {
   if (!long_runs()) GTEST_SKIP() << "200 x 200 (about 2 min): set CRASHLINK_LONG=1";
-  expect_acceptance(result_of(200, true), &kToday200J2);
+  const auto& r = result_of(200, true);
+  std::printf(
+      "[measured] J2 200 x 200 against today: rebound %.4f m/s (%.4f), peak of the loading "
+      "%.1f N (%.1f), deflection %.3f mm (%.3f)\n",
+      r.vz_end, kToday200J2.rebound_m_s, r.first_peak_N, kToday200J2.peak_N, 1e3 * r.deflection_m,
+      1e3 * kToday200J2.deflection_m);
+  expect_acceptance(r, nullptr);
 }
 
-/// Calibration: CRASHLINK_SPHERE="side div mass ts j2 end_ms" runs one scene and prints it (mass
-/// 0: the sphere elements' own, 4 pi R^2 ts 7850 kg/m^3).
+/// Calibration: CRASHLINK_SPHERE="side div mass ts j2 end_ms [dt_scale]" runs one scene and prints
+/// it (mass 0: the sphere elements' own, 4 pi R^2 ts 7850 kg/m^3).
 TEST(ContactSpherePlate, Explore) {
   const char* v = std::getenv("CRASHLINK_SPHERE");
   if (!v) GTEST_SKIP() << "set CRASHLINK_SPHERE='side div mass ts j2 end_ms'";
   SpherePlateSpec s;
   int j2 = 0;
   double end_ms = 6.0;
-  std::sscanf(v, "%lf %d %lf %lf %d %lf", &s.plate_side_m, &s.plate_divisions, &s.sphere_mass_kg,
-              &s.sphere_thickness_m, &j2, &end_ms);
+  std::sscanf(v, "%lf %d %lf %lf %d %lf %lf", &s.plate_side_m, &s.plate_divisions,
+              &s.sphere_mass_kg, &s.sphere_thickness_m, &j2, &end_ms, &s.dt_scale);
   s.j2 = j2 != 0;
   s.end_time_s = 1e-3 * end_ms;
   report(s, run_sphere_plate(s));
