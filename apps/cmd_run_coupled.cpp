@@ -15,6 +15,7 @@
 #include "apps/cmd_run.h"
 #include "apps/launcher.h"
 #include "apps/timing_reader.h"
+#include "solver/contact/contact_advice.h"
 #include "solver/coordination/coordinator_run.h"
 #include "solver/core/errors.h"
 #include "solver/gather/gather_results.h"
@@ -187,6 +188,8 @@ int run_coupled(const RunCommandOptions& o) {
   if (!o.quiet)
     fmt::print(stderr, "crashlink run: estimated {}\n",
                model::describe(model::estimate_run(model, model::estimated_stable_step_s(model))));
+  for (const auto& a : contact::advice(model))
+    fmt::print(stderr, "crashlink run: warning: {}\n", a);
 
   LaunchOptions lo;
   lo.scenario = o.scenario;

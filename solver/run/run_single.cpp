@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solver/contact/contact_advice.h"
 #include "solver/core/errors.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_writer.h"
@@ -47,6 +48,8 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
     if (options.progress)
       fmt::print(stderr, "{}: estimated {}\n", options.domain_name,
                  model::describe(model::estimate_run(model, solver.dt_s())));
+    for (const auto& a : contact::advice(model))
+      fmt::print(stderr, "{}: warning: {}\n", options.domain_name, a);
     if (options.restart) {
       cpu_before = checkpoints.restore(restart_at, recorder, solver);
     } else {
