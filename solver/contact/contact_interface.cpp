@@ -151,7 +151,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
   ContactStep out;
   // Work of the forces of t^n over this step (the first half of the trapezoid rule).
   const double work_old = dt > 0.0 ? s.applied.work(v, dt) : 0.0;
-  s.applied.clear();
+  s.applied.clear(dt > 0.0 ? v : nullptr);  // sums this step's F^{n+1} . v as it applies them
   double min_ratio = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < s.passes.size(); ++p) {
     PassResult r;
@@ -163,7 +163,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     out.potential_J += r.potential_J;
     min_ratio = std::min(min_ratio, s.passes[p].min_mass_over_stiffness(s.rule));
   }
-  if (dt > 0.0) s.energy_J -= 0.5 * (work_old + s.applied.work(v, dt));
+  if (dt > 0.0) s.energy_J -= 0.5 * (work_old + s.applied.summed_work(dt));
   out.energy_J = s.energy_J;
   out.dt_stable_s = std::isfinite(min_ratio) ? 2.0 * std::sqrt(min_ratio)
                                              : std::numeric_limits<double>::infinity();

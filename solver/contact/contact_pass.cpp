@@ -96,12 +96,20 @@ double gap_beyond_reach(const double* xa, const double* p, double reach) {
 }  // namespace
 
 double AppliedForces::work(const double* v, double dt) const {
-  double w = 0.0;
-  for (std::size_t e = 0; e < node.size(); ++e) {
+  return sum_power(v, 0, 0.0) * dt;
+}
+
+double AppliedForces::summed_work(double dt) {
+  sum_new();
+  return power_W_ * dt;
+}
+
+double AppliedForces::sum_power(const double* v, std::size_t e0, double w) const {
+  for (std::size_t e = e0; e < node.size(); ++e) {
     const double* vi = v + 3 * static_cast<std::size_t>(node[e]);
     w += force_N[3 * e] * vi[0] + force_N[3 * e + 1] * vi[1] + force_N[3 * e + 2] * vi[2];
   }
-  return w * dt;
+  return w;
 }
 
 ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
@@ -513,6 +521,7 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       for (int b = 0; b < nn; ++b)
         if (h.pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * h.pr.N[b]);
     }
+    applied.sum_new();  // this node's entries, still in cache
   }
 }
 
