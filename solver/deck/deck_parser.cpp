@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include "solver/core/errors.h"
@@ -139,6 +140,8 @@ struct Block {
   std::string pending_title;
   std::int64_t pending_eid = 0, pending_pid = 0;  ///< two-card solids
   std::int32_t pending_line = 0;
+  CardRef ref;             ///< the keyword's line
+  std::size_t before = 0;  ///< records of its kind before the block (records_of)
 };
 
 class Parser {
@@ -149,6 +152,7 @@ class Parser {
     finish_block();
     b_ = Block{};
     b_.keyword = std::string(k);
+    b_.ref = ref;
     bool title = false, id = false;
     if (std::find(ignored().begin(), ignored().end(), std::string(k.substr(1))) !=
         ignored().end()) {
@@ -163,6 +167,7 @@ class Parser {
                                    k.substr(1), supported_list()));
     b_.title = title;
     b_.id = id;
+    b_.before = records_of(b_.kw);
     if (b_.kw == Kw::Database) ++d_.without_effect[b_.keyword];
     if (b_.kw == Kw::SetNodeList || b_.kw == Kw::SetNodeListGenerate || b_.kw == Kw::SetPartList ||
         b_.kw == Kw::SetPartListGenerate) {
@@ -246,14 +251,54 @@ class Parser {
     return ignored_;
   }
 
+  /// How many records of the kind `kw` makes the deck holds (SIZE_MAX: not counted).
+  std::size_t records_of(Kw kw) const {
+    switch (kw) {
+      case Kw::Part:
+        return d_.parts.size();
+      case Kw::SectionShell:
+      case Kw::SectionSolid:
+        return d_.sections.size();
+      case Kw::MatElastic:
+      case Kw::MatRigid:
+      case Kw::MatPlasticKinematic:
+      case Kw::MatPiecewiseLinear:
+        return d_.materials.size();
+      case Kw::DefineCurve:
+        return d_.curves.size();
+      case Kw::SpcNode:
+      case Kw::SpcSet:
+        return d_.spcs.size();
+      case Kw::VelocityGeneration:
+      case Kw::VelocityNode:
+        return d_.velocities.size();
+      default:
+        return SIZE_MAX;
+    }
+  }
+
   void finish_block() {
+    // A keyword whose cards are missing would define nothing without a word.
+    const std::size_t before = b_.before;
+    const bool empty = (before != SIZE_MAX && records_of(b_.kw) == before) ||
+                       (b_.kw == Kw::Termination && b_.card == 0) ||
+                       (b_.kw == Kw::DefineCurve && !d_.curves.empty() &&
+                        records_of(b_.kw) != before && d_.curves.back().a.empty()) ||
+                       (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList &&
+                        b_.kw <= Kw::SetPartListGenerate && d_.sets.back().id == 0);
+    if (empty && !b_.keyword.empty())
+      throw InputError(d_.files.name(b_.ref.file), b_.ref.line, b_.keyword,
+                       b_.kw == Kw::DefineCurve && records_of(b_.kw) != before
+                           ? "the curve has no point; fix: add its points (A, O) after LCID"
+                           : "its cards are missing (the next keyword or the end of the file "
+                             "follows); fix: add them or remove the keyword");
     if (b_.kw == Kw::ElementSolid && b_.card == 1) {
       // "EID PID" card without its node card: the deck ends inside an element.
       throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
                        "an element's node card is missing after its EID/PID card; fix: add it");
     }
     if ((b_.kw == Kw::MatPlasticKinematic || b_.kw == Kw::MatPiecewiseLinear) &&
-        !d_.materials.empty())
+        records_of(b_.kw) != before)
       check_material_end();
     if (b_.kw == Kw::SectionShell && card_index() == 1)
       throw InputError(d_.files.name(d_.sections.back().ref.file), d_.sections.back().ref.line,

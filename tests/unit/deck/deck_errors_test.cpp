@@ -237,6 +237,19 @@ TEST_F(DeckErrors, ShellSectionChecks) {
             "with 3 to 9; fix: write NIP 3 (elastic) or 5 (plasticity)");
 }
 
+TEST_F(DeckErrors, AKeywordWithoutItsCards) {
+  auto d = cube();
+  d.insert(d.begin() + 19, "*MAT_ELASTIC");
+  EXPECT_EQ(error_of(d),
+            "err.k:20: *MAT_ELASTIC: its cards are missing (the next keyword or the end of the "
+            "file follows); fix: add them or remove the keyword");
+  d[19] = "*DEFINE_CURVE";
+  d.insert(d.begin() + 20, "         7");
+  EXPECT_EQ(error_of(d),
+            "err.k:20: *DEFINE_CURVE: the curve has no point; fix: add its points (A, O) after "
+            "LCID");
+}
+
 TEST_F(DeckErrors, ADataCardBeforeAnyKeyword) {
   auto d = cube();
   d.insert(d.begin(), "       1     0.0");
