@@ -1,11 +1,14 @@
 #include "apps/cmd_run.h"
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "apps/cmd_compare.h"
 #include "apps/cmd_hic.h"
 #include "apps/stop_signal.h"
 #include "solver/core/errors.h"
+#include "solver/deck/model_from_deck.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/exit_codes.h"
@@ -16,7 +19,8 @@ namespace crashlink::apps {
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   auto* run = app.add_subcommand("run", "run a scenario locally and write DIR/result.h5");
-  run->add_option("scenario", o.scenario, "scenario YAML file")
+  run->add_option("scenario", o.scenario,
+                  "scenario YAML file, or a keyword deck (.k, .key, .dyn, .kw; docs/decks.md)")
       ->required()
       ->check(CLI::ExistingFile);
   run->add_option("--out", o.out, "output directory (result.h5, result.xdmf)")
@@ -62,11 +66,47 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("--restart", o.restart,
                   "resume the run in this folder (its --out) from the newest checkpoint every "
                   "process has; same scenario and mode (split/multi: and step safety)");
+  run->add_option("--units", o.units,
+                  "a keyword deck's unit system: mm-t-s | m-kg-s | mm-kg-ms | mm-g-ms | cm-g-us | "
+                  "in-lbf-s (converted to SI; docs/decks.md)");
+  run->add_option("--ignore", o.ignore,
+                  "a keyword deck's keywords to skip, without '*' (e.g. ELEMENT_BEAM,"
+                  "CONTACT_AUTOMATIC_SINGLE_SURFACE); each is printed with its card count")
+      ->delimiter(',');
   add_session_flags(*run, o.session);
   return run;
 }
 
+namespace {
+
+/// The model of `o.scenario`: a YAML scenario, or a keyword deck with --units (its messages
+/// printed), and its fingerprint for the checkpoints.
+model::Model read_input(const RunCommandOptions& o, std::string& hash) {
+  if (!deck::is_deck_path(o.scenario)) {
+    if (!o.units.empty() || !o.ignore.empty())
+      throw InputError(fmt::format(
+          "run: --units and --ignore apply to keyword decks (.k, .key, .dyn, .kw); {} is a YAML "
+          "scenario in SI units: remove them",
+          o.scenario));
+    hash = io::scenario_hash(o.scenario);
+    return io::read_scenario(o.scenario);
+  }
+  deck::DeckRead d = deck::read_deck(o.scenario, {o.units, o.ignore});
+  for (const auto& m : d.messages) std::printf("crashlink run: deck: %s\n", m.c_str());
+  std::ifstream in(o.scenario, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  hash = fmt::format("{:016x}", io::fnv1a64(bytes + "\n--units " + o.units));
+  return std::move(d.model);
+}
+
+}  // namespace
+
 int run_run(const RunCommandOptions& o) {
+  if (deck::is_deck_path(o.scenario) && o.mode != "mono")
+    throw InputError(fmt::format(
+        "run: {} is a keyword deck; decks run with --mode mono in this version (split and multi "
+        "need a `domains:` block by part id, the next step of issue 22); fix: --mode mono",
+        o.scenario));
   if (!o.restart.empty() && !o.reference.empty())
     throw InputError("run: --restart continues one run: use it without --reference");
   if (!o.reference.empty()) {
@@ -98,7 +138,8 @@ int run_run(const RunCommandOptions& o) {
   }
   if (o.mode != "mono") return run_coupled(o);
   const std::string out = o.restart.empty() ? o.out : o.restart;
-  const auto model = io::read_scenario(o.scenario);
+  std::string hash;
+  const auto model = read_input(o, hash);
   std::printf("crashlink run: %s (%zu nodes, %zu elements, end time %.4g s) -> %s\n",
               model.name.c_str(), model.nodes.count(), model.element_count(),
               model.controls.end_time_s, out.c_str());
@@ -108,7 +149,7 @@ int run_run(const RunCommandOptions& o) {
   opt.progress = !o.quiet;
   opt.checkpoint_interval_s = o.checkpoint_interval_s;
   opt.restart = !o.restart.empty();
-  opt.scenario_hash = io::scenario_hash(o.scenario);
+  opt.scenario_hash = hash;
   install_stop_handlers();
   opt.stop = &stop_flag();
   const auto summary = run::run_single_domain(model, opt);

@@ -14,8 +14,11 @@
 //   --checkpoint-interval S: checkpoints of every process (mono: of the run) every S of simulated
 //     time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest one every
 //     process has, and ends as the uninterrupted run would have (docs/checkpoints.md).
+//   SCENARIO may be a keyword deck (.k, .key, .dyn, .kw) with --units SYSTEM [--ignore K1,K2]:
+//     mono only in this version (docs/decks.md).
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "apps/session_flags.h"
 #include "apps/shared_defaults.h"
@@ -43,6 +46,10 @@ struct RunCommandOptions {
   bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
   bool no_drift = false;        ///< `paper`: drift correction [11] off
   bool variable_steps = false;  ///< each domain follows its own step (DESIGN.md §2.6)
+  /// A keyword deck's unit system (deck/units.h); required for a deck, refused for YAML.
+  std::string units;
+  /// A deck's keywords to skip (--ignore K1,K2), each printed with its card count.
+  std::vector<std::string> ignore;
 };
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);

@@ -1,6 +1,7 @@
 // The `materials` section (docs/scenario-format.md).
 #include "solver/core/errors.h"
 #include "solver/io/scenario_sections.h"
+#include "solver/materials/bilinear_hardening.h"
 
 namespace crashlink::io::detail {
 
@@ -9,8 +10,7 @@ namespace {
 using materials::MaterialKind;
 
 /// Yield curve from `hardening: {eps_p, sigma_y}` or the bilinear shorthand `yield_stress`,
-/// `tangent_modulus` E_t: plastic modulus H = E E_t / (E - E_t), the 1-D elastoplastic tangent
-/// E_t = E H / (E + H) solved for H.
+/// `tangent_modulus` (materials::bilinear_hardening).
 materials::HardeningCurve read_hardening(const YamlNode& mat, double E_Pa) {
   const auto curve = mat.optional("hardening");
   const auto sy = mat.optional("yield_stress");
@@ -50,9 +50,7 @@ materials::HardeningCurve read_hardening(const YamlNode& mat, double E_Pa) {
     Et = et->non_negative();
     if (!(Et < E_Pa)) et->fail(fmt::format("{} Pa must be below Young's modulus {} Pa", Et, E_Pa));
   }
-  const double H = E_Pa * Et / (E_Pa - Et);
-  if (H > 0.0) return {{0.0, 1.0}, {sigma_y0, sigma_y0 + H}};
-  return {{0.0}, {sigma_y0}};
+  return materials::bilinear_hardening(sigma_y0, E_Pa, Et);
 }
 
 }  // namespace

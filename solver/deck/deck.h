@@ -1,0 +1,138 @@
+#pragma once
+// A keyword deck as read: the supported keywords' cards in the deck's own units, each record
+// with the card it came from (file, line, format) so that the model building that follows can
+// point at the field of any mistake. parse_deck fills it in one pass; references (node, part,
+// section, material, curve, set ids) are resolved afterwards by model_from_deck.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "solver/deck/card.h"
+#include "solver/deck/parameters.h"
+
+namespace crashlink::deck {
+
+struct NodeCards {
+  std::vector<std::int64_t> id;
+  std::vector<double> x;  ///< [3n] deck length units
+  std::vector<CardRef> ref;
+};
+
+/// *ELEMENT_SHELL (k = 4) or *ELEMENT_SOLID (k = 8) records.
+struct ElementCards {
+  std::vector<std::int64_t> id, part;
+  std::vector<std::int64_t> nodes;     ///< [k per element] node ids
+  std::vector<CardRef> ref;            ///< the card holding the node ids
+  std::vector<std::int32_t> id_line;   ///< the line holding EID and PID (two-card solids: above)
+  std::vector<std::uint8_t> two_card;  ///< solids: 1 if written as "EID PID" + "N1..N10"
+  std::size_t count() const { return id.size(); }
+};
+
+struct PartCard {
+  std::int64_t id = 0, section = 0, material = 0;
+  std::string title;
+  std::string keyword = "*PART";
+  CardRef ref;  ///< the card with PID, SECID, MID
+};
+
+struct SectionCard {
+  std::int64_t id = 0;
+  bool shell = true;
+  int nip = 0;
+  double thickness = 0.0;  ///< T1, deck length units
+  bool shrf_blank = true;
+  std::string keyword;
+  CardRef ref;
+};
+
+enum class MaterialType : std::uint8_t { Elastic, PlasticKinematic, PiecewiseLinear, Rigid };
+
+struct MaterialCard {
+  std::int64_t id = 0;
+  MaterialType type = MaterialType::Elastic;
+  std::string keyword;  ///< as written, e.g. *MAT_024
+  std::string title;
+  double rho = 0.0, E = 0.0, nu = 0.0, sigy = 0.0, etan = 0.0;  ///< deck units
+  std::int64_t lcss = 0;                                        ///< *MAT_024 LCSS
+  std::vector<double> eps, es;                                  ///< *MAT_024 8-point table
+  CardRef ref;                                                  ///< the card with MID
+};
+
+struct CurveCard {
+  std::int64_t id = 0;
+  double sfa = 1.0, sfo = 1.0, offa = 0.0, offo = 0.0;
+  std::vector<double> a, o;  ///< points as written (scaled later)
+  std::string keyword;
+  CardRef ref;
+};
+
+struct SetCard {
+  std::int64_t id = 0;
+  bool parts = false;  ///< *SET_PART_*; else *SET_NODE_*
+  std::vector<std::int64_t> members;
+  std::vector<CardRef> member_ref;                  ///< one per member (the card listing it)
+  std::vector<std::array<std::int64_t, 2>> ranges;  ///< _GENERATE
+  std::vector<CardRef> range_ref;
+  std::string keyword;
+  CardRef ref;
+};
+
+struct SpcCard {
+  std::int64_t target = 0;  ///< node id or node set id
+  bool set = false;
+  std::uint8_t mask = 0;  ///< model::DofBits
+  std::string keyword;
+  CardRef ref;
+};
+
+struct VelocityCard {
+  std::int64_t target = 0;  ///< node, part, part set or node set id
+  int styp = 0;  ///< *INITIAL_VELOCITY_GENERATION: 1 part set, 2 part, 3 node set; 0 node
+  std::array<double, 3> v{};  ///< deck velocity units
+  std::string keyword;
+  CardRef ref;
+};
+
+struct Deck {
+  DeckFiles files;
+  Parameters params;
+  std::string title;
+  NodeCards nodes;
+  ElementCards shells, solids;
+  std::vector<PartCard> parts;
+  std::vector<SectionCard> sections;
+  std::vector<MaterialCard> materials;
+  std::vector<CurveCard> curves;
+  std::vector<SetCard> sets;
+  std::vector<SpcCard> spcs;
+  std::vector<VelocityCard> velocities;
+  bool has_end_time = false;
+  double end_time = 0.0;  ///< ENDTIM, deck time units
+  double tssfac = 0.9;
+  /// Keywords accepted but without effect in crashlink (*DATABASE_*), and how many times.
+  std::map<std::string, int> without_effect;
+  /// Keywords skipped on request (--ignore), with their cards counted.
+  std::map<std::string, int> skipped_cards;
+  std::vector<std::string> notes;  ///< readings the user should know about (LS-DYNA defaults)
+};
+
+struct ParseOptions {
+  /// Keywords to skip (upper case, with or without '*'); each must be met at least once.
+  std::vector<std::string> ignore;
+};
+
+/// Reads the deck at `path` and every file it includes. Throws InputError at the first mistake
+/// ("file:line: *KEYWORD field NAME (columns a-b) = value: what; fix").
+Deck parse_deck(const std::string& path, const ParseOptions& options = {});
+
+/// The keywords parse_deck understands (for messages and docs).
+const std::vector<std::string>& supported_keywords();
+
+/// Throws the InputError of field `i` of `layout` on the card at `ref` (read again from its
+/// file: the mapping of a deck points at columns without keeping every card's text).
+[[noreturn]] void fail_at(const Deck& deck, const CardRef& ref, std::string_view keyword,
+                          Layout layout, std::size_t i, std::string_view what);
+
+}  // namespace crashlink::deck

@@ -1,0 +1,837 @@
+// parse_deck: the stream of keywords and cards (card_reader.h) into Deck records. Every value a
+// keyword gives is checked here, where its columns are known: an unsupported option of a
+// supported keyword stops the reading at its field.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "solver/core/errors.h"
+#include "solver/deck/card_reader.h"
+#include "solver/deck/deck.h"
+#include "solver/deck/keyword_layouts.h"
+
+namespace crashlink::deck {
+
+namespace {
+
+namespace L = layout;
+
+enum class Kw : std::uint8_t {
+  Title,
+  Node,
+  ElementShell,
+  ElementSolid,
+  Part,
+  SectionShell,
+  SectionSolid,
+  MatElastic,
+  MatRigid,
+  MatPlasticKinematic,
+  MatPiecewiseLinear,
+  DefineCurve,
+  SetNodeList,
+  SetNodeListGenerate,
+  SetPartList,
+  SetPartListGenerate,
+  SpcNode,
+  SpcSet,
+  VelocityGeneration,
+  VelocityNode,
+  Termination,
+  Timestep,
+  Database,
+  Skip
+};
+
+struct KeywordName {
+  const char* name;
+  Kw kw;
+  bool title_ok;  ///< accepts the _TITLE suffix
+  bool id_ok;     ///< accepts the _ID suffix
+};
+
+constexpr KeywordName kKeywords[] = {
+    {"*TITLE", Kw::Title, false, false},
+    {"*NODE", Kw::Node, false, false},
+    {"*ELEMENT_SHELL", Kw::ElementShell, false, false},
+    {"*ELEMENT_SOLID", Kw::ElementSolid, false, false},
+    {"*PART", Kw::Part, false, false},
+    {"*SECTION_SHELL", Kw::SectionShell, true, false},
+    {"*SECTION_SOLID", Kw::SectionSolid, true, false},
+    {"*MAT_ELASTIC", Kw::MatElastic, true, false},
+    {"*MAT_001", Kw::MatElastic, true, false},
+    {"*MAT_RIGID", Kw::MatRigid, true, false},
+    {"*MAT_020", Kw::MatRigid, true, false},
+    {"*MAT_PLASTIC_KINEMATIC", Kw::MatPlasticKinematic, true, false},
+    {"*MAT_003", Kw::MatPlasticKinematic, true, false},
+    {"*MAT_PIECEWISE_LINEAR_PLASTICITY", Kw::MatPiecewiseLinear, true, false},
+    {"*MAT_024", Kw::MatPiecewiseLinear, true, false},
+    {"*DEFINE_CURVE", Kw::DefineCurve, true, false},
+    {"*SET_NODE_LIST", Kw::SetNodeList, true, false},
+    {"*SET_NODE_LIST_GENERATE", Kw::SetNodeListGenerate, true, false},
+    {"*SET_PART_LIST", Kw::SetPartList, true, false},
+    {"*SET_PART_LIST_GENERATE", Kw::SetPartListGenerate, true, false},
+    {"*BOUNDARY_SPC_NODE", Kw::SpcNode, false, true},
+    {"*BOUNDARY_SPC_SET", Kw::SpcSet, false, true},
+    {"*INITIAL_VELOCITY_GENERATION", Kw::VelocityGeneration, false, false},
+    {"*INITIAL_VELOCITY_NODE", Kw::VelocityNode, false, false},
+    {"*CONTROL_TERMINATION", Kw::Termination, false, false},
+    {"*CONTROL_TIMESTEP", Kw::Timestep, false, false},
+};
+
+constexpr const char* kReaderKeywords[] = {"*KEYWORD",
+                                           "*END",
+                                           "*INCLUDE",
+                                           "*INCLUDE_PATH",
+                                           "*INCLUDE_PATH_RELATIVE",
+                                           "*PARAMETER",
+                                           "*PARAMETER_EXPRESSION",
+                                           "*COMMENT",
+                                           "*DATABASE_*"};
+
+bool ends_with(std::string_view s, std::string_view suffix) {
+  return s.size() > suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
+}
+
+/// The keyword's handler and its suffixes; false if not supported.
+bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
+  title = id = false;
+  if (k.rfind("*DATABASE_", 0) == 0) {
+    kw = Kw::Database;
+    return true;
+  }
+  for (int pass = 0; pass < 3; ++pass) {
+    std::string_view base = k;
+    if (pass == 1) {
+      if (!ends_with(k, "_TITLE")) continue;
+      base.remove_suffix(6);
+    }
+    if (pass == 2) {
+      if (!ends_with(k, "_ID")) continue;
+      base.remove_suffix(3);
+    }
+    for (const auto& e : kKeywords)
+      if (base == e.name) {
+        if ((pass == 1 && !e.title_ok) || (pass == 2 && !e.id_ok)) return false;
+        kw = e.kw;
+        title = pass == 1;
+        id = pass == 2;
+        return true;
+      }
+  }
+  return false;
+}
+
+std::string supported_list() {
+  std::string s;
+  for (const auto& k : supported_keywords()) s += (s.empty() ? "" : " ") + k;
+  return s;
+}
+
+/// The state of the keyword block being read.
+struct Block {
+  Kw kw = Kw::Skip;
+  std::string keyword;
+  bool title = false, id = false;
+  int card = 0;  ///< index of the next card within the current record
+  std::string pending_title;
+  std::int64_t pending_eid = 0, pending_pid = 0;  ///< two-card solids
+  std::int32_t pending_line = 0;
+  CardRef ref;             ///< the keyword's line
+  std::size_t before = 0;  ///< records of its kind before the block (records_of)
+};
+
+class Parser {
+ public:
+  Parser(Deck& d, const ParseOptions& o) : d_(d), o_(o) {}
+
+  void keyword(std::string_view k, const CardRef& ref) {
+    finish_block();
+    b_ = Block{};
+    b_.keyword = std::string(k);
+    b_.ref = ref;
+    bool title = false, id = false;
+    if (std::find(ignored().begin(), ignored().end(), std::string(k.substr(1))) !=
+        ignored().end()) {
+      b_.kw = Kw::Skip;
+      d_.skipped_cards[b_.keyword] += 0;
+      return;
+    }
+    if (!lookup(k, b_.kw, title, id))
+      throw InputError(d_.files.name(ref.file), ref.line, std::string(k),
+                       fmt::format("not supported; fix: remove it, or pass --ignore {} to skip it "
+                                   "(what it does is then missing from the run). Supported: {}",
+                                   k.substr(1), supported_list()));
+    b_.title = title;
+    b_.id = id;
+    b_.before = records_of(b_.kw);
+    if (b_.kw == Kw::Database) ++d_.without_effect[b_.keyword];
+    if (b_.kw == Kw::SetNodeList || b_.kw == Kw::SetNodeListGenerate || b_.kw == Kw::SetPartList ||
+        b_.kw == Kw::SetPartListGenerate) {
+      SetCard s;
+      s.parts = b_.kw == Kw::SetPartList || b_.kw == Kw::SetPartListGenerate;
+      s.keyword = b_.keyword;
+      s.ref = ref;
+      d_.sets.push_back(std::move(s));
+    }
+  }
+
+  void card(const Card& c) {
+    switch (b_.kw) {
+      case Kw::Skip:
+        if (b_.keyword.empty())
+          throw InputError(c.file(), c.ref().line, "(data card)",
+                           "no keyword before it; fix: start the file with *KEYWORD and put "
+                           "every card under its keyword");
+        ++d_.skipped_cards[b_.keyword];
+        return;
+      case Kw::Database:
+        return;
+      case Kw::Title:
+        if (b_.card++ == 0) d_.title = std::string(trim(c.whole()));
+        return;
+      case Kw::Node:
+        return node(c);
+      case Kw::ElementShell:
+        return shell(c);
+      case Kw::ElementSolid:
+        return solid(c);
+      case Kw::Part:
+        return part(c);
+      case Kw::SectionShell:
+        return section_shell(c);
+      case Kw::SectionSolid:
+        return section_solid(c);
+      case Kw::MatElastic:
+      case Kw::MatRigid:
+      case Kw::MatPlasticKinematic:
+      case Kw::MatPiecewiseLinear:
+        return material(c);
+      case Kw::DefineCurve:
+        return curve(c);
+      case Kw::SetNodeList:
+      case Kw::SetNodeListGenerate:
+      case Kw::SetPartList:
+      case Kw::SetPartListGenerate:
+        return set(c);
+      case Kw::SpcNode:
+      case Kw::SpcSet:
+        return spc(c);
+      case Kw::VelocityGeneration:
+        return velocity_generation(c);
+      case Kw::VelocityNode:
+        return velocity_node(c);
+      case Kw::Termination:
+        return termination(c);
+      case Kw::Timestep:
+        return timestep(c);
+    }
+  }
+
+  void finish() {
+    finish_block();
+    for (const auto& k : o_.ignore) {
+      std::string key = upper(k);
+      if (key.front() != '*') key.insert(key.begin(), '*');
+      if (!d_.skipped_cards.count(key))
+        throw InputError(fmt::format(
+            "--ignore {}: the deck has no such keyword; fix: remove it from --ignore (keywords "
+            "are written without '*', e.g. --ignore ELEMENT_BEAM)",
+            k));
+    }
+  }
+
+ private:
+  const std::vector<std::string>& ignored() {
+    if (ignored_.empty())
+      for (const auto& k : o_.ignore) ignored_.push_back(upper(k.front() == '*' ? k.substr(1) : k));
+    return ignored_;
+  }
+
+  /// How many records of the kind `kw` makes the deck holds (SIZE_MAX: not counted).
+  std::size_t records_of(Kw kw) const {
+    switch (kw) {
+      case Kw::Part:
+        return d_.parts.size();
+      case Kw::SectionShell:
+      case Kw::SectionSolid:
+        return d_.sections.size();
+      case Kw::MatElastic:
+      case Kw::MatRigid:
+      case Kw::MatPlasticKinematic:
+      case Kw::MatPiecewiseLinear:
+        return d_.materials.size();
+      case Kw::DefineCurve:
+        return d_.curves.size();
+      case Kw::SpcNode:
+      case Kw::SpcSet:
+        return d_.spcs.size();
+      case Kw::VelocityGeneration:
+      case Kw::VelocityNode:
+        return d_.velocities.size();
+      default:
+        return SIZE_MAX;
+    }
+  }
+
+  void finish_block() {
+    // A keyword whose cards are missing would define nothing without a word.
+    const std::size_t before = b_.before;
+    const bool empty = (before != SIZE_MAX && records_of(b_.kw) == before) ||
+                       (b_.kw == Kw::Termination && b_.card == 0) ||
+                       (b_.kw == Kw::DefineCurve && !d_.curves.empty() &&
+                        records_of(b_.kw) != before && d_.curves.back().a.empty()) ||
+                       (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList &&
+                        b_.kw <= Kw::SetPartListGenerate && d_.sets.back().id == 0);
+    if (empty && !b_.keyword.empty())
+      throw InputError(d_.files.name(b_.ref.file), b_.ref.line, b_.keyword,
+                       b_.kw == Kw::DefineCurve && records_of(b_.kw) != before
+                           ? "the curve has no point; fix: add its points (A, O) after LCID"
+                           : "its cards are missing (the next keyword or the end of the file "
+                             "follows); fix: add them or remove the keyword");
+    if (b_.kw == Kw::ElementSolid && b_.card == 1) {
+      // "EID PID" card without its node card: the deck ends inside an element.
+      throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
+                       "an element's node card is missing after its EID/PID card; fix: add it");
+    }
+    if ((b_.kw == Kw::MatPlasticKinematic || b_.kw == Kw::MatPiecewiseLinear) &&
+        records_of(b_.kw) != before)
+      check_material_end();
+    if (b_.kw == Kw::SectionShell && card_index() == 1)
+      throw InputError(d_.files.name(d_.sections.back().ref.file), d_.sections.back().ref.line,
+                       b_.keyword,
+                       "card 2 (T1 T2 T3 T4 ...) is missing; fix: add it with the thickness T1");
+    if (b_.kw == Kw::Part && b_.card == 1)
+      throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
+                       "the card PID SECID MID is missing after the title; fix: add it");
+  }
+
+  /// The title card of a _TITLE keyword; true if `c` was it.
+  bool title_card(const Card& c) {
+    if (b_.title && b_.card == 0) {
+      b_.pending_title = std::string(trim(c.whole()));
+      b_.card = 1;
+      return true;
+    }
+    return false;
+  }
+  int card_index() const { return b_.card - (b_.title ? 1 : 0); }
+
+  static bool blank(const Card& c) { return trim(c.whole()).empty(); }
+
+  static std::int64_t positive_id(const Field& f) {
+    const std::int64_t v = f.integer(0);
+    if (v <= 0) f.fail("an id must be a positive integer; fix: write one");
+    return v;
+  }
+  static double positive(const Field& f, const char* example) {
+    const double v = f.real(0.0);
+    if (!(v > 0.0)) f.fail(fmt::format("must be > 0; fix: write it, e.g. {}", example));
+    return v;
+  }
+  /// A field crashlink does not compute: must be blank or `zero`.
+  static void must_be_default(const Field& f, double zero, std::string_view what) {
+    if (f.blank()) return;
+    if (f.real(zero) != zero) f.fail(what);
+  }
+
+  void node(const Card& c) {
+    if (blank(c)) return;
+    const auto nid = c.field(L::kNode, 0);
+    d_.nodes.id.push_back(positive_id(nid));
+    for (std::size_t k = 1; k <= 3; ++k) d_.nodes.x.push_back(c.field(L::kNode, k).real(0.0));
+    for (std::size_t k = 4; k <= 5; ++k)
+      must_be_default(c.field(L::kNode, k), 0.0,
+                      "nodal constraints on *NODE (TC, RC) are not read; fix: leave them blank "
+                      "and use *BOUNDARY_SPC_NODE");
+    d_.nodes.ref.push_back(c.ref());
+  }
+
+  void shell(const Card& c) {
+    if (blank(c)) return;
+    auto& e = d_.shells;
+    e.id.push_back(positive_id(c.field(L::kElement, 0)));
+    e.part.push_back(positive_id(c.field(L::kElement, 1)));
+    for (std::size_t k = 2; k < 6; ++k) e.nodes.push_back(positive_id(c.field(L::kElement, k)));
+    for (std::size_t k = 6; k < 10; ++k)
+      must_be_default(c.field(L::kElement, k), 0.0,
+                      "8-node shells are not computed; fix: use 4-node shells (N5-N8 blank)");
+    e.ref.push_back(c.ref());
+    e.id_line.push_back(c.ref().line);
+    e.two_card.push_back(0);
+  }
+
+  void solid(const Card& c) {
+    if (blank(c)) return;
+    auto& e = d_.solids;
+    if (b_.card == 0) {
+      const auto eid = c.field(L::kElement, 0);
+      const auto pid = c.field(L::kElement, 1);
+      bool nodes_here = false;
+      for (std::size_t k = 2; k < 10; ++k)
+        nodes_here = nodes_here || !c.field(L::kElement, k).blank();
+      if (!nodes_here) {  // the two-card layout: "EID PID", then "N1 ... N10"
+        b_.pending_eid = positive_id(eid);
+        b_.pending_pid = positive_id(pid);
+        b_.card = 1;
+        last_ = c.ref();
+        b_.pending_line = c.ref().line;
+        return;
+      }
+      e.id.push_back(positive_id(eid));
+      e.part.push_back(positive_id(pid));
+      for (std::size_t k = 2; k < 10; ++k) e.nodes.push_back(positive_id(c.field(L::kElement, k)));
+      e.ref.push_back(c.ref());
+      e.id_line.push_back(c.ref().line);
+      e.two_card.push_back(0);
+      return;
+    }
+    e.id.push_back(b_.pending_eid);
+    e.part.push_back(b_.pending_pid);
+    for (std::size_t k = 0; k < 8; ++k) e.nodes.push_back(positive_id(c.field(L::kSolidNodes, k)));
+    for (std::size_t k = 8; k < 10; ++k)
+      must_be_default(c.field(L::kSolidNodes, k), 0.0,
+                      "10-node tetrahedra are not computed; fix: use 8-node hexahedra "
+                      "(N9, N10 blank or 0)");
+    e.ref.push_back(c.ref());
+    e.id_line.push_back(b_.pending_line);
+    e.two_card.push_back(1);
+    b_.card = 0;
+  }
+
+  void part(const Card& c) {
+    if (b_.card == 0) {
+      b_.pending_title = std::string(trim(c.whole()));
+      b_.card = 1;
+      last_ = c.ref();
+      return;
+    }
+    PartCard p;
+    p.id = positive_id(c.field(L::kPart, 0));
+    p.section = positive_id(c.field(L::kPart, 1));
+    p.material = positive_id(c.field(L::kPart, 2));
+    must_be_default(c.field(L::kPart, 3), 0.0,
+                    "equations of state are not computed; fix: leave EOSID blank");
+    must_be_default(c.field(L::kPart, 4), 0.0,
+                    "*HOURGLASS is not read yet (crashlink's stiffness hourglass control, "
+                    "coefficient 0.1, applies); fix: leave HGID blank");
+    must_be_default(c.field(L::kPart, 7), 0.0,
+                    "thermal materials are not computed; fix: leave TMID blank");
+    p.title = std::move(b_.pending_title);
+    p.ref = c.ref();
+    d_.parts.push_back(std::move(p));
+    b_.card = 0;
+  }
+
+  void section_shell(const Card& c) {
+    if (title_card(c)) return;
+    if (card_index() == 0) {
+      SectionCard s;
+      s.shell = true;
+      s.keyword = b_.keyword;
+      s.id = positive_id(c.field(L::kSectionShell1, 0));
+      const auto elform = c.field(L::kSectionShell1, 1);
+      if (elform.integer(2) != 2)
+        elform.fail(
+            "crashlink computes the Belytschko-Tsay shell (ELFORM 2) only; fix: write "
+            "ELFORM 2 (or blank)");
+      const auto shrf = c.field(L::kSectionShell1, 2);
+      s.shrf_blank = shrf.blank();
+      if (!shrf.blank() && std::abs(shrf.real(0.0) - 5.0 / 6.0) > 1e-3)
+        shrf.fail(
+            "crashlink's shells use Reissner's shear factor 5/6; fix: write SHRF 0.8333 "
+            "(or leave it blank)");
+      const auto nip = c.field(L::kSectionShell1, 3);
+      s.nip = static_cast<int>(nip.integer(2));
+      if (s.nip == 0) s.nip = 2;
+      if (s.nip < 3 || s.nip > 9)
+        nip.fail(fmt::format(
+            "{} Gauss points through the thickness{}: crashlink integrates with 3 to 9; fix: "
+            "write NIP 3 (elastic) or 5 (plasticity)",
+            s.nip,
+            nip.blank() || nip.integer(0) == 0 ? " (LS-DYNA's default for a blank NIP)" : ""));
+      must_be_default(c.field(L::kSectionShell1, 4), 0.0, "PROPT is not read; fix: leave it blank");
+      must_be_default(c.field(L::kSectionShell1, 6), 0.0,
+                      "composite layers (ICOMP 1) are not computed; fix: write ICOMP 0");
+      s.ref = c.ref();
+      d_.sections.push_back(std::move(s));
+      b_.card = b_.title ? 2 : 1;
+      return;
+    }
+    SectionCard& s = d_.sections.back();
+    const auto t1 = c.field(L::kSectionShell2, 0);
+    s.thickness = positive(t1, "1.0 (mm) for a 1 mm sheet");
+    for (std::size_t k = 1; k < 4; ++k) {
+      const auto tk = c.field(L::kSectionShell2, k);
+      if (!tk.blank() && tk.real(0.0) != 0.0 && tk.real(0.0) != s.thickness)
+        tk.fail(
+            fmt::format("crashlink's shells have one thickness per part; fix: write T2-T4 "
+                        "equal to T1 = {} or blank",
+                        s.thickness));
+    }
+    if (s.shrf_blank)
+      d_.notes.push_back(
+          fmt::format("{}:{}: {} {}: SHRF blank (LS-DYNA reads 1.0): crashlink's shells use 5/6",
+                      d_.files.name(s.ref.file), s.ref.line, s.keyword, s.id));
+    b_.card = 0;
+  }
+
+  void section_solid(const Card& c) {
+    if (title_card(c)) return;
+    SectionCard s;
+    s.shell = false;
+    s.keyword = b_.keyword;
+    s.id = positive_id(c.field(L::kSectionSolid, 0));
+    const auto elform = c.field(L::kSectionSolid, 1);
+    if (elform.integer(1) != 1)
+      elform.fail(
+          "crashlink computes the one-point hexahedron (ELFORM 1) only; fix: write "
+          "ELFORM 1 (or blank)");
+    s.ref = c.ref();
+    d_.sections.push_back(std::move(s));
+    b_.card = 0;
+  }
+
+  void read_elastic_constants(const Card& c, Layout l, MaterialCard& m) {
+    m.id = positive_id(c.field(l, 0));
+    m.rho = positive(c.field(l, 1), "7.85e-9 (t/mm^3) for steel in mm-t-s");
+    m.E = positive(c.field(l, 2), "2.1e5 (MPa) for steel in mm-t-s");
+    const auto pr = c.field(l, 3);
+    m.nu = pr.real(0.0);
+    if (!(m.nu > -1.0 && m.nu < 0.5)) pr.fail("must lie in (-1, 0.5); fix: steel is 0.3");
+  }
+
+  void material(const Card& c) {
+    if (title_card(c)) return;
+    const int k = card_index();
+    if (k == 0) {
+      MaterialCard m;
+      m.keyword = b_.keyword;
+      m.title = std::move(b_.pending_title);
+      m.ref = c.ref();
+      switch (b_.kw) {
+        case Kw::MatElastic: {
+          m.type = MaterialType::Elastic;
+          read_elastic_constants(c, L::kMatElastic, m);
+          for (std::size_t i = 4; i < 6; ++i)
+            must_be_default(c.field(L::kMatElastic, i), 0.0,
+                            "beam damping (DA, DB) is not computed; fix: leave it blank");
+          must_be_default(c.field(L::kMatElastic, 6), 0.0,
+                          "the fluid option (K) is not computed; fix: leave K blank");
+          break;
+        }
+        case Kw::MatRigid:
+          m.type = MaterialType::Rigid;
+          read_elastic_constants(c, L::kMatRigid1, m);
+          break;
+        case Kw::MatPlasticKinematic: {
+          m.type = MaterialType::PlasticKinematic;
+          read_elastic_constants(c, L::kMat003a, m);
+          m.sigy = positive(c.field(L::kMat003a, 4), "250 (MPa) in mm-t-s");
+          const auto etan = c.field(L::kMat003a, 5);
+          m.etan = etan.real(0.0);
+          if (m.etan < 0.0 || m.etan >= m.E)
+            etan.fail(fmt::format("must lie in [0, E = {}); fix: write the tangent modulus", m.E));
+          const auto beta = c.field(L::kMat003a, 6);
+          if (beta.real(0.0) != 1.0)
+            beta.fail(
+                "crashlink computes isotropic hardening (BETA = 1) only, kinematic "
+                "hardening (BETA < 1; blank is 0) is not computed; fix: write BETA 1.0");
+          break;
+        }
+        case Kw::MatPiecewiseLinear: {
+          m.type = MaterialType::PiecewiseLinear;
+          read_elastic_constants(c, L::kMat024a, m);
+          m.sigy = c.field(L::kMat024a, 4).real(0.0);
+          const auto etan = c.field(L::kMat024a, 5);
+          m.etan = etan.real(0.0);
+          if (m.etan < 0.0 || m.etan >= m.E)
+            etan.fail(fmt::format("must lie in [0, E = {}); fix: write the tangent modulus", m.E));
+          const auto fail = c.field(L::kMat024a, 6);
+          if (!fail.blank() && fail.real(0.0) != 0.0 && fail.real(0.0) < 1e20)
+            fail.fail("element failure (erosion) is not computed; fix: leave FAIL blank");
+          break;
+        }
+        default:
+          break;
+      }
+      d_.materials.push_back(std::move(m));
+      b_.card = (b_.title ? 1 : 0) + 1;
+      return;
+    }
+    MaterialCard& m = d_.materials.back();
+    ++b_.card;
+    if (b_.kw == Kw::MatRigid) {
+      if (k == 1) {
+        const auto cmo = c.field(L::kMatRigid2, 0);
+        if (cmo.real(0.0) != 0.0)
+          cmo.fail(
+              "rigid-body constraints (CMO, CON1, CON2) are not read yet; fix: write CMO 0 "
+              "and fix the body's nodes with *BOUNDARY_SPC_*");
+      }
+      return;  // card 3 (LCO/alignment) has no effect without constraints
+    }
+    if (b_.kw == Kw::MatPlasticKinematic) {
+      if (k == 1) {
+        must_be_default(c.field(L::kMat003b, 0), 0.0,
+                        "strain-rate scaling (Cowper-Symonds SRC, SRP) is not computed yet; fix: "
+                        "write SRC 0 and SRP 0");
+        must_be_default(c.field(L::kMat003b, 1), 0.0,
+                        "strain-rate scaling (Cowper-Symonds SRC, SRP) is not computed yet; fix: "
+                        "write SRC 0 and SRP 0");
+        must_be_default(c.field(L::kMat003b, 2), 0.0,
+                        "element failure (FS) is not computed; fix: leave FS blank");
+      }
+      return;
+    }
+    if (b_.kw == Kw::MatPiecewiseLinear) {
+      if (k == 1) {
+        const char* rate =
+            "strain-rate effects (C, P; LCSR) are not computed yet; fix: write C 0 and P 0 "
+            "(and LCSR 0)";
+        must_be_default(c.field(L::kMat024b, 0), 0.0, rate);
+        must_be_default(c.field(L::kMat024b, 1), 0.0, rate);
+        must_be_default(c.field(L::kMat024b, 3), 0.0, rate);
+        const auto lcss = c.field(L::kMat024b, 2);
+        m.lcss = lcss.integer(0);
+        if (m.lcss < 0) lcss.fail("must be a curve id > 0 or blank; fix: write the curve's LCID");
+      } else if (k == 2 || k == 3) {
+        auto& v = k == 2 ? m.eps : m.es;
+        for (std::size_t i = 0; i < 8; ++i)
+          v.push_back(c.field(k == 2 ? Layout(L::kMat024Eps) : Layout(L::kMat024Es), i).real(0.0));
+      }
+    }
+  }
+
+  void check_material_end() {
+    MaterialCard& m = d_.materials.back();
+    if (m.type != MaterialType::PiecewiseLinear) return;
+    // The 8-point table: the used pairs are those up to the last non-zero ES.
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < m.es.size(); ++i)
+      if (m.es[i] != 0.0) n = i + 1;
+    m.es.resize(n);
+    m.eps.resize(std::min(m.eps.size(), n));
+    if (m.lcss == 0 && n == 0 && !(m.sigy > 0.0))
+      throw InputError(d_.files.name(m.ref.file), m.ref.line, m.keyword,
+                       fmt::format("MID {}: no yield stress: SIGY is blank, no LCSS curve and no "
+                                   "EPS/ES table; fix: give SIGY (and ETAN) or LCSS",
+                                   m.id));
+  }
+
+  void curve(const Card& c) {
+    if (title_card(c)) return;
+    if (card_index() == 0) {
+      CurveCard cv;
+      cv.keyword = b_.keyword;
+      cv.id = positive_id(c.field(L::kCurve, 0));
+      must_be_default(c.field(L::kCurve, 1), 0.0,
+                      "dynamic relaxation curves (SIDR 1, 2) are not computed; fix: write SIDR 0");
+      const auto sfa = c.field(L::kCurve, 2);
+      const auto sfo = c.field(L::kCurve, 3);
+      cv.sfa = sfa.real(1.0);
+      cv.sfo = sfo.real(1.0);
+      if (cv.sfa == 0.0) cv.sfa = 1.0;  // LS-DYNA: 0 reads as the default 1
+      if (cv.sfo == 0.0) cv.sfo = 1.0;
+      cv.offa = c.field(L::kCurve, 4).real(0.0);
+      cv.offo = c.field(L::kCurve, 5).real(0.0);
+      cv.ref = c.ref();
+      d_.curves.push_back(std::move(cv));
+      b_.card = b_.title ? 2 : 1;
+      return;
+    }
+    if (blank(c)) return;
+    CurveCard& cv = d_.curves.back();
+    const auto a = c.field(L::kCurvePoint, 0);
+    const double x = a.real(0.0);
+    if (!cv.a.empty() && !(x > cv.a.back()))
+      a.fail(fmt::format("abscissae must increase: {} follows {}; fix: order the points", x,
+                         cv.a.back()));
+    cv.a.push_back(x);
+    cv.o.push_back(c.field(L::kCurvePoint, 1).real(0.0));
+  }
+
+  void set(const Card& c) {
+    if (title_card(c)) return;
+    SetCard& s = d_.sets.back();
+    if (card_index() == 0) {
+      s.id = positive_id(c.field(L::kSetHeader, 0));
+      s.ref = c.ref();
+      b_.card = b_.title ? 2 : 1;
+      return;
+    }
+    if (blank(c)) return;
+    const bool generate = b_.kw == Kw::SetNodeListGenerate || b_.kw == Kw::SetPartListGenerate;
+    if (generate) {
+      for (std::size_t k = 0; k + 1 < 8; k += 2) {
+        const auto b = c.field(L::kSetGenerate, k);
+        const auto e = c.field(L::kSetGenerate, k + 1);
+        if (b.blank() && e.blank()) continue;
+        const std::int64_t lo = positive_id(b), hi = positive_id(e);
+        if (hi < lo)
+          e.fail(fmt::format("the range ends before it begins ({}); fix: swap them", lo));
+        s.ranges.push_back({lo, hi});
+        s.range_ref.push_back(c.ref());
+      }
+      return;
+    }
+    for (std::size_t k = 0; k < 8; ++k) {
+      const auto f = c.field(L::kSetList, k);
+      if (f.blank() || f.integer(0) == 0) continue;
+      s.members.push_back(positive_id(f));
+      s.member_ref.push_back(c.ref());
+    }
+  }
+
+  void spc(const Card& c) {
+    if (b_.id && b_.card == 0) {  // the ID/HEADING card
+      b_.card = 1;
+      return;
+    }
+    if (blank(c)) return;
+    const Layout l = b_.kw == Kw::SpcNode ? Layout(L::kSpcNode) : Layout(L::kSpcSet);
+    SpcCard s;
+    s.keyword = b_.keyword;
+    s.set = b_.kw == Kw::SpcSet;
+    s.target = positive_id(c.field(l, 0));
+    must_be_default(c.field(l, 1), 0.0,
+                    "constraints in a local coordinate system are not computed; fix: write CID "
+                    "0 (global axes)");
+    for (std::size_t k = 2; k < 8; ++k) {
+      const auto f = c.field(l, k);
+      const auto v = f.integer(0);
+      if (v != 0 && v != 1) f.fail("must be 0 (free) or 1 (fixed); fix: write 0 or 1");
+      if (v == 1) s.mask = static_cast<std::uint8_t>(s.mask | (1u << (k - 2)));
+    }
+    s.ref = c.ref();
+    d_.spcs.push_back(std::move(s));
+  }
+
+  void velocity_generation(const Card& c) {
+    if (b_.card == 0) {
+      VelocityCard v;
+      v.keyword = b_.keyword;
+      v.target = positive_id(c.field(L::kVelocityGeneration1, 0));
+      const auto styp = c.field(L::kVelocityGeneration1, 1);
+      v.styp = static_cast<int>(styp.integer(0));
+      if (v.styp < 1 || v.styp > 3)
+        styp.fail("must be 1 (part set), 2 (part) or 3 (node set); fix: write one of them");
+      must_be_default(c.field(L::kVelocityGeneration1, 2), 0.0,
+                      "rotational initial velocity (OMEGA) is not read yet; fix: write OMEGA 0 "
+                      "(translation only)");
+      for (std::size_t k = 0; k < 3; ++k)
+        v.v[k] = c.field(L::kVelocityGeneration1, 3 + k).real(0.0);
+      must_be_default(c.field(L::kVelocityGeneration1, 6), 0.0,
+                      "IVATN 1 is not computed; fix: write IVATN 0");
+      must_be_default(c.field(L::kVelocityGeneration1, 7), 0.0,
+                      "velocities in a local coordinate system are not computed; fix: write ICID "
+                      "0 (global axes)");
+      v.ref = c.ref();
+      d_.velocities.push_back(std::move(v));
+      b_.card = 1;
+      return;
+    }
+    b_.card = 0;  // card 2: the rotation's centre and axis, without effect at OMEGA = 0
+  }
+
+  void velocity_node(const Card& c) {
+    if (blank(c)) return;
+    VelocityCard v;
+    v.keyword = b_.keyword;
+    v.target = positive_id(c.field(L::kVelocityNode, 0));
+    for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kVelocityNode, 1 + k).real(0.0);
+    for (std::size_t k = 4; k < 7; ++k)
+      must_be_default(c.field(L::kVelocityNode, k), 0.0,
+                      "nodal angular velocities are not read yet; fix: leave VXR, VYR, VZR blank");
+    must_be_default(c.field(L::kVelocityNode, 7), 0.0,
+                    "velocities in a local coordinate system are not computed; fix: write ICID 0");
+    v.ref = c.ref();
+    d_.velocities.push_back(std::move(v));
+  }
+
+  void termination(const Card& c) {
+    if (b_.card++ != 0) return;
+    const auto endtim = c.field(L::kTermination, 0);
+    d_.end_time = positive(endtim, "0.01 (s) or 10 (ms)");
+    d_.has_end_time = true;
+    must_be_default(c.field(L::kTermination, 1), 0.0,
+                    "ending on a cycle count is not computed; fix: leave ENDCYC blank");
+    for (std::size_t k = 3; k < 5; ++k)
+      must_be_default(c.field(L::kTermination, k), 0.0,
+                      "ending on energy or mass change is not computed; fix: leave ENDENG and "
+                      "ENDMAS blank");
+    if (!c.field(L::kTermination, 2).blank())
+      d_.notes.push_back(
+          fmt::format("{}:{}: *CONTROL_TERMINATION DTMIN not read (crashlink's "
+                      "guard stops a collapsing step)",
+                      c.file(), c.ref().line));
+  }
+
+  void timestep(const Card& c) {
+    if (b_.card++ != 0) return;
+    const auto tssfac = c.field(L::kTimestep, 1);
+    d_.tssfac = tssfac.real(0.9);
+    if (d_.tssfac == 0.0) d_.tssfac = 0.9;  // LS-DYNA: 0 reads as the default
+    if (!(d_.tssfac > 0.0 && d_.tssfac <= 1.0))
+      tssfac.fail("must lie in (0, 1]; fix: write 0.9 (the default)");
+    must_be_default(c.field(L::kTimestep, 4), 0.0,
+                    "mass scaling (DT2MS) is not computed yet; fix: leave DT2MS blank");
+    must_be_default(c.field(L::kTimestep, 5), 0.0,
+                    "a step limit curve (LCTM) is not computed; fix: leave LCTM blank");
+  }
+
+  Deck& d_;
+  const ParseOptions& o_;
+  std::vector<std::string> ignored_;
+  Block b_;
+  CardRef last_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& supported_keywords() {
+  static const std::vector<std::string> all = [] {
+    std::vector<std::string> v;
+    for (const auto& k : kKeywords) {
+      std::string n = k.name;
+      if (k.title_ok) n += "(_TITLE)";
+      if (k.id_ok) n += "(_ID)";
+      v.push_back(n);
+    }
+    for (const char* k : kReaderKeywords) v.push_back(k);
+    return v;
+  }();
+  return all;
+}
+
+Deck parse_deck(const std::string& path, const ParseOptions& options) {
+  Deck d;
+  Parser p(d, options);
+  CardReader r(path, d.files, d.params);
+  for (;;) {
+    const auto ev = r.next();
+    if (ev == CardReader::Event::End) break;
+    if (ev == CardReader::Event::Keyword)
+      p.keyword(r.keyword(), r.keyword_ref());
+    else
+      p.card(r.card());
+  }
+  p.finish();
+  return d;
+}
+
+void fail_at(const Deck& deck, const CardRef& ref, std::string_view keyword, Layout layout,
+             std::size_t i, std::string_view what) {
+  std::ifstream in(deck.files.name(ref.file), std::ios::binary);
+  std::string line;
+  for (int n = 0; n < ref.line && std::getline(in, line); ++n) {
+  }
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const Card c(line, ref, keyword, deck.files, deck.params);
+  c.field(layout, i).fail(what);
+}
+
+}  // namespace crashlink::deck

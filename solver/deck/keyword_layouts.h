@@ -1,0 +1,70 @@
+#pragma once
+// The card layouts of the supported keywords: field names as in the LS-DYNA manual and their
+// widths in standard format (long format: 20 each; free format: between commas).
+#include "solver/deck/card.h"
+
+namespace crashlink::deck::layout {
+
+inline constexpr FieldSpec kNode[] = {{"NID", 8}, {"X", 16}, {"Y", 16},
+                                      {"Z", 16},  {"TC", 8}, {"RC", 8}};
+inline constexpr FieldSpec kElement[] = {{"EID", 8}, {"PID", 8}, {"N1", 8}, {"N2", 8}, {"N3", 8},
+                                         {"N4", 8},  {"N5", 8},  {"N6", 8}, {"N7", 8}, {"N8", 8}};
+/// *ELEMENT_SOLID's second card in the two-card layout.
+inline constexpr FieldSpec kSolidNodes[] = {{"N1", 8}, {"N2", 8}, {"N3", 8}, {"N4", 8}, {"N5", 8},
+                                            {"N6", 8}, {"N7", 8}, {"N8", 8}, {"N9", 8}, {"N10", 8}};
+inline constexpr FieldSpec kTitle[] = {{"TITLE", 80}};
+inline constexpr FieldSpec kIdHeading[] = {{"ID", 10}, {"HEADING", 70}};
+inline constexpr FieldSpec kPart[] = {{"PID", 10},  {"SECID", 10}, {"MID", 10},    {"EOSID", 10},
+                                      {"HGID", 10}, {"GRAV", 10},  {"ADPOPT", 10}, {"TMID", 10}};
+inline constexpr FieldSpec kSectionShell1[] = {{"SECID", 10}, {"ELFORM", 10}, {"SHRF", 10},
+                                               {"NIP", 10},   {"PROPT", 10},  {"QR/IRID", 10},
+                                               {"ICOMP", 10}, {"SETYP", 10}};
+inline constexpr FieldSpec kSectionShell2[] = {{"T1", 10},   {"T2", 10},    {"T3", 10},
+                                               {"T4", 10},   {"NLOC", 10},  {"MAREA", 10},
+                                               {"IDOF", 10}, {"EDGSET", 10}};
+inline constexpr FieldSpec kSectionSolid[] = {{"SECID", 10}, {"ELFORM", 10}, {"AET", 10}};
+inline constexpr FieldSpec kMatElastic[] = {{"MID", 10}, {"RO", 10}, {"E", 10}, {"PR", 10},
+                                            {"DA", 10},  {"DB", 10}, {"K", 10}};
+inline constexpr FieldSpec kMatRigid1[] = {{"MID", 10}, {"RO", 10},     {"E", 10}, {"PR", 10},
+                                           {"N", 10},   {"COUPLE", 10}, {"M", 10}, {"ALIAS", 10}};
+inline constexpr FieldSpec kMatRigid2[] = {{"CMO", 10}, {"CON1", 10}, {"CON2", 10}};
+inline constexpr FieldSpec kMat003a[] = {{"MID", 10},  {"RO", 10},   {"E", 10},   {"PR", 10},
+                                         {"SIGY", 10}, {"ETAN", 10}, {"BETA", 10}};
+inline constexpr FieldSpec kMat003b[] = {{"SRC", 10}, {"SRP", 10}, {"FS", 10}, {"VP", 10}};
+inline constexpr FieldSpec kMat024a[] = {{"MID", 10},  {"RO", 10},   {"E", 10},    {"PR", 10},
+                                         {"SIGY", 10}, {"ETAN", 10}, {"FAIL", 10}, {"TDEL", 10}};
+inline constexpr FieldSpec kMat024b[] = {
+    {"C", 10}, {"P", 10}, {"LCSS", 10}, {"LCSR", 10}, {"VP", 10}};
+inline constexpr FieldSpec kMat024Eps[] = {{"EPS1", 10}, {"EPS2", 10}, {"EPS3", 10}, {"EPS4", 10},
+                                           {"EPS5", 10}, {"EPS6", 10}, {"EPS7", 10}, {"EPS8", 10}};
+inline constexpr FieldSpec kMat024Es[] = {{"ES1", 10}, {"ES2", 10}, {"ES3", 10}, {"ES4", 10},
+                                          {"ES5", 10}, {"ES6", 10}, {"ES7", 10}, {"ES8", 10}};
+inline constexpr FieldSpec kCurve[] = {{"LCID", 10}, {"SIDR", 10}, {"SFA", 10},    {"SFO", 10},
+                                       {"OFFA", 10}, {"OFFO", 10}, {"DATTYP", 10}, {"LCINT", 10}};
+inline constexpr FieldSpec kCurvePoint[] = {{"A", 20}, {"O", 20}};
+inline constexpr FieldSpec kSetHeader[] = {{"SID", 10}, {"DA1", 10}, {"DA2", 10},
+                                           {"DA3", 10}, {"DA4", 10}, {"SOLVER", 10}};
+inline constexpr FieldSpec kSetList[] = {{"ID1", 10}, {"ID2", 10}, {"ID3", 10}, {"ID4", 10},
+                                         {"ID5", 10}, {"ID6", 10}, {"ID7", 10}, {"ID8", 10}};
+inline constexpr FieldSpec kSetGenerate[] = {{"B1BEG", 10}, {"B1END", 10}, {"B2BEG", 10},
+                                             {"B2END", 10}, {"B3BEG", 10}, {"B3END", 10},
+                                             {"B4BEG", 10}, {"B4END", 10}};
+inline constexpr FieldSpec kSpcNode[] = {{"NID", 10},  {"CID", 10},   {"DOFX", 10},  {"DOFY", 10},
+                                         {"DOFZ", 10}, {"DOFRX", 10}, {"DOFRY", 10}, {"DOFRZ", 10}};
+inline constexpr FieldSpec kSpcSet[] = {{"NSID", 10}, {"CID", 10},   {"DOFX", 10},  {"DOFY", 10},
+                                        {"DOFZ", 10}, {"DOFRX", 10}, {"DOFRY", 10}, {"DOFRZ", 10}};
+inline constexpr FieldSpec kVelocityGeneration1[] = {{"ID", 10},    {"STYP", 10}, {"OMEGA", 10},
+                                                     {"VX", 10},    {"VY", 10},   {"VZ", 10},
+                                                     {"IVATN", 10}, {"ICID", 10}};
+inline constexpr FieldSpec kVelocityGeneration2[] = {{"XC", 10},    {"YC", 10},    {"ZC", 10},
+                                                     {"NX", 10},    {"NY", 10},    {"NZ", 10},
+                                                     {"PHASE", 10}, {"IRIGID", 10}};
+inline constexpr FieldSpec kVelocityNode[] = {{"NID", 10}, {"VX", 10},  {"VY", 10},  {"VZ", 10},
+                                              {"VXR", 10}, {"VYR", 10}, {"VZR", 10}, {"ICID", 10}};
+inline constexpr FieldSpec kTermination[] = {{"ENDTIM", 10}, {"ENDCYC", 10}, {"DTMIN", 10},
+                                             {"ENDENG", 10}, {"ENDMAS", 10}, {"NOSOL", 10}};
+inline constexpr FieldSpec kTimestep[] = {{"DTINIT", 10}, {"TSSFAC", 10}, {"ISDO", 10},
+                                          {"TSLIMT", 10}, {"DT2MS", 10},  {"LCTM", 10},
+                                          {"ERODE", 10},  {"MS1ST", 10}};
+
+}  // namespace crashlink::deck::layout

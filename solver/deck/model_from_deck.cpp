@@ -1,0 +1,541 @@
+#include "solver/deck/model_from_deck.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <unordered_map>
+
+#include "solver/core/errors.h"
+#include "solver/deck/keyword_layouts.h"
+#include "solver/materials/bilinear_hardening.h"
+
+namespace crashlink::deck {
+
+namespace {
+
+namespace L = layout;
+using IdMap = std::unordered_map<std::int64_t, std::int32_t>;
+
+std::string at(const Deck& d, const CardRef& r) {
+  return fmt::format("{}:{}", d.files.name(r.file), r.line);
+}
+
+/// id -> index of `records` (their `.id`), refusing a duplicate at its ID field.
+template <class Records>
+IdMap index_ids(const Deck& d, const Records& records, Layout l, const char* what) {
+  IdMap m;
+  m.reserve(records.size());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const auto& r = records[i];
+    const auto [it, inserted] = m.emplace(r.id, static_cast<std::int32_t>(i));
+    if (!inserted)
+      fail_at(d, r.ref, r.keyword, l, 0,
+              fmt::format("{} {} is already defined at {}; fix: give each {} its own id", what,
+                          r.id, at(d, records[static_cast<std::size_t>(it->second)].ref), what));
+  }
+  return m;
+}
+
+double wave_speed_m_s(const MaterialCard& m, const UnitSystem& u) {
+  return std::sqrt(m.E * u.stress_Pa() / (m.rho * u.density_kg_m3()));
+}
+
+class Builder {
+ public:
+  Builder(const Deck& d, const UnitSystem& u) : d_(d), u_(u) {}
+
+  model::Model build() {
+    m_.name = d_.title.empty() ? std::filesystem::path(d_.files.name(0)).stem().string() : d_.title;
+    index_nodes();
+    curves_ = index_ids(d_, d_.curves, L::kCurve, "curve");
+    sections_ = index_ids(d_, d_.sections, L::kSectionShell1, "section");
+    materials();
+    parts();
+    elements();
+    compact_nodes();
+    sets();
+    constraints();
+    velocities();
+    controls();
+    try {
+      model::validate(m_);
+    } catch (const ModelError& e) {
+      throw InputError(d_.files.name(0), 0, "(model)", e.what());
+    }
+    return std::move(m_);
+  }
+
+ private:
+  void index_nodes() {
+    const auto& n = d_.nodes;
+    nodes_.reserve(n.id.size());
+    for (std::size_t i = 0; i < n.id.size(); ++i) {
+      const auto [it, inserted] = nodes_.emplace(n.id[i], static_cast<std::int32_t>(i));
+      if (!inserted)
+        fail_at(d_, n.ref[i], "*NODE", L::kNode, 0,
+                fmt::format("node {} is already defined at {}; fix: give each node its own id",
+                            n.id[i], at(d_, n.ref[static_cast<std::size_t>(it->second)])));
+    }
+  }
+
+  int node(std::int64_t id, const CardRef& ref, const char* keyword, Layout l, std::size_t f) {
+    const auto it = nodes_.find(id);
+    if (it == nodes_.end())
+      fail_at(d_, ref, keyword, l, f,
+              fmt::format("node {} is not defined; fix: add it under *NODE or correct the id", id));
+    return it->second;
+  }
+
+  void materials() {
+    materials_ = index_ids(d_, d_.materials, L::kMatElastic, "material");
+    for (const auto& c : d_.materials) {
+      materials::Material mat;
+      mat.name = c.title.empty() ? fmt::format("mat_{}", c.id) : c.title;
+      mat.density_kg_m3 = c.rho * u_.density_kg_m3();
+      mat.youngs_modulus_Pa = c.E * u_.stress_Pa();
+      mat.poisson_ratio = c.nu;
+      if (c.type != MaterialType::Rigid) {
+        const double speed = wave_speed_m_s(c, u_);
+        if (speed < kMinWaveSpeed_m_s || speed > kMaxWaveSpeed_m_s) {
+          const auto fits = plausible_unit_systems(d_);
+          fail_at(d_, c.ref, c.keyword, L::kMatElastic, 2,
+                  fmt::format("with RO = {} and --units {}, the wave speed sqrt(E/RO) is {:.4g} "
+                              "m/s, outside the [{:.0f}, {:.0f}] m/s of crash materials (steel "
+                              "5200); fix: check E and RO, or the units: {}",
+                              c.rho, u_.name, speed, kMinWaveSpeed_m_s, kMaxWaveSpeed_m_s,
+                              fits.empty() ? std::string("no unit system fits every material")
+                                           : "the deck fits --units " + join(fits, " or ")));
+        }
+      }
+      switch (c.type) {
+        case MaterialType::Elastic:
+          mat.kind = materials::MaterialKind::Elastic;
+          break;
+        case MaterialType::Rigid:
+          mat.kind = materials::MaterialKind::Rigid;
+          break;
+        case MaterialType::PlasticKinematic:
+          mat.kind = materials::MaterialKind::J2Plastic;
+          mat.hardening = materials::bilinear_hardening(
+              c.sigy * u_.stress_Pa(), mat.youngs_modulus_Pa, c.etan * u_.stress_Pa());
+          break;
+        case MaterialType::PiecewiseLinear:
+          mat.kind = materials::MaterialKind::J2Plastic;
+          mat.hardening = hardening_024(c, mat.youngs_modulus_Pa);
+          break;
+      }
+      try {
+        materials::validate(mat);
+      } catch (const ModelError& e) {
+        throw InputError(d_.files.name(c.ref.file), c.ref.line,
+                         fmt::format("{} MID {}", c.keyword, c.id), e.what());
+      }
+      m_.materials.push_back(std::move(mat));
+    }
+  }
+
+  static std::string join(const std::vector<std::string>& v, const char* sep) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+    return s;
+  }
+
+  /// *MAT_024's yield curve: LCSS, else the EPS/ES table, else SIGY/ETAN.
+  materials::HardeningCurve hardening_024(const MaterialCard& c, double E_Pa) {
+    const double s = u_.stress_Pa();
+    materials::HardeningCurve h;
+    if (c.lcss > 0) {
+      const auto it = curves_.find(c.lcss);
+      if (it == curves_.end())
+        fail_at(d_, CardRef{c.ref.file, c.ref.line + 1, c.ref.format}, c.keyword, L::kMat024b, 2,
+                fmt::format("curve {} is not defined; fix: add *DEFINE_CURVE {} (effective "
+                            "plastic strain, yield stress)",
+                            c.lcss, c.lcss));
+      const CurveCard& cv = d_.curves[static_cast<std::size_t>(it->second)];
+      for (std::size_t i = 0; i < cv.a.size(); ++i) {
+        h.eps_p.push_back(cv.sfa * (cv.a[i] + cv.offa));
+        h.sigma_y_Pa.push_back(cv.sfo * (cv.o[i] + cv.offo) * s);
+      }
+      if (h.eps_p.empty() || h.eps_p[0] != 0.0)
+        throw InputError(d_.files.name(cv.ref.file), cv.ref.line,
+                         fmt::format("{} {}", cv.keyword, cv.id),
+                         fmt::format("the yield curve of {} MID {} must start at plastic strain "
+                                     "0 (it starts at {}); fix: add the point (0, initial yield)",
+                                     c.keyword, c.id, h.eps_p.empty() ? 0.0 : h.eps_p[0]));
+      return h;
+    }
+    if (!c.es.empty()) {
+      for (std::size_t i = 0; i < c.es.size(); ++i) {
+        h.eps_p.push_back(i < c.eps.size() ? c.eps[i] : 0.0);
+        h.sigma_y_Pa.push_back(c.es[i] * s);
+      }
+      if (h.eps_p[0] != 0.0)
+        throw InputError(d_.files.name(c.ref.file), c.ref.line,
+                         fmt::format("{} MID {}", c.keyword, c.id),
+                         "the EPS/ES table must start at EPS1 = 0; fix: write EPS1 0");
+      return h;
+    }
+    return materials::bilinear_hardening(c.sigy * s, E_Pa, c.etan * s);
+  }
+
+  void parts() {
+    parts_ = index_ids(d_, d_.parts, L::kPart, "part");
+    for (const auto& p : d_.parts) {
+      const auto s = sections_.find(p.section);
+      if (s == sections_.end())
+        fail_at(d_, p.ref, "*PART", L::kPart, 1,
+                fmt::format("section {} is not defined; fix: add *SECTION_SHELL or "
+                            "*SECTION_SOLID {}",
+                            p.section, p.section));
+      if (materials_.find(p.material) == materials_.end())
+        fail_at(d_, p.ref, "*PART", L::kPart, 2,
+                fmt::format("material {} is not defined; fix: add a *MAT_... card with MID {}",
+                            p.material, p.material));
+    }
+  }
+
+  /// The part of element `e` of `cards` (its PID checked against the sections).
+  int element_part(const ElementCards& cards, std::size_t e, bool shell) {
+    const char* kw = shell ? "*ELEMENT_SHELL" : "*ELEMENT_SOLID";
+    // The PID's card (in the two-card layout, the one before the node card).
+    const CardRef pid_ref{cards.ref[e].file, cards.id_line[e], cards.ref[e].format};
+    const auto it = parts_.find(cards.part[e]);
+    if (it == parts_.end())
+      fail_at(d_, pid_ref, kw, L::kElement, 1,
+              fmt::format("part {} is not defined; fix: add a *PART with PID {}", cards.part[e],
+                          cards.part[e]));
+    const PartCard& p = d_.parts[static_cast<std::size_t>(it->second)];
+    const SectionCard& s = d_.sections[static_cast<std::size_t>(sections_.at(p.section))];
+    if (s.shell != shell)
+      fail_at(d_, pid_ref, kw, L::kElement, 1,
+              fmt::format("part {} has {} {} ({}); fix: give the part a {}", p.id, s.keyword, s.id,
+                          at(d_, s.ref), shell ? "*SECTION_SHELL" : "*SECTION_SOLID"));
+    return it->second;
+  }
+
+  void elements() {
+    const std::size_t np = d_.parts.size();
+    std::vector<model::Part> parts(np);
+    std::vector<std::size_t> counts(np, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool shell = pass == 0;
+      // LS-DYNA numbers each element type on its own: a shell and a solid may share an id.
+      IdMap ids;
+      ids.reserve(shell ? d_.shells.count() : d_.solids.count());
+      const ElementCards& c = shell ? d_.shells : d_.solids;
+      const int k = shell ? 4 : 8;
+      const char* kw = shell ? "*ELEMENT_SHELL" : "*ELEMENT_SOLID";
+      for (std::size_t e = 0; e < c.count(); ++e) {
+        const bool two = c.two_card[e] != 0;
+        const Layout l = two ? Layout(L::kSolidNodes) : Layout(L::kElement);
+        const std::size_t first_node_field = two ? 0 : 2;
+        const CardRef id_ref{c.ref[e].file, c.id_line[e], c.ref[e].format};
+        const auto [it, inserted] = ids.emplace(c.id[e], 0);
+        if (!inserted)
+          fail_at(d_, id_ref, kw, L::kElement, 0,
+                  fmt::format("{} {} is already defined; fix: give each {} its own id", kw, c.id[e],
+                              shell ? "shell" : "solid"));
+        const int p = element_part(c, e, shell);
+        model::Part& part = parts[static_cast<std::size_t>(p)];
+        const std::int64_t* n = c.nodes.data() + static_cast<std::size_t>(k) * e;
+        for (int j = 0; j < k; ++j)
+          part.connectivity.push_back(
+              node(n[j], c.ref[e], kw, l, first_node_field + static_cast<std::size_t>(j)));
+        const std::int32_t* q = part.connectivity.data() + part.connectivity.size() - k;
+        check_distinct(q, k, shell, c.ref[e], kw, l, first_node_field);
+        part.element_id.push_back(c.id[e]);
+        ++counts[static_cast<std::size_t>(p)];
+      }
+    }
+    for (std::size_t p = 0; p < np; ++p) {
+      const PartCard& pc = d_.parts[p];
+      if (counts[p] == 0) {
+        empty_parts_.push_back(pc.id);
+        continue;
+      }
+      const SectionCard& s = d_.sections[static_cast<std::size_t>(sections_.at(pc.section))];
+      model::Part& part = parts[p];
+      part.name = part_name(pc);
+      part.kind = s.shell ? model::ElementKind::Shell4 : model::ElementKind::Hex8;
+      part.material = materials_.at(pc.material);
+      if (s.shell) {
+        part.thickness_m = s.thickness * u_.length_m;
+        part.through_thickness_points = s.nip;
+      }
+      part_index_[pc.id] = static_cast<int>(m_.parts.size());
+      m_.parts.push_back(std::move(part));
+      if (m_.materials[static_cast<std::size_t>(m_.parts.back().material)].kind ==
+          materials::MaterialKind::Rigid) {
+        model::RigidBody rb;
+        rb.name = m_.parts.back().name;
+        rb.parts.push_back(static_cast<int>(m_.parts.size() - 1));
+        rigid_body_of_part_[pc.id] = static_cast<int>(m_.rigid_bodies.size());
+        m_.rigid_bodies.push_back(std::move(rb));
+      }
+    }
+  }
+
+  /// A shell's corners distinct except n3 = n4 (a triangle); a hexahedron's all distinct.
+  void check_distinct(const std::int32_t* q, int k, bool shell, const CardRef& ref, const char* kw,
+                      Layout l, std::size_t first) {
+    for (int a = 0; a < k; ++a)
+      for (int b = a + 1; b < k; ++b) {
+        if (q[a] != q[b]) continue;
+        if (shell && a == 2 && b == 3) continue;  // the triangle n3 = n4
+        fail_at(d_, ref, kw, l, first + static_cast<std::size_t>(b),
+                shell ? "repeats a corner; crashlink reads a triangle as n3 = n4 only; fix: "
+                        "write the triangle's nodes as n1 n2 n3 n3"
+                      : "repeats a corner: degenerate hexahedra (prisms, tetrahedra) are not "
+                        "computed yet; fix: mesh the part with 8 distinct corners per element");
+      }
+  }
+
+  std::string part_name(const PartCard& p) {
+    std::string name =
+        trim(p.title).empty() ? fmt::format("part_{}", p.id) : std::string(trim(p.title));
+    if (used_names_.count(name)) name = fmt::format("{} (PID {})", name, p.id);
+    used_names_.emplace(name, 0);
+    return name;
+  }
+
+  /// Drops the nodes no element uses (they would have no mass), keeping the deck's order.
+  void compact_nodes() {
+    const auto& n = d_.nodes;
+    std::vector<std::int32_t> used(n.id.size(), -1);
+    for (const auto& p : m_.parts)
+      for (auto i : p.connectivity) used[static_cast<std::size_t>(i)] = 0;
+    std::int32_t next = 0;
+    for (auto& u : used)
+      if (u == 0) u = next++;
+    m_.nodes.id.reserve(static_cast<std::size_t>(next));
+    m_.nodes.x0.reserve(3 * static_cast<std::size_t>(next));
+    for (std::size_t i = 0; i < n.id.size(); ++i) {
+      if (used[i] < 0) continue;
+      m_.nodes.id.push_back(n.id[i]);
+      for (int k = 0; k < 3; ++k)
+        m_.nodes.x0.push_back(n.x[3 * i + static_cast<std::size_t>(k)] * u_.length_m);
+    }
+    for (auto& p : m_.parts)
+      for (auto& i : p.connectivity) i = used[static_cast<std::size_t>(i)];
+    free_nodes_ = n.id.size() - static_cast<std::size_t>(next);
+    for (auto& [id, idx] : nodes_) idx = used[static_cast<std::size_t>(idx)];
+    m_.fixed.assign(m_.nodes.count(), 0);
+  }
+
+  /// The model index of deck node `id` (-1: a node in no element).
+  int model_node(std::int64_t id, const CardRef& ref, const char* kw, Layout l, std::size_t f) {
+    return node(id, ref, kw, l, f);
+  }
+
+  void sets() {
+    IdMap node_sets, part_sets;
+    for (std::size_t i = 0; i < d_.sets.size(); ++i) {
+      const SetCard& s = d_.sets[i];
+      auto& map = s.parts ? part_sets : node_sets;
+      const auto [it, inserted] = map.emplace(s.id, static_cast<std::int32_t>(i));
+      if (!inserted)
+        fail_at(d_, s.ref, s.keyword, L::kSetHeader, 0,
+                fmt::format("set {} is already defined at {}; fix: give each {} set its own id",
+                            s.id, at(d_, d_.sets[static_cast<std::size_t>(it->second)].ref),
+                            s.parts ? "part" : "node"));
+      std::vector<std::int64_t> ids;
+      for (std::size_t k = 0; k < s.members.size(); ++k) {
+        const bool ok = s.parts ? parts_.count(s.members[k]) > 0 : nodes_.count(s.members[k]) > 0;
+        if (!ok) fail_member(s, k);
+        ids.push_back(s.members[k]);
+      }
+      for (std::size_t r = 0; r < s.ranges.size(); ++r) {
+        const auto [lo, hi] = s.ranges[r];
+        std::size_t found = 0;
+        if (static_cast<double>(hi - lo) < 1e7) {
+          for (std::int64_t id = lo; id <= hi; ++id)
+            if (s.parts ? parts_.count(id) > 0 : nodes_.count(id) > 0) {
+              ids.push_back(id);
+              ++found;
+            }
+        }
+        if (found == 0)
+          fail_at(d_, s.range_ref[r], s.keyword, L::kSetGenerate, 2 * (r % 4),
+                  fmt::format("the range {}-{} holds no defined {}; fix: correct the range", lo, hi,
+                              s.parts ? "part" : "node"));
+      }
+      (s.parts ? part_set_members_ : node_set_members_)[s.id] = std::move(ids);
+    }
+  }
+
+  void fail_member(const SetCard& s, std::size_t k) {
+    // The member's field on its card: count the members listed before it on the same card.
+    std::size_t field = 0;
+    for (std::size_t j = k; j > 0 && s.member_ref[j - 1].line == s.member_ref[k].line; --j) ++field;
+    fail_at(d_, s.member_ref[k], s.keyword, L::kSetList, field,
+            fmt::format("{} {} is not defined; fix: correct the id or define the {}",
+                        s.parts ? "part" : "node", s.members[k], s.parts ? "part" : "node"));
+  }
+
+  const std::vector<std::int64_t>& node_set(std::int64_t id, const CardRef& ref,
+                                            const std::string& kw, Layout l) {
+    const auto it = node_set_members_.find(id);
+    if (it == node_set_members_.end())
+      fail_at(d_, ref, kw, l, 0,
+              fmt::format("node set {} is not defined; fix: add *SET_NODE_LIST {}", id, id));
+    return it->second;
+  }
+
+  void constraints() {
+    for (const auto& s : d_.spcs) {
+      const Layout l = s.set ? Layout(L::kSpcSet) : Layout(L::kSpcNode);
+      std::vector<std::int64_t> one{s.target};
+      const auto& ids = s.set ? node_set(s.target, s.ref, s.keyword, l) : one;
+      for (auto id : ids) {
+        const int i = node(id, s.ref, s.keyword.c_str(), l, 0);
+        if (i >= 0) m_.fixed[static_cast<std::size_t>(i)] |= s.mask;
+      }
+    }
+  }
+
+  void velocities() {
+    for (const auto& v : d_.velocities) {
+      const Vec3 vel{v.v[0] * u_.velocity_m_s(), v.v[1] * u_.velocity_m_s(),
+                     v.v[2] * u_.velocity_m_s()};
+      const bool generation = v.styp != 0;
+      const Layout l = generation ? Layout(L::kVelocityGeneration1) : Layout(L::kVelocityNode);
+      std::vector<std::int64_t> part_ids;
+      std::vector<std::int64_t> node_ids;
+      if (v.styp == 0) {
+        node_ids.push_back(v.target);
+      } else if (v.styp == 1) {
+        const auto it = part_set_members_.find(v.target);
+        if (it == part_set_members_.end())
+          fail_at(d_, v.ref, v.keyword, l, 0,
+                  fmt::format("part set {} is not defined (STYP 1); fix: add *SET_PART_LIST {}",
+                              v.target, v.target));
+        part_ids = it->second;
+      } else if (v.styp == 2) {
+        if (!parts_.count(v.target))
+          fail_at(d_, v.ref, v.keyword, l, 0,
+                  fmt::format("part {} is not defined (STYP 2); fix: correct the id", v.target));
+        part_ids.push_back(v.target);
+      } else {
+        node_ids = node_set(v.target, v.ref, v.keyword, l);
+      }
+      model::InitialVelocity iv;
+      iv.velocity_m_s = vel;
+      for (auto pid : part_ids) {
+        if (const auto rb = rigid_body_of_part_.find(pid); rb != rigid_body_of_part_.end()) {
+          m_.rigid_bodies[static_cast<std::size_t>(rb->second)].velocity_m_s = vel;
+          continue;
+        }
+        const auto p = part_index_.find(pid);
+        if (p == part_index_.end()) continue;  // a part without elements
+        for (auto i : m_.parts[static_cast<std::size_t>(p->second)].connectivity)
+          iv.nodes.push_back(i);
+      }
+      for (auto id : node_ids) {
+        const int i = node(id, v.ref, v.keyword.c_str(), l, 0);
+        if (i >= 0) iv.nodes.push_back(i);
+      }
+      std::sort(iv.nodes.begin(), iv.nodes.end());
+      iv.nodes.erase(std::unique(iv.nodes.begin(), iv.nodes.end()), iv.nodes.end());
+      if (iv.nodes.empty()) continue;
+      // Consecutive *INITIAL_VELOCITY_NODE cards with one velocity make one entry.
+      if (!generation && !m_.initial_velocities.empty() && last_was_node_ &&
+          m_.initial_velocities.back().velocity_m_s == vel) {
+        auto& back = m_.initial_velocities.back().nodes;
+        back.insert(back.end(), iv.nodes.begin(), iv.nodes.end());
+      } else {
+        m_.initial_velocities.push_back(std::move(iv));
+      }
+      last_was_node_ = !generation;
+    }
+  }
+
+  void controls() {
+    if (!d_.has_end_time)
+      throw InputError(d_.files.name(0), 0, "*CONTROL_TERMINATION",
+                       "missing: the deck sets no end time; fix: add *CONTROL_TERMINATION with "
+                       "ENDTIM");
+    m_.controls.end_time_s = d_.end_time * u_.time_s;
+    m_.controls.dt_scale = d_.tssfac;
+  }
+
+ public:
+  std::size_t free_nodes_ = 0;
+  std::vector<std::int64_t> empty_parts_;
+
+ private:
+  const Deck& d_;
+  const UnitSystem& u_;
+  model::Model m_;
+  IdMap nodes_, curves_, sections_, materials_, parts_;
+  std::unordered_map<std::int64_t, int> part_index_, rigid_body_of_part_;
+  std::unordered_map<std::string, int> used_names_;
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_;
+  bool last_was_node_ = false;
+};
+
+}  // namespace
+
+std::vector<std::string> plausible_unit_systems(const Deck& deck) {
+  std::vector<std::string> out;
+  for (const auto& u : unit_systems()) {
+    bool ok = true;
+    for (const auto& m : deck.materials) {
+      if (m.type == MaterialType::Rigid) continue;
+      const double c = wave_speed_m_s(m, u);
+      ok = ok && c >= kMinWaveSpeed_m_s && c <= kMaxWaveSpeed_m_s;
+    }
+    if (ok) out.emplace_back(u.name);
+  }
+  return out;
+}
+
+model::Model model_from_deck(const Deck& deck, const UnitSystem& units) {
+  Builder b(deck, units);
+  return b.build();
+}
+
+DeckRead read_deck(const std::string& path, const DeckOptions& options) {
+  ParseOptions po;
+  po.ignore = options.ignore;
+  const Deck deck = parse_deck(path, po);
+  const UnitSystem* units = find_unit_system(options.units);
+  if (!units) {
+    const auto fits = plausible_unit_systems(deck);
+    std::string fit_text;
+    for (const auto& f : fits) fit_text += (fit_text.empty() ? "" : ", ") + f;
+    throw InputError(
+        path, 0, "--units",
+        fmt::format("{}; a deck writes no units down; fix: pass --units with one of {} (the "
+                    "materials' wave speeds fit: {})",
+                    options.units.empty()
+                        ? std::string("not given")
+                        : fmt::format("'{}' is not a known system", options.units),
+                    unit_system_names(), fit_text.empty() ? std::string("none") : fit_text));
+  }
+  Builder b(deck, *units);
+  DeckRead out{b.build(), {}};
+  if (!deck.without_effect.empty()) {
+    std::string s;
+    for (const auto& [k, n] : deck.without_effect) s += (s.empty() ? "" : ", ") + k;
+    out.messages.push_back("accepted without effect (crashlink writes its own output): " + s);
+  }
+  for (const auto& [k, n] : deck.skipped_cards)
+    out.messages.push_back(fmt::format("skipped on request (--ignore): {} ({} cards)", k, n));
+  if (b.free_nodes_ > 0)
+    out.messages.push_back(
+        fmt::format("{} nodes belong to no element and are left out", b.free_nodes_));
+  for (auto pid : b.empty_parts_)
+    out.messages.push_back(fmt::format("part {} has no element and is left out", pid));
+  for (const auto& n : deck.notes) out.messages.push_back(n);
+  return out;
+}
+
+bool is_deck_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".k" || ext == ".key" || ext == ".dyn" || ext == ".kw";
+}
+
+}  // namespace crashlink::deck
