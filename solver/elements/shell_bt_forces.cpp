@@ -14,24 +14,36 @@
 //     initial yield, for those only, packed; none: no call. Then the sums through the thickness
 //     and the write-back.
 //
-// Kinematics at the single in-plane point, in the corotational frame (e1, e2, e3) built from the
-// CURRENT geometry x^{n+1}: e3 = r31 x r42 / |.| ([LSTM] BT shell), e1 = the normalised
-// r31/|r31| - r42/|r42| (the bisector of the diagonals; for a rectangle numbered as the manual's
-// figure it is along r21, the manual's e1), e2 = e3 x e1 (= the other bisector, along
-// r31/|r31| + r42/|r42|). Not the manual's e1 along r21: an edge's rotation under in-plane shear
-// differs from the other edges', so a frame that follows edge 1-2 rotates the stored stresses
-// differently depending on the corner where the numbering starts, and a mesh and its mirror image
-// (whose elements start at mirrored corners of other edges) drift apart. The bisector frame is the
-// same for every starting corner (a shift by one node turns it by 90 degrees, an exact relabelling
-// of the isotropic response) and is mirrored with the element: a symmetric structure stays
-// symmetric to round-off (issue 21: the sphere dropped on a plate kept the symmetry about x = 0
-// to 1e-13 but lost that about y = 0 at 1e-4 of the impact speed, with e1 along r21; LS-DYNA
-// offers invariant node numbering for the same reason, *CONTROL_SHELL INN). A triangle (n3 == n2)
-// takes the same formula, r31 and r42 being then its edges from nodes 1 and 2 to node 3: its
-// frame still depends on the numbering.
-// The velocity strains use the same geometry (LS-DYNA practice; kernel_io.h asks for the mid-step
-// geometry: the difference is O(dt^2) and this keeps rigid rotations exactly strain-free).
-// Mindlin velocity field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]):
+// Kinematics at the single in-plane point, in the corotational frame (e1, e2, e3) built from a
+// geometry (x^{n+1} for the forces, x^{n+1/2} for the velocity strains, below): e3 = r31 x r42 /
+// |.| ([LSTM] BT shell), e1 = the normalised r31/|r31| - r42/|r42| (the bisector of the diagonals;
+// for a rectangle numbered as the manual's figure it is along r21, the manual's e1), e2 = e3 x e1
+// (= the other bisector, along r31/|r31| + r42/|r42|). Not the manual's e1 along r21: an edge's
+// rotation under in-plane shear differs from the other edges', so a frame that follows edge 1-2
+// rotates the stored stresses differently depending on the corner where the numbering starts, and a
+// mesh and its mirror image (whose elements start at mirrored corners of other edges) drift apart.
+// The bisector frame is the same for every starting corner (a shift by one node turns it by 90
+// degrees, an exact relabelling of the isotropic response) and is mirrored with the element: a
+// symmetric structure stays symmetric to round-off (issue 21: the sphere dropped on a plate kept
+// the symmetry about x = 0 to 1e-13 but lost that about y = 0 at 1e-4 of the impact speed, with e1
+// along r21; LS-DYNA offers invariant node numbering for the same reason, *CONTROL_SHELL INN). A
+// triangle (n3 == n2) takes the same formula, r31 and r42 being then its edges from nodes 1 and 2
+// to node 3: its frame still depends on the numbering. The velocity strains use the frame, B and
+// gamma of the MID-STEP geometry x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} = (x^n + x^{n+1}) / 2
+// (kernel_io.h; as hex8.cpp), the forces those of x^{n+1}. Why (energy consistency,
+// docs/energy-balance.md): write G(x) for the frame and B together (global velocities -> local
+// strain rates) and du = dt v^{n+1/2}. The integrator's identity books the nodal work 1/2 (f^n +
+// f^{n+1}) . du with f^n = G(x^n)^T sigma^n, the element its midpoint-rule work 1/2 (sigma^n +
+// sigma^{n+1}) : G du. With G = G(x^{n+1}) they differ by 1/2 sigma^n (G(x^{n+1}) - G(x^n)) du,
+// O(dt^2) per step and O(dt) over a run (the balance error of shell scenes halved with the step);
+// with G(x^{n+1/2}) the two halves cancel to 1/4 (sigma^n - sigma^{n+1}) G' du du + O(du^3),
+// O(dt^2) over a run (tests/unit/elements/ shell_bt_energy_test.cpp). The work's area (h_mid A) is
+// that of x^{n+1/2} as well: A B is the operator. A rigid rotation step x^{n+1} = R x^n has the
+// chord velocity (R - I) x^n / dt = W x^{n+1/2} / dt, W = 2 (R - I)(R + I)^{-1} skew (Cayley
+// transform; Hughes, Winget 1980, IJNME 15, 1862-1867), so it is exactly strain-free at x^{n+1/2}
+// (and curvature- and shear-free for nodal angular velocities equal to W's axial vector / dt); at
+// x^{n+1} its membrane strain would be (1 - cos theta) ~ theta^2 / 2 per step. Mindlin velocity
+// field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]):
 //   d_xx  = B1.vx,            d_yy = B2.vy,            2d_xy = B2.vx + B1.vy          (membrane)
 //   k_xx  = B1.thy,           k_yy = -B2.thx,          2k_xy = B2.thy - B1.thx        (curvature)
 //   2d_xz = B1.vz + N.thy,    2d_yz = B2.vz - N.thx,   N_I = 1/4                       (shear)
@@ -143,6 +155,100 @@ inline void store_block(double* a, const double (&in)[R][L]) {
   std::memcpy(a, in, sizeof in);
 }
 
+/// Corotational frame and in-plane operators of one configuration of a batch (header comment):
+/// e1, e2, e3, the area A, B1, B2 and the hourglass shape vector gamma (Gm).
+struct Geometry {
+  double e1[3][L], e2[3][L], e3[3][L];
+  double A[L], B1[4][L], B2[4][L], Gm[4][L];
+};
+
+/// The Geometry of the coordinates X [node][xyz][lane]; kSizes: also the largest squared side or
+/// diagonal in the element plane (lmax2) and BB = sum_I B1_I^2 + B2_I^2 (the stable step and the
+/// hourglass stiffnesses). Always inlined: on the caller's local arrays the lane loops vectorise
+/// without alias checks (out of line, through the references, the kernel was 20 % slower).
+template <bool kSizes>
+[[gnu::always_inline]] inline void geometry(const double (&X)[4][3][L], Geometry& g, double* lmax2,
+                                            double* BB) {
+  auto &e1 = g.e1, &e2 = g.e2, &e3 = g.e3;
+  double s3[3][L], nsq[L], len[L], r31[3][L], r42[3][L], n31[L], n42[L], l31[L], l42[L];
+  for (std::size_t l = 0; l < L; ++l) {
+    for (int c = 0; c < 3; ++c) {
+      r31[c][l] = X[2][c][l] - X[0][c][l];
+      r42[c][l] = X[3][c][l] - X[1][c][l];
+    }
+    s3[0][l] = r31[1][l] * r42[2][l] - r31[2][l] * r42[1][l];
+    s3[1][l] = r31[2][l] * r42[0][l] - r31[0][l] * r42[2][l];
+    s3[2][l] = r31[0][l] * r42[1][l] - r31[1][l] * r42[0][l];
+    nsq[l] = s3[0][l] * s3[0][l] + s3[1][l] * s3[1][l] + s3[2][l] * s3[2][l];
+    n31[l] = r31[0][l] * r31[0][l] + r31[1][l] * r31[1][l] + r31[2][l] * r31[2][l];
+    n42[l] = r42[0][l] * r42[0][l] + r42[1][l] * r42[1][l] + r42[2][l] * r42[2][l];
+  }
+  sqrt_lanes(nsq, len, L);
+  sqrt_lanes(n31, l31, L);
+  sqrt_lanes(n42, l42, L);
+  // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, projected on the plane.
+  for (std::size_t l = 0; l < L; ++l) {
+    const double inv = 1.0 / len[l], i31 = 1.0 / l31[l], i42 = 1.0 / l42[l];
+    double b[3];
+    for (int c = 0; c < 3; ++c) {
+      b[c] = r31[c][l] * i31 - r42[c][l] * i42;
+      e3[c][l] = s3[c][l] * inv;
+    }
+    const double d = b[0] * e3[0][l] + b[1] * e3[1][l] + b[2] * e3[2][l];
+    for (int c = 0; c < 3; ++c) e1[c][l] = b[c] - d * e3[c][l];
+    nsq[l] = e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l];
+  }
+  sqrt_lanes(nsq, len, L);
+  for (std::size_t l = 0; l < L; ++l) {
+    const double inv = 1.0 / len[l];
+    for (int c = 0; c < 3; ++c) e1[c][l] *= inv;
+    e2[0][l] = e3[1][l] * e1[2][l] - e3[2][l] * e1[1][l];
+    e2[1][l] = e3[2][l] * e1[0][l] - e3[0][l] * e1[2][l];
+    e2[2][l] = e3[0][l] * e1[1][l] - e3[1][l] * e1[0][l];
+    double xl[4], yl[4];
+    xl[0] = 0.0;
+    yl[0] = 0.0;
+    for (int I = 1; I < 4; ++I) {
+      const double dx = X[I][0][l] - X[0][0][l], dy = X[I][1][l] - X[0][1][l],
+                   dz = X[I][2][l] - X[0][2][l];
+      xl[I] = e1[0][l] * dx + e1[1][l] * dy + e1[2][l] * dz;
+      yl[I] = e2[0][l] * dx + e2[1][l] * dy + e2[2][l] * dz;
+    }
+    const double x0 = xl[0], x1 = xl[1], x2 = xl[2], x3 = xl[3];
+    const double y0 = yl[0], y1 = yl[1], y2 = yl[2], y3 = yl[3];
+    const double twoA = (x2 - x0) * (y3 - y1) - (x3 - x1) * (y2 - y0);
+    g.A[l] = 0.5 * twoA;
+    const double ia = 1.0 / twoA;
+    auto &B1 = g.B1, &B2 = g.B2, &Gm = g.Gm;
+    B1[0][l] = (y1 - y3) * ia;
+    B1[1][l] = (y2 - y0) * ia;
+    B1[2][l] = (y3 - y1) * ia;
+    B1[3][l] = (y0 - y2) * ia;
+    B2[0][l] = (x3 - x1) * ia;
+    B2[1][l] = (x0 - x2) * ia;
+    B2[2][l] = (x1 - x3) * ia;
+    B2[3][l] = (x2 - x0) * ia;
+    // Hourglass shape vector gamma = h - (h.x) B1 - (h.y) B2, h = (1, -1, 1, -1) ([FB81], [BT83]).
+    const double hx = x0 - x1 + x2 - x3, hy = y0 - y1 + y2 - y3;
+    Gm[0][l] = 1.0 - hx * B1[0][l] - hy * B2[0][l];
+    Gm[1][l] = -1.0 - hx * B1[1][l] - hy * B2[1][l];
+    Gm[2][l] = 1.0 - hx * B1[2][l] - hy * B2[2][l];
+    Gm[3][l] = -1.0 - hx * B1[3][l] - hy * B2[3][l];
+    if constexpr (kSizes) {
+      double bb = 0.0;
+      for (int I = 0; I < 4; ++I) bb += B1[I][l] * B1[I][l] + B2[I][l] * B2[I][l];
+      BB[l] = bb;
+      const double s01 = (x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0);
+      const double s12 = (x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1);
+      const double s23 = (x3 - x2) * (x3 - x2) + (y3 - y2) * (y3 - y2);
+      const double s30 = (x0 - x3) * (x0 - x3) + (y0 - y3) * (y0 - y3);
+      const double d02 = (x2 - x0) * (x2 - x0) + (y2 - y0) * (y2 - y0);
+      const double d13 = (x3 - x1) * (x3 - x1) + (y3 - y1) * (y3 - y1);
+      lmax2[l] = std::max(std::max(std::max(s01, s12), std::max(s23, s30)), std::max(d02, d13));
+    }
+  }
+}
+
 /// One lane block's arrays that the expansion term touches (shell_forces below).
 struct ExpansionLanes {
   const double *dxx, *dyy, *h0, *h1, *area, *le;
@@ -235,85 +341,17 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
     gather(nv.x, nd, X);
 
     // ---- corotational frame, local coordinates, B, gamma ([LSTM] BT shell) -------------------
-    double e1[3][L], e2[3][L], e3[3][L];
-    double A[L], B1[4][L], B2[4][L], Gm[4][L], BB[L], lmax2[L], lmax[L], Le[L];
-    double s3[3][L], nsq[L], len[L], r31[3][L], r42[3][L], n31[L], n42[L], l31[L], l42[L];
+    // at x^{n+1}, for the forces
+    Geometry gc;
+    double BB[L], lmax2[L], lmax[L], Le[L], tri[L], bad[L];
+    geometry<true>(X, gc, lmax2, BB);
+    const auto &e1 = gc.e1, &e2 = gc.e2, &e3 = gc.e3;
+    const auto& A = gc.A;
+    const auto &B1 = gc.B1, &B2 = gc.B2, &Gm = gc.Gm;
     for (std::size_t l = 0; l < L; ++l) {
-      for (int c = 0; c < 3; ++c) {
-        r31[c][l] = X[2][c][l] - X[0][c][l];
-        r42[c][l] = X[3][c][l] - X[1][c][l];
-      }
-      s3[0][l] = r31[1][l] * r42[2][l] - r31[2][l] * r42[1][l];
-      s3[1][l] = r31[2][l] * r42[0][l] - r31[0][l] * r42[2][l];
-      s3[2][l] = r31[0][l] * r42[1][l] - r31[1][l] * r42[0][l];
-      nsq[l] = s3[0][l] * s3[0][l] + s3[1][l] * s3[1][l] + s3[2][l] * s3[2][l];
-      n31[l] = r31[0][l] * r31[0][l] + r31[1][l] * r31[1][l] + r31[2][l] * r31[2][l];
-      n42[l] = r42[0][l] * r42[0][l] + r42[1][l] * r42[1][l] + r42[2][l] * r42[2][l];
-    }
-    sqrt_lanes(nsq, len, L);
-    sqrt_lanes(n31, l31, L);
-    sqrt_lanes(n42, l42, L);
-    // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, projected on the plane.
-    for (std::size_t l = 0; l < L; ++l) {
-      const double inv = 1.0 / len[l], i31 = 1.0 / l31[l], i42 = 1.0 / l42[l];
-      double b[3];
-      for (int c = 0; c < 3; ++c) {
-        b[c] = r31[c][l] * i31 - r42[c][l] * i42;
-        e3[c][l] = s3[c][l] * inv;
-      }
-      const double d = b[0] * e3[0][l] + b[1] * e3[1][l] + b[2] * e3[2][l];
-      for (int c = 0; c < 3; ++c) e1[c][l] = b[c] - d * e3[c][l];
-      nsq[l] = e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l];
-    }
-    sqrt_lanes(nsq, len, L);
-    double tri[L], bad[L];
-    for (std::size_t l = 0; l < L; ++l) {
-      const double inv = 1.0 / len[l];
-      for (int c = 0; c < 3; ++c) e1[c][l] *= inv;
-      e2[0][l] = e3[1][l] * e1[2][l] - e3[2][l] * e1[1][l];
-      e2[1][l] = e3[2][l] * e1[0][l] - e3[0][l] * e1[2][l];
-      e2[2][l] = e3[0][l] * e1[1][l] - e3[1][l] * e1[0][l];
-      double xl[4], yl[4];
-      xl[0] = 0.0;
-      yl[0] = 0.0;
-      for (int I = 1; I < 4; ++I) {
-        const double dx = X[I][0][l] - X[0][0][l], dy = X[I][1][l] - X[0][1][l],
-                     dz = X[I][2][l] - X[0][2][l];
-        xl[I] = e1[0][l] * dx + e1[1][l] * dy + e1[2][l] * dz;
-        yl[I] = e2[0][l] * dx + e2[1][l] * dy + e2[2][l] * dz;
-      }
-      const double x0 = xl[0], x1 = xl[1], x2 = xl[2], x3 = xl[3];
-      const double y0 = yl[0], y1 = yl[1], y2 = yl[2], y3 = yl[3];
-      const double twoA = (x2 - x0) * (y3 - y1) - (x3 - x1) * (y2 - y0);
-      A[l] = 0.5 * twoA;
-      const double ia = 1.0 / twoA;
-      B1[0][l] = (y1 - y3) * ia;
-      B1[1][l] = (y2 - y0) * ia;
-      B1[2][l] = (y3 - y1) * ia;
-      B1[3][l] = (y0 - y2) * ia;
-      B2[0][l] = (x3 - x1) * ia;
-      B2[1][l] = (x0 - x2) * ia;
-      B2[2][l] = (x1 - x3) * ia;
-      B2[3][l] = (x2 - x0) * ia;
-      // Hourglass shape vector gamma = h - (h.x) B1 - (h.y) B2, h = (1, -1, 1, -1) ([FB81],
-      // [BT83]).
-      const double hx = x0 - x1 + x2 - x3, hy = y0 - y1 + y2 - y3;
-      Gm[0][l] = 1.0 - hx * B1[0][l] - hy * B2[0][l];
-      Gm[1][l] = -1.0 - hx * B1[1][l] - hy * B2[1][l];
-      Gm[2][l] = 1.0 - hx * B1[2][l] - hy * B2[2][l];
-      Gm[3][l] = -1.0 - hx * B1[3][l] - hy * B2[3][l];
-      double bb = 0.0;
-      for (int I = 0; I < 4; ++I) bb += B1[I][l] * B1[I][l] + B2[I][l] * B2[I][l];
-      BB[l] = bb;
-      const double s01 = (x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0);
-      const double s12 = (x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1);
-      const double s23 = (x3 - x2) * (x3 - x2) + (y3 - y2) * (y3 - y2);
-      const double s30 = (x0 - x3) * (x0 - x3) + (y0 - y3) * (y0 - y3);
-      const double d02 = (x2 - x0) * (x2 - x0) + (y2 - y0) * (y2 - y0);
-      const double d13 = (x3 - x1) * (x3 - x1) + (y3 - y1) * (y3 - y1);
-      lmax2[l] = std::max(std::max(std::max(s01, s12), std::max(s23, s30)), std::max(d02, d13));
       tri[l] = nd[3][l] == nd[2][l] ? 1.0 : 0.0;
       // zero, negative or non-finite area (a collapsed or folded element); NaN fails the test
+      const double twoA = 2.0 * A[l];
       bad[l] =
           (twoA > 1e-12 * lmax2[l] && twoA < std::numeric_limits<double>::infinity()) ? 0.0 : 1.0;
     }
@@ -338,22 +376,37 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
     double dm[3][L], kap[3][L],
         gs[2][L];     // (d_xx, d_yy, 2d_xy), (k_xx, k_yy, 2k_xy), (2d_yz, 2d_xz)
     double qd[5][L];  // hourglass rates gamma.(vx, vy, vz, thx, thy)
+    // At the mid-step geometry x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} (header comment): frame gm,
+    // area Am, operators B1m, B2m, Gmm. Without update Am = A (the work is 0 then).
+    Geometry gm;
+    double Am[L];
     if (update) {
-      double V[4][3][L], Wn[4][3][L];
+      double V[4][3][L], Wn[4][3][L], Xm[4][3][L];
       gather(nv.v, nd, V);
       gather(nv.omega, nd, Wn);
+      const double half_dt = 0.5 * dt;
+      for (int I = 0; I < 4; ++I)
+        for (int c = 0; c < 3; ++c)
+          for (std::size_t l = 0; l < L; ++l) Xm[I][c][l] = X[I][c][l] - half_dt * V[I][c][l];
+      geometry<false>(Xm, gm, nullptr, nullptr);
+      const auto &e1m = gm.e1, &e2m = gm.e2, &e3m = gm.e3;
+      const auto &B1m = gm.B1, &B2m = gm.B2, &Gmm = gm.Gm;
+      for (std::size_t l = 0; l < L; ++l) Am[l] = gm.A[l];
       for (std::size_t l = 0; l < L; ++l) {
         double sdxx = 0, sdyy = 0, sgxy = 0, skxx = 0, skyy = 0, skxy = 0, sgxz = 0, sgyz = 0;
         double h0 = 0, h1 = 0, h2 = 0, h3 = 0, h4 = 0;
         for (int I = 0; I < 4; ++I) {
-          const double vx = e1[0][l] * V[I][0][l] + e1[1][l] * V[I][1][l] + e1[2][l] * V[I][2][l];
-          const double vy = e2[0][l] * V[I][0][l] + e2[1][l] * V[I][1][l] + e2[2][l] * V[I][2][l];
-          const double vz = e3[0][l] * V[I][0][l] + e3[1][l] * V[I][1][l] + e3[2][l] * V[I][2][l];
+          const double vx =
+              e1m[0][l] * V[I][0][l] + e1m[1][l] * V[I][1][l] + e1m[2][l] * V[I][2][l];
+          const double vy =
+              e2m[0][l] * V[I][0][l] + e2m[1][l] * V[I][1][l] + e2m[2][l] * V[I][2][l];
+          const double vz =
+              e3m[0][l] * V[I][0][l] + e3m[1][l] * V[I][1][l] + e3m[2][l] * V[I][2][l];
           const double tx =
-              e1[0][l] * Wn[I][0][l] + e1[1][l] * Wn[I][1][l] + e1[2][l] * Wn[I][2][l];
+              e1m[0][l] * Wn[I][0][l] + e1m[1][l] * Wn[I][1][l] + e1m[2][l] * Wn[I][2][l];
           const double ty =
-              e2[0][l] * Wn[I][0][l] + e2[1][l] * Wn[I][1][l] + e2[2][l] * Wn[I][2][l];
-          const double b1 = B1[I][l], b2 = B2[I][l], g = Gm[I][l];
+              e2m[0][l] * Wn[I][0][l] + e2m[1][l] * Wn[I][1][l] + e2m[2][l] * Wn[I][2][l];
+          const double b1 = B1m[I][l], b2 = B2m[I][l], g = Gmm[I][l];
           sdxx += b1 * vx;
           sdyy += b2 * vy;
           sgxy += b2 * vx + b1 * vy;
@@ -384,6 +437,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
     } else {
       for (std::size_t l = 0; l < L; ++l) {
+        Am[l] = A[l];
         for (int c = 0; c < 3; ++c) dm[c][l] = kap[c][l] = 0.0;
         for (int c = 0; c < 5; ++c) qd[c][l] = 0.0;
         gs[0][l] = gs[1][l] = 0.0;
@@ -594,7 +648,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       const double h1 = h_n * (1.0 + dezz[l]);  // dezz = 0 without update
       h_new[0][l] = h1;
       const double a = A[l];
-      const double vol_mid = 0.5 * (h_n + h1) * a;  // midpoint volume h_mid A
+      const double vol_mid = 0.5 * (h_n + h1) * Am[l];  // midpoint volume h_mid A^{n+1/2}
       // Bulk viscosity q (header comment), 0 in expansion or when off.
       const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
       const double on = tr_m < 0.0 ? bulk_on : 0.0;
@@ -627,7 +681,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       ehg[l] = eh;
     }
     if (linear_in_expansion_on)  // the linear term in expansion (header comment), q = 0 above
-      linear_in_expansion({dm[0], dm[1], h[0], h_new[0], A, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
+      linear_in_expansion({dm[0], dm[1], h[0], h_new[0], Am, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
                           rho * q1 * K.c_plate, q1, dt);
     // Nodal forces and moments, local frame -> global (header comment).
     for (int I = 0; I < 4; ++I)
@@ -676,7 +730,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       e_int += ework[l];
       e_hg += ehg[l];
-      if constexpr (kDamped) e_damp += edamp[l] * 0.25 * (h[0][l] + h_new[0][l]) * A[l];
+      if constexpr (kDamped) e_damp += edamp[l] * 0.25 * (h[0][l] + h_new[0][l]) * Am[l];
       if (step.element_dt_s) step.element_dt_s[b0 + l] = dte[l];
       if (dte[l] < dt_min) {
         dt_min = dte[l];

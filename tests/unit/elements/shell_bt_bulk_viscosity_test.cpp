@@ -1,6 +1,9 @@
 // Membrane bulk viscosity of the Belytschko-Tsay shell (shell_bt_forces.cpp header comment):
-// a rectangle a x b under an imposed uniform in-plane velocity gradient v = L X, one step.
-//   * compression (tr L < 0): q = rho L_e (Q2 L_e tr^2 - Q1 c tr), L_e = A / diagonal,
+// a rectangle a x b (the geometry x^{n+1}) under an imposed uniform in-plane velocity field
+// v = L X, one step. The kernel takes the velocity strains on the mid-step geometry
+// x - dt/2 v = (I - dt/2 L) X, where v is the gradient Lm = L (I - dt/2 L)^{-1}; tr below is
+// tr Lm, and the work's area that of the mid-step geometry, det(I - dt/2 L) a b.
+//   * compression (tr < 0): q = rho L_e (Q2 L_e tr^2 - Q1 c tr), L_e = A / diagonal,
 //     c = sqrt(E / (rho (1 - nu^2))); the forces differ from those without viscosity by the
 //     in-plane pressure q on the edges, Delta f_I = -q h A (B1_I, B2_I) (node 1 at the origin:
 //     (q h b / 2, q h a / 2)), rotated with the element when it is tilted in space; the internal
@@ -24,6 +27,19 @@ using crashlink::Mat3;
 using crashlink::Vec3;
 
 constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0, kH = 0.002, kA = 0.04, kB = 0.025;
+constexpr double kDt = 1e-7;  // [s]
+
+/// The in-plane gradient on the mid-step geometry (header comment): tr Lm and det(I - dt/2 L).
+struct MidStep {
+  double tr = 0.0, area_factor = 1.0;
+};
+MidStep mid_step(const double (&L)[2][2]) {
+  const double a = 0.5 * kDt;
+  const double m00 = 1.0 - a * L[0][0], m01 = -a * L[0][1], m10 = -a * L[1][0],
+               m11 = 1.0 - a * L[1][1];
+  const double det = m00 * m11 - m01 * m10;  // M^{-1} = (m11, -m01; -m10, m00) / det
+  return {(L[0][0] * m11 - L[0][1] * m10 - L[1][0] * m01 + L[1][1] * m00) / det, det};
+}
 
 struct StepRun {
   std::vector<double> f, m;
@@ -58,7 +74,7 @@ StepRun run(const double (&Lg)[2][2], bool bulk, const Mat3& Q, bool linear = fa
     }
   }
   el::ShellState st = el::make_shell_state(part);
-  el::StepInfo step{1e-7, bulk};
+  el::StepInfo step{kDt, bulk};
   step.linear_in_expansion = linear;
   r.res = el::shell_internal_forces(part, mat, st,
                                     {x.data(), v.data(), w.data(), r.f.data(), r.m.data()}, step);
@@ -75,9 +91,10 @@ Mat3 tilt() {
 
 TEST(ShellBtBulkViscosity, CompressionAddsTheInPlanePressure) {
   for (const Mat3& Q : {crashlink::identity3(), tilt()}) {
-    const double Lg[2][2] = {{-800.0, 150.0}, {150.0, -300.0}};  // tr = -1100 /s
+    const double Lg[2][2] = {{-800.0, 150.0}, {150.0, -300.0}};  // tr L = -1100 /s
     const StepRun on = run(Lg, true, Q), off = run(Lg, false, Q);
-    const double tr = Lg[0][0] + Lg[1][1];
+    const MidStep mid = mid_step(Lg);
+    const double tr = mid.tr;
     const double c = std::sqrt(kE / (kRho * (1 - kNu * kNu)));
     const double Le = kA * kB / std::hypot(kA, kB);
     const double Q1 = 0.06, Q2 = 1.5;  // StepInfo defaults
@@ -100,7 +117,7 @@ TEST(ShellBtBulkViscosity, CompressionAddsTheInPlanePressure) {
     }
     // Energy: trapezoid on the pressure, 1/2 (q^n + q) (-tr) A h_mid dt, with q^n = 0 on this
     // first step from rest.
-    const double dW = -0.5 * q * tr * kA * kB * 0.5 * (kH + h1) * 1e-7;
+    const double dW = -0.5 * q * tr * mid.area_factor * kA * kB * 0.5 * (kH + h1) * kDt;
     EXPECT_NEAR(on.res.internal_energy_increment_J - off.res.internal_energy_increment_J, dW,
                 1e-10 * dW);
     // Step: (L_e / c) (sqrt(1 + xi^2) - xi).
@@ -135,7 +152,8 @@ TEST(ShellBtBulkViscosity, LinearTermInExpansionWhenAsked) {
   const double compress[2][2] = {{-800.0, 150.0}, {150.0, -300.0}};
   const Mat3 Q = tilt();
   const StepRun on = run(expand, true, Q, true), off = run(expand, false, Q, true);
-  const double tr = expand[0][0] + expand[1][1];
+  const MidStep mid = mid_step(expand);
+  const double tr = mid.tr;
   const double c = std::sqrt(kE / (kRho * (1 - kNu * kNu)));
   const double Le = kA * kB / std::hypot(kA, kB);
   const double Q1 = 0.06;
@@ -149,7 +167,7 @@ TEST(ShellBtBulkViscosity, LinearTermInExpansionWhenAsked) {
     for (std::size_t k = 0; k < 3; ++k)
       EXPECT_NEAR(on.f[3 * n + k] - off.f[3 * n + k], dg[k], 1e-10 * fscale) << "node " << n;
   }
-  const double dW = -0.5 * q * tr * kA * kB * 0.5 * (kH + h1) * 1e-7;
+  const double dW = -0.5 * q * tr * mid.area_factor * kA * kB * 0.5 * (kH + h1) * kDt;
   ASSERT_GT(dW, 0.0);
   EXPECT_NEAR(on.res.internal_energy_increment_J - off.res.internal_energy_increment_J, dW,
               1e-10 * dW);

@@ -74,67 +74,89 @@ el::KernelResult reference(const model::Part& part, const materials::Material& m
         V[I][k] = nv.v[i];
         W[I][k] = nv.omega[i];
       }
-    double r31[3], r42[3], r21[3], e1[3], e2[3], e3[3];
-    for (int k = 0; k < 3; ++k) {
-      r31[k] = X[2][k] - X[0][k];
-      r42[k] = X[3][k] - X[1][k];
-      r21[k] = X[1][k] - X[0][k];
-    }
-    e3[0] = r31[1] * r42[2] - r31[2] * r42[1];
-    e3[1] = r31[2] * r42[0] - r31[0] * r42[2];
-    e3[2] = r31[0] * r42[1] - r31[1] * r42[0];
-    const double n3 = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
-    for (double& x : e3) x /= n3;
-    // e1 bisects the diagonals (shell_bt_forces.cpp): r31/|r31| - r42/|r42|, projected.
-    const double l31 = std::sqrt(r31[0] * r31[0] + r31[1] * r31[1] + r31[2] * r31[2]);
-    const double l42 = std::sqrt(r42[0] * r42[0] + r42[1] * r42[1] + r42[2] * r42[2]);
-    for (int k = 0; k < 3; ++k) r21[k] = r31[k] / l31 - r42[k] / l42;  // reused: the bisector
-    const double d = r21[0] * e3[0] + r21[1] * e3[1] + r21[2] * e3[2];
-    for (int k = 0; k < 3; ++k) e1[k] = r21[k] - d * e3[k];
-    const double n1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (double& x : e1) x /= n1;
-    e2[0] = e3[1] * e1[2] - e3[2] * e1[1];
-    e2[1] = e3[2] * e1[0] - e3[0] * e1[2];
-    e2[2] = e3[0] * e1[1] - e3[1] * e1[0];
     auto dot = [](const double* a, const double* b) {
       return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     };
-    double x[4], y[4];
-    for (int I = 0; I < 4; ++I) {
-      const double r[3] = {X[I][0] - X[0][0], X[I][1] - X[0][1], X[I][2] - X[0][2]};
-      x[I] = dot(e1, r);
-      y[I] = dot(e2, r);
-    }
-    const double A = 0.5 * ((x[2] - x[0]) * (y[3] - y[1]) - (x[3] - x[1]) * (y[2] - y[0]));
-    const double B1[4] = {(y[1] - y[3]) / (2 * A), (y[2] - y[0]) / (2 * A), (y[3] - y[1]) / (2 * A),
-                          (y[0] - y[2]) / (2 * A)};
-    const double B2[4] = {(x[3] - x[1]) / (2 * A), (x[0] - x[2]) / (2 * A), (x[1] - x[3]) / (2 * A),
-                          (x[2] - x[0]) / (2 * A)};
-    const double hx = x[0] - x[1] + x[2] - x[3], hy = y[0] - y[1] + y[2] - y[3];
-    const double hI[4] = {1, -1, 1, -1};
-    double Gm[4], BB = 0.0, lmax = 0.0;
-    for (int I = 0; I < 4; ++I) {
-      Gm[I] = hI[I] - hx * B1[I] - hy * B2[I];
-      BB += B1[I] * B1[I] + B2[I] * B2[I];
-      for (int J = I + 1; J < 4; ++J) lmax = std::max(lmax, std::hypot(x[J] - x[I], y[J] - y[I]));
-    }
+    // Frame, area, B and gamma of the configuration P (shell_bt_forces.cpp), and the longest
+    // in-plane side or diagonal.
+    struct Geo {
+      double e1[3], e2[3], e3[3], A, B1[4], B2[4], Gm[4], BB, lmax;
+    };
+    auto geometry = [&](const double(&P)[4][3]) {
+      Geo g{};
+      double r31[3], r42[3], r21[3];
+      auto &e1 = g.e1, &e2 = g.e2, &e3 = g.e3;
+      for (int k = 0; k < 3; ++k) {
+        r31[k] = P[2][k] - P[0][k];
+        r42[k] = P[3][k] - P[1][k];
+      }
+      e3[0] = r31[1] * r42[2] - r31[2] * r42[1];
+      e3[1] = r31[2] * r42[0] - r31[0] * r42[2];
+      e3[2] = r31[0] * r42[1] - r31[1] * r42[0];
+      const double n3 = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
+      for (double& x : e3) x /= n3;
+      // e1 bisects the diagonals (shell_bt_forces.cpp): r31/|r31| - r42/|r42|, projected.
+      const double l31 = std::sqrt(r31[0] * r31[0] + r31[1] * r31[1] + r31[2] * r31[2]);
+      const double l42 = std::sqrt(r42[0] * r42[0] + r42[1] * r42[1] + r42[2] * r42[2]);
+      for (int k = 0; k < 3; ++k) r21[k] = r31[k] / l31 - r42[k] / l42;  // the bisector
+      const double d = r21[0] * e3[0] + r21[1] * e3[1] + r21[2] * e3[2];
+      for (int k = 0; k < 3; ++k) e1[k] = r21[k] - d * e3[k];
+      const double n1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+      for (double& x : e1) x /= n1;
+      e2[0] = e3[1] * e1[2] - e3[2] * e1[1];
+      e2[1] = e3[2] * e1[0] - e3[0] * e1[2];
+      e2[2] = e3[0] * e1[1] - e3[1] * e1[0];
+      double x[4], y[4];
+      for (int I = 0; I < 4; ++I) {
+        const double r[3] = {P[I][0] - P[0][0], P[I][1] - P[0][1], P[I][2] - P[0][2]};
+        x[I] = dot(e1, r);
+        y[I] = dot(e2, r);
+      }
+      const double A = 0.5 * ((x[2] - x[0]) * (y[3] - y[1]) - (x[3] - x[1]) * (y[2] - y[0]));
+      g.A = A;
+      const double B1[4] = {(y[1] - y[3]) / (2 * A), (y[2] - y[0]) / (2 * A),
+                            (y[3] - y[1]) / (2 * A), (y[0] - y[2]) / (2 * A)};
+      const double B2[4] = {(x[3] - x[1]) / (2 * A), (x[0] - x[2]) / (2 * A),
+                            (x[1] - x[3]) / (2 * A), (x[2] - x[0]) / (2 * A)};
+      const double hx = x[0] - x[1] + x[2] - x[3], hy = y[0] - y[1] + y[2] - y[3];
+      const double hI[4] = {1, -1, 1, -1};
+      for (int I = 0; I < 4; ++I) {
+        g.B1[I] = B1[I];
+        g.B2[I] = B2[I];
+        g.Gm[I] = hI[I] - hx * B1[I] - hy * B2[I];
+        g.BB += B1[I] * B1[I] + B2[I] * B2[I];
+        for (int J = I + 1; J < 4; ++J)
+          g.lmax = std::max(g.lmax, std::hypot(x[J] - x[I], y[J] - y[I]));
+      }
+      return g;
+    };
+    // forces at x^{n+1}; velocity strains and the work's area at x^{n+1/2} = x - dt/2 v
+    const Geo gc = geometry(X);
+    double Xm[4][3];
+    for (int I = 0; I < 4; ++I)
+      for (int k = 0; k < 3; ++k) Xm[I][k] = X[I][k] - 0.5 * dt * V[I][k];
+    const Geo gm = dt > 0.0 ? geometry(Xm) : gc;
+    const auto &e1 = gc.e1, &e2 = gc.e2, &e3 = gc.e3;
+    const auto &B1 = gc.B1, &B2 = gc.B2, &Gm = gc.Gm;
+    const double A = gc.A, BB = gc.BB, lmax = gc.lmax;
     const double Le = (nd[3] == nd[2] ? 1.5 : 1.0) * A / lmax;
     // velocity strains
     double D[3] = {0, 0, 0}, Kc[3] = {0, 0, 0}, gxz = 0, gyz = 0, qd[5] = {0, 0, 0, 0, 0};
     if (dt > 0.0) {
       for (int I = 0; I < 4; ++I) {
-        const double vx = dot(e1, V[I]), vy = dot(e2, V[I]), vz = dot(e3, V[I]);
-        const double tx = dot(e1, W[I]), ty = dot(e2, W[I]);
-        D[0] += B1[I] * vx;
-        D[1] += B2[I] * vy;
-        D[2] += B2[I] * vx + B1[I] * vy;
-        Kc[0] += B1[I] * ty;
-        Kc[1] -= B2[I] * tx;
-        Kc[2] += B2[I] * ty - B1[I] * tx;
-        gxz += B1[I] * vz + 0.25 * ty;
-        gyz += B2[I] * vz - 0.25 * tx;
+        const double vx = dot(gm.e1, V[I]), vy = dot(gm.e2, V[I]), vz = dot(gm.e3, V[I]);
+        const double tx = dot(gm.e1, W[I]), ty = dot(gm.e2, W[I]);
+        const double b1 = gm.B1[I], b2 = gm.B2[I];
+        D[0] += b1 * vx;
+        D[1] += b2 * vy;
+        D[2] += b2 * vx + b1 * vy;
+        Kc[0] += b1 * ty;
+        Kc[1] -= b2 * tx;
+        Kc[2] += b2 * ty - b1 * tx;
+        gxz += b1 * vz + 0.25 * ty;
+        gyz += b2 * vz - 0.25 * tx;
         const double u[5] = {vx, vy, vz, tx, ty};
-        for (int k = 0; k < 5; ++k) qd[k] += Gm[I] * u[k];
+        for (int k = 0; k < 5; ++k) qd[k] += gm.Gm[I] * u[k];
       }
     }
     // points
@@ -167,7 +189,7 @@ el::KernelResult reference(const model::Part& part, const materials::Material& m
     }
     const double h1 = h0 * (1.0 + dezz);
     st.h[e] = h1;
-    const double vol_mid = 0.5 * (h0 + h1) * A;
+    const double vol_mid = 0.5 * (h0 + h1) * gm.A;  // the work's volume at x^{n+1/2}
     // bulk viscosity (membrane)
     const double tr = D[0] + D[1];
     const bool on = step.bulk_viscosity && dt > 0.0 && tr < 0.0;
