@@ -15,13 +15,28 @@
 //   Nonlinear Finite Elements for Continua and Structures (2000), 10.4.3 penalty; Hallquist,
 //   LS-DYNA Theory Manual, "Penalty method": f_s = -k_i l n_i, f_m^i = N_i f_s).
 //   sum_a N_a = 1: momentum is conserved to round-off.
+// A node squeezed between two walls (the layers of a fold on either side of it, both within h):
+//   the nearest segment alone made the node's potential the V-shaped 1/2 k (h - min(d_1,
+//   d_2))^2, its force flipping from one wall's push to the other's each time the node crossed
+//   the middle, every few cycles; the central-difference step does not conserve energy across
+//   such a kink: the fine-mesh tube's corner nodes (issue 21) created 127 J, 5 % of E0, in 1.5e5
+//   such switches in 2.5 ms. So the wall on the other side gets its own spring: among the
+//   candidates whose push makes more than 120 degrees with the pair's (kOpposingCos) and that
+//   share no node with the pair's segments (not the same sheet around the pair's closest
+//   point), the nearest and its ties push too when they say penetrating. The potential is then
+//   1/2 k_1 g_1^2 + 1/2 k_2 g_2^2, smooth across the middle (a wall whose push angle crosses
+//   120 degrees while it penetrates adds its spring at once: not smoothed yet).
 // Friction: friction.h, history F_t per node, stick stiffness = the same k.
 //
 // Sides: shells are two-sided; the side is the sign of (x_s - x_c).n when contact starts and is
 // kept while the node stays in contact (a node pushed past the mid-surface is pushed back, not
-// through); solid faces are one-sided (outward normal) and accept penetrations up to depth_m
-// (half the element's thickness). Off the edges of a segment the direction x_s - x_c replaces n
-// (rounded edges: continuous force around a convex edge).
+// through), on the segment it was taken on and those sharing a node with it (the same sheet:
+// the orientation carries through shared nodes); on any other segment the side is where the
+// node is now (carried to the far wall of a fold, whose normal may point the other way, it
+// made g = h + d instead of h - d and shot the node through that wall); solid faces are one-sided
+// (outward normal) and accept penetrations up to depth_m (half the element's thickness). Off the
+// edges of a segment the direction x_s - x_c replaces n (rounded edges: continuous force around a
+// convex edge).
 //
 // Search re-sorted only when needed. A pair (s, i) can come into contact only if x_s lies within
 // the reach of segment i, i.e. inside its node box inflated by h (+ depth for solid faces). The
@@ -44,6 +59,9 @@ namespace crashlink::contact {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A wall whose push on the node makes more than 120 degrees with the pair's: the other side
+/// of a fold squeezing the node (ContactPass::compute, the second pair).
+constexpr double kOpposingCos = -0.5;
 
 /// The slab between the planes n . x = lo and hi (n the diagonals' normal, values relative to
 /// node 0) that holds the segment xa (4 nodes; a triangle repeats its third), and sp = n . p.
@@ -171,6 +189,7 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
     if (mark[i]) moving_.push_back(static_cast<std::int32_t>(i));
   ft_N_.assign(3 * ns, 0.0);
   side_.assign(ns, 0);
+  side_seg_.assign(ns, -1);
   wake_m_.assign(ns, 0.0);
   if (self_) {
     // Skipped for node s: every segment sharing a node with a segment that holds s (its own
@@ -357,7 +376,13 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
   if (use_normal) {
     int sgn = 1;
     if (two) {
-      sgn = side_[k] != 0 ? side_[k] : (dn >= 0.0 ? 1 : -1);
+      // the side kept from the node's last pair holds on that segment and the ones around it
+      // (the same sheet, its orientation carried through its shared nodes); another wall's side
+      // is where the node is now
+      const bool kept =
+          side_[k] != 0 && (side_seg_[k] < 0 || static_cast<std::size_t>(side_seg_[k]) == i ||
+                            share_node(i, static_cast<std::size_t>(side_seg_[k])));
+      sgn = kept ? side_[k] : (dn >= 0.0 ? 1 : -1);
       if (sgn * dn < -h) sgn = -sgn;  // crossed by more than h: take the nearer side
       side = sgn;
     } else if (dn < -seg_.depth_m[i]) {
@@ -386,6 +411,101 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
   return true;
 }
 
+bool ContactPass::share_node(std::size_t i, std::size_t j) const {
+  const std::int32_t* a = &seg_.nodes[4 * i];
+  const std::int32_t* b = &seg_.nodes[4 * j];
+  for (int u = 0; u < 4; ++u)
+    for (int w = 0; w < 4; ++w)
+      if (a[u] == b[w]) return true;
+  return false;
+}
+
+/// The nearest of `in` and its ties (within 1e-9 of the largest segment size among them), in
+/// the order of their nodes' ids: the same pair, force and sums whatever the order of the
+/// segments in this model (mono or a cut one).
+void ContactPass::nearest(const std::vector<Hit>& in, std::vector<Hit>& out) const {
+  out.clear();
+  double best_dist = kInf, tie_size = 0.0;
+  for (const auto& h : in) best_dist = std::min(best_dist, h.dist);
+  for (const auto& h : in)
+    if (h.dist <= best_dist * (1.0 + 1e-12) + 1e-12)
+      tie_size = std::max(tie_size, seg_size_m_[h.i]);
+  for (const auto& h : in)
+    if (h.dist <= best_dist + 1e-9 * tie_size) out.push_back(h);
+  if (out.size() > 1)
+    std::sort(out.begin(), out.end(),
+              [&](const Hit& l, const Hit& r) { return seg_key_[l.i] < seg_key_[r.i]; });
+}
+
+/// Every one of the tied nearest segments says penetrating (beyond round-off, 1e-10 of the
+/// segment size).
+bool ContactPass::penetrating(const std::vector<Hit>& group) const {
+  bool inside = !group.empty();
+  for (const auto& h : group) inside = inside && h.g > 1e-10 * seg_size_m_[h.i];
+  return inside;
+}
+
+/// The unit mean of the group's push directions (the first one's if they cancel).
+void ContactPass::mean_direction(const std::vector<Hit>& group, double* dir) {
+  dir[0] = dir[1] = dir[2] = 0.0;
+  for (const auto& h : group)
+    for (int a = 0; a < 3; ++a) dir[a] += h.dir[a];
+  const double dl = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  if (dl > 0.0)
+    for (int a = 0; a < 3; ++a) dir[a] /= dl;
+  else
+    for (int a = 0; a < 3; ++a) dir[a] = group[0].dir[a];
+}
+
+/// One spring on node k from a group of tied nearest segments: F_n = k g n on the node,
+/// -N_a F_n / (group size) on each segment's nodes (the header's formula). Tied nearest
+/// segments (a node straight below a vertex or an edge of a convex master, by symmetry): the
+/// mean direction, the force shared equally, the largest penetration and stiffness of them, so
+/// that mirror images get mirror forces. Friction (the node's one history) on the first pair.
+void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const double* dir,
+                       const double* v, double dt, const FrictionLaw& friction,
+                       const StiffnessRule& rule, double* f, AppliedForces& applied,
+                       PassResult& out, bool first) {
+  const std::int32_t sn = nodes_[k];
+  double* ft = &ft_N_[3 * k];
+  double g = 0.0, kp = 0.0;
+  for (const auto& h : group) {
+    g = std::max(g, h.g);
+    kp = std::max(kp,
+                  pair_stiffness(k, h.i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[h.i]), rule));
+  }
+  const double fn = kp * g;
+  out.potential_J += 0.5 * kp * g * g;
+  double F[3];
+  for (int a = 0; a < 3; ++a) F[a] = fn * dir[a];
+  if (first && friction.active()) {
+    double vrel[3];
+    const double* vs = v + 3 * static_cast<std::size_t>(sn);
+    for (int a = 0; a < 3; ++a) {
+      double vm = 0.0;
+      for (const auto& h : group) {
+        const std::int32_t* q = &seg_.nodes[4 * h.i];
+        for (int b = 0; b < 4; ++b)
+          vm += h.pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
+      }
+      vrel[a] = vs[a] - vm / static_cast<double>(group.size());
+    }
+    friction_update(friction, dir, vrel, kp, dt, fn, ft);
+    for (int a = 0; a < 3; ++a) F[a] += ft[a];
+  } else if (first) {
+    ft[0] = ft[1] = ft[2] = 0.0;
+  }
+  applied.apply(f, sn, F, 1.0);
+  for (int a = 0; a < 3; ++a) out.resultant_N[a] += F[a];
+  const double share = 1.0 / static_cast<double>(group.size());
+  for (const auto& h : group) {
+    const std::int32_t* q = &seg_.nodes[4 * h.i];
+    const int nn = seg_.triangle(h.i) ? 3 : 4;
+    for (int b = 0; b < nn; ++b)
+      if (h.pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * h.pr.N[b]);
+  }
+}
+
 void ContactPass::compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
                           const StiffnessRule& rule, double* f, AppliedForces& applied,
                           PassResult& out) {
@@ -409,6 +529,7 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     if (b0 == b1 || asleep) {
       ft[0] = ft[1] = ft[2] = 0.0;
       side_[k] = 0;
+      side_seg_[k] = -1;
       continue;
     }
     const std::int32_t sn = nodes_[k];
@@ -449,77 +570,38 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       hit.i = i;
       hits_.push_back(hit);
     }
-    double best_dist = kInf, tie_size = 0.0;
-    for (const auto& h : hits_) best_dist = std::min(best_dist, h.dist);
-    for (const auto& h : hits_)
-      if (h.dist <= best_dist * (1.0 + 1e-12) + 1e-12)
-        tie_size = std::max(tie_size, seg_size_m_[h.i]);
-    std::size_t nhits = 0;
-    for (std::size_t h = 0; h < hits_.size(); ++h)
-      if (hits_[h].dist <= best_dist + 1e-9 * tie_size) hits_[nhits++] = hits_[h];
-    hits_.resize(nhits);
-    if (nhits > 1)
-      std::sort(hits_.begin(), hits_.end(),
-                [&](const Hit& l, const Hit& r) { return seg_key_[l.i] < seg_key_[r.i]; });
+    // The nearest segments (the pair), then, when a wall on the other side squeezes the node
+    // too, the nearest of that wall (a second pair): the header.
+    nearest(hits_, pair_);
     // Contact when the nearest segments all say penetrating (beyond round-off, 1e-10 of the
     // segment size). A tie that disagrees is a node in front of a face and level with the
     // plane of the face beside it, off that one's edge: outside (a convex edge).
-    bool inside = nhits > 0;
-    for (const auto& h : hits_) inside = inside && h.g > 1e-10 * seg_size_m_[h.i];
-    if (!inside) {
+    if (!penetrating(pair_)) {
       ft[0] = ft[1] = ft[2] = 0.0;
       side_[k] = 0;
-      if (nhits == 0 && sleep_gap > 0.0 && std::isfinite(sleep_gap))
+      side_seg_[k] = -1;
+      if (pair_.empty() && sleep_gap > 0.0 && std::isfinite(sleep_gap))
         wake_m_[k] = travelled_m_ + 0.5 * sleep_gap;
       continue;
     }
     ++out.active_pairs;
-    side_[k] = static_cast<std::int8_t>(hits_[0].side);
-    // Tied nearest segments (a node straight below a vertex or an edge of a convex master, by
-    // symmetry): the mean direction, the force shared equally, the largest penetration and
-    // stiffness of them, so that mirror images get mirror forces.
-    double dir[3] = {0.0, 0.0, 0.0};
-    double g = 0.0, kp = 0.0;
+    side_[k] = static_cast<std::int8_t>(pair_[0].side);
+    side_seg_[k] = static_cast<std::int32_t>(pair_[0].i);
+    double dir[3];
+    mean_direction(pair_, dir);
+    opposing_.clear();
     for (const auto& h : hits_) {
-      for (int a = 0; a < 3; ++a) dir[a] += h.dir[a];
-      g = std::max(g, h.g);
-      kp = std::max(
-          kp, pair_stiffness(k, h.i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[h.i]), rule));
+      bool near_pair = false;
+      for (const auto& p1 : pair_) near_pair = near_pair || share_node(h.i, p1.i);
+      if (!near_pair && h.dir[0] * dir[0] + h.dir[1] * dir[1] + h.dir[2] * dir[2] < kOpposingCos)
+        opposing_.push_back(h);
     }
-    const double dl = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    if (dl > 0.0)
-      for (int a = 0; a < 3; ++a) dir[a] /= dl;
-    else
-      for (int a = 0; a < 3; ++a) dir[a] = hits_[0].dir[a];
-    const double fn = kp * g;
-    out.potential_J += 0.5 * kp * g * g;
-    double F[3];
-    for (int a = 0; a < 3; ++a) F[a] = fn * dir[a];
-    if (friction.active()) {
-      double vrel[3];
-      const double* vs = v + 3 * static_cast<std::size_t>(sn);
-      for (int a = 0; a < 3; ++a) {
-        double vm = 0.0;
-        for (const auto& h : hits_) {
-          const std::int32_t* q = &seg_.nodes[4 * h.i];
-          for (int b = 0; b < 4; ++b)
-            vm += h.pr.N[b] * v[3 * static_cast<std::size_t>(q[b]) + static_cast<std::size_t>(a)];
-        }
-        vrel[a] = vs[a] - vm / static_cast<double>(nhits);
-      }
-      friction_update(friction, dir, vrel, kp, dt, fn, ft);
-      for (int a = 0; a < 3; ++a) F[a] += ft[a];
-    } else {
-      ft[0] = ft[1] = ft[2] = 0.0;
-    }
-    applied.apply(f, sn, F, 1.0);
-    for (int a = 0; a < 3; ++a) out.resultant_N[a] += F[a];
-    const double share = 1.0 / static_cast<double>(nhits);
-    for (const auto& h : hits_) {
-      const std::int32_t* q = &seg_.nodes[4 * h.i];
-      const int nn = seg_.triangle(h.i) ? 3 : 4;
-      for (int b = 0; b < nn; ++b)
-        if (h.pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * h.pr.N[b]);
+    nearest(opposing_, second_);
+    push(k, pair_, dir, v, dt, friction, rule, f, applied, out, true);
+    if (penetrating(second_)) {
+      double dir2[3];
+      mean_direction(second_, dir2);
+      push(k, second_, dir2, v, dt, friction, rule, f, applied, out, false);
     }
     applied.sum_new();  // this node's entries, still in cache
   }
@@ -533,6 +615,7 @@ void ContactPass::save_state(core::StateWriter& w, const std::string& prefix) co
   w.put(prefix + "cand.segment", std::span<const std::int32_t>(cand_.segment));
   w.put(prefix + "ft_N", std::span<const double>(ft_N_));
   w.put(prefix + "side", std::span<const std::int8_t>(side_));
+  w.put(prefix + "side_segment", std::span<const std::int32_t>(side_seg_));
 }
 
 void ContactPass::restore_state(const core::StateReader& r, const std::string& prefix,
@@ -561,6 +644,10 @@ void ContactPass::restore_state(const core::StateReader& r, const std::string& p
                     r.path(), name, cand_.segment.size(), seg_.size()));
   r.get_exact(prefix + "ft_N", ft_N_);
   r.get_exact(prefix + "side", side_);
+  if (r.has(prefix + "side_segment"))
+    r.get_exact(prefix + "side_segment", side_seg_);
+  else  // an older checkpoint: the side holds on any segment (-1), as it did then
+    std::fill(side_seg_.begin(), side_seg_.end(), -1);
   std::fill(wake_m_.begin(), wake_m_.end(), 0.0);  // every node tested again: same results
   min_ratio_sorts_ = -1;
 }

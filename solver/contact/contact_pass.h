@@ -118,7 +118,14 @@ class ContactPass {
     std::size_t i = 0;
     int side = 0;
   };
-  std::vector<Hit> hits_;                             // scratch, kept between calls
+  std::vector<Hit> hits_, pair_, opposing_, second_;  // scratch, kept between calls
+  bool share_node(std::size_t i, std::size_t j) const;
+  void nearest(const std::vector<Hit>& in, std::vector<Hit>& out) const;
+  bool penetrating(const std::vector<Hit>& group) const;
+  static void mean_direction(const std::vector<Hit>& group, double* dir);
+  void push(std::size_t k, const std::vector<Hit>& group, const double* dir, const double* v,
+            double dt, const FrictionLaw& friction, const StiffnessRule& rule, double* f,
+            AppliedForces& applied, PassResult& out, bool first);
   std::vector<std::array<std::int64_t, 4>> seg_key_;  // [nseg] sorted node ids: tie order
   double gap_cap_m_ = 0.0;  // least depth of the one-sided faces [m] (classify)
 
@@ -140,9 +147,10 @@ class ContactPass {
   bool need_sort_ = true;
   CandidateList cand_;
   BucketWork work_;
-  std::vector<double> ft_N_;       // [3 ns] friction history
-  std::vector<std::int8_t> side_;  // [ns] shell side while in contact (+1, -1; 0 = none)
-  std::vector<double> wake_m_;     // [ns] sleeping until travelled_m_ reaches this
+  std::vector<double> ft_N_;            // [3 ns] friction history
+  std::vector<std::int8_t> side_;       // [ns] shell side while in contact (+1, -1; 0 = none)
+  std::vector<std::int32_t> side_seg_;  // [ns] the segment side_ was taken on (-1: any)
+  std::vector<double> wake_m_;          // [ns] sleeping until travelled_m_ reaches this
   // min m_eff / k over the candidates, cached per sort (and dt0, which is set once)
   double min_ratio_ = 0.0;
   std::int64_t min_ratio_sorts_ = -1;

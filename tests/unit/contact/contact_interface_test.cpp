@@ -281,3 +281,138 @@ TEST(ContactInterface, SingleSurfaceSeesATriangleOverAQuad) {
   EXPECT_EQ(r.active_pairs, 3);  // the triangle's nodes; the quad's lie outside the triangle
   for (std::size_t i = 4; i < 7; ++i) EXPECT_GT(f[3 * i + 2], 0.0) << "node " << i;
 }
+
+TEST(ContactInterface, SingleSurfaceNodeBetweenTwoWallsKeepsItsEnergy) {
+  // Issue 21 (the fine-mesh tube's folds): a shell node squeezed between two walls of the same
+  // single-surface contact whose mid-surfaces are closer than 2 h (h = t here), both normals +z,
+  // so the node lies on the + side of the lower wall and on the - side of the upper one. Walls
+  // A (z = 0) and B (z = 2.9 mm) fixed, 40 mm squares; M a free 10 mm square in between, its
+  // nodes point masses released at rest at z = 1.42 mm: in contact with A (g = 0.08 mm), within
+  // h of B too (g = 0.02 mm). A's spring pushes M up; past z = 1.45 mm B is the nearer wall and
+  // pushes it back: M rattles in the V-shaped well 1/2 k (h - min(d_A, d_B))^2, frictionless,
+  // so kinetic + contact potential is conserved up to the central-difference step's error, and
+  // the booked contact energy follows the potential. The side a node had on A was once carried
+  // to B when the nearest wall changed: g jumped from 0.05 mm to h + 1.45 mm, the spring shot
+  // M through B (E grew ~1000-fold).
+  model::Model m;
+  add_steel(m);
+  const double t = 1.5e-3, gap = 2.9e-3, z0 = 1.42e-3;
+  model::generate_plate(m, steel_part("A", t),
+                        {{-0.02, -0.02, 0.0}, {0.04, 0, 0}, {0, 0.04, 0}, {1, 1}, 0.0});
+  model::generate_plate(m, steel_part("B", t),
+                        {{-0.02, -0.02, gap}, {0.04, 0, 0}, {0, 0.04, 0}, {1, 1}, 0.0});
+  model::generate_plate(m, steel_part("M", t),
+                        {{-0.005, -0.005, z0}, {0.01, 0, 0}, {0, 0.01, 0}, {1, 1}, 0.0});
+  for (auto& p : m.parts) p.kind = model::ElementKind::Shell4;
+  m.fixed.assign(m.nodes.count(), 0);
+  model::Contact c;
+  c.name = "self";
+  c.kind = model::ContactKind::SingleSurface;
+  c.soft = false;  // segment stiffness alone: no dt0 needed
+  c.master_parts = {0, 1, 2};
+  const std::size_t n = m.nodes.count();
+  const double mass_M = 7850.0 * t * 1e-4 / 4.0;  // rho t A / 4 [kg]
+  std::vector<double> mass(n, mass_M), x = m.nodes.x0, v(3 * n, 0.0), f(3 * n, 0.0);
+  ContactInterface ci(m, c, mass.data());
+  const auto first = ci.compute(x.data(), v.data(), 0.0, f.data());
+  ASSERT_EQ(first.active_pairs, 4);  // M's nodes on A
+  // k of A's segment (0.1 K A / diagonal) on a node of mass_M: dt = 0.05 / omega
+  const double K = 210e9 / (3.0 * (1.0 - 0.6));
+  const double k = 0.1 * K * 0.0016 / (0.04 * std::sqrt(2.0));
+  const double dt = 0.05 * std::sqrt(mass_M / k);
+  const double E0 = first.potential_J;
+  ASSERT_GT(E0, 0.0);
+  double worst = 0.0, booked_worst = 0.0, z_min = 1.0, z_max = 0.0;
+  std::vector<double> v_old(3 * n, 0.0);
+  ContactStep r = first;
+  for (int step = 0; step < 4000; ++step) {
+    // central difference on M's nodes (8..11), A and B held
+    v_old = v;
+    for (std::size_t i = 8; i < 12; ++i)
+      for (std::size_t a = 0; a < 3; ++a) {
+        v[3 * i + a] += dt * f[3 * i + a] / mass_M;
+        x[3 * i + a] += dt * v[3 * i + a];
+      }
+    std::fill(f.begin(), f.end(), 0.0);
+    r = ci.compute(x.data(), v.data(), dt, f.data());
+    double ke = 0.0;  // at t^n: the mean of the two half-step velocities
+    for (std::size_t i = 8; i < 12; ++i) {
+      for (std::size_t a = 0; a < 3; ++a) {
+        const double vm = 0.5 * (v[3 * i + a] + v_old[3 * i + a]);
+        ke += 0.5 * mass_M * vm * vm;
+      }
+      z_min = std::min(z_min, x[3 * i + 2]);
+      z_max = std::max(z_max, x[3 * i + 2]);
+    }
+    // ke lags the potential by half a step: compare at the previous step's potential too
+    worst = std::max(worst, std::fabs(ke + r.potential_J - E0) / E0);
+    booked_worst = std::max(booked_worst, std::fabs(r.energy_J - (r.potential_J - E0)) / E0);
+  }
+  EXPECT_LT(worst, 0.02) << "kinetic + contact potential drifts from E0 = " << E0 << " J";
+  EXPECT_LT(booked_worst, 0.02) << "the booked contact energy leaves the potential";
+  EXPECT_GT(z_min, 1.38e-3);  // M stays in the well between the walls
+  EXPECT_LT(z_max, 1.52e-3);
+}
+
+TEST(ContactInterface, SingleSurfaceSqueezedNodeReturnsItsEnergy) {
+  // Issue 21, the fine-mesh tube's corner nodes: a fold's layers close on a node from both sides
+  // (each within h of it), then open again. Walls A (below, normal +z) and B (above, normal -z,
+  // the fold's other layer) are driven symmetrically: their mid-surfaces 3.2 mm apart (> 2 h,
+  // h = t = 1.5 mm), closing to 2.9 mm and back to 3.2 mm along a cosine over 20 us (15 m/s at
+  // most, as the tube); M's nodes (point masses, released at rest 0.01 mm above the middle) float
+  // in between. The contact is frictionless: once open again it must have given back what it
+  // stored, its booked energy ~0. With the nearest wall alone pushing, the node's force flipped
+  // from one wall's to the other's at every crossing of the middle (the V-shaped potential 1/2 k (h
+  // - min(d_A, d_B))^2): the central-difference step created energy at each of those switches.
+  model::Model m;
+  add_steel(m);
+  const double t = 1.5e-3, g_open = 3.2e-3, g_closed = 2.9e-3;
+  model::generate_plate(m, steel_part("A", t),
+                        {{-0.02, -0.02, -0.5 * g_open}, {0.04, 0, 0}, {0, 0.04, 0}, {1, 1}, 0.0});
+  model::generate_plate(m, steel_part("B", t),  // edge2 along -y: normal -z
+                        {{-0.02, 0.02, 0.5 * g_open}, {0.04, 0, 0}, {0, -0.04, 0}, {1, 1}, 0.0});
+  model::generate_plate(m, steel_part("M", t),
+                        {{-0.005, -0.005, 1e-5}, {0.01, 0, 0}, {0, 0.01, 0}, {1, 1}, 0.0});
+  for (auto& p : m.parts) p.kind = model::ElementKind::Shell4;
+  m.fixed.assign(m.nodes.count(), 0);
+  model::Contact c;
+  c.name = "self";
+  c.kind = model::ContactKind::SingleSurface;
+  c.soft = false;
+  c.master_parts = {0, 1, 2};
+  const std::size_t n = m.nodes.count();
+  const double mass_M = 7850.0 * t * 1e-4 / 4.0;  // rho t A / 4 [kg]
+  std::vector<double> mass(n, mass_M), x = m.nodes.x0, v(3 * n, 0.0), f(3 * n, 0.0);
+  ContactInterface ci(m, c, mass.data());
+  ci.compute(x.data(), v.data(), 0.0, f.data());
+  const double K = 210e9 / (3.0 * (1.0 - 0.6));
+  const double k = 0.1 * K * 0.0016 / (0.04 * std::sqrt(2.0));
+  // omega dt = 0.13: the tube's soft springs (0.1 m_eff / dt0^2) on its corner nodes
+  const double dt = 0.13 * std::sqrt(mass_M / k), period = 2e-5;
+  const int steps = static_cast<int>(period / dt) + 1;
+  const auto gap = [&](double time) {  // mid-surface distance of A and B [m]
+    const double s = std::min(time / period, 1.0);
+    return g_open - 0.5 * (g_open - g_closed) * (1.0 - std::cos(2.0 * M_PI * s));
+  };
+  double p_max = 0.0;
+  ContactStep r;
+  for (int step = 0; step < steps; ++step) {
+    const double t1 = (step + 1) * dt;
+    for (std::size_t i = 8; i < 12; ++i)  // M: central difference
+      for (std::size_t a = 0; a < 3; ++a) {
+        v[3 * i + a] += dt * f[3 * i + a] / mass_M;
+        x[3 * i + a] += dt * v[3 * i + a];
+      }
+    for (std::size_t i = 0; i < 8; ++i) {  // the walls: driven
+      const double z1 = (i < 4 ? -0.5 : 0.5) * gap(t1);
+      v[3 * i + 2] = (z1 - x[3 * i + 2]) / dt;
+      x[3 * i + 2] = z1;
+    }
+    std::fill(f.begin(), f.end(), 0.0);
+    r = ci.compute(x.data(), v.data(), dt, f.data());
+    p_max = std::max(p_max, r.potential_J);
+  }
+  ASSERT_GT(p_max, 0.0);
+  EXPECT_EQ(r.active_pairs, 0);  // open again
+  EXPECT_LT(std::fabs(r.energy_J), 0.02 * p_max) << "max potential " << p_max << " J";
+}
