@@ -1,6 +1,7 @@
 #include "apps/cmd_run.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -88,8 +89,9 @@ model::Model read_input(const RunCommandOptions& o, std::string& hash) {
           "run: --units and --ignore apply to keyword decks (.k, .key, .dyn, .kw); {} is a YAML "
           "scenario in SI units: remove them",
           o.scenario));
-    hash = io::scenario_hash(o.scenario);
-    return io::read_scenario(o.scenario);
+    auto read = io::read_scenario_with_hash(o.scenario);  // a named deck's bytes hashed too
+    hash = std::move(read.hash);
+    return std::move(read.model);
   }
   deck::DeckRead d = deck::read_deck(o.scenario, {o.units, o.ignore});
   for (const auto& m : d.messages) std::printf("crashlink run: deck: %s\n", m.c_str());
@@ -104,9 +106,17 @@ model::Model read_input(const RunCommandOptions& o, std::string& hash) {
 int run_run(const RunCommandOptions& o) {
   if (deck::is_deck_path(o.scenario) && o.mode != "mono")
     throw InputError(fmt::format(
-        "run: {} is a keyword deck; decks run with --mode mono in this version (split and multi "
-        "need a `domains:` block by part id, the next step of issue 22); fix: --mode mono",
-        o.scenario));
+        "run: {0} is a keyword deck; --mode {1} cuts the model into domains, which a deck does "
+        "not name; fix: write a scenario YAML that names the deck and its domains by *PART PID "
+        "or title, e.g.\n"
+        "  model: {{deck: {2}, units: {3}}}\n"
+        "  domains:\n"
+        "    front: {{parts: [1, 2]}}\n"
+        "    rest: {{parts: [3]}}\n"
+        "then `crashlink run that.yaml --mode {1}` (`crashlink run {0} --units {3}` still runs "
+        "it in mono; docs/decks.md \"In a scenario\")",
+        o.scenario, o.mode, std::filesystem::path(o.scenario).filename().string(),
+        o.units.empty() ? std::string("mm-t-s") : o.units));
   if (!o.restart.empty() && !o.reference.empty())
     throw InputError("run: --restart continues one run: use it without --reference");
   if (!o.reference.empty()) {

@@ -15,7 +15,8 @@
 //     time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest one every
 //     process has, and ends as the uninterrupted run would have (docs/checkpoints.md).
 //   SCENARIO may be a keyword deck (.k, .key, .dyn, .kw) with --units SYSTEM [--ignore K1,K2]:
-//     mono only in this version (docs/decks.md).
+//     mono; split and multi take a scenario YAML naming the deck with its domains
+//     (`model: {deck: model.k, units: ...}`, docs/decks.md "In a scenario").
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>

@@ -515,7 +515,11 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
                     unit_system_names(), fit_text.empty() ? std::string("none") : fit_text));
   }
   Builder b(deck, *units);
-  DeckRead out{b.build(), {}};
+  DeckRead out{b.build(), {}, {}, {}};
+  for (std::uint32_t f = 0; f < deck.files.count(); ++f) out.files.push_back(deck.files.name(f));
+  for (const PartCard& pc : deck.parts)
+    if (std::find(b.empty_parts_.begin(), b.empty_parts_.end(), pc.id) == b.empty_parts_.end())
+      out.part_ids.push_back(pc.id);
   if (!deck.without_effect.empty()) {
     std::string s;
     for (const auto& [k, n] : deck.without_effect) s += (s.empty() ? "" : ", ") + k;

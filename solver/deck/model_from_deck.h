@@ -2,6 +2,7 @@
 // A keyword deck -> model::Model in SI units: ids resolved (nodes, parts, sections, materials,
 // curves, sets), units converted, each rigid part made a rigid body, wave speeds checked. Every
 // mistake throws InputError at the card and field it comes from (docs/decks.md).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,11 @@ struct DeckRead {
   /// What the user should see before the run: keywords without effect, keywords skipped on
   /// request (with their card counts), LS-DYNA defaults read differently.
   std::vector<std::string> messages;
+  /// Every file read, the deck first then its *INCLUDEs in the order met (paths as opened): what
+  /// a scenario naming the deck hashes (io/scenario_hash.h).
+  std::vector<std::string> files;
+  /// The *PART PID of each model part (model.parts order): `domains:` by part id.
+  std::vector<std::int64_t> part_ids;
 };
 
 /// parse_deck, then model_from_deck in the units of `options`.

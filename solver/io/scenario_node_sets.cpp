@@ -73,10 +73,25 @@ std::string format_box(const std::pair<Vec3, Vec3>& b) {
 
 int read_part_reference(const YamlNode& ref, const ScenarioBuild& b) {
   const std::string name = ref.text();
-  const int p = b.model.part_index(name);
-  if (p < 0)
+  int p = b.model.part_index(name);
+  if (p < 0 && !b.deck_part_ids.empty() && !name.empty() &&
+      name.find_first_not_of("0123456789") == std::string::npos) {
+    // A deck's part by its *PART PID (a title made of digits is matched first, above).
+    const auto it = std::find(b.deck_part_ids.begin(), b.deck_part_ids.end(),
+                              static_cast<std::int64_t>(std::stoll(name)));
+    if (it != b.deck_part_ids.end()) p = static_cast<int>(it - b.deck_part_ids.begin());
+  }
+  if (p < 0) {
+    if (!b.deck_part_ids.empty()) {
+      std::vector<std::string> listed;
+      for (std::size_t i = 0; i < b.deck_part_ids.size(); ++i)
+        listed.push_back(fmt::format("{} ({})", b.deck_part_ids[i], b.model.parts[i].name));
+      ref.fail("unknown part '" + name + "' in the deck;" + did_you_mean(name, b.part_names()) +
+               " give a *PART PID or title; parts with elements: " + quoted_list(listed));
+    }
     ref.fail("unknown part '" + name + "';" + did_you_mean(name, b.part_names()) +
              " parts defined: " + quoted_list(b.part_names()));
+  }
   return p;
 }
 

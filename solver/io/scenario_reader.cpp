@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "solver/core/errors.h"
+#include "solver/deck/model_from_deck.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_sections.h"
 
@@ -44,29 +45,34 @@ std::vector<std::int32_t> ScenarioBuild::part_nodes(int p) const {
   return n;
 }
 
-void read_controls(const YamlNode& c, model::Controls& out) {
+void read_controls(const YamlNode& c, model::Controls& out, bool end_time_required) {
   c.expect_keys({"end_time", "dt_scale", "dt_max", "history_interval", "field_interval",
                  "bulk_viscosity", "energy_tolerance", "gravity", "plausibility_checks"});
-  out.end_time_s = c.required("end_time", "simulated time in s, e.g. 0.01").positive();
+  if (end_time_required)
+    out.end_time_s = c.required("end_time", "simulated time in s, e.g. 0.01").positive();
+  else if (auto v = c.optional("end_time"))
+    out.end_time_s = v->positive();
   if (auto v = c.optional("dt_scale")) {
     out.dt_scale = v->positive();
     if (out.dt_scale > 1.0)
       v->fail(fmt::format("{} exceeds 1: the step would be above the stable limit; use 0.9",
                           out.dt_scale));
   }
-  out.dt_max_s = c.non_negative_or("dt_max", 0.0);
-  out.history_interval_s = c.non_negative_or("history_interval", 0.0);
-  out.field_interval_s = c.non_negative_or("field_interval", 0.0);
+  // Keys not given keep `out`: model::Controls' defaults, or what a deck set.
+  out.dt_max_s = c.non_negative_or("dt_max", out.dt_max_s);
+  out.history_interval_s = c.non_negative_or("history_interval", out.history_interval_s);
+  out.field_interval_s = c.non_negative_or("field_interval", out.field_interval_s);
   if (auto bv = c.optional("bulk_viscosity")) {
     bv->expect_keys({"enabled", "q_linear", "q_quadratic", "shells", "linear_in_expansion"});
     out.bulk_viscosity = bv->boolean_or("enabled", true);
-    out.bulk_q_linear = bv->non_negative_or("q_linear", 0.06);
-    out.bulk_q_quadratic = bv->non_negative_or("q_quadratic", 1.5);
-    out.shell_bulk_viscosity = bv->boolean_or("shells", false);
-    out.bulk_linear_in_expansion = bv->boolean_or("linear_in_expansion", false);
+    out.bulk_q_linear = bv->non_negative_or("q_linear", out.bulk_q_linear);
+    out.bulk_q_quadratic = bv->non_negative_or("q_quadratic", out.bulk_q_quadratic);
+    out.shell_bulk_viscosity = bv->boolean_or("shells", out.shell_bulk_viscosity);
+    out.bulk_linear_in_expansion =
+        bv->boolean_or("linear_in_expansion", out.bulk_linear_in_expansion);
   }
-  out.energy_tolerance = c.positive_or("energy_tolerance", 0.05);
-  out.gravity_m_s2 = c.vec3_or("gravity", {0.0, 0.0, 0.0});
+  out.energy_tolerance = c.positive_or("energy_tolerance", out.energy_tolerance);
+  out.gravity_m_s2 = c.vec3_or("gravity", out.gravity_m_s2);
 }
 
 namespace {
@@ -99,11 +105,91 @@ void read_coupling(const YamlNode& c, ScenarioBuild& b) {
 
 namespace {
 
-model::Model build_model(YamlTree tree, const std::string& name_for_messages) {
+/// `model: {deck, units, ignore}`: the model of a keyword deck, path relative to the scenario
+/// file (docs/decks.md "In a scenario"); the files read are appended to `deck_files`.
+model::Model read_deck_model(const YamlNode& spec, const std::string& scenario_file,
+                             std::vector<std::int64_t>& part_ids,
+                             std::vector<std::string>& deck_files) {
+  spec.expect_keys({"deck", "units", "ignore"});
+  const auto deck_key = spec.required("deck", "the keyword deck's path, relative to this file");
+  const std::string written = deck_key.text();
+  std::filesystem::path path(written);
+  if (path.is_relative()) path = std::filesystem::path(scenario_file).parent_path() / path;
+  if (!deck::is_deck_path(path.string()))
+    deck_key.fail(fmt::format(
+        "'{}' is not a keyword deck (.k, .key, .dyn, .kw); fix: name the deck file", written));
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    deck_key.fail(
+        fmt::format("cannot open '{}' (looked for {}); fix: give the deck's path "
+                    "relative to this scenario file",
+                    written, path.string()));
+  const auto units_key = spec.required(
+      "units", fmt::format("the deck's unit system, one of {}", deck::unit_system_names()));
+  const std::string units = units_key.text();
+  if (!deck::find_unit_system(units))
+    units_key.fail(fmt::format("'{}' is not a unit system; fix: one of {} (docs/decks.md, Units)",
+                               units, deck::unit_system_names()));
+  deck::DeckOptions options;
+  options.units = units;
+  if (auto ig = spec.optional("ignore")) {
+    const std::vector<YamlNode> items =
+        ig->is_sequence() ? ig->items("keywords without '*'") : std::vector<YamlNode>{*ig};
+    for (const auto& k : items) options.ignore.push_back(k.text());
+  }
+  deck::DeckRead read = deck::read_deck(path.string(), options);
+  part_ids = std::move(read.part_ids);
+  deck_files.insert(deck_files.end(), read.files.begin(), read.files.end());
+  return std::move(read.model);
+}
+
+/// A scenario naming a deck: the deck gives the model, the scenario adds `controls` (overrides),
+/// `node_sets`, `probes`, `domains` and `coupling`.
+model::Model build_deck_scenario(const YamlNode& root, const std::string& name_for_messages,
+                                 std::vector<std::string>& deck_files) {
+  root.expect_keys({"name", "description", "model", "controls", "node_sets", "probes", "domains",
+                    "coupling", "materials", "parts", "boundary", "prescribed_velocity", "loads",
+                    "initial_velocity", "rigid_bodies", "contacts"});
+  for (const char* k : {"materials", "parts", "boundary", "prescribed_velocity", "loads",
+                        "initial_velocity", "rigid_bodies", "contacts"})
+    if (auto v = root.optional(k))
+      v->fail(fmt::format(
+          "the deck named in `model` defines the {}; a scenario naming a deck adds only name, "
+          "description, controls, node_sets, probes, domains and coupling; fix: write it in the "
+          "deck or remove it here",
+          k));
+  detail::ScenarioBuild b;
+  b.file = name_for_messages;
+  const auto spec = root.required("model", "{deck: file.k, units: mm-t-s}");
+  b.model = read_deck_model(spec, name_for_messages, b.deck_part_ids, deck_files);
+  if (auto n = root.optional("name")) b.model.name = n->text();
+  if (auto d = root.optional("description")) (void)d->text();
+  for (std::size_t p = 0; p < b.model.parts.size(); ++p) b.part_line[b.model.parts[p].name] = 0;
+  for (std::size_t i = 0; i < b.model.materials.size(); ++i)
+    b.material_index[b.model.materials[i].name] = static_cast<int>(i);
+  for (std::size_t i = 0; i < b.model.rigid_bodies.size(); ++i)
+    b.rigid_body_index[b.model.rigid_bodies[i].name] = static_cast<int>(i);
+  if (auto c = root.optional("controls"))
+    detail::read_controls(*c, b.model.controls, /*end_time_required=*/false);
+  if (auto s = root.optional("node_sets")) detail::read_node_sets(*s, b);
+  if (auto s = root.optional("probes")) detail::read_probes(*s, b);
+  if (auto s = root.optional("domains")) detail::read_domains(*s, b);
+  if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
+  try {
+    model::validate(b.model);
+  } catch (const ModelError& e) {
+    throw InputError(name_for_messages, spec.line(), "model", e.what());
+  }
+  return std::move(b.model);
+}
+
+model::Model build_model(YamlTree tree, const std::string& name_for_messages,
+                         std::vector<std::string>& deck_files) {
   const YamlNode root(std::make_shared<const YamlTree>(std::move(tree)), name_for_messages);
   if (!root.is_map())
     root.fail("a scenario is a mapping of sections (name, controls, materials, parts, ...)");
-  root.expect_keys({"name", "description", "controls", "materials", "parts", "node_sets",
+  if (root.optional("model")) return build_deck_scenario(root, name_for_messages, deck_files);
+  root.expect_keys({"name", "description", "model", "controls", "materials", "parts", "node_sets",
                     "boundary", "prescribed_velocity", "loads", "initial_velocity", "rigid_bodies",
                     "contacts", "probes", "domains", "coupling"});
 
@@ -144,7 +230,8 @@ model::Model build_model(YamlTree tree, const std::string& name_for_messages) {
 }  // namespace
 
 model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages) {
-  return build_model(YamlTree::parse(yaml_text, name_for_messages), name_for_messages);
+  std::vector<std::string> deck_files;
+  return build_model(YamlTree::parse(yaml_text, name_for_messages), name_for_messages, deck_files);
 }
 
 namespace {
@@ -161,16 +248,19 @@ YamlTree parse_file(const std::string& path, const std::string& cannot_open) {
 }  // namespace
 
 model::Model read_scenario(const std::string& path) {
+  std::vector<std::string> deck_files;
   return build_model(
       parse_file(path,
                  "cannot open the scenario file; check the path (scenarios live in scenarios/)"),
-      path);
+      path, deck_files);
 }
 
 ScenarioWithHash read_scenario_with_hash(const std::string& path) {
   YamlTree tree = parse_file(path, "cannot open the scenario file; check the path");
-  std::string hash = scenario_hash_of_tree(tree);
-  return {build_model(std::move(tree), path), std::move(hash)};
+  HashOfTree partial = begin_scenario_hash(tree);
+  std::vector<std::string> deck_files;
+  model::Model model = build_model(std::move(tree), path, deck_files);
+  return {std::move(model), finish_scenario_hash(partial, deck_files)};
 }
 
 }  // namespace crashlink::io

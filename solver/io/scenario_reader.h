@@ -21,7 +21,9 @@ struct ScenarioWithHash {
 ScenarioWithHash read_scenario_with_hash(const std::string& path);
 
 /// Same as read_scenario, from YAML text; `name_for_messages` stands for the file name in error
-/// messages and is the model's default name.
+/// messages and is the model's default name. A scenario naming a keyword deck (`model: {deck:
+/// car.k, units: mm-t-s}`, docs/decks.md "In a scenario") reads the deck from disk, its path
+/// relative to the folder of `name_for_messages` (read_scenario: of the scenario file).
 model::Model parse_scenario(const std::string& yaml_text, const std::string& name_for_messages);
 
 }  // namespace crashlink::io

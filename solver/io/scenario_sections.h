@@ -21,6 +21,9 @@ struct ScenarioBuild {
   std::map<std::string, int> part_line;                        ///< part name -> line of its key
   std::map<std::string, std::vector<std::int32_t>> node_sets;  ///< name -> sorted node indices
   std::map<std::string, int> rigid_body_index;
+  /// A scenario naming a keyword deck (`model: {deck: ...}`): the *PART PID of each model part,
+  /// so that a part may be referred to by id as well as by title; empty for YAML parts.
+  std::vector<std::int64_t> deck_part_ids;
 
   std::vector<std::string> material_names() const;
   std::vector<std::string> part_names() const;
@@ -30,7 +33,9 @@ struct ScenarioBuild {
   std::vector<std::int32_t> part_nodes(int p) const;
 };
 
-void read_controls(const YamlNode& controls, model::Controls& out);
+/// `controls`; keys not given keep the values in `out` (the defaults, or what a deck set).
+/// `end_time` is required unless `end_time_required` is false (a deck's *CONTROL_TERMINATION).
+void read_controls(const YamlNode& controls, model::Controls& out, bool end_time_required = true);
 void read_materials(const YamlNode& materials, ScenarioBuild& b);
 void read_parts(const YamlNode& parts, ScenarioBuild& b);
 void read_node_sets(const YamlNode& node_sets, ScenarioBuild& b);
@@ -52,7 +57,7 @@ void check_plausibility(const YamlNode& root, const ScenarioBuild& b);
 std::vector<std::int32_t> read_selection(const YamlNode& sel, const ScenarioBuild& b);
 /// The value of a `nodes:` key: a node set name, or an inline selection mapping.
 std::vector<std::int32_t> read_node_reference(const YamlNode& ref, const ScenarioBuild& b);
-/// A part name that must exist; returns its index.
+/// A part name that must exist (or, for a deck, its *PART PID); returns its index.
 int read_part_reference(const YamlNode& ref, const ScenarioBuild& b);
 /// A degree of freedom x, y, z (0-2) or, if rotations are allowed, rx, ry, rz (3-5).
 int read_dof(const YamlNode& dof, bool rotations);

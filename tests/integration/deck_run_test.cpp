@@ -63,7 +63,9 @@ TEST(DeckRun, CommandLineRunsADeckAndRefusesMistakesWithExit2) {
   out = testing::run_command(
       kCrashlink + " run " + kDeck + " --units mm-t-s --mode multi --out " + dir.string(), status);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
-  EXPECT_NE(out.find("decks run with --mode mono in this version"), std::string::npos) << out;
+  EXPECT_NE(out.find("fix: write a scenario YAML that names the deck and its domains"),
+            std::string::npos)
+      << out;
   std::filesystem::remove_all(dir);
 }
 
