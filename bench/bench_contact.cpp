@@ -7,14 +7,14 @@
 // element sizes per step and bounce in a +-5 % band vertically, so that a re-sort is due every ~88
 // cycles (margin/2 = 0.177 element sizes of travel; about the rate in a crash run): 100 timed
 // cycles hold one at every size. The numbering is the plate generator's, row by row, as a mesher
-// numbers a structured plate; slave and master are separate blocks, as two parts are. Linear-time search means the per-node figure stays flat: 1M vs
-// 10k within 1.3x. Items processed = slave nodes x cycles: the reported items_per_second inverted
-// is ns/node/cycle. Only ContactInterface::compute is timed (manual time), in the thread's CPU
-// time: the harness's own passes over the nodes (moving the slaves, zeroing f) stream 3n-long
-// arrays that fit the cache at 10k and not at 1M and would count as contact growth, and on a
-// machine shared with other jobs the wall time also counts the time slices others take.
+// numbers a structured plate; slave and master are separate blocks, as two parts are. Linear-time
+// search means the per-node figure stays flat: 1M vs 10k within 1.3x. Items processed = slave nodes
+// x cycles: the reported items_per_second inverted is ns/node/cycle. Only ContactInterface::compute
+// is timed (manual time), in the thread's CPU time: the harness's own passes over the nodes (moving
+// the slaves, zeroing f) stream 3n-long arrays that fit the cache at 10k and not at 1M and would
+// count as contact growth, and on a machine shared with other jobs the wall time also counts the
+// time slices others take.
 #include <benchmark/benchmark.h>
-
 #include <time.h>
 
 #include <random>
