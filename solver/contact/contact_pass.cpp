@@ -25,7 +25,8 @@
 //   share no node with the pair's segments (not the same sheet around the pair's closest
 //   point), the nearest and its ties push too when they say penetrating. The potential is then
 //   1/2 k_1 g_1^2 + 1/2 k_2 g_2^2, smooth across the middle (a wall whose push angle crosses
-//   120 degrees while it penetrates adds its spring at once: not smoothed yet).
+//   120 degrees while it penetrates adds its spring at once: not smoothed yet). Shell segments
+//   only, on both walls: solid faces are one-sided and their depth rule already picks the face.
 // Friction: friction.h, history F_t per node, stick stiffness = the same k.
 //
 // Sides: shells are two-sided; the side is the sign of (x_s - x_c).n when contact starts and is
@@ -590,7 +591,13 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     double dir[3];
     mean_direction(pair_, dir);
     opposing_.clear();
+    // Shells only: a one-sided solid face accepts a node up to half its element's depth, so the
+    // top and bottom faces of a thin (or thinned, or tapered) solid would both push and hold a
+    // node at the mid-plane; the nearest solid face alone pushes it out the right way.
+    bool shell_pair = true;
+    for (const auto& p1 : pair_) shell_pair = shell_pair && seg_.two_sided[p1.i] != 0;
     for (const auto& h : hits_) {
+      if (!shell_pair || seg_.two_sided[h.i] == 0) continue;
       bool near_pair = false;
       for (const auto& p1 : pair_) near_pair = near_pair || share_node(h.i, p1.i);
       if (!near_pair && h.dir[0] * dir[0] + h.dir[1] * dir[1] + h.dir[2] * dir[2] < kOpposingCos)
@@ -644,9 +651,15 @@ void ContactPass::restore_state(const core::StateReader& r, const std::string& p
                     r.path(), name, cand_.segment.size(), seg_.size()));
   r.get_exact(prefix + "ft_N", ft_N_);
   r.get_exact(prefix + "side", side_);
-  if (r.has(prefix + "side_segment"))
+  if (r.has(prefix + "side_segment")) {
     r.get_exact(prefix + "side_segment", side_seg_);
-  else  // an older checkpoint: the side holds on any segment (-1), as it did then
+    for (auto sg : side_seg_)
+      if (sg < -1 || sg >= static_cast<std::int32_t>(seg_.size()))
+        throw CheckpointError(fmt::format(
+            "checkpoint {}: contact '{}': a side segment {} is not one of this model's {} "
+            "segments; restart from a checkpoint of this scenario",
+            r.path(), name, sg, seg_.size()));
+  } else  // an older checkpoint: the side holds on any segment (-1), as it did then
     std::fill(side_seg_.begin(), side_seg_.end(), -1);
   std::fill(wake_m_.begin(), wake_m_.end(), 0.0);  // every node tested again: same results
   min_ratio_sorts_ = -1;

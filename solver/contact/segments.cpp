@@ -199,23 +199,41 @@ std::vector<std::int32_t> slave_faces(const model::Model& m, const std::vector<s
     if (p >= 0 && static_cast<std::size_t>(p) < m.parts.size())
       for (auto i : m.parts[static_cast<std::size_t>(p)].connectivity)
         master[static_cast<std::size_t>(i)] = 1;
-  std::vector<std::int32_t> out;
   const auto faces = model_faces(m, true);
+  const auto count_in = [&](const FaceRef& f) {
+    int n = 0;
+    for (auto k : f.key) n += in[static_cast<std::size_t>(k)];
+    return n;
+  };
+  const auto exterior = [&](std::size_t i) {
+    return (i == 0 || faces[i - 1].key != faces[i].key) &&
+           (i + 1 == faces.size() || faces[i + 1].key != faces[i].key);
+  };
+  // hexahedra with an exterior face made of slave nodes: the first row along the slave face
+  const auto elem_key = [](const FaceRef& f) {
+    return (static_cast<std::uint64_t>(f.part) << 32) | f.element;
+  };
+  std::vector<std::uint64_t> row;
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    if (faces[i].face != 255 && exterior(i) && count_in(faces[i]) == 4)
+      row.push_back(elem_key(faces[i]));
+  std::sort(row.begin(), row.end());
+  std::vector<std::int32_t> out;
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j].key == faces[i].key) ++j;
     const FaceRef& f = faces[i];
-    int n_in = 0;
+    const int n_in = count_in(f);
     bool glued = false;
-    for (auto k : f.key) {
-      n_in += in[static_cast<std::size_t>(k)];
-      glued = glued || master[static_cast<std::size_t>(k)];
-    }
+    for (auto k : f.key) glued = glued || master[static_cast<std::size_t>(k)];
     const bool shell = f.face == 255;
     // a shell element with all four nodes in; an exterior hexahedron face (used once) with all
-    // four in, or with some in and none on the master side (the side faces along the slave
-    // face's edges: a tilted face's edge then meets a surface, not a gap between two)
-    const bool take = shell ? n_in == 4 : (j == i + 1 && (n_in == 4 || (n_in > 0 && !glued)));
+    // four in, or with some in, of an element of the first row along the slave face, and none
+    // on the master side (the side faces along the slave face's edges: a tilted face's edge then
+    // meets a surface, not a gap between two; a neighbouring part glued to the slave part's
+    // nodes gives none)
+    const bool side = n_in > 0 && !glued && std::binary_search(row.begin(), row.end(), elem_key(f));
+    const bool take = shell ? n_in == 4 : (j == i + 1 && (n_in == 4 || side));
     if (take) {
       const auto q = face_nodes(m, f);
       out.insert(out.end(), q.begin(), q.end());

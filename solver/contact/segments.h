@@ -58,9 +58,10 @@ SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_
 
 /// The slave surface of a two-pass contact, outward, 4 node indices per face in model order:
 /// shell elements with all four nodes in the set; exterior hexahedron faces (used by one Hex8 of
-/// the model) with all four nodes in the set, or with at least one in the set and none on an
-/// element of a master part (the side faces along the slave face's edges, so that a tilted
-/// face's edge meets a surface; faces glued to the master side stay out).
+/// the model) with all four nodes in the set; and the other exterior faces of those faces'
+/// hexahedra with at least one node in the set and none on a master part's element (the side
+/// faces along the slave face's edges, so that a tilted face's edge meets a surface; faces glued
+/// to the master side, and parts merely glued to the slave part, stay out).
 std::vector<std::int32_t> slave_faces(const model::Model& m, const std::vector<std::int32_t>& nodes,
                                       const std::vector<int>& master_parts);
 

@@ -416,3 +416,34 @@ TEST(ContactInterface, SingleSurfaceSqueezedNodeReturnsItsEnergy) {
   EXPECT_EQ(r.active_pairs, 0);  // open again
   EXPECT_LT(std::fabs(r.energy_J), 0.02 * p_max) << "max potential " << p_max << " J";
 }
+
+// A node inside a thin solid, nearer its top face (review of the squeezed-node spring): the
+// nearest face alone pushes it out through that face. Both faces accept it (each takes up to half
+// the element's initial depth, 5 mm, and the element has thinned from 10 to 6 mm); a second
+// spring from the bottom face would push harder (3.5 mm against 2.5 mm) and hold it inside.
+TEST(ContactInterface, NodeInAThinnedSolidLeavesThroughTheNearerFace) {
+  model::Model m;
+  add_steel(m);
+  model::generate_box(m, steel_part("slab", 0.0), {{0, 0, 0}, {1, 1, 0.01}, {1, 1, 1}});
+  const std::size_t slab_nodes = m.nodes.count();
+  model::generate_box(m, steel_part("probe", 0.0), {{0.4, 0.4, 0.5}, {0.1, 0.1, 0.1}, {1, 1, 1}});
+  model::Contact c;
+  c.name = "probe-slab";
+  c.kind = model::ContactKind::NodeToSurface;
+  c.soft = false;
+  const auto probe = static_cast<std::int32_t>(slab_nodes);  // the probe's first corner
+  c.slave_nodes = {probe};
+  c.master_parts = {0};
+  m.contacts.push_back(c);
+  std::vector<double> mass(m.nodes.count(), 1.0), x = m.nodes.x0, v(x.size(), 0.0);
+  for (std::size_t i = 0; i < slab_nodes; ++i)
+    if (x[3 * i + 2] > 0.005) x[3 * i + 2] = 0.006;  // thinned to 6 mm
+  const auto p = static_cast<std::size_t>(probe);
+  x[3 * p] = 0.5;
+  x[3 * p + 1] = 0.5;
+  x[3 * p + 2] = 0.0035;  // 2.5 mm under the top face, 3.5 mm above the bottom one
+  std::vector<double> f(x.size(), 0.0);
+  ContactInterface ci(m, m.contacts[0], mass.data());
+  ci.compute(x.data(), v.data(), 0.0, f.data());
+  EXPECT_GT(f[3 * p + 2], 0.0) << "pushed towards the mid-plane: held inside the solid";
+}
