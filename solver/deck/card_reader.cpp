@@ -96,13 +96,22 @@ void CardReader::skip_block() {
 void CardReader::read_include(bool path_list, bool relative) {
   (void)relative;  // paths are resolved against the including file in both forms
   OpenFile& f = *stack_.back();
-  const Card c = card();
+  // The card on a copy of its line: reading a continuation line below replaces the file's buffer
+  // (and the end of the file closes it), which a view into it would not survive.
+  const std::string first_line(line_);
+  const Card probe = card();
+  const Card c(first_line, probe.ref(), keyword_, files_, params_);
   std::string name(c.field(kIncludeCard, 0).text());
   if (c.ref().format == CardFormat::Free) name = std::string(trim(c.whole()));
-  // A name longer than a card continues on the next line after " +".
+  // A name longer than a card continues on the next line after " +", in the same file.
+  const std::size_t depth = stack_.size();
   while (name.size() >= 2 && name.compare(name.size() - 2, 2, " +") == 0) {
     name.resize(name.size() - 2);
-    if (!read_line()) break;
+    if (!read_line() || stack_.size() != depth || stack_.back().get() != &f)
+      c.field(kIncludeCard, 0)
+          .fail(
+              "the file name continues (\" +\") past the end of its file; fix: finish the name "
+              "on the next line of the same file");
     name += std::string(trim(line_));
   }
   if (name.empty()) return;

@@ -25,6 +25,9 @@ class Parser {
     const double v = expr();
     skip();
     if (i_ < s_.size()) error(fmt::format("unexpected '{}'", s_[i_]));
+    // an overflow (10**400) or a power of a negative base (pow(-1, 0.5)) would carry inf or NaN
+    // into a density, a modulus or a coordinate
+    if (!std::isfinite(v)) error(fmt::format("the value {} is not a finite number", v));
     return v;
   }
 
@@ -91,7 +94,10 @@ class Parser {
     const char c = s_[i_];
     if (c == '(') {
       ++i_;
+      // nesting cap: the recursion must not exhaust the stack on a hostile card
+      if (++depth_ > kMaxDepth) error(fmt::format("parentheses nested deeper than {}", kMaxDepth));
       const double v = expr();
+      --depth_;
       if (!eat(')')) error("missing ')'");
       return v;
     }
@@ -175,9 +181,11 @@ class Parser {
                     fname));
   }
 
+  static constexpr int kMaxDepth = 64;
   std::string_view s_;
   const Parameters& params_;
   std::size_t i_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace

@@ -90,6 +90,24 @@ TEST(DeckExpression, ArithmeticPrecedenceFunctionsAndErrors) {
   EXPECT_NE(error("foo(1)").find("unknown function 'foo'"), std::string::npos);
 }
 
+// Review: a value that is not finite, or nesting that would exhaust the stack, is refused.
+TEST(DeckExpression, InfiniteValuesAndDeepNestingAreRefused) {
+  Parameters p;
+  auto error = [&](const std::string& text) {
+    try {
+      evaluate_expression(text, p);
+    } catch (const ExpressionError& e) {
+      return e.what;
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("10**400").find("is not a finite number"), std::string::npos);
+  EXPECT_NE(error("pow(-1, 0.5)").find("is not a finite number"), std::string::npos);
+  EXPECT_NE(error(std::string(100, '(') + "1" + std::string(100, ')')).find("nested deeper"),
+            std::string::npos);
+  EXPECT_DOUBLE_EQ(evaluate_expression(std::string(60, '(') + "2" + std::string(60, ')'), p), 2.0);
+}
+
 TEST(DeckReader, CommentsKeywordsIncludesAndParameters) {
   DeckFolder dir;
   dir.write("inc/part.k", "$ an included file\n*PARAMETER\nR  y2     0.75\n*NODE\n2,&x2,&y2\n");
@@ -121,6 +139,25 @@ TEST(DeckReader, CommentsKeywordsIncludesAndParameters) {
   EXPECT_EQ(seen[5], main + ":12 id 3 x 1");
   ASSERT_NE(params.find("Y2"), nullptr);
   EXPECT_DOUBLE_EQ(params.find("y2")->number, 0.75);
+}
+
+// Review: an *INCLUDE name continued (" +") on the last line of an included file used to read the
+// closed file's memory; it is refused at its line, and a continuation within the file still
+// joins.
+TEST(DeckReader, IncludeNameContinuedPastTheEndOfItsFile) {
+  DeckFolder dir;
+  dir.write("tail.k", "*NODE\n1,0.0,0.0\n");
+  dir.write("in.k", "*INCLUDE\nta +\nil.k\n*INCLUDE\nnothere_but_long_enough_to_need_a_buffer +\n");
+  const std::string a = dir.write("a.k", "*KEYWORD\n*INCLUDE\nin.k\n*NODE\n2,1.0,0.0\n");
+  DeckFiles files;
+  Parameters params;
+  const std::string msg = input_error([&] {
+    CardReader r(a, files, params);
+    while (r.next() != CardReader::Event::End) {
+    }
+  });
+  EXPECT_NE(msg.find("in.k:5: *INCLUDE field FILENAME"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("continues (\" +\") past the end of its file"), std::string::npos) << msg;
 }
 
 TEST(DeckReader, MissingIncludeAndDuplicateParameter) {
