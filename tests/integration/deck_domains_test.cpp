@@ -18,6 +18,7 @@
 #include "solver/integration/solver.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/integration/network_vs_mono.h"
 #include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
@@ -31,47 +32,14 @@ const std::string kCrashlink = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashl
 TEST(DeckDomains, SplitEqualsMonoAtTheCommonStep) {
   const model::Model global = io::read_scenario(kScenario);
   ASSERT_EQ(global.domains.size(), 2u);
-  cosim::LayerNetworkOptions o;
-  o.common_step = true;
-  o.step_safety = 0.9;
-  cosim::LayerNetwork net(global, o);
-  net.initialize();
-  const coordinator::Tick h = net.plan().step[0];
-  const int cycles = static_cast<int>(global.controls.end_time_s / net.seconds(h)) - 1;
+  const auto r = testing::network_vs_mono(global, 0);
+  const int cycles = static_cast<int>(global.controls.end_time_s / r.step_s) - 1;
   ASSERT_GT(cycles, 50);
-  integration::Solver mono(global, "mono");
-  mono.initialize();
-  mono.impose_step(net.seconds(h));
-  for (int n = 0; n < cycles; ++n) {
-    mono.begin_cycle();
-    mono.end_cycle();
-    mono.impose_step(net.seconds(h));
-  }
-  mono.begin_cycle();
-  const coordinator::Tick t_end = h * cycles;
-  const auto& d = net.domains();
-  std::vector<double> u(3 * global.nodes.count(), 0.0);
-  net.run(
-      [&](std::size_t k) {
-        if (net.stepper(k).time() != t_end) return;
-        const auto& s = net.solver(k);
-        for (std::size_t g = 0; g < d.owner_solver.size(); ++g)
-          if (d.owner_solver[g] == k)
-            for (std::size_t c = 0; c < 3; ++c)
-              u[3 * g + c] = s.displacement()[3 * d.owner_local[g] + c];
-      },
-      t_end + 1);
-  const auto& um = mono.displacement();
-  double worst = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    scale = std::max(scale, std::abs(um[i]));
-    worst = std::max(worst, std::abs(u[i] - um[i]));
-  }
   std::printf(
       "[measured] deck split vs mono: %d cycles, max |du| / max |u| = %.2e (max |u| %.3e m)\n",
-      cycles, worst / scale, scale);
-  EXPECT_GT(scale, 1e-6);  // the bar moved (1 m/s for 0.1 ms: up to 0.1 mm)
-  EXPECT_LE(worst / scale, 1e-10);
+      cycles, r.rel_diff, r.u_scale);
+  EXPECT_GT(r.u_scale, 1e-6);  // the bar moved (1 m/s for 0.1 ms: up to 0.1 mm)
+  EXPECT_LE(r.rel_diff, 1e-10);
 }
 
 TEST(DeckDomains, MultiAtStepsTwoApartKeepsTheEnergyBalance) {

@@ -14,6 +14,7 @@
 #include "solver/cosim/layer_network.h"
 #include "solver/cosim/split_runner.h"
 #include "solver/integration/solver.h"
+#include "tests/integration/network_vs_mono.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;
@@ -33,52 +34,6 @@ struct Comparison {
   double network_rel_diff = 0.0;  ///< the same for cosim::LayerNetwork (fixed common step)
   double network_total_J = 0.0, network_mono_total_J = 0.0;
 };
-
-/// LayerNetwork at its fixed common step vs one Solver at that step: max |du| / max |u|.
-double network_vs_mono(const model::Model& global, int cycles, double* total_J,
-                       double* mono_total_J) {
-  cosim::LayerNetworkOptions o;
-  o.common_step = true;
-  o.step_safety = 0.9;  // a fixed step: margin for the step's shrinking under load
-  cosim::LayerNetwork net(global, o);
-  net.initialize();
-  const coordinator::Tick h = net.plan().step[0];
-  integration::Solver mono(global, "mono");
-  mono.initialize();
-  mono.impose_step(net.seconds(h));
-  for (int n = 0; n < cycles; ++n) {
-    mono.begin_cycle();
-    mono.end_cycle();
-    mono.impose_step(net.seconds(h));
-  }
-  mono.begin_cycle();
-  // Every domain samples t = cycles h after its begin_cycle() (energies complete there) and pauses
-  // at the start of the next cycle.
-  const coordinator::Tick t_end = h * cycles;
-  const auto& d = net.domains();
-  std::vector<double> u(3 * global.nodes.count(), 0.0);
-  double e_total = 0.0;
-  net.run(
-      [&](std::size_t k) {
-        if (net.stepper(k).time() != t_end) return;
-        const auto& s = net.solver(k);
-        e_total += s.energy().total_J();
-        for (std::size_t g = 0; g < d.owner_solver.size(); ++g)
-          if (d.owner_solver[g] == k)
-            for (std::size_t c = 0; c < 3; ++c)
-              u[3 * g + c] = s.displacement()[3 * d.owner_local[g] + c];
-      },
-      t_end + 1);
-  const auto& um = mono.displacement();
-  double worst = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    scale = std::max(scale, std::abs(um[i]));
-    worst = std::max(worst, std::abs(u[i] - um[i]));
-  }
-  *total_J = e_total;
-  *mono_total_J = mono.energy().total_J();
-  return scale > 0.0 ? worst / scale : 1.0;
-}
 
 /// Runs `global` split and mono at the split's common step for `cycles` steps and compares.
 Comparison split_vs_mono(const model::Model& global, const std::string& label,
@@ -119,7 +74,10 @@ Comparison split_vs_mono(const model::Model& global, const std::string& label,
   c.external_work_J = em.external_work_J + em.initial_total_J;
   c.domains = split.solver_count();
   c.interfaces = split.decomposition().interfaces.size();
-  c.network_rel_diff = network_vs_mono(global, cycles, &c.network_total_J, &c.network_mono_total_J);
+  const auto nm = network_vs_mono(global, cycles);
+  c.network_rel_diff = nm.rel_diff;
+  c.network_total_J = nm.total_J;
+  c.network_mono_total_J = nm.mono_total_J;
   std::printf(
       "[measured] layer network (common fixed step) vs mono, %s, %d steps: max |du|/max|u| "
       "= %.3e; energy %.9e J vs %.9e J\n",
