@@ -143,16 +143,43 @@ inline void gather(const double* a, const std::int32_t (&nd)[4][L], double (&out
     }
 }
 
+/// Copies n doubles (n a multiple of 4) by 256-bit loads and stores. Not memcpy: GCC turns a
+/// memcpy of a few hundred bytes into `rep movsq` and one of a runtime size into a libc call, whose
+/// start-up costs were 8 % of the head impact's cycle (perf annotate of bench_cycle, session 16);
+/// the empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
+inline void copy_doubles(double* __restrict dst, const double* __restrict src, std::size_t n) {
+#if defined(__AVX__)
+  for (std::size_t i = 0; i < n; i += 4) {
+    __m256d v = _mm256_loadu_pd(src + i);
+    asm("" : "+x"(v));
+    _mm256_storeu_pd(dst + i, v);
+  }
+#else
+  std::memcpy(dst, src, n * sizeof(double));
+#endif
+}
+
+/// Zeroes n doubles (n a multiple of 4), for the same reason (`rep stosq` or memset otherwise).
+inline void zero_doubles(double* dst, std::size_t n) {
+#if defined(__AVX__)
+  __m256d z = _mm256_setzero_pd();
+  asm("" : "+x"(z));
+  for (std::size_t i = 0; i < n; i += 4) _mm256_storeu_pd(dst + i, z);
+#else
+  std::memset(dst, 0, n * sizeof(double));
+#endif
+}
+
 /// One batch's block of a blocked state array (shell_bt.h: [ns/L][R][L], contiguous) into / out
 /// of a local [R][L] array: the lane loops then work on locals only and vectorise without alias
 /// checks.
 template <int R>
 inline void load_block(const double* a, double (&out)[R][L]) {
-  std::memcpy(out, a, sizeof out);
+  copy_doubles(&out[0][0], a, R * L);
 }
 template <int R>
 inline void store_block(double* a, const double (&in)[R][L]) {
-  std::memcpy(a, in, sizeof in);
+  copy_doubles(a, &in[0][0], R * L);
 }
 
 /// Corotational frame and in-plane operators of one configuration of a batch (header comment):
@@ -170,7 +197,7 @@ template <bool kSizes>
 [[gnu::always_inline]] inline void geometry(const double (&X)[4][3][L], Geometry& g, double* lmax2,
                                             double* BB) {
   auto &e1 = g.e1, &e2 = g.e2, &e3 = g.e3;
-  double s3[3][L], nsq[L], len[L], r31[3][L], r42[3][L], n31[L], n42[L], l31[L], l42[L];
+  double s3[3][L], nsq[L], len[L], r31[3][L], r42[3][L], n42[L], q[L], p[L];
   for (std::size_t l = 0; l < L; ++l) {
     for (int c = 0; c < 3; ++c) {
       r31[c][l] = X[2][c][l] - X[0][c][l];
@@ -180,28 +207,29 @@ template <bool kSizes>
     s3[1][l] = r31[2][l] * r42[0][l] - r31[0][l] * r42[2][l];
     s3[2][l] = r31[0][l] * r42[1][l] - r31[1][l] * r42[0][l];
     nsq[l] = s3[0][l] * s3[0][l] + s3[1][l] * s3[1][l] + s3[2][l] * s3[2][l];
-    n31[l] = r31[0][l] * r31[0][l] + r31[1][l] * r31[1][l] + r31[2][l] * r31[2][l];
+    const double n31 = r31[0][l] * r31[0][l] + r31[1][l] * r31[1][l] + r31[2][l] * r31[2][l];
     n42[l] = r42[0][l] * r42[0][l] + r42[1][l] * r42[1][l] + r42[2][l] * r42[2][l];
+    q[l] = n31 * n42[l];
   }
-  sqrt_lanes(nsq, len, L);
-  sqrt_lanes(n31, l31, L);
-  sqrt_lanes(n42, l42, L);
-  // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, projected on the plane.
+  sqrt_lanes(nsq, len, L);  // |r31 x r42| = 2A
+  sqrt_lanes(q, p, L);      // |r31| |r42|
+  // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, here scaled by |r31| |r42|^2
+  // > 0 (one square root, no division): b = r31 |r42|^2 - r42 |r31| |r42|. A combination of r31
+  // and r42, b is normal to e3 = r31 x r42 / |.| without a projection.
+  double b[3][L];
   for (std::size_t l = 0; l < L; ++l) {
-    const double inv = 1.0 / len[l], i31 = 1.0 / l31[l], i42 = 1.0 / l42[l];
-    double b[3];
+    for (int c = 0; c < 3; ++c) b[c][l] = r31[c][l] * n42[l] - r42[c][l] * p[l];
+    q[l] = b[0][l] * b[0][l] + b[1][l] * b[1][l] + b[2][l] * b[2][l];
+  }
+  sqrt_lanes(q, p, L);  // |b|
+  for (std::size_t l = 0; l < L; ++l) {
+    // one division for both normalisations: 1/|s3| = |b| / (|s3| |b|), 1/|b| = |s3| / (|s3| |b|)
+    const double r = 1.0 / (len[l] * p[l]);
+    const double inv3 = r * p[l], inv1 = r * len[l];
     for (int c = 0; c < 3; ++c) {
-      b[c] = r31[c][l] * i31 - r42[c][l] * i42;
-      e3[c][l] = s3[c][l] * inv;
+      e3[c][l] = s3[c][l] * inv3;
+      e1[c][l] = b[c][l] * inv1;
     }
-    const double d = b[0] * e3[0][l] + b[1] * e3[1][l] + b[2] * e3[2][l];
-    for (int c = 0; c < 3; ++c) e1[c][l] = b[c] - d * e3[c][l];
-    nsq[l] = e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l];
-  }
-  sqrt_lanes(nsq, len, L);
-  for (std::size_t l = 0; l < L; ++l) {
-    const double inv = 1.0 / len[l];
-    for (int c = 0; c < 3; ++c) e1[c][l] *= inv;
     e2[0][l] = e3[1][l] * e1[2][l] - e3[2][l] * e1[1][l];
     e2[1][l] = e3[2][l] * e1[0][l] - e3[0][l] * e1[2][l];
     e2[2][l] = e3[0][l] * e1[1][l] - e3[1][l] * e1[0][l];
@@ -216,9 +244,10 @@ template <bool kSizes>
     }
     const double x0 = xl[0], x1 = xl[1], x2 = xl[2], x3 = xl[3];
     const double y0 = yl[0], y1 = yl[1], y2 = yl[2], y3 = yl[3];
-    const double twoA = (x2 - x0) * (y3 - y1) - (x3 - x1) * (y2 - y0);
-    g.A[l] = 0.5 * twoA;
-    const double ia = 1.0 / twoA;
+    // 2A = (x2 - x0)(y3 - y1) - (x3 - x1)(y2 - y0), the cross product of the projected diagonals
+    // = (r31 x r42) . e3 = |r31 x r42|: the division above gives 1 / 2A as well.
+    g.A[l] = 0.5 * len[l];
+    const double ia = inv3;
     auto &B1 = g.B1, &B2 = g.B2, &Gm = g.Gm;
     B1[0][l] = (y1 - y3) * ia;
     B1[1][l] = (y2 - y0) * ia;
@@ -504,8 +533,11 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       double s[3][kMax * L];  // trial, then sigma^{n+1}: [c][k L + l] for the return
       double de[kMax][3][L];  // strain increments
       double dzp[kMax * L];   // plastic thickness strain increments [k L + l]
-      std::memcpy(sp, blk, 3 * nk * L * sizeof(double));
-      double sN[3][L] = {}, sM[3][L] = {}, wsum[L] = {};
+      copy_doubles(&sp[0][0][0], blk, 3 * nk * L);
+      double sN[3][L], sM[3][L], wsum[L];
+      zero_doubles(&sN[0][0], 3 * L);
+      zero_doubles(&sM[0][0], 3 * L);
+      zero_doubles(wsum, L);
       if (update) {
         double cand[kMax * L];  // 1: trial vm above the initial yield (a return candidate)
         for (std::size_t k = 0; k < nk; ++k) {
@@ -523,15 +555,18 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
             s[2][k * L + l] = t2;
             const double vm2 = t0 * t0 + t1 * t1 - t0 * t1 + 3.0 * t2 * t2;
             cand[k * L + l] = vm2 > K.sy0_sq ? 1.0 : 0.0;
-            dzp[k * L + l] = 0.0;
           }
         }
         // Cheap elastic check first: below the initial yield no lane needs the return. All
         // candidates: one return over the batch's points in place; some: the return over the
         // candidates only, packed (padded to a multiple of 4 with copies of the last one).
         const std::size_t n_all = nk * L;
-        double n_cand = 0.0;
-        for (std::size_t i = 0; i < n_all; ++i) n_cand += cand[i];
+        zero_doubles(dzp, n_all);
+        // (four partial sums: one ordered sum is a scalar loop, 4 % of the kernel)
+        double psum[4] = {0.0, 0.0, 0.0, 0.0};
+        for (std::size_t i = 0; i < n_all; i += 4)
+          for (std::size_t j = 0; j < 4; ++j) psum[j] += cand[i + j];
+        const double n_cand = (psum[0] + psum[1]) + (psum[2] + psum[3]);
         double* const ep_blk = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
         if (K.j2 && n_cand == static_cast<double>(n_all)) {
           materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, s[0], s[1], s[2],
@@ -575,7 +610,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
             wsum[l] += wk * w;
           }
         }
-        std::memcpy(blk, sp, 3 * nk * L * sizeof(double));
+        copy_doubles(blk, &sp[0][0][0], 3 * nk * L);
       } else {
         for (std::size_t k = 0; k < nk; ++k) {
           const double zk = st.zeta[k], wk = st.weight[k];
@@ -640,7 +675,9 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
 
     // ---- thickness, bulk viscosity, hourglass, nodal forces ----------------------------------
     double F[4][3][L], Mm[4][3][L], ehg[L], xi[L], h_new[1][L], Qh[5][L];
-    double q_old[1][L] = {}, q_new[1][L] = {};
+    double q_old[1][L], q_new[1][L];
+    zero_doubles(q_old[0], L);
+    zero_doubles(q_new[0], L);
     load_block(hgs + 5 * b0, Qh);
     if (bulk) load_block(bulk_q + b0, q_old);
     for (std::size_t l = 0; l < L; ++l) {
