@@ -68,9 +68,17 @@ struct CurveCard {
   CardRef ref;
 };
 
+/// One data card of *SET_NODE_GENERAL: ALL, NODE (ids), PART (ids), BOX (box ids).
+struct GeneralEntry {
+  enum class Option : std::uint8_t { All, Node, Part, Box } option = Option::All;
+  std::vector<std::int64_t> ids;
+  CardRef ref;
+};
+
 struct SetCard {
   std::int64_t id = 0;
-  bool parts = false;  ///< *SET_PART_*; else *SET_NODE_*
+  bool parts = false;                 ///< *SET_PART_*; else *SET_NODE_*
+  std::vector<GeneralEntry> general;  ///< *SET_NODE_GENERAL
   std::vector<std::int64_t> members;
   std::vector<CardRef> member_ref;                  ///< one per member (the card listing it)
   std::vector<std::array<std::int64_t, 2>> ranges;  ///< _GENERATE
@@ -90,9 +98,44 @@ struct SpcCard {
 struct VelocityCard {
   std::int64_t target = 0;  ///< node, part, part set or node set id
   int styp = 0;  ///< *INITIAL_VELOCITY_GENERATION: 1 part set, 2 part, 3 node set; 0 node
-  std::array<double, 3> v{};  ///< deck velocity units
+  std::array<double, 3> v{};  ///< deck velocity units, in the system ICID
+  std::int64_t icid = 0;      ///< *DEFINE_COORDINATE_SYSTEM id; 0: global axes
   std::string keyword;
   CardRef ref;
+};
+
+/// *DEFINE_BOX: an axis-aligned box, deck length units.
+struct BoxCard {
+  std::int64_t id = 0;
+  std::array<double, 3> lo{}, hi{};
+  std::string keyword;
+  CardRef ref;
+};
+
+/// *DEFINE_COORDINATE_SYSTEM: origin O, a point L on the local x axis, a point P in the local
+/// x-y plane (deck length units).
+struct CoordinateSystemCard {
+  std::int64_t id = 0;
+  std::array<double, 3> o{}, l{}, p{};
+  std::string keyword;
+  CardRef ref;
+};
+
+/// *CONTACT_..._(AUTOMATIC_)SURFACE_TO_SURFACE / NODES_TO_SURFACE / SINGLE_SURFACE.
+struct ContactCard {
+  enum class Kind : std::uint8_t { SurfaceToSurface, NodesToSurface, SingleSurface };
+  Kind kind = Kind::SurfaceToSurface;
+  bool automatic = true;
+  std::string keyword, heading;
+  std::int64_t ssid = 0, msid = 0;
+  int sstyp = 0, mstyp = 0;
+  double fs = 0.0, fd = 0.0, dc = 0.0;  ///< friction; DC in deck time / length
+  double sfs = 1.0, sfm = 1.0;          ///< penalty scale factors
+  int soft = 0;
+  double sofscl = 0.1;
+  int cards = 0;  ///< data cards read (the ID card not counted)
+  CardRef ref;    ///< card 1 (SSID ...)
+  CardRef ref3;   ///< card 3 (SFS ...), if written
 };
 
 struct Deck {
@@ -108,6 +151,9 @@ struct Deck {
   std::vector<SetCard> sets;
   std::vector<SpcCard> spcs;
   std::vector<VelocityCard> velocities;
+  std::vector<BoxCard> boxes;
+  std::vector<CoordinateSystemCard> coordinate_systems;
+  std::vector<ContactCard> contacts;
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;

@@ -34,6 +34,7 @@ enum class Kw : std::uint8_t {
   DefineCurve,
   SetNodeList,
   SetNodeListGenerate,
+  SetNodeGeneral,
   SetPartList,
   SetPartListGenerate,
   SpcNode,
@@ -42,6 +43,9 @@ enum class Kw : std::uint8_t {
   VelocityNode,
   Termination,
   Timestep,
+  DefineBox,
+  CoordinateSystem,
+  Contact,
   Database,
   Skip
 };
@@ -72,6 +76,7 @@ constexpr KeywordName kKeywords[] = {
     {"*DEFINE_CURVE", Kw::DefineCurve, true, false},
     {"*SET_NODE_LIST", Kw::SetNodeList, true, false},
     {"*SET_NODE_LIST_GENERATE", Kw::SetNodeListGenerate, true, false},
+    {"*SET_NODE_GENERAL", Kw::SetNodeGeneral, true, false},
     {"*SET_PART_LIST", Kw::SetPartList, true, false},
     {"*SET_PART_LIST_GENERATE", Kw::SetPartListGenerate, true, false},
     {"*BOUNDARY_SPC_NODE", Kw::SpcNode, false, true},
@@ -80,6 +85,14 @@ constexpr KeywordName kKeywords[] = {
     {"*INITIAL_VELOCITY_NODE", Kw::VelocityNode, false, false},
     {"*CONTROL_TERMINATION", Kw::Termination, false, false},
     {"*CONTROL_TIMESTEP", Kw::Timestep, false, false},
+    {"*DEFINE_BOX", Kw::DefineBox, true, false},
+    {"*DEFINE_COORDINATE_SYSTEM", Kw::CoordinateSystem, true, false},
+    {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", Kw::Contact, true, true},
+    {"*CONTACT_SURFACE_TO_SURFACE", Kw::Contact, true, true},
+    {"*CONTACT_AUTOMATIC_NODES_TO_SURFACE", Kw::Contact, true, true},
+    {"*CONTACT_NODES_TO_SURFACE", Kw::Contact, true, true},
+    {"*CONTACT_AUTOMATIC_SINGLE_SURFACE", Kw::Contact, true, true},
+    {"*CONTACT_SINGLE_SURFACE", Kw::Contact, true, true},
 };
 
 constexpr const char* kReaderKeywords[] = {"*KEYWORD",
@@ -169,7 +182,21 @@ class Parser {
     b_.id = id;
     b_.before = records_of(b_.kw);
     if (b_.kw == Kw::Database) ++d_.without_effect[b_.keyword];
-    if (b_.kw == Kw::SetNodeList || b_.kw == Kw::SetNodeListGenerate || b_.kw == Kw::SetPartList ||
+    if (b_.kw == Kw::Contact) {
+      ContactCard c;
+      c.keyword = b_.keyword;
+      std::string_view base = k;
+      if (title) base.remove_suffix(6);
+      if (id) base.remove_suffix(3);
+      c.automatic = base.find("_AUTOMATIC_") != std::string_view::npos;
+      c.kind = ends_with(base, "SINGLE_SURFACE")     ? ContactCard::Kind::SingleSurface
+               : ends_with(base, "NODES_TO_SURFACE") ? ContactCard::Kind::NodesToSurface
+                                                     : ContactCard::Kind::SurfaceToSurface;
+      c.ref = ref;
+      d_.contacts.push_back(std::move(c));
+    }
+    if (b_.kw == Kw::SetNodeList || b_.kw == Kw::SetNodeListGenerate ||
+        b_.kw == Kw::SetNodeGeneral || b_.kw == Kw::SetPartList ||
         b_.kw == Kw::SetPartListGenerate) {
       SetCard s;
       s.parts = b_.kw == Kw::SetPartList || b_.kw == Kw::SetPartListGenerate;
@@ -217,6 +244,8 @@ class Parser {
       case Kw::SetPartList:
       case Kw::SetPartListGenerate:
         return set(c);
+      case Kw::SetNodeGeneral:
+        return set_general(c);
       case Kw::SpcNode:
       case Kw::SpcSet:
         return spc(c);
@@ -228,6 +257,12 @@ class Parser {
         return termination(c);
       case Kw::Timestep:
         return timestep(c);
+      case Kw::DefineBox:
+        return box(c);
+      case Kw::CoordinateSystem:
+        return coordinate_system(c);
+      case Kw::Contact:
+        return contact(c);
     }
   }
 
@@ -272,6 +307,10 @@ class Parser {
       case Kw::VelocityGeneration:
       case Kw::VelocityNode:
         return d_.velocities.size();
+      case Kw::DefineBox:
+        return d_.boxes.size();
+      case Kw::CoordinateSystem:
+        return d_.coordinate_systems.size();
       default:
         return SIZE_MAX;
     }
@@ -282,6 +321,7 @@ class Parser {
     const std::size_t before = b_.before;
     const bool empty = (before != SIZE_MAX && records_of(b_.kw) == before) ||
                        (b_.kw == Kw::Termination && b_.card == 0) ||
+                       (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
                        (b_.kw == Kw::DefineCurve && !d_.curves.empty() &&
                         records_of(b_.kw) != before && d_.curves.back().a.empty()) ||
                        (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList &&
@@ -300,6 +340,10 @@ class Parser {
     if ((b_.kw == Kw::MatPlasticKinematic || b_.kw == Kw::MatPiecewiseLinear) &&
         records_of(b_.kw) != before)
       check_material_end();
+    if (b_.kw == Kw::CoordinateSystem && records_of(b_.kw) != before && b_.card == 1)
+      throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
+                       "card 2 (XP YP ZP, a point in the local x-y plane) is missing; fix: add "
+                       "it");
     if (b_.kw == Kw::SectionShell && card_index() == 1)
       throw InputError(d_.files.name(d_.sections.back().ref.file), d_.sections.back().ref.line,
                        b_.keyword,
@@ -726,9 +770,10 @@ class Parser {
         v.v[k] = c.field(L::kVelocityGeneration1, 3 + k).real(0.0);
       must_be_default(c.field(L::kVelocityGeneration1, 6), 0.0,
                       "IVATN 1 is not computed; fix: write IVATN 0");
-      must_be_default(c.field(L::kVelocityGeneration1, 7), 0.0,
-                      "velocities in a local coordinate system are not computed; fix: write ICID "
-                      "0 (global axes)");
+      v.icid = c.field(L::kVelocityGeneration1, 7).integer(0);
+      if (v.icid < 0)
+        c.field(L::kVelocityGeneration1, 7)
+            .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
       v.ref = c.ref();
       d_.velocities.push_back(std::move(v));
       b_.card = 1;
@@ -746,10 +791,197 @@ class Parser {
     for (std::size_t k = 4; k < 7; ++k)
       must_be_default(c.field(L::kVelocityNode, k), 0.0,
                       "nodal angular velocities are not read yet; fix: leave VXR, VYR, VZR blank");
-    must_be_default(c.field(L::kVelocityNode, 7), 0.0,
-                    "velocities in a local coordinate system are not computed; fix: write ICID 0");
+    v.icid = c.field(L::kVelocityNode, 7).integer(0);
+    if (v.icid < 0)
+      c.field(L::kVelocityNode, 7)
+          .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
     v.ref = c.ref();
     d_.velocities.push_back(std::move(v));
+  }
+
+  void set_general(const Card& c) {
+    if (title_card(c)) return;
+    SetCard& s = d_.sets.back();
+    if (card_index() == 0) {
+      s.id = positive_id(c.field(L::kSetHeader, 0));
+      s.ref = c.ref();
+      b_.card = b_.title ? 2 : 1;
+      return;
+    }
+    if (blank(c)) return;
+    GeneralEntry g;
+    const auto opt = c.field(L::kSetGeneral, 0);
+    const std::string o = upper(opt.text());
+    if (o == "ALL")
+      g.option = GeneralEntry::Option::All;
+    else if (o == "NODE")
+      g.option = GeneralEntry::Option::Node;
+    else if (o == "PART")
+      g.option = GeneralEntry::Option::Part;
+    else if (o == "BOX")
+      g.option = GeneralEntry::Option::Box;
+    else
+      opt.fail(
+          "crashlink reads the options ALL, NODE (node ids), PART (part ids) and BOX (box ids) "
+          "of *SET_NODE_GENERAL; fix: write one of them, or list the nodes under "
+          "*SET_NODE_LIST");
+    for (std::size_t k = 1; k < 8; ++k) {
+      const auto f = c.field(L::kSetGeneral, k);
+      if (f.blank() || f.integer(0) == 0) continue;
+      if (g.option == GeneralEntry::Option::All)
+        f.fail("the option ALL takes no id; fix: leave E1-E7 blank");
+      g.ids.push_back(positive_id(f));
+    }
+    if (g.option != GeneralEntry::Option::All && g.ids.empty())
+      c.field(L::kSetGeneral, 1)
+          .fail(fmt::format("the option {} lists no id; fix: write at least one in E1", o));
+    g.ref = c.ref();
+    s.general.push_back(std::move(g));
+  }
+
+  void box(const Card& c) {
+    if (title_card(c)) return;
+    BoxCard bx;
+    bx.keyword = b_.keyword;
+    bx.id = positive_id(c.field(L::kBox, 0));
+    for (std::size_t k = 0; k < 3; ++k) {
+      bx.lo[k] = c.field(L::kBox, 1 + 2 * k).real(0.0);
+      const auto hi = c.field(L::kBox, 2 + 2 * k);
+      bx.hi[k] = hi.real(0.0);
+      if (bx.hi[k] < bx.lo[k])
+        hi.fail(fmt::format("the box ends before it begins ({}); fix: swap the bounds", bx.lo[k]));
+    }
+    bx.ref = c.ref();
+    d_.boxes.push_back(std::move(bx));
+    b_.card = 0;
+  }
+
+  void coordinate_system(const Card& c) {
+    if (title_card(c)) return;
+    if (card_index() == 0) {
+      CoordinateSystemCard cs;
+      cs.keyword = b_.keyword;
+      cs.id = positive_id(c.field(L::kCoordinateSystem1, 0));
+      for (std::size_t k = 0; k < 3; ++k) {
+        cs.o[k] = c.field(L::kCoordinateSystem1, 1 + k).real(0.0);
+        cs.l[k] = c.field(L::kCoordinateSystem1, 4 + k).real(0.0);
+      }
+      must_be_default(c.field(L::kCoordinateSystem1, 7), 0.0,
+                      "a system defined in another local system (CIDL) is not read; fix: give "
+                      "O, L and P in global coordinates and CIDL 0");
+      cs.ref = c.ref();
+      d_.coordinate_systems.push_back(std::move(cs));
+      b_.card = b_.title ? 2 : 1;
+      last_ = c.ref();
+      return;
+    }
+    CoordinateSystemCard& cs = d_.coordinate_systems.back();
+    for (std::size_t k = 0; k < 3; ++k) cs.p[k] = c.field(L::kCoordinateSystem2, k).real(0.0);
+    b_.card = 0;
+  }
+
+  /// *CONTACT_...: the ID card (with _ID or _TITLE), cards 1-3, optional cards A, B and later
+  /// ones (which must keep their defaults).
+  void contact(const Card& c) {
+    ContactCard& k = d_.contacts.back();
+    if ((b_.id || b_.title) && b_.card == 0) {
+      k.heading = std::string(trim(c.field(L::kIdHeading, 1).raw()));
+      b_.card = 1;
+      return;
+    }
+    const int i = k.cards++;
+    const char* later = "is not computed; fix: leave it blank (or 0)";
+    if (i == 0) {
+      const auto ssid = c.field(L::kContact1, 0), msid = c.field(L::kContact1, 1);
+      k.ssid = ssid.integer(0);
+      k.msid = msid.integer(0);
+      if (k.ssid < 0) ssid.fail("must be a set or part id >= 0; fix: write the slave surface");
+      if (k.msid < 0) msid.fail("must be a set or part id >= 0; fix: write the master surface");
+      k.sstyp = static_cast<int>(c.field(L::kContact1, 2).integer(0));
+      k.mstyp = static_cast<int>(c.field(L::kContact1, 3).integer(0));
+      must_be_default(c.field(L::kContact1, 4), 0.0,
+                      "limiting a surface to a box (SBOXID) is not computed; fix: write 0");
+      must_be_default(c.field(L::kContact1, 5), 0.0,
+                      "limiting a surface to a box (MBOXID) is not computed; fix: write 0");
+      k.ref = c.ref();
+      return;
+    }
+    if (i == 1) {
+      const auto fs = c.field(L::kContact2, 0), fd = c.field(L::kContact2, 1),
+                 dc = c.field(L::kContact2, 2);
+      k.fs = fs.real(0.0);
+      k.fd = fd.real(0.0);
+      k.dc = dc.real(0.0);
+      if (k.fs < 0.0)
+        fs.fail(
+            "friction from tables (FS < 0) is not computed; fix: write the static "
+            "coefficient (0.1 steel on steel, lubricated)");
+      if (k.fd < 0.0) fd.fail("must be >= 0; fix: write the dynamic coefficient");
+      if (k.fd > k.fs && k.fs > 0.0)
+        fd.fail(
+            fmt::format("exceeds FS = {}: crashlink's friction decays from the static "
+                        "coefficient to the dynamic one; fix: write FD <= FS",
+                        k.fs));
+      if (k.dc < 0.0) dc.fail("must be >= 0; fix: write the decay coefficient (time/length)");
+      must_be_default(c.field(L::kContact2, 3), 0.0,
+                      "the viscous friction limit (VC) is not computed; fix: write 0");
+      must_be_default(c.field(L::kContact2, 4), 0.0,
+                      "contact damping (VDC) is not computed; fix: write 0");
+      must_be_default(c.field(L::kContact2, 5), 0.0,
+                      "the penetration check (PENCHK) is not computed; fix: write 0");
+      must_be_default(c.field(L::kContact2, 6), 0.0,
+                      "a birth time (BT) is not computed: the contact acts from the start; fix: "
+                      "write 0");
+      const auto dt = c.field(L::kContact2, 7);
+      if (!dt.blank() && dt.real(0.0) != 0.0 && dt.real(0.0) < 1e20)
+        dt.fail("a death time (DT) is not computed: the contact acts to the end; fix: write 0");
+      return;
+    }
+    if (i == 2) {
+      const auto sfs = c.field(L::kContact3, 0), sfm = c.field(L::kContact3, 1);
+      k.sfs = sfs.real(1.0);
+      k.sfm = sfm.real(1.0);
+      if (k.sfs == 0.0) k.sfs = 1.0;  // LS-DYNA: 0 reads as the default
+      if (k.sfm == 0.0) k.sfm = 1.0;
+      if (k.sfs < 0.0) sfs.fail("must be > 0; fix: write 1.0");
+      if (k.sfm < 0.0) sfm.fail("must be > 0; fix: write 1.0");
+      must_be_default(c.field(L::kContact3, 2), 0.0,
+                      "a contact thickness other than the shells' own (SST) is not computed; "
+                      "fix: write 0");
+      must_be_default(c.field(L::kContact3, 3), 0.0,
+                      "a contact thickness other than the shells' own (MST) is not computed; "
+                      "fix: write 0");
+      for (std::size_t f = 4; f < 8; ++f) {
+        const auto x = c.field(L::kContact3, f);
+        if (!x.blank() && x.real(1.0) != 1.0 && x.real(1.0) != 0.0)
+          x.fail(
+              "scaling the contact thickness or the friction (SFST, SFMT, FSF, VSF) is not "
+              "computed; fix: write 1.0 (or leave it blank)");
+      }
+      k.ref3 = c.ref();
+      return;
+    }
+    if (i == 3) {
+      const auto soft = c.field(L::kContactA, 0);
+      k.soft = static_cast<int>(soft.integer(0));
+      if (k.soft != 0 && k.soft != 1)
+        soft.fail(
+            "crashlink computes SOFT 0 (penalty from the segment stiffness) and SOFT 1 (also a "
+            "stiffness from the nodal mass and step); the segment-based SOFT 2 is not "
+            "computed; fix: write 0 or 1");
+      k.sofscl = c.field(L::kContactA, 1).real(0.1);
+      if (k.sofscl == 0.0) k.sofscl = 0.1;
+      if (k.sofscl < 0.0) c.field(L::kContactA, 1).fail("must be > 0; fix: write 0.1");
+      must_be_default(c.field(L::kContactA, 2), 0.0,
+                      "airbag contact curves (LCIDAB) are not computed; fix: write 0");
+      // MAXPAR, SBOPT, DEPTH (SOFT 2), BSORT, FRCFRQ tune LS-DYNA's search: without effect.
+      return;
+    }
+    const Layout l = i == 4 ? Layout(L::kContactB) : Layout(L::kContactLater);
+    for (std::size_t f = 0; f < 8; ++f)
+      must_be_default(
+          c.field(l, f), 0.0,
+          fmt::format("optional card {} of a contact {}", static_cast<char>('A' + i - 3), later));
   }
 
   void termination(const Card& c) {

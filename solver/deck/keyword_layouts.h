@@ -67,4 +67,32 @@ inline constexpr FieldSpec kTimestep[] = {{"DTINIT", 10}, {"TSSFAC", 10}, {"ISDO
                                           {"TSLIMT", 10}, {"DT2MS", 10},  {"LCTM", 10},
                                           {"ERODE", 10},  {"MS1ST", 10}};
 
+inline constexpr FieldSpec kBox[] = {{"BOXID", 10}, {"XMN", 10}, {"XMX", 10}, {"YMN", 10},
+                                     {"YMX", 10},   {"ZMN", 10}, {"ZMX", 10}};
+/// *SET_NODE_GENERAL's data cards: an option and up to seven ids.
+inline constexpr FieldSpec kSetGeneral[] = {{"OPTION", 10}, {"E1", 10}, {"E2", 10}, {"E3", 10},
+                                            {"E4", 10},     {"E5", 10}, {"E6", 10}, {"E7", 10}};
+inline constexpr FieldSpec kCoordinateSystem1[] = {{"CID", 10}, {"XO", 10},  {"YO", 10},
+                                                   {"ZO", 10},  {"XL", 10},  {"YL", 10},
+                                                   {"ZL", 10},  {"CIDL", 10}};
+inline constexpr FieldSpec kCoordinateSystem2[] = {{"XP", 10}, {"YP", 10}, {"ZP", 10}};
+inline constexpr FieldSpec kContact1[] = {{"SSID", 10},  {"MSID", 10},   {"SSTYP", 10},
+                                          {"MSTYP", 10}, {"SBOXID", 10}, {"MBOXID", 10},
+                                          {"SPR", 10},   {"MPR", 10}};
+inline constexpr FieldSpec kContact2[] = {{"FS", 10},  {"FD", 10},     {"DC", 10}, {"VC", 10},
+                                          {"VDC", 10}, {"PENCHK", 10}, {"BT", 10}, {"DT", 10}};
+inline constexpr FieldSpec kContact3[] = {{"SFS", 10},  {"SFM", 10},  {"SST", 10}, {"MST", 10},
+                                          {"SFST", 10}, {"SFMT", 10}, {"FSF", 10}, {"VSF", 10}};
+inline constexpr FieldSpec kContactA[] = {{"SOFT", 10},   {"SOFSCL", 10}, {"LCIDAB", 10},
+                                          {"MAXPAR", 10}, {"SBOPT", 10},  {"DEPTH", 10},
+                                          {"BSORT", 10},  {"FRCFRQ", 10}};
+inline constexpr FieldSpec kContactB[] = {{"PENMAX", 10}, {"THKOPT", 10}, {"SHLTHK", 10},
+                                          {"SNLOG", 10},  {"ISYM", 10},   {"I2D3D", 10},
+                                          {"SLDTHK", 10}, {"SLDSTF", 10}};
+/// Optional cards C-G of a contact, named by position (crashlink reads them only to check that
+/// they are left at their defaults).
+inline constexpr FieldSpec kContactLater[] = {{"FIELD1", 10}, {"FIELD2", 10}, {"FIELD3", 10},
+                                              {"FIELD4", 10}, {"FIELD5", 10}, {"FIELD6", 10},
+                                              {"FIELD7", 10}, {"FIELD8", 10}};
+
 }  // namespace crashlink::deck::layout

@@ -55,9 +55,12 @@ class Builder {
     parts();
     elements();
     compact_nodes();
+    boxes();
+    coordinate_systems();
     sets();
     constraints();
     velocities();
+    contacts();
     controls();
     try {
       model::validate(m_);
@@ -341,6 +344,7 @@ class Builder {
                             s.id, at(d_, d_.sets[static_cast<std::size_t>(it->second)].ref),
                             s.parts ? "part" : "node"));
       std::vector<std::int64_t> ids;
+      for (const GeneralEntry& g : s.general) general_members(s, g, ids);
       for (std::size_t k = 0; k < s.members.size(); ++k) {
         const bool ok = s.parts ? parts_.count(s.members[k]) > 0 : nodes_.count(s.members[k]) > 0;
         if (!ok) fail_member(s, k);
@@ -363,6 +367,99 @@ class Builder {
       }
       (s.parts ? part_set_members_ : node_set_members_)[s.id] = std::move(ids);
     }
+  }
+
+  /// The node ids one *SET_NODE_GENERAL card adds (ALL: every node; NODE: the ids, checked;
+  /// PART: the nodes of the parts' elements; BOX: the nodes inside the boxes, bounds included).
+  void general_members(const SetCard& s, const GeneralEntry& g, std::vector<std::int64_t>& ids) {
+    using Opt = GeneralEntry::Option;
+    const auto& n = d_.nodes;
+    for (std::size_t k = 0; k < g.ids.size(); ++k) {
+      const std::int64_t id = g.ids[k];
+      const bool ok = g.option == Opt::Node   ? nodes_.count(id) > 0
+                      : g.option == Opt::Part ? parts_.count(id) > 0
+                                              : boxes_.count(id) > 0;
+      if (!ok)
+        fail_at(d_, g.ref, s.keyword, L::kSetGeneral, k + 1,
+                fmt::format("{} {} is not defined; fix: correct the id or define it",
+                            g.option == Opt::Node   ? "node"
+                            : g.option == Opt::Part ? "part"
+                                                    : "*DEFINE_BOX",
+                            id));
+    }
+    const std::size_t before = ids.size();
+    switch (g.option) {
+      case Opt::All:
+        ids.insert(ids.end(), n.id.begin(), n.id.end());
+        break;
+      case Opt::Node:
+        ids.insert(ids.end(), g.ids.begin(), g.ids.end());
+        break;
+      case Opt::Part:
+        for (auto pid : g.ids)
+          if (const auto p = part_index_.find(pid); p != part_index_.end())
+            for (auto i : m_.parts[static_cast<std::size_t>(p->second)].connectivity)
+              ids.push_back(m_.nodes.id[static_cast<std::size_t>(i)]);
+        break;
+      case Opt::Box:
+        for (auto bid : g.ids) {
+          const BoxCard& b = d_.boxes[static_cast<std::size_t>(boxes_.at(bid))];
+          for (std::size_t i = 0; i < n.id.size(); ++i) {
+            bool in = true;
+            for (std::size_t c = 0; c < 3; ++c) {
+              const double x = n.x[3 * i + c];
+              in = in && x >= b.lo[c] && x <= b.hi[c];
+            }
+            if (in) ids.push_back(n.id[i]);
+          }
+        }
+        break;
+    }
+    if (ids.size() == before)
+      d_notes_.push_back(
+          fmt::format("{}: {} {}: this card selects no node", at(d_, g.ref), s.keyword, s.id));
+  }
+
+  void boxes() { boxes_ = index_ids(d_, d_.boxes, L::kBox, "box"); }
+
+  /// *DEFINE_COORDINATE_SYSTEM: the local axes e1 along O->L, e3 normal to O->L and O->P,
+  /// e2 = e3 x e1 (LS-DYNA's construction), as the columns of the rotation local -> global.
+  void coordinate_systems() {
+    const auto ids =
+        index_ids(d_, d_.coordinate_systems, L::kCoordinateSystem1, "coordinate system");
+    for (const auto& cs : d_.coordinate_systems) {
+      const Vec3 o{cs.o[0], cs.o[1], cs.o[2]};
+      const Vec3 ol = Vec3{cs.l[0], cs.l[1], cs.l[2]} - o;
+      const Vec3 op = Vec3{cs.p[0], cs.p[1], cs.p[2]} - o;
+      const Vec3 n = cross(ol, op);
+      const double lol = norm(ol), ln = norm(n);
+      if (!(lol > 0.0) || !(ln > 1e-9 * lol * norm(op)))
+        fail_at(d_, cs.ref, cs.keyword, L::kCoordinateSystem1, 4,
+                "O, L and P must not lie on one line (O->L is the local x axis, P a point of "
+                "the local x-y plane off that axis); fix: correct XL, YL, ZL or XP, YP, ZP");
+      const Vec3 e1 = (1.0 / lol) * ol, e3 = (1.0 / ln) * n, e2 = cross(e3, e1);
+      Mat3 r{};
+      for (int i = 0; i < 3; ++i) {
+        r[static_cast<std::size_t>(i)][0] = e1[static_cast<std::size_t>(i)];
+        r[static_cast<std::size_t>(i)][1] = e2[static_cast<std::size_t>(i)];
+        r[static_cast<std::size_t>(i)][2] = e3[static_cast<std::size_t>(i)];
+      }
+      frames_[cs.id] = r;
+    }
+    (void)ids;
+  }
+
+  /// The rotation local -> global of ICID (identity for 0), or the error at `field` of `ref`.
+  Mat3 frame(std::int64_t icid, const CardRef& ref, const std::string& kw, Layout l,
+             std::size_t field) {
+    if (icid == 0) return identity3();
+    const auto it = frames_.find(icid);
+    if (it == frames_.end())
+      fail_at(d_, ref, kw, l, field,
+              fmt::format("coordinate system {} is not defined; fix: add "
+                          "*DEFINE_COORDINATE_SYSTEM {} or write 0 (global axes)",
+                          icid, icid));
+    return it->second;
   }
 
   void fail_member(const SetCard& s, std::size_t k) {
@@ -397,10 +494,11 @@ class Builder {
 
   void velocities() {
     for (const auto& v : d_.velocities) {
-      const Vec3 vel{v.v[0] * u_.velocity_m_s(), v.v[1] * u_.velocity_m_s(),
-                     v.v[2] * u_.velocity_m_s()};
       const bool generation = v.styp != 0;
       const Layout l = generation ? Layout(L::kVelocityGeneration1) : Layout(L::kVelocityNode);
+      const Mat3 r = frame(v.icid, v.ref, v.keyword, l, 7);
+      const Vec3 vel = mul(r, Vec3{v.v[0] * u_.velocity_m_s(), v.v[1] * u_.velocity_m_s(),
+                                   v.v[2] * u_.velocity_m_s()});
       std::vector<std::int64_t> part_ids;
       std::vector<std::int64_t> node_ids;
       if (v.styp == 0) {
@@ -451,6 +549,103 @@ class Builder {
     }
   }
 
+  /// The model parts of a contact surface: SSTYP/MSTYP 2 (part set), 3 (part), 5 (all parts);
+  /// id 0 of a single-surface contact: all parts. Parts without elements are left out.
+  std::vector<int> surface_parts(const ContactCard& k, bool slave) {
+    const std::int64_t id = slave ? k.ssid : k.msid;
+    const int typ = slave ? k.sstyp : k.mstyp;
+    const std::size_t id_field = slave ? 0 : 1, typ_field = slave ? 2 : 3;
+    std::vector<int> out;
+    const bool all = typ == 5 || (id == 0 && k.kind == ContactCard::Kind::SingleSurface);
+    if (all) {
+      for (std::size_t p = 0; p < m_.parts.size(); ++p) out.push_back(static_cast<int>(p));
+      return out;
+    }
+    if (id == 0)
+      fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+              fmt::format("the {} surface is not given; fix: write a part (TYP 3) or part set "
+                          "(TYP 2) id",
+                          slave ? "slave" : "master"));
+    std::vector<std::int64_t> pids;
+    if (typ == 3) {
+      if (!parts_.count(id))
+        fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+                fmt::format("part {} is not defined; fix: correct the id", id));
+      pids.push_back(id);
+    } else if (typ == 2) {
+      const auto it = part_set_members_.find(id);
+      if (it == part_set_members_.end())
+        fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+                fmt::format("part set {} is not defined; fix: add *SET_PART_LIST {}", id, id));
+      pids = it->second;
+    } else {
+      fail_at(d_, k.ref, k.keyword, L::kContact1, typ_field,
+              fmt::format("surface type {} is not read: crashlink takes a contact surface as "
+                          "parts (3), a part set (2){}{}; fix: name the parts",
+                          typ,
+                          slave && k.kind != ContactCard::Kind::SingleSurface
+                              ? ", a node set (4, slave only)"
+                              : "",
+                          slave ? " or all parts (5)" : ""));
+    }
+    for (auto pid : pids)
+      if (const auto p = part_index_.find(pid); p != part_index_.end()) out.push_back(p->second);
+    if (out.empty())
+      fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+              fmt::format("the {} surface holds no element; fix: name parts with elements",
+                          slave ? "slave" : "master"));
+    return out;
+  }
+
+  /// *CONTACT_* onto model::Contact (docs/decks.md "Contacts"): penalty_scale = 0.1 SFS (SLSFAC's
+  /// default 0.1), SOFT 1 adds the mass-and-step stiffness scaled by SOFSCL, Coulomb friction
+  /// mu = FD + (FS - FD) exp(-DC |v_rel|) as crashlink's.
+  void contacts() {
+    for (std::size_t i = 0; i < d_.contacts.size(); ++i) {
+      const ContactCard& k = d_.contacts[i];
+      model::Contact c;
+      c.name = k.heading.empty() ? fmt::format("contact_{}", i + 1) : k.heading;
+      c.kind = k.kind == ContactCard::Kind::SingleSurface    ? model::ContactKind::SingleSurface
+               : k.kind == ContactCard::Kind::NodesToSurface ? model::ContactKind::NodeToSurface
+                                                             : model::ContactKind::SurfaceToSurface;
+      if (k.kind == ContactCard::Kind::SingleSurface) {
+        c.master_parts = surface_parts(k, true);
+      } else {
+        if (k.sstyp == 4) {
+          for (auto id : node_set(k.ssid, k.ref, k.keyword, L::kContact1)) {
+            const int n = node(id, k.ref, k.keyword.c_str(), L::kContact1, 0);
+            if (n >= 0) c.slave_nodes.push_back(n);
+          }
+        } else {
+          for (int p : surface_parts(k, true))
+            for (auto n : m_.parts[static_cast<std::size_t>(p)].connectivity)
+              c.slave_nodes.push_back(n);
+        }
+        std::sort(c.slave_nodes.begin(), c.slave_nodes.end());
+        c.slave_nodes.erase(std::unique(c.slave_nodes.begin(), c.slave_nodes.end()),
+                            c.slave_nodes.end());
+        c.master_parts = surface_parts(k, false);
+      }
+      if (k.sfs != k.sfm && k.kind != ContactCard::Kind::SingleSurface)
+        fail_at(d_, k.ref3, k.keyword, L::kContact3, 1,
+                fmt::format("crashlink has one penalty scale per contact and SFS = {}; fix: "
+                            "write SFM = SFS",
+                            k.sfs));
+      c.penalty_scale = 0.1 * k.sfs;
+      c.soft = k.soft == 1;
+      c.soft_scale = k.sofscl;
+      c.static_friction = k.fs;
+      c.dynamic_friction = k.fd == 0.0 && k.dc == 0.0 ? k.fs : k.fd;
+      c.friction_decay_s_m = k.dc * u_.time_s / u_.length_m;
+      if (!k.automatic)
+        d_notes_.push_back(fmt::format(
+            "{}: {}: computed as its automatic form (crashlink's contact finds either side of "
+            "a shell, whatever its normal)",
+            at(d_, k.ref), k.keyword));
+      m_.contacts.push_back(std::move(c));
+    }
+  }
+
   void controls() {
     if (!d_.has_end_time)
       throw InputError(d_.files.name(0), 0, "*CONTROL_TERMINATION",
@@ -463,6 +658,7 @@ class Builder {
  public:
   std::size_t free_nodes_ = 0;
   std::vector<std::int64_t> empty_parts_;
+  std::vector<std::string> d_notes_;  ///< notes found while building (read_deck prints them)
 
  private:
   const Deck& d_;
@@ -472,6 +668,8 @@ class Builder {
   std::unordered_map<std::int64_t, int> part_index_, rigid_body_of_part_;
   std::unordered_map<std::string, int> used_names_;
   std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_;
+  IdMap boxes_;
+  std::unordered_map<std::int64_t, Mat3> frames_;
   bool last_was_node_ = false;
 };
 
@@ -533,6 +731,7 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
   for (auto pid : b.empty_parts_)
     out.messages.push_back(fmt::format("part {} has no element and is left out", pid));
   for (const auto& n : deck.notes) out.messages.push_back(n);
+  for (const auto& n : b.d_notes_) out.messages.push_back(n);
   return out;
 }
 
