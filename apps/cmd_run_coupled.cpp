@@ -190,6 +190,8 @@ int run_coupled(const RunCommandOptions& o) {
                model::describe(model::estimate_run(model, model::estimated_stable_step_s(model))));
   for (const auto& a : contact::advice(model))
     fmt::print(stderr, "crashlink run: warning: {}\n", a);
+  for (const auto& a : contact::domain_advice(model))
+    fmt::print(stderr, "crashlink run: warning: {}\n", a);
 
   LaunchOptions lo;
   lo.scenario = o.scenario;

@@ -46,4 +46,45 @@ std::vector<std::string> advice(const model::Model& m) {
   return out;
 }
 
+std::vector<std::string> domain_advice(const model::Model& m) {
+  std::vector<std::string> out;
+  if (m.domains.size() < 2) return out;
+  std::vector<int> domain_of(m.parts.size(), -1);
+  for (std::size_t d = 0; d < m.domains.size(); ++d)
+    for (int p : m.domains[d].parts)
+      if (p >= 0 && static_cast<std::size_t>(p) < m.parts.size())
+        domain_of[static_cast<std::size_t>(p)] = static_cast<int>(d);
+  for (const auto& c : m.contacts) {
+    if (c.kind != model::ContactKind::SingleSurface) continue;
+    // The domains of the contact's parts, and the parts of each (in the contact's order).
+    std::vector<int> doms;
+    std::vector<std::vector<std::string>> parts;
+    for (int p : c.master_parts) {
+      const int d = domain_of[static_cast<std::size_t>(p)];
+      auto it = std::find(doms.begin(), doms.end(), d);
+      if (it == doms.end()) {
+        doms.push_back(d);
+        parts.emplace_back();
+        it = doms.end() - 1;
+      }
+      parts[static_cast<std::size_t>(it - doms.begin())].push_back(
+          m.parts[static_cast<std::size_t>(p)].name);
+    }
+    if (doms.size() < 2) continue;
+    std::string where;
+    for (std::size_t k = 0; k < doms.size(); ++k)
+      where += fmt::format(
+          "{}'{}' ({})", k == 0 ? "" : ", ",
+          doms[k] < 0 ? std::string("?") : m.domains[static_cast<std::size_t>(doms[k])].name,
+          fmt::join(parts[k], ", "));
+    out.push_back(fmt::format(
+        "single-surface contact '{}' spans the domains {}: each domain computes it over its own "
+        "elements, so parts of different domains do not meet and can pass through each other. "
+        "Put the parts that strike each other in one domain, or give them a surface_to_surface "
+        "contact of their own",
+        c.name, where));
+  }
+  return out;
+}
+
 }  // namespace crashlink::contact

@@ -19,6 +19,11 @@ double median_edge_m(const model::Model& m, const std::vector<std::int32_t>& fac
 /// tests/integration/contact_bar_pair_test.cpp). Empty when nothing is to be said.
 std::vector<std::string> advice(const model::Model& m);
 
+/// One line per single-surface contact whose parts lie in more than one domain (Model::domains):
+/// each domain computes it over its own elements (partition/sub_model.cpp), so parts in different
+/// domains never meet. Said before a split or multi run; empty without domains.
+std::vector<std::string> domain_advice(const model::Model& m);
+
 /// Slave faces coarser than the master's by this factor draw the advice.
 inline constexpr double kCoarseSlaveRatio = 1.5;
 
