@@ -31,7 +31,7 @@ struct ElementCards {
 };
 
 struct PartCard {
-  std::int64_t id = 0, section = 0, material = 0;
+  std::int64_t id = 0, section = 0, material = 0, hourglass = 0;
   std::string title;
   std::string keyword = "*PART";
   CardRef ref;  ///< the card with PID, SECID, MID
@@ -138,6 +138,24 @@ struct ContactCard {
   CardRef ref3;   ///< card 3 (SFS ...), if written
 };
 
+/// *HOURGLASS (per part through HGID) or *CONTROL_HOURGLASS (id 0: every part without HGID).
+struct HourglassCard {
+  std::int64_t id = 0;
+  int ihq = 0;      ///< 0: blank (LS-DYNA's default, 1)
+  double qm = 0.1;  ///< coefficient
+  std::string keyword;
+  CardRef ref;
+};
+
+/// *LOAD_BODY_X / _Y / _Z: a base acceleration along one axis, curve LCID scaled by SF.
+struct BodyLoadCard {
+  int axis = 0;
+  std::int64_t curve = 0;
+  double sf = 1.0;
+  std::string keyword;
+  CardRef ref;
+};
+
 struct Deck {
   DeckFiles files;
   Parameters params;
@@ -154,6 +172,13 @@ struct Deck {
   std::vector<BoxCard> boxes;
   std::vector<CoordinateSystemCard> coordinate_systems;
   std::vector<ContactCard> contacts;
+  std::vector<HourglassCard> hourglass;  ///< *HOURGLASS
+  bool has_control_hourglass = false;
+  HourglassCard control_hourglass;       ///< *CONTROL_HOURGLASS
+  bool has_bulk = false;                 ///< *CONTROL_BULK_VISCOSITY
+  double bulk_q1 = 1.5, bulk_q2 = 0.06;  ///< quadratic, linear (LS-DYNA's names)
+  bool bulk_shells = false;              ///< TYPE -2
+  std::vector<BodyLoadCard> body_loads;
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;

@@ -46,6 +46,10 @@ enum class Kw : std::uint8_t {
   DefineBox,
   CoordinateSystem,
   Contact,
+  Hourglass,
+  ControlHourglass,
+  ControlBulk,
+  LoadBody,
   Database,
   Skip
 };
@@ -93,6 +97,12 @@ constexpr KeywordName kKeywords[] = {
     {"*CONTACT_NODES_TO_SURFACE", Kw::Contact, true, true},
     {"*CONTACT_AUTOMATIC_SINGLE_SURFACE", Kw::Contact, true, true},
     {"*CONTACT_SINGLE_SURFACE", Kw::Contact, true, true},
+    {"*HOURGLASS", Kw::Hourglass, true, false},
+    {"*CONTROL_HOURGLASS", Kw::ControlHourglass, false, false},
+    {"*CONTROL_BULK_VISCOSITY", Kw::ControlBulk, false, false},
+    {"*LOAD_BODY_X", Kw::LoadBody, false, false},
+    {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
+    {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
 };
 
 constexpr const char* kReaderKeywords[] = {"*KEYWORD",
@@ -263,6 +273,14 @@ class Parser {
         return coordinate_system(c);
       case Kw::Contact:
         return contact(c);
+      case Kw::Hourglass:
+        return hourglass(c);
+      case Kw::ControlHourglass:
+        return control_hourglass(c);
+      case Kw::ControlBulk:
+        return control_bulk(c);
+      case Kw::LoadBody:
+        return load_body(c);
     }
   }
 
@@ -311,6 +329,10 @@ class Parser {
         return d_.boxes.size();
       case Kw::CoordinateSystem:
         return d_.coordinate_systems.size();
+      case Kw::Hourglass:
+        return d_.hourglass.size();
+      case Kw::LoadBody:
+        return d_.body_loads.size();
       default:
         return SIZE_MAX;
     }
@@ -319,13 +341,15 @@ class Parser {
   void finish_block() {
     // A keyword whose cards are missing would define nothing without a word.
     const std::size_t before = b_.before;
-    const bool empty = (before != SIZE_MAX && records_of(b_.kw) == before) ||
-                       (b_.kw == Kw::Termination && b_.card == 0) ||
-                       (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
-                       (b_.kw == Kw::DefineCurve && !d_.curves.empty() &&
-                        records_of(b_.kw) != before && d_.curves.back().a.empty()) ||
-                       (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList &&
-                        b_.kw <= Kw::SetPartListGenerate && d_.sets.back().id == 0);
+    const bool empty =
+        (before != SIZE_MAX && records_of(b_.kw) == before) ||
+        ((b_.kw == Kw::Termination || b_.kw == Kw::ControlHourglass || b_.kw == Kw::ControlBulk) &&
+         b_.card == 0) ||
+        (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
+        (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
+         d_.curves.back().a.empty()) ||
+        (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetPartListGenerate &&
+         d_.sets.back().id == 0);
     if (empty && !b_.keyword.empty())
       throw InputError(d_.files.name(b_.ref.file), b_.ref.line, b_.keyword,
                        b_.kw == Kw::DefineCurve && records_of(b_.kw) != before
@@ -459,9 +483,9 @@ class Parser {
     p.material = positive_id(c.field(L::kPart, 2));
     must_be_default(c.field(L::kPart, 3), 0.0,
                     "equations of state are not computed; fix: leave EOSID blank");
-    must_be_default(c.field(L::kPart, 4), 0.0,
-                    "*HOURGLASS is not read yet (crashlink's stiffness hourglass control, "
-                    "coefficient 0.1, applies); fix: leave HGID blank");
+    p.hourglass = c.field(L::kPart, 4).integer(0);
+    if (p.hourglass < 0)
+      c.field(L::kPart, 4).fail("must be a *HOURGLASS id or blank; fix: write one");
     must_be_default(c.field(L::kPart, 7), 0.0,
                     "thermal materials are not computed; fix: leave TMID blank");
     p.title = std::move(b_.pending_title);
@@ -982,6 +1006,96 @@ class Parser {
       must_be_default(
           c.field(l, f), 0.0,
           fmt::format("optional card {} of a contact {}", static_cast<char>('A' + i - 3), later));
+  }
+
+  /// IHQ and QM of *HOURGLASS / *CONTROL_HOURGLASS: crashlink computes the Flanagan-Belytschko
+  /// stiffness form (IHQ 4, 5; for shells the Belytschko-Tsay one); LS-DYNA's default viscous
+  /// form (blank, 0 or 1) is read as it with a note; the other forms are refused.
+  void hourglass_type(const Field& ihq_f, HourglassCard& h) {
+    h.ihq = static_cast<int>(ihq_f.integer(0));
+    if (h.ihq == 0 || h.ihq == 1) {
+      d_.notes.push_back(fmt::format(
+          "{}:{}: {} IHQ {}: LS-DYNA's viscous hourglass control; crashlink computes the "
+          "stiffness form (IHQ 4) with the coefficient QM",
+          d_.files.name(h.ref.file), h.ref.line, h.keyword,
+          ihq_f.blank() ? std::string("blank") : std::to_string(h.ihq)));
+      return;
+    }
+    if (h.ihq != 4 && h.ihq != 5)
+      ihq_f.fail(
+          "crashlink computes the stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko "
+          "for hexahedra, Belytschko-Tsay for shells); the viscous forms 2 and 3 and the "
+          "assumed-strain ones (6 and up) are not computed; fix: write IHQ 4");
+  }
+
+  void hourglass(const Card& c) {
+    if (title_card(c)) return;
+    HourglassCard h;
+    h.keyword = b_.keyword;
+    h.ref = c.ref();
+    h.id = positive_id(c.field(L::kHourglass, 0));
+    hourglass_type(c.field(L::kHourglass, 1), h);
+    const auto qm = c.field(L::kHourglass, 2);
+    h.qm = qm.real(0.1);
+    if (h.qm == 0.0) h.qm = 0.1;  // LS-DYNA: 0 reads as the default
+    if (!(h.qm > 0.0 && h.qm <= 0.3))
+      qm.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+    must_be_default(c.field(L::kHourglass, 3), 0.0, "IBQ is not read; fix: leave it blank");
+    for (std::size_t k : {std::size_t{4}, std::size_t{5}})
+      must_be_default(c.field(L::kHourglass, k), 0.0,
+                      "a bulk viscosity per part (Q1, Q2) is not computed; fix: leave them blank "
+                      "and set the model's in *CONTROL_BULK_VISCOSITY");
+    d_.hourglass.push_back(std::move(h));
+    b_.card = 0;
+  }
+
+  void control_hourglass(const Card& c) {
+    if (b_.card++ != 0) return;
+    HourglassCard& h = d_.control_hourglass;
+    h.keyword = b_.keyword;
+    h.ref = c.ref();
+    hourglass_type(c.field(L::kControlHourglass, 0), h);
+    const auto qh = c.field(L::kControlHourglass, 1);
+    h.qm = qh.real(0.1);
+    if (h.qm == 0.0) h.qm = 0.1;
+    if (!(h.qm > 0.0 && h.qm <= 0.3))
+      qh.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+    d_.has_control_hourglass = true;
+  }
+
+  void control_bulk(const Card& c) {
+    if (b_.card++ != 0) return;
+    const auto q1 = c.field(L::kControlBulk, 0), q2 = c.field(L::kControlBulk, 1);
+    d_.bulk_q1 = q1.real(1.5);
+    d_.bulk_q2 = q2.real(0.06);
+    if (d_.bulk_q1 == 0.0 && q1.blank()) d_.bulk_q1 = 1.5;
+    if (d_.bulk_q2 == 0.0 && q2.blank()) d_.bulk_q2 = 0.06;
+    if (d_.bulk_q1 < 0.0) q1.fail("must be >= 0; fix: write 1.5 (the default)");
+    if (d_.bulk_q2 < 0.0) q2.fail("must be >= 0; fix: write 0.06 (the default)");
+    const auto type = c.field(L::kControlBulk, 2);
+    const auto t = type.integer(1);
+    if (t != 1 && t != -2 && t != 0)
+      type.fail(
+          "crashlink computes the standard bulk viscosity of solids (TYPE 1) and, with TYPE -2, "
+          "of shells too; fix: write 1 or -2");
+    d_.bulk_shells = t == -2;
+    d_.has_bulk = true;
+  }
+
+  void load_body(const Card& c) {
+    if (blank(c)) return;
+    BodyLoadCard l;
+    l.keyword = b_.keyword;
+    l.axis = b_.keyword.back() - 'X';
+    l.ref = c.ref();
+    l.curve = positive_id(c.field(L::kLoadBody, 0));
+    l.sf = c.field(L::kLoadBody, 1).real(1.0);
+    must_be_default(c.field(L::kLoadBody, 2), 0.0,
+                    "dynamic relaxation (LCIDDR) is not computed; fix: write 0");
+    must_be_default(c.field(L::kLoadBody, 6), 0.0,
+                    "a body load in a local system (CID) is not computed; fix: write 0 (global "
+                    "axes)");
+    d_.body_loads.push_back(std::move(l));
   }
 
   void termination(const Card& c) {

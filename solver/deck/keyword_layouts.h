@@ -95,4 +95,11 @@ inline constexpr FieldSpec kContactLater[] = {{"FIELD1", 10}, {"FIELD2", 10}, {"
                                               {"FIELD4", 10}, {"FIELD5", 10}, {"FIELD6", 10},
                                               {"FIELD7", 10}, {"FIELD8", 10}};
 
+inline constexpr FieldSpec kHourglass[] = {{"HGID", 10}, {"IHQ", 10}, {"QM", 10}, {"IBQ", 10},
+                                           {"Q1", 10},   {"Q2", 10},  {"QB", 10}, {"QW", 10}};
+inline constexpr FieldSpec kControlHourglass[] = {{"IHQ", 10}, {"QH", 10}};
+inline constexpr FieldSpec kControlBulk[] = {{"Q1", 10}, {"Q2", 10}, {"TYPE", 10}, {"BTYPE", 10}};
+inline constexpr FieldSpec kLoadBody[] = {{"LCID", 10}, {"SF", 10}, {"LCIDDR", 10}, {"XC", 10},
+                                          {"YC", 10},   {"ZC", 10}, {"CID", 10}};
+
 }  // namespace crashlink::deck::layout

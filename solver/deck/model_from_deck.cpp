@@ -263,6 +263,7 @@ class Builder {
       part.name = part_name(pc);
       part.kind = s.shell ? model::ElementKind::Shell4 : model::ElementKind::Hex8;
       part.material = materials_.at(pc.material);
+      part.hourglass_coefficient = hourglass_coefficient(pc);
       if (s.shell) {
         part.thickness_m = s.thickness * u_.length_m;
         part.through_thickness_points = s.nip;
@@ -278,6 +279,18 @@ class Builder {
         m_.rigid_bodies.push_back(std::move(rb));
       }
     }
+  }
+
+  /// QM of the part's *HOURGLASS (HGID), else *CONTROL_HOURGLASS's QH, else 0.1.
+  double hourglass_coefficient(const PartCard& p) {
+    if (p.hourglass != 0) {
+      for (const auto& h : d_.hourglass)
+        if (h.id == p.hourglass) return h.qm;
+      fail_at(d_, p.ref, "*PART", L::kPart, 4,
+              fmt::format("*HOURGLASS {} is not defined; fix: add it or leave HGID blank",
+                          p.hourglass));
+    }
+    return d_.has_control_hourglass ? d_.control_hourglass.qm : 0.1;
   }
 
   /// A shell's corners distinct except n3 = n4 (a triangle); a hexahedron's all distinct.
@@ -653,6 +666,30 @@ class Builder {
                        "ENDTIM");
     m_.controls.end_time_s = d_.end_time * u_.time_s;
     m_.controls.dt_scale = d_.tssfac;
+    if (d_.has_bulk) {
+      m_.controls.bulk_q_quadratic = d_.bulk_q1;
+      m_.controls.bulk_q_linear = d_.bulk_q2;
+      m_.controls.shell_bulk_viscosity = d_.bulk_shells;
+    }
+    // *LOAD_BODY_*: a base acceleration a (LS-DYNA): the body load is -rho a, so gravity along
+    // -z is *LOAD_BODY_Z with +9.81 m/s^2. Constant curves only.
+    for (const auto& l : d_.body_loads) {
+      const auto it = curves_.find(l.curve);
+      if (it == curves_.end())
+        fail_at(
+            d_, l.ref, l.keyword, L::kLoadBody, 0,
+            fmt::format("curve {} is not defined; fix: add *DEFINE_CURVE {}", l.curve, l.curve));
+      const CurveCard& cv = d_.curves[static_cast<std::size_t>(it->second)];
+      const double a0 = cv.sfo * (cv.o.front() + cv.offo);
+      for (double o : cv.o)
+        if (std::abs(cv.sfo * (o + cv.offo) - a0) > 1e-12 * std::abs(a0))
+          fail_at(d_, l.ref, l.keyword, L::kLoadBody, 0,
+                  fmt::format("curve {} changes in time ({} at {}:{}): crashlink's body "
+                              "acceleration is constant; fix: a curve with one value",
+                              l.curve, cv.keyword, d_.files.name(cv.ref.file), cv.ref.line));
+      const double a_m_s2 = l.sf * a0 * u_.length_m / (u_.time_s * u_.time_s);
+      m_.controls.gravity_m_s2[static_cast<std::size_t>(l.axis)] -= a_m_s2;
+    }
   }
 
  public:

@@ -14,51 +14,16 @@
 namespace crashlink::deck {
 namespace {
 
-/// Two unit cubes (mm), part 1 at z in [0, 1], part 2 at z in [1.5, 2.5] above it, mm-t-s.
-std::vector<std::string> two_cubes() {
-  std::vector<std::string> d = {"*KEYWORD", "*NODE"};
-  for (int c = 0; c < 2; ++c)
-    for (int k = 0; k < 2; ++k)
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-          const int id = 1 + c * 8 + k * 4 + j * 2 + i;
-          char line[80];
-          std::snprintf(line, sizeof line, "%8d%16.4f%16.4f%16.4f", id, static_cast<double>(i),
-                        static_cast<double>(j), 1.5 * c + k);
-          d.emplace_back(line);
-        }
-  d.insert(
-      d.end(),
-      {"*ELEMENT_SOLID",
-       "       1       1       1       2       4       3       5       6       8       7",
-       "       2       2       9      10      12      11      13      14      16      15", "*PART",
-       "lower", "         1         1         1", "*PART", "upper",
-       "         2         1         1", "*SECTION_SOLID", "         1         1", "*MAT_ELASTIC",
-       "         1   7.85e-9  210000.0       0.3", "*CONTROL_TERMINATION", "    1.0e-5"});
-  return d;
-}
-
 class DeckContacts : public ::testing::Test {
  protected:
-  /// Reads `lines` (+ "*END") as c.k; the InputError message with the folder left out, or "".
   std::string read(std::vector<std::string> lines, DeckRead* out = nullptr) {
-    lines.push_back("*END");
-    std::string text;
-    for (const auto& l : lines) text += l + "\n";
-    const std::string path = dir_.write("c.k", text);
-    std::string msg = testing::input_error([&] {
-      DeckRead r = read_deck(path, {"mm-t-s", {}});
-      if (out) *out = std::move(r);
-    });
-    for (auto at = msg.find(dir_.path("")); at != std::string::npos; at = msg.find(dir_.path("")))
-      msg.erase(at, dir_.path("").size());
-    return msg;
+    return testing::read_lines(dir_, std::move(lines), out);
   }
   testing::DeckFolder dir_;
 };
 
 TEST_F(DeckContacts, TwoPassOnePassAndSingleSurfaceMapOntoTheModel) {
-  auto d = two_cubes();
+  auto d = testing::two_cubes();
   d.insert(
       d.end(),
       {"*SET_PART_LIST", "        10", "         2",
@@ -109,7 +74,7 @@ TEST_F(DeckContacts, TwoPassOnePassAndSingleSurfaceMapOntoTheModel) {
 }
 
 TEST_F(DeckContacts, BoxSetsAndALocalFrameForTheInitialVelocity) {
-  auto d = two_cubes();
+  auto d = testing::two_cubes();
   d.insert(
       d.end(),
       {// the upper cube's top face: z in [2.4, 2.6]
@@ -197,11 +162,11 @@ TEST_F(DeckContacts, MistakesNameTheirField) {
        "lie on one line (O->L is the local x axis, P a point of the local x-y plane off that "
        "axis); fix: correct XL, YL, ZL or XP, YP, ZP"},
   };
-  const std::size_t base = two_cubes().size();
+  const std::size_t base = testing::two_cubes().size();
   ASSERT_EQ(base, 33u);  // the messages' line numbers start at 34
   for (const auto& k : mistakes) {
     SCOPED_TRACE(k.what);
-    auto d = two_cubes();
+    auto d = testing::two_cubes();
     d.insert(d.end(), k.cards.begin(), k.cards.end());
     EXPECT_EQ(read(d), k.message);
   }

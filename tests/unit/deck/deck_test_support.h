@@ -2,11 +2,14 @@
 // Writes small decks into a fresh temporary folder for the deck tests, and catches messages.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "solver/core/errors.h"
+#include "solver/deck/model_from_deck.h"
 
 namespace crashlink::testing {
 
@@ -43,6 +46,47 @@ std::string input_error(F&& f) {
     return e.what();
   }
   return "";
+}
+
+/// Two unit cubes (mm), part 1 at z in [0, 1], part 2 at z in [1.5, 2.5] above it, mm-t-s.
+inline std::vector<std::string> two_cubes() {
+  std::vector<std::string> d = {"*KEYWORD", "*NODE"};
+  for (int c = 0; c < 2; ++c)
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const int id = 1 + c * 8 + k * 4 + j * 2 + i;
+          char line[80];
+          std::snprintf(line, sizeof line, "%8d%16.4f%16.4f%16.4f", id, static_cast<double>(i),
+                        static_cast<double>(j), 1.5 * c + k);
+          d.emplace_back(line);
+        }
+  d.insert(
+      d.end(),
+      {"*ELEMENT_SOLID",
+       "       1       1       1       2       4       3       5       6       8       7",
+       "       2       2       9      10      12      11      13      14      16      15", "*PART",
+       "lower", "         1         1         1", "*PART", "upper",
+       "         2         1         1", "*SECTION_SOLID", "         1         1", "*MAT_ELASTIC",
+       "         1   7.85e-9  210000.0       0.3", "*CONTROL_TERMINATION", "    1.0e-5"});
+  return d;
+}
+
+/// Reads `lines` (+ "*END") as c.k in mm-t-s into `out` (if given); the InputError message with
+/// the folder left out, or "".
+inline std::string read_lines(const DeckFolder& dir, std::vector<std::string> lines,
+                              deck::DeckRead* out = nullptr) {
+  lines.push_back("*END");
+  std::string text;
+  for (const auto& l : lines) text += l + "\n";
+  const std::string path = dir.write("c.k", text);
+  std::string msg = input_error([&] {
+    deck::DeckRead r = deck::read_deck(path, {"mm-t-s", {}});
+    if (out) *out = std::move(r);
+  });
+  for (auto at = msg.find(dir.path("")); at != std::string::npos; at = msg.find(dir.path("")))
+    msg.erase(at, dir.path("").size());
+  return msg;
 }
 
 }  // namespace crashlink::testing

@@ -1,0 +1,118 @@
+// *HOURGLASS / *CONTROL_HOURGLASS (per-part and model hourglass coefficients),
+// *CONTROL_BULK_VISCOSITY and *LOAD_BODY_X/Y/Z read into the model (docs/decks.md "Keywords"),
+// and their mistakes.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "solver/deck/model_from_deck.h"
+#include "tests/unit/deck/deck_test_support.h"
+
+namespace crashlink::deck {
+namespace {
+
+class DeckControls : public ::testing::Test {
+ protected:
+  std::string read(std::vector<std::string> lines, DeckRead* out = nullptr) {
+    return testing::read_lines(dir_, std::move(lines), out);
+  }
+  testing::DeckFolder dir_;
+};
+
+/// The two cubes with part 2's HGID set to `hgid` (its card is line 27 of the deck, index 26).
+std::vector<std::string> with_hgid(const char* hgid) {
+  auto d = testing::two_cubes();
+  d[26] = std::string("         2         1         1         0") + hgid;
+  return d;
+}
+
+TEST_F(DeckControls, HourglassBulkViscosityAndGravity) {
+  auto d = with_hgid("         7");
+  d.insert(d.end(),
+           {"*HOURGLASS", "         7         4      0.05", "*CONTROL_HOURGLASS",
+            "         5      0.08", "*CONTROL_BULK_VISCOSITY", "       1.2      0.05        -2",
+            // gravity along -z: a base acceleration of +9810 mm/s^2 (a constant curve)
+            "*DEFINE_CURVE", "        11", "                 0.0              9810.0",
+            "                 1.0              9810.0", "*LOAD_BODY_Z", "        11       1.0"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  const auto& m = r.model;
+  ASSERT_EQ(m.parts.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.parts[0].hourglass_coefficient, 0.08);  // *CONTROL_HOURGLASS
+  EXPECT_DOUBLE_EQ(m.parts[1].hourglass_coefficient, 0.05);  // its own *HOURGLASS
+  EXPECT_DOUBLE_EQ(m.controls.bulk_q_quadratic, 1.2);
+  EXPECT_DOUBLE_EQ(m.controls.bulk_q_linear, 0.05);
+  EXPECT_TRUE(m.controls.shell_bulk_viscosity);
+  EXPECT_DOUBLE_EQ(m.controls.gravity_m_s2[0], 0.0);
+  EXPECT_DOUBLE_EQ(m.controls.gravity_m_s2[2], -9.81);
+  // Without those keywords: crashlink's (and LS-DYNA's) defaults.
+  ASSERT_EQ(read(testing::two_cubes(), &r), "");
+  EXPECT_DOUBLE_EQ(r.model.parts[0].hourglass_coefficient, 0.1);
+  EXPECT_DOUBLE_EQ(r.model.controls.bulk_q_quadratic, 1.5);
+  EXPECT_DOUBLE_EQ(r.model.controls.bulk_q_linear, 0.06);
+  EXPECT_FALSE(r.model.controls.shell_bulk_viscosity);
+}
+
+TEST_F(DeckControls, ViscousHourglassIsReadAsTheStiffnessFormWithANote) {
+  auto d = testing::two_cubes();
+  d.insert(d.end(), {"*CONTROL_HOURGLASS", "         1      0.05"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  EXPECT_DOUBLE_EQ(r.model.parts[0].hourglass_coefficient, 0.05);
+  bool noted = false;
+  for (const auto& s : r.messages)
+    noted = noted || s.find(
+                         "*CONTROL_HOURGLASS IHQ 1: LS-DYNA's viscous hourglass control; "
+                         "crashlink computes the stiffness form (IHQ 4)") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+TEST_F(DeckControls, MistakesNameTheirField) {
+  struct Mistake {
+    const char* what;
+    std::vector<std::string> deck;
+    std::string message;
+  };
+  auto plus = [](std::vector<std::string> d, std::vector<std::string> more) {
+    d.insert(d.end(), more.begin(), more.end());
+    return d;
+  };
+  const Mistake mistakes[] = {
+      {"assumed-strain hourglass", plus(testing::two_cubes(), {"*CONTROL_HOURGLASS", "         6"}),
+       "c.k:35: *CONTROL_HOURGLASS field IHQ (columns 1-10) = 6: crashlink computes the "
+       "stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko for hexahedra, "
+       "Belytschko-Tsay for shells); the viscous forms 2 and 3 and the assumed-strain ones (6 "
+       "and up) are not computed; fix: write IHQ 4"},
+      {"undefined HGID", with_hgid("         3"),
+       "c.k:27: *PART field HGID (columns 41-50) = 3: *HOURGLASS 3 is not defined; fix: add it "
+       "or leave HGID blank"},
+      {"coefficient too large",
+       plus(testing::two_cubes(), {"*HOURGLASS", "         3         4       0.5"}),
+       "c.k:35: *HOURGLASS field QM (columns 21-30) = 0.5: must lie in (0, 0.3]; fix: write "
+       "0.05-0.1 (stiffness form)"},
+      {"bulk viscosity per part",
+       plus(testing::two_cubes(),
+            {"*HOURGLASS", "         3         4      0.05         0       1.5"}),
+       "c.k:35: *HOURGLASS field Q1 (columns 41-50) = 1.5: a bulk viscosity per part (Q1, Q2) is "
+       "not computed; fix: leave them blank and set the model's in *CONTROL_BULK_VISCOSITY"},
+      {"a body load that changes",
+       plus(testing::two_cubes(), {"*DEFINE_CURVE", "        11", "0.0, 0.0", "1.0, 9810.0",
+                                   "*LOAD_BODY_Y", "        11"}),
+       "c.k:39: *LOAD_BODY_Y field LCID (columns 1-10) = 11: curve 11 changes in time "
+       "(*DEFINE_CURVE at c.k:35): crashlink's body acceleration is constant; fix: a curve with "
+       "one value"},
+      {"bulk viscosity type",
+       plus(testing::two_cubes(), {"*CONTROL_BULK_VISCOSITY", "       1.5      0.06         2"}),
+       "c.k:35: *CONTROL_BULK_VISCOSITY field TYPE (columns 21-30) = 2: crashlink computes the "
+       "standard bulk viscosity of solids (TYPE 1) and, with TYPE -2, of shells too; fix: write "
+       "1 or -2"},
+  };
+  for (const auto& k : mistakes) {
+    SCOPED_TRACE(k.what);
+    EXPECT_EQ(read(k.deck), k.message);
+  }
+}
+
+}  // namespace
+}  // namespace crashlink::deck
