@@ -72,6 +72,7 @@ struct CurveCard {
 struct GeneralEntry {
   enum class Option : std::uint8_t { All, Node, Part, Box } option = Option::All;
   std::vector<std::int64_t> ids;
+  std::vector<std::uint8_t> field;  ///< each id's field on the card (1-7: E1-E7)
   CardRef ref;
 };
 
@@ -127,6 +128,7 @@ struct ContactCard {
   Kind kind = Kind::SurfaceToSurface;
   bool automatic = true;
   std::string keyword, heading;
+  std::int64_t cid = 0;  ///< the ID card's CID (_ID, _TITLE), 0 without
   std::int64_t ssid = 0, msid = 0;
   int sstyp = 0, mstyp = 0;
   double fs = 0.0, fd = 0.0, dc = 0.0;  ///< friction; DC in deck time / length

@@ -364,7 +364,7 @@ class Parser {
     if ((b_.kw == Kw::MatPlasticKinematic || b_.kw == Kw::MatPiecewiseLinear) &&
         records_of(b_.kw) != before)
       check_material_end();
-    if (b_.kw == Kw::CoordinateSystem && records_of(b_.kw) != before && b_.card == 1)
+    if (b_.kw == Kw::CoordinateSystem && records_of(b_.kw) != before && card_index() == 1)
       throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
                        "card 2 (XP YP ZP, a point in the local x-y plane) is missing; fix: add "
                        "it");
@@ -855,6 +855,7 @@ class Parser {
       if (g.option == GeneralEntry::Option::All)
         f.fail("the option ALL takes no id; fix: leave E1-E7 blank");
       g.ids.push_back(positive_id(f));
+      g.field.push_back(static_cast<std::uint8_t>(k));
     }
     if (g.option != GeneralEntry::Option::All && g.ids.empty())
       c.field(L::kSetGeneral, 1)
@@ -910,6 +911,7 @@ class Parser {
     ContactCard& k = d_.contacts.back();
     if ((b_.id || b_.title) && b_.card == 0) {
       k.heading = std::string(trim(c.field(L::kIdHeading, 1).raw()));
+      k.cid = c.field(L::kIdHeading, 0).integer(0);
       b_.card = 1;
       return;
     }
@@ -936,10 +938,10 @@ class Parser {
       k.fs = fs.real(0.0);
       k.fd = fd.real(0.0);
       k.dc = dc.real(0.0);
-      if (k.fs < 0.0)
+      if (k.fs < 0.0 || k.fs == 2.0)
         fs.fail(
-            "friction from tables (FS < 0) is not computed; fix: write the static "
-            "coefficient (0.1 steel on steel, lubricated)");
+            "friction from tables (FS < 0, or FS = 2 with FD a table id) is not computed; fix: "
+            "write the static coefficient (0.1 steel on steel, lubricated)");
       if (k.fd < 0.0) fd.fail("must be >= 0; fix: write the dynamic coefficient");
       if (k.fd > k.fs && k.fs > 0.0)
         fd.fail(
@@ -1001,11 +1003,29 @@ class Parser {
       // MAXPAR, SBOPT, DEPTH (SOFT 2), BSORT, FRCFRQ tune LS-DYNA's search: without effect.
       return;
     }
-    const Layout l = i == 4 ? Layout(L::kContactB) : Layout(L::kContactLater);
-    for (std::size_t f = 0; f < 8; ++f)
-      must_be_default(
-          c.field(l, f), 0.0,
-          fmt::format("optional card {} of a contact {}", static_cast<char>('A' + i - 3), later));
+    if (i == 4) {
+      for (std::size_t f = 0; f < 8; ++f)
+        must_be_default(c.field(L::kContactB, f), 0.0,
+                        fmt::format("optional card B of a contact {}", later));
+      return;
+    }
+    if (i == 5) {
+      // IGAP (blank, 0, 1: its default; 2: implicit only) has no effect on an explicit run.
+      const auto igap = c.field(L::kContactC, 0);
+      if (igap.integer(1) < 0 || igap.integer(1) > 2)
+        igap.fail("must be 0, 1 or 2; fix: leave it blank");
+      for (std::size_t f = 1; f < 8; ++f)
+        must_be_default(c.field(L::kContactC, f), 0.0,
+                        fmt::format("optional card C of a contact {}", later));
+      return;
+    }
+    // Cards D-G: options of LS-DYNA's own contact search and treatment (their defaults are not
+    // all 0): read without effect, and said once per contact.
+    if (i == 6)
+      d_.notes.push_back(fmt::format(
+          "{}:{}: {}: optional cards D and later are read without effect (crashlink's contact "
+          "has no such options)",
+          c.file(), c.ref().line, b_.keyword));
   }
 
   /// IHQ and QM of *HOURGLASS / *CONTROL_HOURGLASS: crashlink computes the Flanagan-Belytschko

@@ -89,11 +89,9 @@ inline constexpr FieldSpec kContactA[] = {{"SOFT", 10},   {"SOFSCL", 10}, {"LCID
 inline constexpr FieldSpec kContactB[] = {{"PENMAX", 10}, {"THKOPT", 10}, {"SHLTHK", 10},
                                           {"SNLOG", 10},  {"ISYM", 10},   {"I2D3D", 10},
                                           {"SLDTHK", 10}, {"SLDSTF", 10}};
-/// Optional cards C-G of a contact, named by position (crashlink reads them only to check that
-/// they are left at their defaults).
-inline constexpr FieldSpec kContactLater[] = {{"FIELD1", 10}, {"FIELD2", 10}, {"FIELD3", 10},
-                                              {"FIELD4", 10}, {"FIELD5", 10}, {"FIELD6", 10},
-                                              {"FIELD7", 10}, {"FIELD8", 10}};
+inline constexpr FieldSpec kContactC[] = {{"IGAP", 10},   {"IGNORE", 10}, {"DPRFAC", 10},
+                                          {"DTSTIF", 10}, {"EDGEK", 10},  {"UNUSED", 10},
+                                          {"FLANGL", 10}, {"CID_RCF", 10}};
 
 inline constexpr FieldSpec kHourglass[] = {{"HGID", 10}, {"IHQ", 10}, {"QM", 10}, {"IBQ", 10},
                                            {"Q1", 10},   {"Q2", 10},  {"QB", 10}, {"QW", 10}};

@@ -393,7 +393,7 @@ class Builder {
                       : g.option == Opt::Part ? parts_.count(id) > 0
                                               : boxes_.count(id) > 0;
       if (!ok)
-        fail_at(d_, g.ref, s.keyword, L::kSetGeneral, k + 1,
+        fail_at(d_, g.ref, s.keyword, L::kSetGeneral, g.field[k],
                 fmt::format("{} {} is not defined; fix: correct the id or define it",
                             g.option == Opt::Node   ? "node"
                             : g.option == Opt::Part ? "part"
@@ -599,7 +599,7 @@ class Builder {
                           slave && k.kind != ContactCard::Kind::SingleSurface
                               ? ", a node set (4, slave only)"
                               : "",
-                          slave ? " or all parts (5)" : ""));
+                          " or all parts (5)"));
     }
     for (auto pid : pids)
       if (const auto p = part_index_.find(pid); p != part_index_.end()) out.push_back(p->second);
@@ -610,6 +610,20 @@ class Builder {
     return out;
   }
 
+  /// The heading, else contact_<CID> or contact_<n> (n: the deck's order); a name already taken
+  /// gets " (CID c)" or " (n)" appended (LS-DYNA allows repeated headings, crashlink's results
+  /// need distinct names).
+  std::string contact_name(const ContactCard& k, std::size_t i) {
+    const std::string tag = k.cid > 0 ? std::to_string(k.cid) : std::to_string(i + 1);
+    std::string name = k.heading.empty() ? "contact_" + tag : k.heading;
+    if (used_contact_names_.count(name))
+      name += k.cid > 0 ? " (CID " + tag + ")" : " (" + tag + ")";
+    for (int extra = 2; used_contact_names_.count(name); ++extra)
+      name = fmt::format("{} #{}", name, extra);
+    used_contact_names_.emplace(name, 0);
+    return name;
+  }
+
   /// *CONTACT_* onto model::Contact (docs/decks.md "Contacts"): penalty_scale = 0.1 SFS (SLSFAC's
   /// default 0.1), SOFT 1 adds the mass-and-step stiffness scaled by SOFSCL, Coulomb friction
   /// mu = FD + (FS - FD) exp(-DC |v_rel|) as crashlink's.
@@ -617,7 +631,7 @@ class Builder {
     for (std::size_t i = 0; i < d_.contacts.size(); ++i) {
       const ContactCard& k = d_.contacts[i];
       model::Contact c;
-      c.name = k.heading.empty() ? fmt::format("contact_{}", i + 1) : k.heading;
+      c.name = contact_name(k, i);
       c.kind = k.kind == ContactCard::Kind::SingleSurface    ? model::ContactKind::SingleSurface
                : k.kind == ContactCard::Kind::NodesToSurface ? model::ContactKind::NodeToSurface
                                                              : model::ContactKind::SurfaceToSurface;
@@ -637,6 +651,9 @@ class Builder {
         std::sort(c.slave_nodes.begin(), c.slave_nodes.end());
         c.slave_nodes.erase(std::unique(c.slave_nodes.begin(), c.slave_nodes.end()),
                             c.slave_nodes.end());
+        if (c.slave_nodes.empty())
+          fail_at(d_, k.ref, k.keyword, L::kContact1, 0,
+                  "the slave surface holds no node of an element; fix: correct the set");
         c.master_parts = surface_parts(k, false);
       }
       if (k.sfs != k.sfm && k.kind != ContactCard::Kind::SingleSurface)
@@ -706,6 +723,7 @@ class Builder {
   std::unordered_map<std::string, int> used_names_;
   std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_;
   IdMap boxes_;
+  std::unordered_map<std::string, int> used_contact_names_;
   std::unordered_map<std::int64_t, Mat3> frames_;
   bool last_was_node_ = false;
 };

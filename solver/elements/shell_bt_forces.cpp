@@ -5,8 +5,8 @@
 // materials::sqrt_lanes: a std::sqrt loop is not vectorised under -fmath-errno); then scatter-add
 // forces and moments. Performance notes (bench/bench_shell.cpp):
 //   * the history is blocked per batch (shell_bt.h): one contiguous block per array and batch,
-//     copied into local [rows][lane] arrays and back (memcpy), so the lane loops touch locals only
-//     and vectorise without alias checks, and the memory streams stay few whatever np;
+//     copied into local [rows][lane] arrays and back (copy_doubles), so the lane loops touch locals
+//     only and vectorise without alias checks, and the memory streams stay few whatever np;
 //   * elastic parts keep 8 stresses per element (resultant form) instead of 5 np;
 //   * J2 parts: elastic trial stresses of all np points of the batch first, then one call of
 //     materials::plane_stress_j2_return_lanes for all np * kShellLanes points (the division and
@@ -148,6 +148,7 @@ inline void gather(const double* a, const std::int32_t (&nd)[4][L], double (&out
 /// start-up costs were 8 % of the head impact's cycle (perf annotate of bench_cycle, session 16);
 /// the empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
 inline void copy_doubles(double* __restrict dst, const double* __restrict src, std::size_t n) {
+  CRASHLINK_ASSERT(n % 4 == 0);
 #if defined(__AVX__)
   for (std::size_t i = 0; i < n; i += 4) {
     __m256d v = _mm256_loadu_pd(src + i);
@@ -161,6 +162,7 @@ inline void copy_doubles(double* __restrict dst, const double* __restrict src, s
 
 /// Zeroes n doubles (n a multiple of 4), for the same reason (`rep stosq` or memset otherwise).
 inline void zero_doubles(double* dst, std::size_t n) {
+  CRASHLINK_ASSERT(n % 4 == 0);
 #if defined(__AVX__)
   __m256d z = _mm256_setzero_pd();
   asm("" : "+x"(z));

@@ -161,6 +161,29 @@ TEST_F(DeckContacts, MistakesNameTheirField) {
        "c.k:35: *DEFINE_COORDINATE_SYSTEM field XL (columns 41-50) = 1.0: O, L and P must not "
        "lie on one line (O->L is the local x axis, P a point of the local x-y plane off that "
        "axis); fix: correct XL, YL, ZL or XP, YP, ZP"},
+      {"friction table (FS 2)",
+       {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", "         2         1         3         3",
+        "       2.0         5"},
+       "c.k:36: *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE field FS (columns 1-10) = 2.0: friction "
+       "from tables (FS < 0, or FS = 2 with FD a table id) is not computed; fix: write the "
+       "static coefficient (0.1 steel on steel, lubricated)"},
+      {"empty slave node set",
+       {"*DEFINE_BOX", "         1     100.0     101.0       0.0       1.0       0.0       1.0",
+        "*SET_NODE_GENERAL", "        20", "BOX                1", "*CONTACT_NODES_TO_SURFACE",
+        "        20         1         4         3"},
+       "c.k:40: *CONTACT_NODES_TO_SURFACE field SSID (columns 1-10) = 20: the slave surface "
+       "holds no node of an element; fix: correct the set"},
+      {"an undefined box in E2 (E1 blank)",
+       {"*DEFINE_BOX", "         1       0.0       1.0       0.0       1.0       0.0       1.0",
+        "*SET_NODE_GENERAL", "         5", "BOX                          4"},
+       "c.k:38: *SET_NODE_GENERAL field E2 (columns 21-30) = 4: *DEFINE_BOX 4 is not defined; "
+       "fix: correct the id or define it"},
+      {"titled coordinate system without card 2",
+       {"*DEFINE_COORDINATE_SYSTEM_TITLE", "frame",
+        "         3       0.0       0.0       0.0"
+        "       1.0"},
+       "c.k:36: *DEFINE_COORDINATE_SYSTEM_TITLE: card 2 (XP YP ZP, a point in the local x-y "
+       "plane) is missing; fix: add it"},
   };
   const std::size_t base = testing::two_cubes().size();
   ASSERT_EQ(base, 33u);  // the messages' line numbers start at 34
@@ -170,6 +193,29 @@ TEST_F(DeckContacts, MistakesNameTheirField) {
     d.insert(d.end(), k.cards.begin(), k.cards.end());
     EXPECT_EQ(read(d), k.message);
   }
+}
+
+TEST_F(DeckContacts, RepeatedHeadingsGetDistinctNamesAndLaterCardsAreNoted) {
+  auto d = testing::two_cubes();
+  d.insert(d.end(),
+           {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", "         5lid",
+            "         2         1         3         3", "", "", "", "",
+            // card C with IGAP 1 (its default), card D written
+            "         1         0", "         0", "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID",
+            "         6lid", "         2         1         3         3",
+            "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", "         7",
+            "         2         1         3         3"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  ASSERT_EQ(r.model.contacts.size(), 3u);
+  EXPECT_EQ(r.model.contacts[0].name, "lid");
+  EXPECT_EQ(r.model.contacts[1].name, "lid (CID 6)");
+  EXPECT_EQ(r.model.contacts[2].name, "contact_7");
+  bool noted = false;
+  for (const auto& m : r.messages)
+    noted =
+        noted || m.find("optional cards D and later are read without effect") != std::string::npos;
+  EXPECT_TRUE(noted);
 }
 
 }  // namespace
