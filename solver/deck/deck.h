@@ -158,6 +158,17 @@ struct BodyLoadCard {
   CardRef ref;
 };
 
+/// *RIGIDWALL_PLANAR: a fixed infinite plane through the tail point, normal from tail to head
+/// (the nodes' side), stopping the nodes of NSID (0: all).
+struct RigidWallCard {
+  std::string keyword, heading;
+  std::int64_t nsid = 0;
+  std::array<double, 3> tail{}, head{};
+  int cards = 0;
+  CardRef ref;   ///< card 1
+  CardRef ref2;  ///< card 2
+};
+
 struct Deck {
   DeckFiles files;
   Parameters params;
@@ -181,6 +192,7 @@ struct Deck {
   double bulk_q1 = 1.5, bulk_q2 = 0.06;  ///< quadratic, linear (LS-DYNA's names)
   bool bulk_shells = false;              ///< TYPE -2
   std::vector<BodyLoadCard> body_loads;
+  std::vector<RigidWallCard> rigid_walls;
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;

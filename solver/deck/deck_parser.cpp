@@ -50,6 +50,7 @@ enum class Kw : std::uint8_t {
   ControlHourglass,
   ControlBulk,
   LoadBody,
+  RigidWall,
   Database,
   Skip
 };
@@ -103,6 +104,7 @@ constexpr KeywordName kKeywords[] = {
     {"*LOAD_BODY_X", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
+    {"*RIGIDWALL_PLANAR", Kw::RigidWall, false, true},
 };
 
 constexpr const char* kReaderKeywords[] = {"*KEYWORD",
@@ -192,6 +194,12 @@ class Parser {
     b_.id = id;
     b_.before = records_of(b_.kw);
     if (b_.kw == Kw::Database) ++d_.without_effect[b_.keyword];
+    if (b_.kw == Kw::RigidWall) {
+      RigidWallCard w;
+      w.keyword = b_.keyword;
+      w.ref = ref;
+      d_.rigid_walls.push_back(std::move(w));
+    }
     if (b_.kw == Kw::Contact) {
       ContactCard c;
       c.keyword = b_.keyword;
@@ -281,6 +289,8 @@ class Parser {
         return control_bulk(c);
       case Kw::LoadBody:
         return load_body(c);
+      case Kw::RigidWall:
+        return rigid_wall(c);
     }
   }
 
@@ -346,6 +356,7 @@ class Parser {
         ((b_.kw == Kw::Termination || b_.kw == Kw::ControlHourglass || b_.kw == Kw::ControlBulk) &&
          b_.card == 0) ||
         (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
+        (b_.kw == Kw::RigidWall && d_.rigid_walls.back().cards < 2) ||
         (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
          d_.curves.back().a.empty()) ||
         (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetPartListGenerate &&
@@ -1116,6 +1127,54 @@ class Parser {
                     "a body load in a local system (CID) is not computed; fix: write 0 (global "
                     "axes)");
     d_.body_loads.push_back(std::move(l));
+  }
+
+  /// *RIGIDWALL_PLANAR(_ID): card 1 NSID ..., card 2 the tail and head points, FRIC, WVEL.
+  void rigid_wall(const Card& c) {
+    RigidWallCard& w = d_.rigid_walls.back();
+    if (b_.id && b_.card == 0) {
+      w.heading = std::string(trim(c.field(L::kIdHeading, 1).raw()));
+      b_.card = 1;
+      return;
+    }
+    const int i = w.cards++;
+    if (i == 0) {
+      const auto nsid = c.field(L::kRigidWall1, 0);
+      w.nsid = nsid.integer(0);
+      if (w.nsid < 0) nsid.fail("must be a node set id, or 0 (all nodes); fix: write one");
+      must_be_default(c.field(L::kRigidWall1, 1), 0.0,
+                      "a set of nodes exempted from the wall (NSIDEX) is not computed; fix: "
+                      "write 0 and leave them out of NSID");
+      must_be_default(c.field(L::kRigidWall1, 2), 0.0,
+                      "limiting the wall's nodes to a box (BOXID) is not computed; fix: write 0 "
+                      "and give the nodes in NSID (e.g. *SET_NODE_GENERAL BOX)");
+      must_be_default(c.field(L::kRigidWall1, 3), 0.0,
+                      "an offset of the wall (OFFSET) is not computed; fix: move the tail point");
+      must_be_default(c.field(L::kRigidWall1, 4), 0.0,
+                      "a birth time (BIRTH) is not computed; fix: write 0");
+      const auto death = c.field(L::kRigidWall1, 5);
+      if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
+        death.fail("a death time (DEATH) is not computed: the wall acts to the end; fix: write 0");
+      // RWKSF scales the penalty wall's stiffness: without effect on the constraint wall.
+      w.ref = c.ref();
+      return;
+    }
+    if (i == 1) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        w.tail[k] = c.field(L::kRigidWall2, k).real(0.0);
+        w.head[k] = c.field(L::kRigidWall2, 3 + k).real(0.0);
+      }
+      must_be_default(c.field(L::kRigidWall2, 6), 0.0,
+                      "friction on the wall (FRIC) is not computed: the wall is frictionless; "
+                      "fix: write 0");
+      must_be_default(c.field(L::kRigidWall2, 7), 0.0,
+                      "releasing nodes by their velocity (WVEL) is not computed; fix: write 0");
+      w.ref2 = c.ref();
+      return;
+    }
+    c.fail(
+        "only cards 1 and 2 are read (the options _FINITE, _MOVING, _FORCES and their cards "
+        "are not computed); fix: remove the extra cards");
   }
 
   void termination(const Card& c) {

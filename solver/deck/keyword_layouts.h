@@ -100,4 +100,10 @@ inline constexpr FieldSpec kControlBulk[] = {{"Q1", 10}, {"Q2", 10}, {"TYPE", 10
 inline constexpr FieldSpec kLoadBody[] = {{"LCID", 10}, {"SF", 10}, {"LCIDDR", 10}, {"XC", 10},
                                           {"YC", 10},   {"ZC", 10}, {"CID", 10}};
 
+inline constexpr FieldSpec kRigidWall1[] = {{"NSID", 10},   {"NSIDEX", 10}, {"BOXID", 10},
+                                            {"OFFSET", 10}, {"BIRTH", 10},  {"DEATH", 10},
+                                            {"RWKSF", 10}};
+inline constexpr FieldSpec kRigidWall2[] = {{"XT", 10}, {"YT", 10}, {"ZT", 10},   {"XH", 10},
+                                            {"YH", 10}, {"ZH", 10}, {"FRIC", 10}, {"WVEL", 10}};
+
 }  // namespace crashlink::deck::layout

@@ -61,6 +61,7 @@ class Builder {
     constraints();
     velocities();
     contacts();
+    rigid_walls();
     controls();
     try {
       model::validate(m_);
@@ -673,6 +674,53 @@ class Builder {
             "a shell, whatever its normal)",
             at(d_, k.ref), k.keyword));
       m_.contacts.push_back(std::move(c));
+    }
+  }
+
+  /// *RIGIDWALL_PLANAR onto model::RigidWall: the plane through the tail point, normal along
+  /// tail -> head (the side the nodes stay on), the nodes of NSID (0: every node).
+  void rigid_walls() {
+    std::vector<char> on_body(m_.nodes.count(), 0);
+    for (const auto& rb : m_.rigid_bodies)
+      for (int p : rb.parts)
+        for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+          on_body[static_cast<std::size_t>(c)] = 1;
+    for (std::size_t i = 0; i < d_.rigid_walls.size(); ++i) {
+      const RigidWallCard& k = d_.rigid_walls[i];
+      model::RigidWall w;
+      w.name = k.heading.empty() ? fmt::format("rigidwall_{}", i + 1) : k.heading;
+      Vec3 n{};
+      for (std::size_t c = 0; c < 3; ++c) {
+        w.point_m[c] = k.tail[c] * u_.length_m;
+        n[c] = k.head[c] - k.tail[c];
+      }
+      const double len = norm(n);
+      if (!(len > 0.0))
+        fail_at(d_, k.ref2, k.keyword, L::kRigidWall2, 3,
+                "the head point is the tail point: the wall has no normal; fix: put the head on "
+                "the side of the nodes the wall stops");
+      w.normal = (1.0 / len) * n;
+      if (k.nsid == 0) {
+        for (std::size_t c = 0; c < m_.nodes.count(); ++c)
+          w.nodes.push_back(static_cast<std::int32_t>(c));
+      } else {
+        for (auto id : node_set(k.nsid, k.ref, k.keyword, L::kRigidWall1)) {
+          const int c = node(id, k.ref, k.keyword.c_str(), L::kRigidWall1, 0);
+          if (c >= 0) w.nodes.push_back(c);
+        }
+        std::sort(w.nodes.begin(), w.nodes.end());
+        w.nodes.erase(std::unique(w.nodes.begin(), w.nodes.end()), w.nodes.end());
+      }
+      // A rigid body's nodes follow the body: the wall leaves them out, and says so.
+      const auto rigid = std::erase_if(
+          w.nodes, [&](std::int32_t c) { return on_body[static_cast<std::size_t>(c)] != 0; });
+      if (rigid > 0)
+        d_notes_.push_back(fmt::format("{}: {}: {} nodes of rigid bodies left out of the wall",
+                                       at(d_, k.ref), k.keyword, rigid));
+      if (w.nodes.empty())
+        fail_at(d_, k.ref, k.keyword, L::kRigidWall1, 0,
+                "the wall stops no node of a deformable element; fix: correct NSID");
+      m_.rigid_walls.push_back(std::move(w));
     }
   }
 

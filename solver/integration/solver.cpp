@@ -234,8 +234,56 @@ void Solver::apply_initial_velocities() {
       (rot ? omega_ : v_)[idx] = pv.velocity.at(0.0);
     }
   }
+  walls_.clear();
+  for (const auto& w : model_.rigid_walls) {
+    for (auto c : w.nodes)
+      if (rigid_node_[static_cast<std::size_t>(c)])
+        throw ModelError(fmt::format(
+            "rigid wall '{}': node {} follows a rigid body; a wall stops deformable nodes only "
+            "(fix: leave the body's nodes out of the wall's node set)",
+            w.name, model_.nodes.id[static_cast<std::size_t>(c)]));
+    walls_.push_back({&w, std::vector<double>(3 * w.nodes.size(), 0.0)});
+  }
   v_prev_ = v_;
   omega_prev_ = omega_;
+}
+
+/// Rigid walls ([LSTM] stonewalls): a node whose step x^{n+1} = x^n + dt v^{n+1/2} would cross
+/// the plane (signed distance d^{n+1} = d^n + dt v.n < 0) gets the normal velocity -max(d^n, 0) /
+/// dt: it lands on the plane (a node already behind it stops there); the tangential velocity is
+/// kept (frictionless), a node moving away is free. The wall's reaction R^n = m (v^{n+1/2} -
+/// v_free^{n+1/2}) / dt_pair works by the trapezoid rule over [t^{n-1}, t^n], as a prescribed
+/// velocity's (energy.h): W += 1/2 (R^{n-1} + R^n) . (u^n - u^{n-1}); a node stopped from v_n
+/// gives up 1/2 m v_n^2 there (the perfectly plastic impact of a node).
+void Solver::apply_rigid_walls(double dt_pair) {
+  const double dt = dt_;
+  for (auto& rw : walls_) {
+    const model::RigidWall& w = *rw.wall;
+    const Vec3& nrm = w.normal;
+    for (std::size_t k = 0; k < w.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(w.nodes[k]);
+      double r[3] = {0.0, 0.0, 0.0};
+      const double d = (x_[3 * i] - w.point_m[0]) * nrm[0] +
+                       (x_[3 * i + 1] - w.point_m[1]) * nrm[1] +
+                       (x_[3 * i + 2] - w.point_m[2]) * nrm[2];
+      const double vn = v_[3 * i] * nrm[0] + v_[3 * i + 1] * nrm[1] + v_[3 * i + 2] * nrm[2];
+      const double vn_min = -std::max(d, 0.0) / dt;
+      if (std::isfinite(d) && vn < vn_min) {
+        const double dv = vn_min - vn;
+        for (std::size_t c = 0; c < 3; ++c) {
+          v_[3 * i + c] += dv * nrm[c];
+          r[c] = mass_[i] * dv * nrm[c] / dt_pair;
+        }
+      }
+      double work = 0.0;
+      for (std::size_t c = 0; c < 3; ++c) {
+        double& rp = rw.reaction_prev[3 * k + c];
+        work += 0.5 * (rp + r[c]) * du_[3 * i + c];
+        rp = r[c];
+      }
+      if (cycle_ > 0) energy_.external_work_J += work;
+    }
+  }
 }
 
 void Solver::initialize() {
@@ -538,7 +586,7 @@ void Solver::begin_cycle() {
   const double dt_mid = mid_step(dt_prev_, dt_);  // dt^{n-1/2}, [2]
   // Without prescribed velocities and after the start, one pass does it all: velocities,
   // held dofs and the nodes' kinetic energy (velocity_pass).
-  const bool one_pass = cycle_ > 0 && prescribed_.empty();
+  const bool one_pass = cycle_ > 0 && prescribed_.empty() && walls_.empty();
   if (one_pass) {
     const double ke_nodes = velocity_pass(dt_mid);
     for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
@@ -584,6 +632,7 @@ void Solver::begin_cycle() {
     if (cycle_ > 0) energy_.external_work_J += 0.5 * (p.reaction_prev + reaction) * increment;
     p.reaction_prev = reaction;
   }
+  if (!walls_.empty()) apply_rigid_walls(cycle_ == 0 ? dt_ : dt_mid);
   if (!one_pass) energy_.kinetic_J = kinetic_energy();
   const GuardContext ctx = guard_context();
   if (!std::isfinite(energy_.kinetic_J)) check_finite_velocities(model_, v_.data(), ctx);

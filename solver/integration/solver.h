@@ -281,6 +281,15 @@ class Solver {
   };
   std::vector<PrescribedDof> prescribed_;
 
+  /// Rigid walls (model::RigidWall): each wall's reaction R^n at its nodes [3 per node, N], for
+  /// the trapezoid rule of its work.
+  struct WallRuntime {
+    const model::RigidWall* wall;
+    std::vector<double> reaction_prev;
+  };
+  std::vector<WallRuntime> walls_;
+  void apply_rigid_walls(double dt_pair);
+
   EnergyAccount energy_;
   /// The guard's floor under energy_.reference_J [J]: kGuardFloorFraction x the larger of the
   /// model's energy scale (Controls::model_energy_scale_J) and this solver's own

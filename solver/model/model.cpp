@@ -99,6 +99,15 @@ void validate(const Model& m) {
             fmt::format("rigid body '{}': part '{}' has material '{}' which is not rigid", rb.name,
                         m.parts[static_cast<std::size_t>(pi)].name, mat.name));
     }
+  for (const auto& w : m.rigid_walls) {
+    if (std::abs(norm(w.normal) - 1.0) > 1e-9)
+      throw ModelError(
+          fmt::format("rigid wall '{}': normal ({}, {}, {}) is not a unit vector (internal error)",
+                      w.name, w.normal[0], w.normal[1], w.normal[2]));
+    for (auto i : w.nodes)
+      if (i < 0 || static_cast<std::size_t>(i) >= m.nodes.count())
+        throw ModelError(fmt::format("rigid wall '{}': node index {} out of range", w.name, i));
+  }
   const auto& idamp = m.coupling.interface_damping;
   if (!(idamp.ratio >= 0.0 && idamp.ratio <= 0.5))
     throw ModelError(fmt::format(

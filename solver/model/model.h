@@ -101,6 +101,17 @@ struct RigidBody {
   Vec3 centre_m{};  ///< centre of mass if given
 };
 
+/// A fixed, infinite, frictionless plane that its nodes cannot cross (LS-DYNA
+/// *RIGIDWALL_PLANAR): a node that would cross it in a step is stopped on it (its normal velocity
+/// set so that x^{n+1} lies on the plane; a perfectly plastic impact of the node), and it leaves
+/// freely. The wall's reaction does work (booked as external work, integration/solver.cpp).
+struct RigidWall {
+  std::string name;
+  Vec3 point_m{};                   ///< a point of the plane
+  Vec3 normal{};                    ///< unit normal pointing to the side the nodes stay on
+  std::vector<std::int32_t> nodes;  ///< node indices the wall stops
+};
+
 /// How a contact pairs its surfaces (solver/contact/contact_interface.cpp).
 enum class ContactKind : std::uint8_t {
   /// one pass: the slave nodes against the master segments (LS-DYNA NODES_TO_SURFACE)
@@ -198,6 +209,7 @@ struct Model {
   std::vector<InitialVelocity> initial_velocities;
   std::vector<RigidBody> rigid_bodies;
   std::vector<Contact> contacts;
+  std::vector<RigidWall> rigid_walls;
   std::vector<Probe> probes;
   Controls controls;
   std::vector<Domain> domains;  ///< scenario order; empty: a single-domain run

@@ -136,6 +136,11 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     if (nodes.empty()) continue;
     m.prescribed_velocities.push_back({pv.name, std::move(nodes), pv.dof, pv.velocity});
   }
+  for (const auto& w : g.rigid_walls) {  // a kinematic condition, as a prescribed velocity
+    auto nodes = restrict_nodes(w.nodes, false);
+    if (nodes.empty()) continue;
+    m.rigid_walls.push_back({w.name, w.point_m, w.normal, std::move(nodes)});
+  }
   for (const auto& ld : g.loads) {
     auto nodes = restrict_nodes(ld.nodes, true);
     if (nodes.empty()) continue;

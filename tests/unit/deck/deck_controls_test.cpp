@@ -1,6 +1,6 @@
 // *HOURGLASS / *CONTROL_HOURGLASS (per-part and model hourglass coefficients),
 // *CONTROL_BULK_VISCOSITY and *LOAD_BODY_X/Y/Z read into the model (docs/decks.md "Keywords"),
-// and their mistakes.
+// and their mistakes and those of *RIGIDWALL_PLANAR (its run: integration/rigid_wall_test.cpp).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -107,6 +107,22 @@ TEST_F(DeckControls, MistakesNameTheirField) {
        "c.k:35: *CONTROL_BULK_VISCOSITY field TYPE (columns 21-30) = 2: crashlink computes the "
        "standard bulk viscosity of solids (TYPE 1) and, with TYPE -2, of shells too; fix: write "
        "1 or -2"},
+      {"friction on a rigid wall",
+       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0",
+                                   "       0.0       0.0       0.0       0.0       0.0       1.0"
+                                   "       0.3"}),
+       "c.k:36: *RIGIDWALL_PLANAR field FRIC (columns 61-70) = 0.3: friction on the wall (FRIC) "
+       "is not computed: the wall is frictionless; fix: write 0"},
+      {"a rigid wall without a normal",
+       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0",
+                                   "       0.0       0.0       0.0       0.0       0.0       0.0"}),
+       "c.k:36: *RIGIDWALL_PLANAR field XH (columns 31-40) = 0.0: the head point is the tail "
+       "point: the wall has no normal; fix: put the head on the side of the nodes the wall "
+       "stops"},
+      {"a rigid wall without its card 2",
+       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0"}),
+       "c.k:34: *RIGIDWALL_PLANAR: its cards are missing (the next keyword or the end of the file "
+       "follows); fix: add them or remove the keyword"},
   };
   for (const auto& k : mistakes) {
     SCOPED_TRACE(k.what);

@@ -1,0 +1,145 @@
+// A rigid wall (model::RigidWall, read from *RIGIDWALL_PLANAR) against the 1-D answer: an
+// elastic bar (nu = 0, so one-dimensional) at v hits a fixed wall. It stays on the wall for 2L/c
+// (c = sqrt(E/rho)) and leaves with -v, all its energy back in motion; no node crosses the wall.
+// The wall stops each arriving node dead (a perfectly plastic node impact, as LS-DYNA's
+// stonewall): the face nodes' kinetic energy, 1/(2 n) of E0 for n element layers, is the wall's
+// work, booked as external work so the balance holds. No bulk viscosity: the 1-D answer has no
+// dissipation (with the defaults, Q1 0.06 and Q2 1.5, the shock front's heat leaves 0.964 v).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "solver/deck/model_from_deck.h"
+#include "solver/integration/solver.h"
+#include "tests/integration/run_helpers.h"
+
+namespace crashlink {
+namespace {
+
+constexpr double kRho = 7.85e-9, kE = 2.1e5;  // t/mm^3, MPa: steel, nu = 0
+constexpr double kL = 100.0, kA = 10.0;       // mm: length, side
+constexpr int kLayers = 50;                   // elements along the bar (2 mm)
+constexpr double kV = 5000.0;                 // mm/s: 5 m/s toward the wall
+constexpr double kGap = 0.05;                 // mm between the bar and the wall
+
+/// The bar along z in [gap, gap + L] mm, moving at -v toward a wall z = 0 with normal +z: NSID the
+/// nodes of its lower face (and all the nodes with `all_nodes`).
+std::string bar_deck(bool all_nodes) {
+  std::string s = "*KEYWORD\n*NODE\n";
+  int id = 1;
+  for (int k = 0; k <= kLayers; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        char line[80];
+        std::snprintf(line, sizeof line, "%8d%16.6f%16.6f%16.6f\n", id++, kA * i, kA * j,
+                      kGap + kL * k / kLayers);
+        s += line;
+      }
+  s += "*ELEMENT_SOLID\n";
+  for (int k = 0; k < kLayers; ++k) {
+    const int b = 4 * k + 1, t = b + 4;
+    char line[100];
+    std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d%8d%8d%8d%8d\n", k + 1, 1, b, b + 1, b + 3,
+                  b + 2, t, t + 1, t + 3, t + 2);
+    s += line;
+  }
+  s += "*PART\nbar\n         1         1         1\n*SECTION_SOLID\n         1         1\n"
+       "*MAT_ELASTIC\n         1   7.85e-9  210000.0       0.0\n"
+       "*SET_NODE_LIST\n        10\n         1         2         3         4\n"
+       "*INITIAL_VELOCITY_GENERATION\n         1         2       0.0       0.0       0.0"
+       "   -5000.0\n\n"
+       "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n"
+       "*RIGIDWALL_PLANAR_ID\n         1floor\n";
+  s += all_nodes ? "         0\n" : "        10\n";
+  s += "       0.0       0.0       0.0       0.0       0.0       1.0\n"
+       "*CONTROL_TERMINATION\n   8.0E-05\n*END\n";
+  return s;
+}
+
+struct WallRun {
+  double e0 = 0.0, worst = 0.0, external = 0.0, kinetic_end = 0.0;
+  double vz_end = 0.0;                ///< mass-weighted mean at the end [m/s]
+  double z_min = 1e9;                 ///< lowest node position seen [m]
+  double touch = -1.0, leave = -1.0;  ///< the lower face's first arrival and last departure [s]
+};
+
+WallRun run_bar(bool all_nodes) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_rigid_wall_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = (dir / "bar.k").string();
+  std::ofstream(path) << bar_deck(all_nodes);
+  const model::Model m = deck::read_deck(path, {"mm-t-s", {}}).model;
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(m.rigid_walls.size(), 1u);
+  EXPECT_EQ(m.rigid_walls[0].name, "floor");
+  EXPECT_EQ(m.rigid_walls[0].nodes.size(), all_nodes ? m.nodes.count() : 4u);
+  integration::Solver s(m);
+  WallRun r;
+  testing::run(s, [&](const integration::Solver& sv) {
+    const auto& e = sv.energy();
+    if (r.e0 == 0.0) r.e0 = e.total_J();
+    r.worst = std::max(r.worst, std::abs(e.balance_J()));
+    const auto& u = sv.displacement();
+    double face = 1e9;
+    for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+      const double z = m.nodes.x0[3 * i + 2] + u[3 * i + 2];
+      r.z_min = std::min(r.z_min, z);
+      if (i < 4) face = std::min(face, z);
+    }
+    const bool on_wall = face < 1e-9;  // within 1 nm of the plane
+    if (on_wall && r.touch < 0.0) r.touch = sv.time_s();
+    if (on_wall) r.leave = sv.time_s();
+  });
+  const auto& e = s.energy();
+  r.external = e.external_work_J;
+  r.kinetic_end = e.kinetic_J;
+  double p = 0.0, mass = 0.0;
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+    p += s.mass()[i] * s.velocity_mid()[3 * i + 2];
+    mass += s.mass()[i];
+  }
+  r.vz_end = p / mass;
+  return r;
+}
+
+TEST(RigidWall, ElasticBarReboundsAfterTwoLOverC) {
+  const WallRun r = run_bar(false);
+  const double c_mm_s = std::sqrt(kE / kRho);
+  const double two_l_c = 2.0 * kL / c_mm_s;
+  const double duration = r.leave - r.touch;
+  std::printf(
+      "[measured] bar on a rigid wall (%d layers, 5 m/s): on the wall %.4f x 2L/c, rebound %.4f "
+      "v, kinetic at the end %.4f E0, wall work %.4f E0 (face nodes' share 1/(2n) = %.4f), "
+      "largest |balance| %.2e E0, lowest node %.3e m\n",
+      kLayers, duration / two_l_c, r.vz_end / (kV * 1e-3), r.kinetic_end / r.e0, r.external / r.e0,
+      1.0 / (2.0 * kLayers), r.worst / r.e0, r.z_min);
+  EXPECT_NEAR(r.e0, 0.5 * (kRho * 1e12) * (kL * kA * kA * 1e-9) * 25.0, 1e-6 * r.e0);
+  ASSERT_GT(r.touch, 0.0);
+  // the bar reaches the wall after the gap (10 us at 5 m/s), within a step (0.35 us)
+  EXPECT_NEAR(r.touch, kGap / kV, 5e-7);
+  EXPECT_NEAR(duration / two_l_c, 1.0, 0.03);
+  // leaves upward at v, less what the wall took (the face nodes' 1.3 % of E0) and what rings
+  EXPECT_NEAR(r.vz_end / (kV * 1e-3), 1.0, 0.02);
+  EXPECT_GE(r.z_min, -1e-12);  // nothing crosses
+  EXPECT_LT(r.worst / r.e0, 0.01);
+  // the wall's work: minus the kinetic energy of the nodes it stopped, a few layers' worth
+  EXPECT_LT(r.external, 0.0);
+  EXPECT_GT(r.external, -0.05 * r.e0);
+}
+
+// NSID 0 (every node): the same answer; a node never near the wall is never touched.
+TEST(RigidWall, AllNodesGiveTheSameAnswer) {
+  const WallRun a = run_bar(false), b = run_bar(true);
+  EXPECT_NEAR(b.vz_end, a.vz_end, 1e-12);
+  EXPECT_NEAR(b.external, a.external, 1e-12 * a.e0);
+}
+
+}  // namespace
+}  // namespace crashlink
