@@ -268,11 +268,17 @@ std::vector<std::string> CoordinatorLink::dead_peers() const {
   for (const auto& d : config_.domains) {
     const auto it = peers_.find(d);
     if (it != peers_.end() && it->second.active &&
-        now - it->second.last_heard > config_.options.peer_timeout) {
+        now - it->second.last_heard >
+            std::max(config_.options.peer_timeout, it->second.allowed_silence)) {
       out.push_back(d);
     }
   }
   return out;
+}
+
+void CoordinatorLink::allow_silence(std::string_view domain, std::chrono::milliseconds timeout) {
+  const auto it = peers_.find(std::string(domain));
+  if (it != peers_.end()) it->second.allowed_silence = timeout;
 }
 
 void CoordinatorLink::check_alive() {
@@ -286,8 +292,9 @@ void CoordinatorLink::check_alive() {
   const auto silent = since(peers_.at(dead.front()).last_heard, Clock::now());
   const std::string description =
       fmt::format("{} '{}'", dead.size() == 1 ? "domain" : "domains", fmt::join(dead, "', '"));
-  throw PeerTimeoutError(endpoint(), dead.front(), description, silent,
-                         config_.options.peer_timeout);
+  throw PeerTimeoutError(
+      endpoint(), dead.front(), description, silent,
+      std::max(config_.options.peer_timeout, peers_.at(dead.front()).allowed_silence));
 }
 
 std::vector<Notice> CoordinatorLink::take_notices() {

@@ -90,8 +90,14 @@ class CoordinatorLink {
   /// Throws TransportError naming the missing domains after `timeout`.
   void await_all_joined(std::chrono::milliseconds timeout);
 
-  /// Joined domains silent for longer than the peer timeout, in configuration order.
+  /// Joined domains silent for longer than the peer timeout (or the silence allowed to them),
+  /// in configuration order.
   std::vector<std::string> dead_peers() const;
+  /// From now on `domain` may stay silent for `timeout` (if longer than the peer timeout): its
+  /// daemon reached the end time and writes its results, which on a loaded machine or a slow disk
+  /// (HDF5 close, fsync, large fields) can take longer than the peer timeout; a daemon that dies
+  /// then is still named, after `timeout`.
+  void allow_silence(std::string_view domain, std::chrono::milliseconds timeout);
   /// Throws PeerTimeoutError naming every dead domain (dead_peers()), if any, after reading what
   /// waits in the socket (kept for poll()): a coordinator that was not scheduled for the peer
   /// timeout (a loaded machine) finds the daemons' heartbeats queued and must not call them dead.
@@ -116,7 +122,8 @@ class CoordinatorLink {
     Clock::time_point joined;
     Clock::time_point last_heard;
     Clock::time_point last_sent;
-    bool active = false;  // handshake done and no Bye/Error since
+    bool active = false;                           // handshake done and no Bye/Error since
+    std::chrono::milliseconds allowed_silence{0};  // allow_silence(); 0: the peer timeout
   };
 
   std::optional<Incoming> handle(Received& received, Clock::time_point now);

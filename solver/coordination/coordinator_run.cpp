@@ -506,6 +506,13 @@ class Coordinator {
                       cut_.names[ku], rep.time_ticks(), latest_[ku]));
     }
     latest_[ku] = rep.time_ticks();
+    // At the end time the daemon writes its results before its Bye: a longer silence is allowed
+    // (CoordinatorLink::allow_silence), 10 peer timeouts and at least 30 s.
+    if (static_cast<double>(rep.time_ticks()) >=
+        cut_.end_time_s * static_cast<double>(o_.ticks_per_second) - 0.5)
+      link_->allow_silence(cut_.names[ku],
+                           std::max<std::chrono::milliseconds>(10 * o_.session.peer_timeout,
+                                                               std::chrono::seconds{30}));
     for (const auto& rows : rep.rows()) {
       const auto i = rows.interface_index();
       const auto samples = router_->rows(

@@ -351,6 +351,31 @@ TEST_P(Session, SilentDaemonIsDetectedWithinTheTimeoutAndNamed) {
   }
 }
 
+// A daemon at its end time writes its results before its Bye (coordinator_run.cpp): the silence
+// allowed to it is longer, and a daemon that dies then is still named once it has passed.
+TEST_P(Session, AllowedSilenceDelaysTheTimeoutAndStillEndsIt) {
+  const auto t0 = Clock::now();  // car's last message (its handshake) comes after this
+  DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
+  const auto allowed = 3 * fast_options().peer_timeout;
+  coordinator->allow_silence("car", allowed);
+  std::vector<std::string> dead;
+  while (dead.empty() && Clock::now() < t0 + allowed + 3s) {
+    EXPECT_FALSE(coordinator->poll(10ms).has_value());
+    dead = coordinator->dead_peers();
+  }
+  const auto waited = Clock::now() - t0;
+  EXPECT_EQ(dead, std::vector<std::string>{"car"});
+  EXPECT_GE(waited, allowed);
+  try {
+    coordinator->check_alive();
+    FAIL() << "no PeerTimeoutError";
+  } catch (const PeerTimeoutError& e) {
+    EXPECT_EQ(e.peer(), "car");
+    EXPECT_GE(e.silent_for(), allowed);
+    EXPECT_TRUE(has(e.what(), "(peer timeout 1.200 s)")) << e.what();  // 3 x 400 ms
+  }
+}
+
 TEST_P(Session, CoordinatorGoneIsDetectedByTheDaemonWithinTheTimeout) {
   DaemonLink car = connect_daemon(*coordinator, daemon_hello("car", kHash));
   const std::string endpoint = coordinator->endpoint();
