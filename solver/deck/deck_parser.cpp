@@ -11,6 +11,8 @@
 #include "solver/core/errors.h"
 #include "solver/deck/card_reader.h"
 #include "solver/deck/deck.h"
+#include "solver/deck/field_checks.h"
+#include "solver/deck/interaction_cards.h"
 #include "solver/deck/keyword_layouts.h"
 
 namespace crashlink::deck {
@@ -398,24 +400,6 @@ class Parser {
     return false;
   }
   int card_index() const { return b_.card - (b_.title ? 1 : 0); }
-
-  static bool blank(const Card& c) { return trim(c.whole()).empty(); }
-
-  static std::int64_t positive_id(const Field& f) {
-    const std::int64_t v = f.integer(0);
-    if (v <= 0) f.fail("an id must be a positive integer; fix: write one");
-    return v;
-  }
-  static double positive(const Field& f, const char* example) {
-    const double v = f.real(0.0);
-    if (!(v > 0.0)) f.fail(fmt::format("must be > 0; fix: write it, e.g. {}", example));
-    return v;
-  }
-  /// A field crashlink does not compute: must be blank or `zero`.
-  static void must_be_default(const Field& f, double zero, std::string_view what) {
-    if (f.blank()) return;
-    if (f.real(zero) != zero) f.fail(what);
-  }
 
   void node(const Card& c) {
     if (blank(c)) return;
@@ -926,117 +910,7 @@ class Parser {
       b_.card = 1;
       return;
     }
-    const int i = k.cards++;
-    const char* later = "is not computed; fix: leave it blank (or 0)";
-    if (i == 0) {
-      const auto ssid = c.field(L::kContact1, 0), msid = c.field(L::kContact1, 1);
-      k.ssid = ssid.integer(0);
-      k.msid = msid.integer(0);
-      if (k.ssid < 0) ssid.fail("must be a set or part id >= 0; fix: write the slave surface");
-      if (k.msid < 0) msid.fail("must be a set or part id >= 0; fix: write the master surface");
-      k.sstyp = static_cast<int>(c.field(L::kContact1, 2).integer(0));
-      k.mstyp = static_cast<int>(c.field(L::kContact1, 3).integer(0));
-      must_be_default(c.field(L::kContact1, 4), 0.0,
-                      "limiting a surface to a box (SBOXID) is not computed; fix: write 0");
-      must_be_default(c.field(L::kContact1, 5), 0.0,
-                      "limiting a surface to a box (MBOXID) is not computed; fix: write 0");
-      k.ref = c.ref();
-      return;
-    }
-    if (i == 1) {
-      const auto fs = c.field(L::kContact2, 0), fd = c.field(L::kContact2, 1),
-                 dc = c.field(L::kContact2, 2);
-      k.fs = fs.real(0.0);
-      k.fd = fd.real(0.0);
-      k.dc = dc.real(0.0);
-      if (k.fs < 0.0 || k.fs == 2.0)
-        fs.fail(
-            "friction from tables (FS < 0, or FS = 2 with FD a table id) is not computed; fix: "
-            "write the static coefficient (0.1 steel on steel, lubricated)");
-      if (k.fd < 0.0) fd.fail("must be >= 0; fix: write the dynamic coefficient");
-      if (k.fd > k.fs && k.fs > 0.0)
-        fd.fail(
-            fmt::format("exceeds FS = {}: crashlink's friction decays from the static "
-                        "coefficient to the dynamic one; fix: write FD <= FS",
-                        k.fs));
-      if (k.dc < 0.0) dc.fail("must be >= 0; fix: write the decay coefficient (time/length)");
-      must_be_default(c.field(L::kContact2, 3), 0.0,
-                      "the viscous friction limit (VC) is not computed; fix: write 0");
-      must_be_default(c.field(L::kContact2, 4), 0.0,
-                      "contact damping (VDC) is not computed; fix: write 0");
-      must_be_default(c.field(L::kContact2, 5), 0.0,
-                      "the penetration check (PENCHK) is not computed; fix: write 0");
-      must_be_default(c.field(L::kContact2, 6), 0.0,
-                      "a birth time (BT) is not computed: the contact acts from the start; fix: "
-                      "write 0");
-      const auto dt = c.field(L::kContact2, 7);
-      if (!dt.blank() && dt.real(0.0) != 0.0 && dt.real(0.0) < 1e20)
-        dt.fail("a death time (DT) is not computed: the contact acts to the end; fix: write 0");
-      return;
-    }
-    if (i == 2) {
-      const auto sfs = c.field(L::kContact3, 0), sfm = c.field(L::kContact3, 1);
-      k.sfs = sfs.real(1.0);
-      k.sfm = sfm.real(1.0);
-      if (k.sfs == 0.0) k.sfs = 1.0;  // LS-DYNA: 0 reads as the default
-      if (k.sfm == 0.0) k.sfm = 1.0;
-      if (k.sfs < 0.0) sfs.fail("must be > 0; fix: write 1.0");
-      if (k.sfm < 0.0) sfm.fail("must be > 0; fix: write 1.0");
-      must_be_default(c.field(L::kContact3, 2), 0.0,
-                      "a contact thickness other than the shells' own (SST) is not computed; "
-                      "fix: write 0");
-      must_be_default(c.field(L::kContact3, 3), 0.0,
-                      "a contact thickness other than the shells' own (MST) is not computed; "
-                      "fix: write 0");
-      for (std::size_t f = 4; f < 8; ++f) {
-        const auto x = c.field(L::kContact3, f);
-        if (!x.blank() && x.real(1.0) != 1.0 && x.real(1.0) != 0.0)
-          x.fail(
-              "scaling the contact thickness or the friction (SFST, SFMT, FSF, VSF) is not "
-              "computed; fix: write 1.0 (or leave it blank)");
-      }
-      k.ref3 = c.ref();
-      return;
-    }
-    if (i == 3) {
-      const auto soft = c.field(L::kContactA, 0);
-      k.soft = static_cast<int>(soft.integer(0));
-      if (k.soft != 0 && k.soft != 1)
-        soft.fail(
-            "crashlink computes SOFT 0 (penalty from the segment stiffness) and SOFT 1 (also a "
-            "stiffness from the nodal mass and step); the segment-based SOFT 2 is not "
-            "computed; fix: write 0 or 1");
-      k.sofscl = c.field(L::kContactA, 1).real(0.1);
-      if (k.sofscl == 0.0) k.sofscl = 0.1;
-      if (k.sofscl < 0.0) c.field(L::kContactA, 1).fail("must be > 0; fix: write 0.1");
-      must_be_default(c.field(L::kContactA, 2), 0.0,
-                      "airbag contact curves (LCIDAB) are not computed; fix: write 0");
-      // MAXPAR, SBOPT, DEPTH (SOFT 2), BSORT, FRCFRQ tune LS-DYNA's search: without effect.
-      return;
-    }
-    if (i == 4) {
-      for (std::size_t f = 0; f < 8; ++f)
-        must_be_default(c.field(L::kContactB, f), 0.0,
-                        fmt::format("optional card B of a contact {}", later));
-      return;
-    }
-    if (i == 5) {
-      // IGAP (blank, 0, 1: its default; 2: implicit only) has no effect on an explicit run.
-      const auto igap = c.field(L::kContactC, 0);
-      if (igap.integer(1) < 0 || igap.integer(1) > 2)
-        igap.fail("must be 0, 1 or 2; fix: leave it blank");
-      for (std::size_t f = 1; f < 8; ++f)
-        must_be_default(c.field(L::kContactC, f), 0.0,
-                        fmt::format("optional card C of a contact {}", later));
-      return;
-    }
-    // Cards D-G: options of LS-DYNA's own contact search and treatment (their defaults are not
-    // all 0): read without effect, and said once per contact.
-    if (i == 6)
-      d_.notes.push_back(fmt::format(
-          "{}:{}: {}: optional cards D and later are read without effect (crashlink's contact "
-          "has no such options)",
-          c.file(), c.ref().line, b_.keyword));
+    read_contact_card(c, k.cards++, k, d_.notes);
   }
 
   /// IHQ and QM of *HOURGLASS / *CONTROL_HOURGLASS: crashlink computes the Flanagan-Belytschko
@@ -1059,6 +933,15 @@ class Parser {
           "assumed-strain ones (6 and up) are not computed; fix: write IHQ 4");
   }
 
+  /// QM / QH: blank or 0 reads as LS-DYNA's default 0.1; (0, 0.3] accepted.
+  static double hourglass_coefficient(const Field& f) {
+    double q = f.real(0.1);
+    if (q == 0.0) q = 0.1;
+    if (!(q > 0.0 && q <= 0.3))
+      f.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+    return q;
+  }
+
   void hourglass(const Card& c) {
     if (title_card(c)) return;
     HourglassCard h;
@@ -1066,11 +949,7 @@ class Parser {
     h.ref = c.ref();
     h.id = positive_id(c.field(L::kHourglass, 0));
     hourglass_type(c.field(L::kHourglass, 1), h);
-    const auto qm = c.field(L::kHourglass, 2);
-    h.qm = qm.real(0.1);
-    if (h.qm == 0.0) h.qm = 0.1;  // LS-DYNA: 0 reads as the default
-    if (!(h.qm > 0.0 && h.qm <= 0.3))
-      qm.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+    h.qm = hourglass_coefficient(c.field(L::kHourglass, 2));
     must_be_default(c.field(L::kHourglass, 3), 0.0, "IBQ is not read; fix: leave it blank");
     for (std::size_t k : {std::size_t{4}, std::size_t{5}})
       must_be_default(c.field(L::kHourglass, k), 0.0,
@@ -1086,11 +965,7 @@ class Parser {
     h.keyword = b_.keyword;
     h.ref = c.ref();
     hourglass_type(c.field(L::kControlHourglass, 0), h);
-    const auto qh = c.field(L::kControlHourglass, 1);
-    h.qm = qh.real(0.1);
-    if (h.qm == 0.0) h.qm = 0.1;
-    if (!(h.qm > 0.0 && h.qm <= 0.3))
-      qh.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+    h.qm = hourglass_coefficient(c.field(L::kControlHourglass, 1));
     d_.has_control_hourglass = true;
   }
 
@@ -1137,44 +1012,7 @@ class Parser {
       b_.card = 1;
       return;
     }
-    const int i = w.cards++;
-    if (i == 0) {
-      const auto nsid = c.field(L::kRigidWall1, 0);
-      w.nsid = nsid.integer(0);
-      if (w.nsid < 0) nsid.fail("must be a node set id, or 0 (all nodes); fix: write one");
-      must_be_default(c.field(L::kRigidWall1, 1), 0.0,
-                      "a set of nodes exempted from the wall (NSIDEX) is not computed; fix: "
-                      "write 0 and leave them out of NSID");
-      must_be_default(c.field(L::kRigidWall1, 2), 0.0,
-                      "limiting the wall's nodes to a box (BOXID) is not computed; fix: write 0 "
-                      "and give the nodes in NSID (e.g. *SET_NODE_GENERAL BOX)");
-      must_be_default(c.field(L::kRigidWall1, 3), 0.0,
-                      "an offset of the wall (OFFSET) is not computed; fix: move the tail point");
-      must_be_default(c.field(L::kRigidWall1, 4), 0.0,
-                      "a birth time (BIRTH) is not computed; fix: write 0");
-      const auto death = c.field(L::kRigidWall1, 5);
-      if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
-        death.fail("a death time (DEATH) is not computed: the wall acts to the end; fix: write 0");
-      // RWKSF scales the penalty wall's stiffness: without effect on the constraint wall.
-      w.ref = c.ref();
-      return;
-    }
-    if (i == 1) {
-      for (std::size_t k = 0; k < 3; ++k) {
-        w.tail[k] = c.field(L::kRigidWall2, k).real(0.0);
-        w.head[k] = c.field(L::kRigidWall2, 3 + k).real(0.0);
-      }
-      must_be_default(c.field(L::kRigidWall2, 6), 0.0,
-                      "friction on the wall (FRIC) is not computed: the wall is frictionless; "
-                      "fix: write 0");
-      must_be_default(c.field(L::kRigidWall2, 7), 0.0,
-                      "releasing nodes by their velocity (WVEL) is not computed; fix: write 0");
-      w.ref2 = c.ref();
-      return;
-    }
-    c.fail(
-        "only cards 1 and 2 are read (the options _FINITE, _MOVING, _FORCES and their cards "
-        "are not computed); fix: remove the extra cards");
+    read_rigid_wall_card(c, w.cards++, w);
   }
 
   void termination(const Card& c) {

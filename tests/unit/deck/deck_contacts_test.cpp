@@ -14,13 +14,7 @@
 namespace crashlink::deck {
 namespace {
 
-class DeckContacts : public ::testing::Test {
- protected:
-  std::string read(std::vector<std::string> lines, DeckRead* out = nullptr) {
-    return testing::read_lines(dir_, std::move(lines), out);
-  }
-  testing::DeckFolder dir_;
-};
+class DeckContacts : public testing::DeckLinesTest {};
 
 TEST_F(DeckContacts, TwoPassOnePassAndSingleSurfaceMapOntoTheModel) {
   auto d = testing::two_cubes();

@@ -12,13 +12,7 @@
 namespace crashlink::deck {
 namespace {
 
-class DeckControls : public ::testing::Test {
- protected:
-  std::string read(std::vector<std::string> lines, DeckRead* out = nullptr) {
-    return testing::read_lines(dir_, std::move(lines), out);
-  }
-  testing::DeckFolder dir_;
-};
+class DeckControls : public testing::DeckLinesTest {};
 
 /// The two cubes with part 2's HGID set to `hgid` (its card is line 27 of the deck, index 26).
 std::vector<std::string> with_hgid(const char* hgid) {

@@ -89,4 +89,13 @@ inline std::string read_lines(const DeckFolder& dir, std::vector<std::string> li
   return msg;
 }
 
+/// A fixture whose decks are lists of lines read as c.k (read_lines).
+class DeckLinesTest : public ::testing::Test {
+ protected:
+  std::string read(std::vector<std::string> lines, deck::DeckRead* out = nullptr) {
+    return read_lines(dir_, std::move(lines), out);
+  }
+  DeckFolder dir_;
+};
+
 }  // namespace crashlink::testing
