@@ -169,6 +169,15 @@ struct RigidWallCard {
   CardRef ref2;  ///< card 2
 };
 
+/// One node (or node set) of *DATABASE_HISTORY_NODE(_ID|_SET): a probe.
+struct HistoryNodeCard {
+  std::string keyword, heading;  ///< heading: _ID's HEADING
+  std::int64_t id = 0;           ///< NID, or the set's SID
+  bool set = false;
+  std::size_t field = 0;  ///< the id's field on its card
+  CardRef ref;
+};
+
 struct Deck {
   DeckFiles files;
   Parameters params;
@@ -196,6 +205,12 @@ struct Deck {
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;
+  /// The smallest DT of the ASCII histories (*DATABASE_GLSTAT, ...), deck time units; 0: none.
+  double history_dt = 0.0;
+  double history_dt_max = 0.0;  ///< the largest of those DTs (a note when it differs)
+  std::vector<std::string> history_dt_keywords;  ///< the keywords that set one (DT > 0)
+  double field_dt = 0.0;  ///< *DATABASE_BINARY_D3PLOT DT, deck time units; 0: none
+  std::vector<HistoryNodeCard> history_nodes;
   /// Keywords accepted but without effect in crashlink (*DATABASE_*), and how many times.
   std::map<std::string, int> without_effect;
   /// Keywords skipped on request (--ignore), with their cards counted.

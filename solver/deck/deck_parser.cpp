@@ -54,6 +54,9 @@ enum class Kw : std::uint8_t {
   LoadBody,
   RigidWall,
   Database,
+  DatabaseAscii,
+  D3plot,
+  HistoryNode,
   Skip
 };
 
@@ -127,7 +130,19 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
   title = id = false;
   if (k.rfind("*DATABASE_", 0) == 0) {
+    // The outputs whose intervals crashlink takes, and the node histories (probes); the rest of
+    // *DATABASE_* is accepted without effect.
+    static constexpr std::pair<const char*, Kw> kRead[] = {
+        {"*DATABASE_GLSTAT", Kw::DatabaseAscii},        {"*DATABASE_NODOUT", Kw::DatabaseAscii},
+        {"*DATABASE_RCFORC", Kw::DatabaseAscii},        {"*DATABASE_RWFORC", Kw::DatabaseAscii},
+        {"*DATABASE_MATSUM", Kw::DatabaseAscii},        {"*DATABASE_SLEOUT", Kw::DatabaseAscii},
+        {"*DATABASE_BINARY_D3PLOT", Kw::D3plot},        {"*DATABASE_HISTORY_NODE", Kw::HistoryNode},
+        {"*DATABASE_HISTORY_NODE_SET", Kw::HistoryNode}};
     kw = Kw::Database;
+    for (const auto& [name, what] : kRead) {
+      if (k == name) kw = what;
+      if (k == "*DATABASE_HISTORY_NODE_ID" && what == Kw::HistoryNode) kw = what, id = true;
+    }
     return true;
   }
   for (int pass = 0; pass < 3; ++pass) {
@@ -237,6 +252,11 @@ class Parser {
         return;
       case Kw::Database:
         return;
+      case Kw::DatabaseAscii:
+      case Kw::D3plot:
+        return output_interval(c);
+      case Kw::HistoryNode:
+        return history_node(c);
       case Kw::Title:
         if (b_.card++ == 0) d_.title = std::string(trim(c.whole()));
         return;
@@ -1013,6 +1033,51 @@ class Parser {
       return;
     }
     read_rigid_wall_card(c, w.cards++, w);
+  }
+
+  /// *DATABASE_GLSTAT (and the other ASCII histories) and *DATABASE_BINARY_D3PLOT: DT, the
+  /// interval of crashlink's history rows (the smallest DT of them: one interval for all) and of
+  /// its field states.
+  void output_interval(const Card& c) {
+    if (b_.card++ != 0) return;
+    const bool d3plot = b_.kw == Kw::D3plot;
+    const Layout l = d3plot ? Layout(L::kD3plot) : Layout(L::kDatabaseAscii);
+    const auto dt_field = c.field(l, 0);
+    const double dt = dt_field.real(0.0);
+    if (dt < 0.0)
+      dt_field.fail("an output interval must be >= 0; fix: write the interval (0: no output)");
+    must_be_default(c.field(l, d3plot ? 1 : 2), 0.0,
+                    "an output interval from a curve is not read; fix: leave it blank and give "
+                    "DT");
+    if (dt == 0.0) return;
+    if (d3plot) {
+      d_.field_dt = dt;
+      return;
+    }
+    d_.history_dt = d_.history_dt > 0.0 ? std::min(d_.history_dt, dt) : dt;
+    d_.history_dt_max = std::max(d_.history_dt_max, dt);
+    d_.history_dt_keywords.push_back(b_.keyword);
+  }
+
+  /// *DATABASE_HISTORY_NODE(_SET): eight NIDs (SIDs) per card; _ID: one NID and its heading.
+  void history_node(const Card& c) {
+    const bool set = b_.keyword.find("_SET") != std::string::npos;
+    if (b_.id) {
+      if (blank(c)) return;
+      HistoryNodeCard h{b_.keyword,
+                        std::string(trim(c.field(L::kIdHeading, 1).raw())),
+                        positive_id(c.field(L::kIdHeading, 0)),
+                        false,
+                        0,
+                        c.ref()};
+      d_.history_nodes.push_back(std::move(h));
+      return;
+    }
+    for (std::size_t k = 0; k < 8; ++k) {
+      const auto f = c.field(L::kHistoryIds, k);
+      if (f.blank() || f.integer(0) == 0) continue;
+      d_.history_nodes.push_back({b_.keyword, {}, positive_id(f), set, k, c.ref()});
+    }
   }
 
   void termination(const Card& c) {

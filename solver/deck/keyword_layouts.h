@@ -61,6 +61,14 @@ inline constexpr FieldSpec kVelocityGeneration2[] = {{"XC", 10},    {"YC", 10}, 
                                                      {"PHASE", 10}, {"IRIGID", 10}};
 inline constexpr FieldSpec kVelocityNode[] = {{"NID", 10}, {"VX", 10},  {"VY", 10},  {"VZ", 10},
                                               {"VXR", 10}, {"VYR", 10}, {"VZR", 10}, {"ICID", 10}};
+/// *DATABASE_GLSTAT, _NODOUT, _RCFORC, _RWFORC, _MATSUM, _SLEOUT (the ASCII histories).
+inline constexpr FieldSpec kDatabaseAscii[] = {
+    {"DT", 10}, {"BINARY", 10}, {"LCUR", 10}, {"IOOPT", 10}};
+inline constexpr FieldSpec kD3plot[] = {
+    {"DT", 10}, {"LCDT", 10}, {"BEAM", 10}, {"NPLTC", 10}, {"PSETID", 10}};
+/// *DATABASE_HISTORY_NODE and _SET: eight ids per card (_ID: kIdHeading per node).
+inline constexpr FieldSpec kHistoryIds[] = {{"ID1", 10}, {"ID2", 10}, {"ID3", 10}, {"ID4", 10},
+                                            {"ID5", 10}, {"ID6", 10}, {"ID7", 10}, {"ID8", 10}};
 inline constexpr FieldSpec kTermination[] = {{"ENDTIM", 10}, {"ENDCYC", 10}, {"DTMIN", 10},
                                              {"ENDENG", 10}, {"ENDMAS", 10}, {"NOSOL", 10}};
 inline constexpr FieldSpec kTimestep[] = {{"DTINIT", 10}, {"TSSFAC", 10}, {"ISDO", 10},

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "solver/core/errors.h"
 #include "solver/deck/keyword_layouts.h"
@@ -62,6 +63,7 @@ class Builder {
     velocities();
     contacts();
     rigid_walls();
+    probes();
     controls();
     try {
       model::validate(m_);
@@ -486,10 +488,11 @@ class Builder {
   }
 
   const std::vector<std::int64_t>& node_set(std::int64_t id, const CardRef& ref,
-                                            const std::string& kw, Layout l) {
+                                            const std::string& kw, Layout l,
+                                            std::size_t field = 0) {
     const auto it = node_set_members_.find(id);
     if (it == node_set_members_.end())
-      fail_at(d_, ref, kw, l, 0,
+      fail_at(d_, ref, kw, l, field,
               fmt::format("node set {} is not defined; fix: add *SET_NODE_LIST {}", id, id));
     return it->second;
   }
@@ -724,6 +727,37 @@ class Builder {
     }
   }
 
+  /// *DATABASE_HISTORY_NODE(_ID|_SET): a probe per node, named by its heading or node_<NID>; a
+  /// node named twice is probed once.
+  void probes() {
+    std::unordered_map<std::int64_t, int> seen;
+    std::unordered_set<std::string> names;
+    for (const HistoryNodeCard& h : d_.history_nodes) {
+      const bool with_id = h.keyword.ends_with("_ID");
+      const Layout l = with_id ? Layout(L::kIdHeading) : Layout(L::kHistoryIds);
+      std::vector<std::int64_t> one{h.id};
+      const auto& ids = h.set ? node_set(h.id, h.ref, h.keyword, l, h.field) : one;
+      for (const auto id : ids) {
+        const int c = node(id, h.ref, h.keyword.c_str(), l, h.field);
+        if (c < 0)
+          fail_at(d_, h.ref, h.keyword, l, h.field,
+                  fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
+                              "fix: probe a node of an element",
+                              id));
+        if (!seen.emplace(id, c).second) continue;
+        model::Probe p;
+        // The heading names the probe (an HDF5 path element: no '/'); a heading met twice gets
+        // the node id appended.
+        p.name = h.heading.empty() ? fmt::format("node_{}", id) : h.heading;
+        std::replace(p.name.begin(), p.name.end(), '/', '_');
+        if (!names.insert(p.name).second) p.name += fmt::format("_{}", id);
+        p.kind = model::Probe::Kind::Node;
+        p.index = c;
+        m_.probes.push_back(std::move(p));
+      }
+    }
+  }
+
   void controls() {
     if (!d_.has_end_time)
       throw InputError(d_.files.name(0), 0, "*CONTROL_TERMINATION",
@@ -731,6 +765,10 @@ class Builder {
                        "ENDTIM");
     m_.controls.end_time_s = d_.end_time * u_.time_s;
     m_.controls.dt_scale = d_.tssfac;
+    // *DATABASE_GLSTAT ... DT: one history interval for every series (the smallest given);
+    // *DATABASE_BINARY_D3PLOT DT: the field states' interval.
+    m_.controls.history_interval_s = d_.history_dt * u_.time_s;
+    m_.controls.field_interval_s = d_.field_dt * u_.time_s;
     if (d_.has_bulk) {
       m_.controls.bulk_q_quadratic = d_.bulk_q1;
       m_.controls.bulk_q_linear = d_.bulk_q2;
@@ -826,6 +864,15 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
     for (const auto& [k, n] : deck.without_effect) s += (s.empty() ? "" : ", ") + k;
     out.messages.push_back("accepted without effect (crashlink writes its own output): " + s);
   }
+  if (deck.history_dt_max > deck.history_dt)
+    out.messages.push_back(
+        fmt::format("crashlink writes every history at one interval: {:g} s, the smallest DT of {}",
+                    out.model.controls.history_interval_s, [&] {
+                      std::string s;
+                      for (const auto& k : deck.history_dt_keywords)
+                        s += (s.empty() ? "" : ", ") + k;
+                      return s;
+                    }()));
   for (const auto& [k, n] : deck.skipped_cards)
     out.messages.push_back(fmt::format("skipped on request (--ignore): {} ({} cards)", k, n));
   if (b.free_nodes_ > 0)

@@ -96,6 +96,7 @@ TEST(DeckTwin, DeckGivesTheModelOfItsYamlTwin) {
     EXPECT_DOUBLE_EQ(deck.rigid_bodies[0].velocity_m_s[c], yaml.rigid_bodies[0].velocity_m_s[c]);
   EXPECT_DOUBLE_EQ(deck.controls.end_time_s, yaml.controls.end_time_s);
   EXPECT_DOUBLE_EQ(deck.controls.dt_scale, yaml.controls.dt_scale);
+  EXPECT_DOUBLE_EQ(deck.controls.history_interval_s, yaml.controls.history_interval_s);
 }
 
 }  // namespace

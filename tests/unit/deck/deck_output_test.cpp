@@ -1,0 +1,93 @@
+// *DATABASE_GLSTAT (and the other ASCII histories), *DATABASE_BINARY_D3PLOT and
+// *DATABASE_HISTORY_NODE(_ID|_SET) read into the model: the history and field intervals and the
+// probes (docs/decks.md "Keywords"), and their mistakes.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "solver/deck/model_from_deck.h"
+#include "tests/unit/deck/deck_test_support.h"
+
+namespace crashlink::deck {
+namespace {
+
+class DeckOutput : public testing::DeckLinesTest {};
+
+std::vector<std::string> plus(std::vector<std::string> d, std::vector<std::string> more) {
+  d.insert(d.end(), more.begin(), more.end());
+  return d;
+}
+
+TEST_F(DeckOutput, IntervalsAndProbes) {
+  const auto d =
+      plus(testing::two_cubes(),
+           {"*DATABASE_GLSTAT", "   2.0E-07         3", "*DATABASE_NODOUT", "   1.0E-07         3",
+            "*DATABASE_ELOUT", "   5.0E-08", "*DATABASE_BINARY_D3PLOT", "   1.0E-06",
+            "*DATABASE_HISTORY_NODE", "         8         1         8", "*DATABASE_HISTORY_NODE_ID",
+            "        16tip of the upper cube", "*SET_NODE_LIST", "         3",
+            "         9        10         1", "*DATABASE_HISTORY_NODE_SET", "         3"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  const auto& m = r.model;
+  // mm-t-s: the deck's seconds are seconds; the smallest ASCII interval (NODOUT) for every
+  // history, *DATABASE_ELOUT without effect.
+  EXPECT_DOUBLE_EQ(m.controls.history_interval_s, 1.0e-7);
+  EXPECT_DOUBLE_EQ(m.controls.field_interval_s, 1.0e-6);
+  // Node 8 twice and node 1 again in set 3: one probe each, in the order first met.
+  ASSERT_EQ(m.probes.size(), 5u);
+  const char* names[] = {"node_8", "node_1", "tip of the upper cube", "node_9", "node_10"};
+  const std::int64_t nids[] = {8, 1, 16, 9, 10};
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(m.probes[k].name, names[k]);
+    EXPECT_EQ(m.probes[k].kind, model::Probe::Kind::Node);
+    EXPECT_EQ(m.nodes.id[static_cast<std::size_t>(m.probes[k].index)], nids[k]);
+  }
+  bool elout = false, one_interval = false;
+  for (const auto& s : r.messages) {
+    elout = elout || s == "accepted without effect (crashlink writes its own output): "
+                          "*DATABASE_ELOUT";
+    one_interval = one_interval ||
+                   s == "crashlink writes every history at one interval: 1e-07 s, the smallest "
+                        "DT of *DATABASE_GLSTAT, *DATABASE_NODOUT";
+  }
+  EXPECT_TRUE(elout);
+  EXPECT_TRUE(one_interval);
+}
+
+TEST_F(DeckOutput, WithoutThemEveryCycleAndTheEnds) {
+  DeckRead r;
+  ASSERT_EQ(read(testing::two_cubes(), &r), "");
+  EXPECT_EQ(r.model.controls.history_interval_s, 0.0);
+  EXPECT_EQ(r.model.controls.field_interval_s, 0.0);
+  EXPECT_TRUE(r.model.probes.empty());
+}
+
+TEST_F(DeckOutput, MistakesNameTheirField) {
+  struct Mistake {
+    std::vector<std::string> deck;
+    std::string message;
+  };
+  const Mistake mistakes[] = {
+      {plus(testing::two_cubes(), {"*DATABASE_GLSTAT", "   1.0E-07         3         5"}),
+       "c.k:35: *DATABASE_GLSTAT field LCUR (columns 21-30) = 5: an output interval from a curve "
+       "is not read; fix: leave it blank and give DT"},
+      {plus(testing::two_cubes(), {"*DATABASE_BINARY_D3PLOT", "  -1.0E-06"}),
+       "c.k:35: *DATABASE_BINARY_D3PLOT field DT (columns 1-10) = -1.0E-06: an output interval "
+       "must be >= 0; fix: write the interval (0: no output)"},
+      {plus(testing::two_cubes(), {"*DATABASE_HISTORY_NODE", "         1        99"}),
+       "c.k:35: *DATABASE_HISTORY_NODE field ID2 (columns 11-20) = 99: node 99 is not defined; "
+       "fix: add it under *NODE or correct the id"},
+      {plus(testing::two_cubes(), {"*DATABASE_HISTORY_NODE_SET", "         0         7"}),
+       "c.k:35: *DATABASE_HISTORY_NODE_SET field ID2 (columns 11-20) = 7: node set 7 is not "
+       "defined; fix: add *SET_NODE_LIST 7"},
+      {plus(testing::two_cubes(), {"*NODE", "      40             9.0             9.0",
+                                   "*DATABASE_HISTORY_NODE_ID", "        40"}),
+       "c.k:37: *DATABASE_HISTORY_NODE_ID field ID (columns 1-10) = 40: node 40 belongs to no "
+       "element (crashlink leaves such nodes out); fix: probe a node of an element"},
+  };
+  for (const auto& k : mistakes) EXPECT_EQ(read(k.deck), k.message);
+}
+
+}  // namespace
+}  // namespace crashlink::deck
