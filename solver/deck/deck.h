@@ -57,7 +57,8 @@ struct MaterialCard {
   double rho = 0.0, E = 0.0, nu = 0.0, sigy = 0.0, etan = 0.0;  ///< deck units
   std::int64_t lcss = 0;                                        ///< *MAT_024 LCSS
   std::vector<double> eps, es;                                  ///< *MAT_024 8-point table
-  CardRef ref;                                                  ///< the card with MID
+  double rate_c = 0.0, rate_p = 0.0;  ///< Cowper-Symonds SRC/SRP (003), C/P (024), deck units
+  CardRef ref;                        ///< the card with MID
 };
 
 struct CurveCard {

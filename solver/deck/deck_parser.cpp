@@ -659,25 +659,28 @@ class Parser {
     }
     if (b_.kw == Kw::MatPlasticKinematic) {
       if (k == 1) {
-        must_be_default(c.field(L::kMat003b, 0), 0.0,
-                        "strain-rate scaling (Cowper-Symonds SRC, SRP) is not computed yet; fix: "
-                        "write SRC 0 and SRP 0");
-        must_be_default(c.field(L::kMat003b, 1), 0.0,
-                        "strain-rate scaling (Cowper-Symonds SRC, SRP) is not computed yet; fix: "
-                        "write SRC 0 and SRP 0");
+        read_rate(c, L::kMat003b, 0, 1, m);
         must_be_default(c.field(L::kMat003b, 2), 0.0,
                         "element failure (FS) is not computed; fix: leave FS blank");
+        must_be_default(c.field(L::kMat003b, 3), 0.0,
+                        "the viscoplastic rate formulation (VP 1) is not computed; fix: write VP "
+                        "0 (the yield stress scaled by the Cowper-Symonds factor)");
       }
       return;
     }
     if (b_.kw == Kw::MatPiecewiseLinear) {
       if (k == 1) {
-        const char* rate =
-            "strain-rate effects (C, P; LCSR) are not computed yet; fix: write C 0 and P 0 "
-            "(and LCSR 0)";
-        must_be_default(c.field(L::kMat024b, 0), 0.0, rate);
-        must_be_default(c.field(L::kMat024b, 1), 0.0, rate);
-        must_be_default(c.field(L::kMat024b, 3), 0.0, rate);
+        read_rate(c, L::kMat024b, 0, 1, m);
+        must_be_default(c.field(L::kMat024b, 3), 0.0,
+                        "a table of yield-stress scale factors over strain rate (LCSR) is not "
+                        "read; fix: write LCSR 0 and give C and P (Cowper-Symonds)");
+        const auto vp = c.field(L::kMat024b, 4);
+        const auto vpv = vp.real(0.0);
+        if (vpv != 0.0 && vpv != -1.0)
+          vp.fail(
+              "the viscoplastic rate formulation (VP 1) and the tables of VP 3 are not "
+              "computed; fix: write VP 0 or -1 (the yield stress scaled by the "
+              "Cowper-Symonds factor of the deviatoric strain rate)");
         const auto lcss = c.field(L::kMat024b, 2);
         m.lcss = lcss.integer(0);
         if (m.lcss < 0) lcss.fail("must be a curve id > 0 or blank; fix: write the curve's LCID");
@@ -687,6 +690,20 @@ class Parser {
           v.push_back(c.field(k == 2 ? Layout(L::kMat024Eps) : Layout(L::kMat024Es), i).real(0.0));
       }
     }
+  }
+
+  /// Cowper-Symonds C and P (fields ic, ip of `l`): C >= 0 (0 or blank: no rate effect), P > 0
+  /// with it.
+  void read_rate(const Card& c, Layout l, std::size_t ic, std::size_t ip, MaterialCard& m) {
+    const auto cf = c.field(l, ic), pf = c.field(l, ip);
+    m.rate_c = cf.real(0.0);
+    m.rate_p = pf.real(0.0);
+    if (m.rate_c < 0.0)
+      cf.fail(
+          "must be >= 0 (0: no strain-rate effect); fix: write C in 1/time of the deck's "
+          "units (mild steel: 40.4 1/s)");
+    if (m.rate_c > 0.0 && !(m.rate_p > 0.0))
+      pf.fail("must be > 0 when the rate coefficient is given; fix: write P (mild steel: 5)");
   }
 
   void check_material_end() {

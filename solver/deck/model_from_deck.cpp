@@ -132,6 +132,10 @@ class Builder {
           mat.hardening = hardening_024(c, mat.youngs_modulus_Pa);
           break;
       }
+      if (mat.kind == materials::MaterialKind::J2Plastic && c.rate_c > 0.0) {
+        mat.rate_c_per_s = c.rate_c / u_.time_s;  // 1/time
+        mat.rate_p = c.rate_p;
+      }
       try {
         materials::validate(mat);
       } catch (const ModelError& e) {

@@ -8,6 +8,7 @@
 #include "solver/elements/hex8_geometry.h"
 #include "solver/elements/hex8_modes.h"
 #include "solver/elements/hex8_simd.h"
+#include "solver/materials/cowper_symonds.h"
 #include "solver/materials/solid_update.h"
 
 // Stable step bound (see hex8.h). For nodal displacements u (24-vector) of one element the
@@ -72,9 +73,10 @@ constexpr std::size_t kPrefetchHistory = 128, kPrefetchNodes = 16;
 /// whose return ends on the segment where it starts take the closed form d_ep = (q_tr -
 /// sigma_y) / (3 mu + H) lane-wise (solid_update.h, j2_segment), the others the scalar segment
 /// walk (j2_radial_return). y_low = j2_yield_lower_bound(h); ep: effective plastic strain, in:
-/// t^n, out: t^{n+1}; nl: real lanes.
+/// t^n, out: t^{n+1}; nl: real lanes; phi: the lanes' Cowper-Symonds factors (nullptr: none),
+/// which scale the curve (phi >= 1 keeps y_low a lower bound).
 void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int nl, vd (&sn)[6],
-               vd& ep) {
+               vd& ep, const double* phi) {
   const vd p = (sn[0] + sn[1] + sn[2]) * vd(1.0 / 3.0);
   vd s[6] = {sn[0] - p, sn[1] - p, sn[2] - p, sn[3], sn[4], sn[5]};
   const vd ss = madd(s[0], s[0], madd(s[1], s[1], s[2] * s[2])) +
@@ -88,6 +90,11 @@ void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int 
     H[l] = seg.slope_Pa;
     end[l] = seg.end;
   }
+  if (phi != nullptr)
+    for (int l = 0; l < W; ++l) {
+      y[l] *= phi[l];
+      H[l] *= phi[l];
+    }
   const vd yv(y, stdx::vector_aligned), Hv(H, stdx::vector_aligned);
   const vd endv(end, stdx::vector_aligned);
   const auto plastic = q_tr > yv;  // (false for q_tr = NaN: no return, as j2_radial_return)
@@ -106,7 +113,7 @@ void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int 
   for (int l = 0; l < nl; ++l) {
     if (!walk[l]) continue;
     materials::Voigt6 sl{sn[0][l], sn[1][l], sn[2][l], sn[3][l], sn[4][l], sn[5][l]};
-    const auto r = materials::j2_radial_return(h, mu, ep[l], sl);
+    const auto r = materials::j2_radial_return(h, mu, ep[l], sl, phi != nullptr ? phi[l] : 1.0);
     for (int k = 0; k < 6; ++k) sn[k][l] = sl[k];
     ep[l] += r.delta_eps_p;
   }
@@ -175,6 +182,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
   [[maybe_unused]] double* const sd_all = st.damping_stress_Pa.data();  // damped parts only
   const bool viscous = step.bulk_viscosity;
   const double y_low = j2 ? materials::j2_yield_lower_bound(mat.hardening) : 0.0;
+  const bool rate = mat.rate_dependent();
 
   // lane-uniform constants
   const vd dt_v(dt), zero(0.0), one(1.0), half(0.5), eighth(0.125);
@@ -357,7 +365,16 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     vd ep;
     if (j2 && update) {
       ep = load(ep_all);
-      j2_return(mat.hardening, y_low, mu, nl, sn, ep);
+      alignas(64) double phi[W];
+      if (rate) {
+        // Cowper-Symonds factor of each lane's effective strain rate (cowper_symonds.h)
+        for (int l = 0; l < W; ++l)
+          phi[l] = materials::cowper_symonds_factor(
+              materials::effective_strain_rate(d[0][l], d[1][l], d[2][l], d[3][l], d[4][l],
+                                               d[5][l]),
+              mat.rate_c_per_s, mat.rate_p);
+      }
+      j2_return(mat.hardening, y_low, mu, nl, sn, ep, rate ? phi : nullptr);
     }
 
     // ---- b b^T (M4), its trace b.b and the lmax bound; length for the bulk viscosity

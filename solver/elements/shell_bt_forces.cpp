@@ -110,6 +110,7 @@
 
 #include "solver/core/errors.h"
 #include "solver/elements/shell_bt.h"
+#include "solver/materials/cowper_symonds.h"
 #include "solver/materials/plane_stress_update.h"
 
 namespace crashlink::elements {
@@ -126,6 +127,9 @@ struct ShellConstants {
   materials::PlaneStressElastic el;
   materials::HardeningView hv;
   bool j2 = false;
+  bool rate = false;    ///< Cowper-Symonds scaling of the curve (cowper_symonds.h)
+  double rate_c = 0.0;  ///< its C [1/s]
+  double rate_p = 0.0;  ///< its P [-]
   double sy0_sq = 0.0;  ///< (initial yield)^2: a trial vm^2 below it is elastic (hardening curve)
   double kG = 0.0;      ///< kappa G, transverse shear modulus with the 5/6 factor [Pa]
   double c_plate = 0.0;
@@ -318,7 +322,10 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   if (K.j2) {
     K.hv = materials::HardeningView::from(mat.hardening);
     const double sy0 = K.hv.initial_yield_Pa();
-    K.sy0_sq = K.hv.non_decreasing ? sy0 * sy0 : 0.0;
+    K.sy0_sq = K.hv.non_decreasing ? sy0 * sy0 : 0.0;  // phi >= 1 keeps it a lower bound
+    K.rate = mat.rate_dependent();
+    K.rate_c = mat.rate_c_per_s;
+    K.rate_p = mat.rate_p;
     shell_state_to_point_form(st);
   } else {
     shell_state_to_resultant_form(st);
@@ -569,24 +576,37 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
         for (std::size_t i = 0; i < n_all; i += 4)
           for (std::size_t j = 0; j < 4; ++j) psum[j] += cand[i + j];
         const double n_cand = (psum[0] + psum[1]) + (psum[2] + psum[3]);
+        // Cowper-Symonds factor of each point's effective strain rate (cowper_symonds.h)
+        double phi[kMax * L];
+        if (K.rate && n_cand != 0.0)
+          for (std::size_t k = 0; k < nk; ++k)
+            for (std::size_t l = 0; l < L; ++l)
+              phi[k * L + l] = materials::cowper_symonds_factor(
+                  materials::plane_effective_strain_rate(de[k][0][l] / dt, de[k][1][l] / dt,
+                                                         de[k][2][l] / dt),
+                  K.rate_c, K.rate_p);
+        const double* const phi_all = K.rate ? phi : nullptr;
         double* const ep_blk = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
         if (K.j2 && n_cand == static_cast<double>(n_all)) {
           materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, s[0], s[1], s[2],
-                                                            ep_blk, dzp);
+                                                            ep_blk, dzp, phi_all);
         } else if (K.j2 && n_cand != 0.0) {
           std::size_t ci[kMax * L], m = 0;
           for (std::size_t i = 0; i < n_all; ++i)
             if (cand[i] != 0.0) ci[m++] = i;
           const std::size_t m4 = (m + 3) / 4 * 4;
           double px[kMax * L], py[kMax * L], pxy[kMax * L], pep[kMax * L], pdz[kMax * L];
+          double pphi[kMax * L];
           for (std::size_t j = 0; j < m4; ++j) {
             const std::size_t i = ci[std::min(j, m - 1)];
             px[j] = s[0][i];
             py[j] = s[1][i];
             pxy[j] = s[2][i];
             pep[j] = ep_blk[i];
+            if (phi_all != nullptr) pphi[j] = phi_all[i];
           }
-          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, m4, px, py, pxy, pep, pdz);
+          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, m4, px, py, pxy, pep, pdz,
+                                                            phi_all != nullptr ? pphi : nullptr);
           for (std::size_t j = 0; j < m; ++j) {
             const std::size_t i = ci[j];
             s[0][i] = px[j];

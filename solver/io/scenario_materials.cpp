@@ -62,7 +62,7 @@ void read_materials(const YamlNode& section, ScenarioBuild& b) {
     materials::Material m;
     m.name = name;
     mat.expect_keys({"type", "density", "youngs_modulus", "poisson_ratio", "hardening",
-                     "yield_stress", "tangent_modulus"});
+                     "yield_stress", "tangent_modulus", "cowper_symonds"});
     const std::string type =
         mat.required("type", "elastic, j2 or rigid").choice({"elastic", "j2", "rigid"});
     if (type == "elastic") {
@@ -70,7 +70,7 @@ void read_materials(const YamlNode& section, ScenarioBuild& b) {
       m.kind = MaterialKind::Elastic;
     } else if (type == "j2") {
       mat.expect_keys({"type", "density", "youngs_modulus", "poisson_ratio", "hardening",
-                       "yield_stress", "tangent_modulus"});
+                       "yield_stress", "tangent_modulus", "cowper_symonds"});
       m.kind = MaterialKind::J2Plastic;
     } else {
       mat.expect_keys({"type", "density", "youngs_modulus", "poisson_ratio"});
@@ -93,6 +93,12 @@ void read_materials(const YamlNode& section, ScenarioBuild& b) {
         nu.fail(fmt::format("{} is outside (-1, 0.5); steel is 0.3", m.poisson_ratio));
     }
     if (m.kind == MaterialKind::J2Plastic) m.hardening = read_hardening(mat, m.youngs_modulus_Pa);
+    // Cowper-Symonds rate scaling of the curve (materials/cowper_symonds.h): {C: 1/s, P: -}
+    if (auto cs = mat.optional("cowper_symonds")) {
+      cs->expect_keys({"C", "P"});
+      m.rate_c_per_s = cs->required("C", "1/s, e.g. 40.4 for mild steel").positive();
+      m.rate_p = cs->required("P", "e.g. 5 for mild steel").positive();
+    }
     try {
       materials::validate(m);
     } catch (const ModelError& e) {

@@ -43,6 +43,11 @@ void validate(const Material& m) {
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
     fail(fmt::format("Poisson ratio {} must be in (-1, 0.5) (steel: 0.3)", m.poisson_ratio));
   if (m.kind != MaterialKind::J2Plastic) return;
+  if (m.rate_c_per_s < 0.0 || (m.rate_c_per_s > 0.0 && !(m.rate_p > 0.0)))
+    fail(
+        fmt::format("Cowper-Symonds C = {} 1/s, P = {}: C must be >= 0 (0: no rate effect) and "
+                    "P > 0 with it (mild steel: C 40.4, P 5)",
+                    m.rate_c_per_s, m.rate_p));
   const auto& h = m.hardening;
   if (h.eps_p.empty() || h.eps_p.size() != h.sigma_y_Pa.size())
     fail(

@@ -32,6 +32,12 @@ struct Material {
   double youngs_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
   HardeningCurve hardening;  ///< J2Plastic only
+  /// Cowper-Symonds rate scaling of the yield stress (cowper_symonds.h), J2Plastic only:
+  /// C [1/s] (0: none) and P [-].
+  double rate_c_per_s = 0.0;
+  double rate_p = 0.0;
+
+  bool rate_dependent() const { return kind == MaterialKind::J2Plastic && rate_c_per_s > 0.0; }
 
   double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus_Pa() const { return youngs_modulus_Pa / (3.0 * (1.0 - 2.0 * poisson_ratio)); }

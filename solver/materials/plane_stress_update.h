@@ -71,6 +71,8 @@ struct HardeningView {
   const double* sigma_y_Pa = nullptr;
   std::size_t n = 0;
   bool non_decreasing = true;  ///< sigma_y never decreases: vm <= sigma_y(0) means elastic
+  /// Factor on the whole curve: a point's Cowper-Symonds factor (cowper_symonds.h); 1: none.
+  double scale = 1.0;
 
   static HardeningView from(const HardeningCurve& h);
   double initial_yield_Pa() const { return sigma_y_Pa[0]; }
@@ -78,14 +80,15 @@ struct HardeningView {
   /// sigma_y(ep) [Pa] and the slope H = d sigma_y / d ep [Pa] in one pass over the segments.
   void evaluate(double ep, double& sigma_y, double& H) const {
     if (n == 1) {
-      sigma_y = sigma_y_Pa[0];
+      sigma_y = scale * sigma_y_Pa[0];
       H = 0.0;
       return;
     }
     std::size_t i = 1;
     while (i + 1 < n && ep >= eps_p[i]) ++i;
     H = (sigma_y_Pa[i] - sigma_y_Pa[i - 1]) / (eps_p[i] - eps_p[i - 1]);
-    sigma_y = sigma_y_Pa[i - 1] + H * (ep - eps_p[i - 1]);
+    sigma_y = scale * (sigma_y_Pa[i - 1] + H * (ep - eps_p[i - 1]));
+    H *= scale;
   }
   double yield(double ep) const {
     double sy = 0.0, H = 0.0;
@@ -97,7 +100,7 @@ struct HardeningView {
   void segment(double ep, double& ep0, double& sy0, double& H, double& ep1) const {
     if (n == 1) {
       ep0 = 0.0;
-      sy0 = sigma_y_Pa[0];
+      sy0 = scale * sigma_y_Pa[0];
       H = 0.0;
       ep1 = std::numeric_limits<double>::infinity();
       return;
@@ -106,8 +109,8 @@ struct HardeningView {
     const std::size_t i =
         static_cast<std::size_t>(std::upper_bound(eps_p + 1, eps_p + n - 1, ep) - eps_p);
     ep0 = eps_p[i - 1];
-    sy0 = sigma_y_Pa[i - 1];
-    H = (sigma_y_Pa[i] - sigma_y_Pa[i - 1]) / (eps_p[i] - eps_p[i - 1]);
+    sy0 = scale * sigma_y_Pa[i - 1];
+    H = scale * (sigma_y_Pa[i] - sigma_y_Pa[i - 1]) / (eps_p[i] - eps_p[i - 1]);
     ep1 = i + 1 < n ? eps_p[i] : std::numeric_limits<double>::infinity();
   }
 };
@@ -168,12 +171,13 @@ inline constexpr std::size_t kLaneSegmentSearchMax = 16;
 ///     the curve crossed), is redone by the safeguarded scalar plane_stress_j2_return.
 /// On entry s_*[0, n) hold the trial stresses, eps_p[n] the plastic strains at t^n; on exit the
 /// stresses and plastic strains at t^{n+1}, and d_eps_zz_p[0, n) the plastic thickness strain
-/// increments (0 for elastic lanes).
+/// increments (0 for elastic lanes). phi[0, n): the points' Cowper-Symonds factors on the curve
+/// (nullptr: none; h.scale must then be 1).
 template <std::size_t W>
 inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const HardeningView& h,
                                          std::size_t n, double (&s_xx)[W], double (&s_yy)[W],
-                                         double (&s_xy)[W], double* eps_p,
-                                         double (&d_eps_zz_p)[W]) {
+                                         double (&s_xy)[W], double* eps_p, double (&d_eps_zz_p)[W],
+                                         const double* phi = nullptr) {
   static_assert(W % 4 == 0, "lanes come in groups of 4");
   constexpr double tol = kPlaneStressReturnTolerance;
   constexpr int kMaxIterations = 8;
@@ -202,6 +206,11 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
   } else {
     for (std::size_t l = 0; l < n; ++l) h.segment(ep_n[l], ep0[l], sy0[l], H[l], ep1[l]);
   }
+  if (phi != nullptr)
+    for (std::size_t l = 0; l < n; ++l) {
+      sy0[l] *= phi[l];
+      H[l] *= phi[l];
+    }
   const double k1 = c.E_Pa / (3.0 * (1.0 - c.nu)), k2 = 2.0 * c.G_Pa;
   // The lane loops below are branch-free (selects on 0/1 masks) so that they vectorise.
   double a_tr[W], b_tr[W], c_tr[W], vm2[W], vm_tr[W], plastic[W], g[W];
@@ -298,7 +307,9 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
     for (std::size_t l = 0; l < n; ++l) {
       if (fallback[l] == 0.0) continue;
       double sx = s_xx[l], sy = s_yy[l], sxy = s_xy[l], ep = ep_n[l];
-      d_eps_zz_p[l] = plane_stress_j2_return(c, h, sx, sy, sxy, ep).d_eps_zz_p;
+      HardeningView hl = h;
+      if (phi != nullptr) hl.scale = phi[l];
+      d_eps_zz_p[l] = plane_stress_j2_return(c, hl, sx, sy, sxy, ep).d_eps_zz_p;
       s_xx[l] = sx;
       s_yy[l] = sy;
       s_xy[l] = sxy;

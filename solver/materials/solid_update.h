@@ -89,9 +89,11 @@ inline J2Segment j2_segment(const HardeningCurve& h, double eps_p_n) {
 double j2_yield_lower_bound(const HardeningCurve& h);
 
 /// J2 radial return of a trial stress (in: trial Cauchy stress, out: returned stress) with
-/// isotropic piecewise-linear hardening h, shear modulus mu_Pa, effective plastic strain eps_p_n
-/// at t^n. Exact on the curve (segment walk, see the header comment). Throws NumericalError if a
+/// isotropic piecewise-linear hardening h scaled by `scale` (the Cowper-Symonds factor of the
+/// step, cowper_symonds.h; 1: none), shear modulus mu_Pa, effective plastic strain eps_p_n at
+/// t^n. Exact on the curve (segment walk, see the header comment). Throws NumericalError if a
 /// softening segment is steeper than -3 mu (the return has no unique solution there).
-J2Return j2_radial_return(const HardeningCurve& h, double mu_Pa, double eps_p_n, Voigt6& sigma);
+J2Return j2_radial_return(const HardeningCurve& h, double mu_Pa, double eps_p_n, Voigt6& sigma,
+                          double scale = 1.0);
 
 }  // namespace crashlink::materials

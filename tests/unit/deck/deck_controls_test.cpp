@@ -62,6 +62,43 @@ TEST_F(DeckControls, ViscousHourglassIsReadAsTheStiffnessFormWithANote) {
   EXPECT_TRUE(noted);
 }
 
+/// The two cubes with `mat` (lines) in place of their *MAT_ELASTIC (lines 30-31, index 29-30).
+std::vector<std::string> with_material(std::vector<std::string> mat) {
+  auto d = testing::two_cubes();
+  d.erase(d.begin() + 29, d.begin() + 31);
+  d.insert(d.begin() + 29, mat.begin(), mat.end());
+  return d;
+}
+
+TEST_F(DeckControls, CowperSymondsRatesReadIntoTheMaterial) {
+  DeckRead r;
+  // *MAT_003 SRC, SRP (mm-t-s: C in 1/s)
+  ASSERT_EQ(read(with_material({"*MAT_PLASTIC_KINEMATIC",
+                                "         1   7.85e-9  210000.0       0.3     250.0     100.0"
+                                "       1.0",
+                                "      40.4       5.0"}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.materials.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.model.materials[0].rate_c_per_s, 40.4);
+  EXPECT_DOUBLE_EQ(r.model.materials[0].rate_p, 5.0);
+  EXPECT_TRUE(r.model.materials[0].rate_dependent());
+  // *MAT_024 C, P with VP -1; blank C: no rate effect
+  ASSERT_EQ(read(with_material({"*MAT_PIECEWISE_LINEAR_PLASTICITY",
+                                "         1   7.85e-9  210000.0       0.3     250.0     100.0",
+                                "    6844.0     3.91                            -1"}),
+                 &r),
+            "");
+  EXPECT_DOUBLE_EQ(r.model.materials[0].rate_c_per_s, 6844.0);
+  EXPECT_DOUBLE_EQ(r.model.materials[0].rate_p, 3.91);
+  ASSERT_EQ(
+      read(with_material({"*MAT_PIECEWISE_LINEAR_PLASTICITY",
+                          "         1   7.85e-9  210000.0       0.3     250.0     100.0", ""}),
+           &r),
+      "");
+  EXPECT_FALSE(r.model.materials[0].rate_dependent());
+}
+
 TEST_F(DeckControls, MistakesNameTheirField) {
   struct Mistake {
     const char* what;
@@ -72,7 +109,28 @@ TEST_F(DeckControls, MistakesNameTheirField) {
     d.insert(d.end(), more.begin(), more.end());
     return d;
   };
+  const std::string k003 = "         1   7.85e-9  210000.0       0.3     250.0     100.0       1.0";
+  const std::string k024 = "         1   7.85e-9  210000.0       0.3     250.0     100.0";
   const Mistake mistakes[] = {
+      {"negative rate coefficient",
+       with_material({"*MAT_PLASTIC_KINEMATIC", k003, "     -40.4       5.0"}),
+       "c.k:32: *MAT_PLASTIC_KINEMATIC field SRC (columns 1-10) = -40.4: must be >= 0 (0: no "
+       "strain-rate effect); fix: write C in 1/time of the deck's units (mild steel: 40.4 1/s)"},
+      {"rate coefficient without exponent",
+       with_material({"*MAT_PLASTIC_KINEMATIC", k003, "      40.4"}),
+       "c.k:32: *MAT_PLASTIC_KINEMATIC field SRP (columns 11-20) = (blank): must be > 0 when the "
+       "rate coefficient is given; fix: write P (mild steel: 5)"},
+      {"viscoplastic 003",
+       with_material({"*MAT_PLASTIC_KINEMATIC", k003, "      40.4       5.0                   1"}),
+       "c.k:32: *MAT_PLASTIC_KINEMATIC field VP (columns 31-40) = 1: the viscoplastic rate "
+       "formulation (VP 1) is not computed; fix: write VP 0 (the yield stress scaled by the "
+       "Cowper-Symonds factor)"},
+      {"viscoplastic 024",
+       with_material({"*MAT_PIECEWISE_LINEAR_PLASTICITY", k024,
+                      "      40.4       5.0                             1"}),
+       "c.k:32: *MAT_PIECEWISE_LINEAR_PLASTICITY field VP (columns 41-50) = 1: the viscoplastic "
+       "rate formulation (VP 1) and the tables of VP 3 are not computed; fix: write VP 0 or -1 "
+       "(the yield stress scaled by the Cowper-Symonds factor of the deviatoric strain rate)"},
       {"assumed-strain hourglass", plus(testing::two_cubes(), {"*CONTROL_HOURGLASS", "         6"}),
        "c.k:35: *CONTROL_HOURGLASS field IHQ (columns 1-10) = 6: crashlink computes the "
        "stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko for hexahedra, "

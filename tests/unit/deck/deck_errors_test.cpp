@@ -143,14 +143,15 @@ TEST_F(DeckErrors, KinematicHardeningRefused) {
             "is 0) is not computed; fix: write BETA 1.0");
 }
 
-TEST_F(DeckErrors, RateEffectsRefused) {
+TEST_F(DeckErrors, RateTablesRefused) {
   auto d = cube();
   d[17] = "*MAT_PIECEWISE_LINEAR_PLASTICITY";
   d[18] = "         1   7.85e-9  210000.0       0.3     250.0    1000.0";
-  d.insert(d.begin() + 19, "      40.0       5.0");
+  d.insert(d.begin() + 19, "      40.0       5.0                   7");
   EXPECT_EQ(error_of(d),
-            "err.k:20: *MAT_PIECEWISE_LINEAR_PLASTICITY field C (columns 1-10) = 40.0: strain-rate "
-            "effects (C, P; LCSR) are not computed yet; fix: write C 0 and P 0 (and LCSR 0)");
+            "err.k:20: *MAT_PIECEWISE_LINEAR_PLASTICITY field LCSR (columns 31-40) = 7: a table "
+            "of yield-stress scale factors over strain rate (LCSR) is not read; fix: write LCSR 0 "
+            "and give C and P (Cowper-Symonds)");
 }
 
 TEST_F(DeckErrors, NotANumber) {
