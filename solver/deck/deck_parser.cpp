@@ -659,28 +659,29 @@ class Parser {
     }
     if (b_.kw == Kw::MatPlasticKinematic) {
       if (k == 1) {
-        read_rate(c, L::kMat003b, 0, 1, m);
+        read_rate(c, L::kMat003b, 0, 1, "SRC", "SRP", m);
         must_be_default(c.field(L::kMat003b, 2), 0.0,
                         "element failure (FS) is not computed; fix: leave FS blank");
-        must_be_default(c.field(L::kMat003b, 3), 0.0,
-                        "the viscoplastic rate formulation (VP 1) is not computed; fix: write VP "
-                        "0 (the yield stress scaled by the Cowper-Symonds factor)");
+        if (m.rate_c > 0.0)
+          must_be_default(c.field(L::kMat003b, 3), 0.0,
+                          "the viscoplastic rate formulation (VP 1) is not computed; fix: write "
+                          "VP 0 (the yield stress scaled by the Cowper-Symonds factor)");
       }
       return;
     }
     if (b_.kw == Kw::MatPiecewiseLinear) {
       if (k == 1) {
-        read_rate(c, L::kMat024b, 0, 1, m);
+        read_rate(c, L::kMat024b, 0, 1, "C", "P", m);
         must_be_default(c.field(L::kMat024b, 3), 0.0,
                         "a table of yield-stress scale factors over strain rate (LCSR) is not "
                         "read; fix: write LCSR 0 and give C and P (Cowper-Symonds)");
         const auto vp = c.field(L::kMat024b, 4);
         const auto vpv = vp.real(0.0);
-        if (vpv != 0.0 && vpv != -1.0)
+        if (m.rate_c > 0.0 && vpv != 0.0 && vpv != -1.0)
           vp.fail(
               "the viscoplastic rate formulation (VP 1) and the tables of VP 3 are not "
               "computed; fix: write VP 0 or -1 (the yield stress scaled by the "
-              "Cowper-Symonds factor of the deviatoric strain rate)");
+              "Cowper-Symonds factor)");
         const auto lcss = c.field(L::kMat024b, 2);
         m.lcss = lcss.integer(0);
         if (m.lcss < 0) lcss.fail("must be a curve id > 0 or blank; fix: write the curve's LCID");
@@ -694,16 +695,19 @@ class Parser {
 
   /// Cowper-Symonds C and P (fields ic, ip of `l`): C >= 0 (0 or blank: no rate effect), P > 0
   /// with it.
-  void read_rate(const Card& c, Layout l, std::size_t ic, std::size_t ip, MaterialCard& m) {
+  void read_rate(const Card& c, Layout l, std::size_t ic, std::size_t ip, const char* c_name,
+                 const char* p_name, MaterialCard& m) {
     const auto cf = c.field(l, ic), pf = c.field(l, ip);
     m.rate_c = cf.real(0.0);
     m.rate_p = pf.real(0.0);
     if (m.rate_c < 0.0)
       cf.fail(
-          "must be >= 0 (0: no strain-rate effect); fix: write C in 1/time of the deck's "
-          "units (mild steel: 40.4 1/s)");
+          fmt::format("must be >= 0 (0: no strain-rate effect); fix: write {} in 1/time of "
+                      "the deck's units (mild steel: 40.4 1/s)",
+                      c_name));
     if (m.rate_c > 0.0 && !(m.rate_p > 0.0))
-      pf.fail("must be > 0 when the rate coefficient is given; fix: write P (mild steel: 5)");
+      pf.fail(fmt::format("must be > 0 when {} is given; fix: write {} (mild steel: 5)", c_name,
+                          p_name));
   }
 
   void check_material_end() {
@@ -1066,11 +1070,16 @@ class Parser {
     must_be_default(c.field(l, d3plot ? 1 : 2), 0.0,
                     "an output interval from a curve is not read; fix: leave it blank and give "
                     "DT");
-    if (dt == 0.0) return;
     if (d3plot) {
+      // NPLTC > 0: ENDTIM / NPLTC, in place of DT (LS-DYNA), set once the end time is known
+      const auto npltc = c.field(l, 3);
+      d_.field_count = npltc.integer(0);
+      if (d_.field_count < 0)
+        npltc.fail("must be >= 0 (the number of states over the run); fix: write it or DT");
       d_.field_dt = dt;
       return;
     }
+    if (dt == 0.0) return;
     d_.history_dt = d_.history_dt > 0.0 ? std::min(d_.history_dt, dt) : dt;
     d_.history_dt_max = std::max(d_.history_dt_max, dt);
     d_.history_dt_keywords.push_back(b_.keyword);

@@ -743,6 +743,7 @@ class Builder {
       const auto& ids = h.set ? node_set(h.id, h.ref, h.keyword, l, h.field) : one;
       for (const auto id : ids) {
         const int c = node(id, h.ref, h.keyword.c_str(), l, h.field);
+        if (c < 0 && h.set) continue;  // a set's node in no element: left out, as everywhere
         if (c < 0)
           fail_at(d_, h.ref, h.keyword, l, h.field,
                   fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
@@ -754,7 +755,12 @@ class Builder {
         // the node id appended.
         p.name = h.heading.empty() ? fmt::format("node_{}", id) : h.heading;
         std::replace(p.name.begin(), p.name.end(), '/', '_');
-        if (!names.insert(p.name).second) p.name += fmt::format("_{}", id);
+        if (!names.insert(p.name).second) {
+          const std::string base = p.name;
+          p.name = fmt::format("{}_{}", base, id);
+          for (int k = 2; !names.insert(p.name).second; ++k)
+            p.name = fmt::format("{}_{}_{}", base, id, k);
+        }
         p.kind = model::Probe::Kind::Node;
         p.index = c;
         m_.probes.push_back(std::move(p));
@@ -772,7 +778,9 @@ class Builder {
     // *DATABASE_GLSTAT ... DT: one history interval for every series (the smallest given);
     // *DATABASE_BINARY_D3PLOT DT: the field states' interval.
     m_.controls.history_interval_s = d_.history_dt * u_.time_s;
-    m_.controls.field_interval_s = d_.field_dt * u_.time_s;
+    m_.controls.field_interval_s =
+        d_.field_count > 0 ? m_.controls.end_time_s / static_cast<double>(d_.field_count)
+                           : d_.field_dt * u_.time_s;
     if (d_.has_bulk) {
       m_.controls.bulk_q_quadratic = d_.bulk_q1;
       m_.controls.bulk_q_linear = d_.bulk_q2;

@@ -94,6 +94,13 @@ void read_probes(const YamlNode& section, ScenarioBuild& b) {
     pr.expect_keys({"node", "node_near", "part", "rigid_body"});
     model::Probe probe;
     probe.name = name;
+    for (const auto& other : m.probes)
+      if (other.name == name)
+        pr.fail(
+            fmt::format("a probe '{}' is already defined (a deck's *DATABASE_HISTORY_NODE "
+                        "names its probes node_<NID> or by their heading); fix: give this one "
+                        "another name",
+                        name));
     const auto node = pr.optional("node");
     const auto near = pr.optional("node_near");
     const auto body = pr.optional("rigid_body");

@@ -22,6 +22,7 @@
 // The transverse shear stresses (tau_yz, tau_zx) stay elastic (as in LS-DYNA's shell plasticity
 // for the Belytschko-Tsay element); they enter the von Mises output only.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -172,13 +173,15 @@ inline constexpr std::size_t kLaneSegmentSearchMax = 16;
 /// On entry s_*[0, n) hold the trial stresses, eps_p[n] the plastic strains at t^n; on exit the
 /// stresses and plastic strains at t^{n+1}, and d_eps_zz_p[0, n) the plastic thickness strain
 /// increments (0 for elastic lanes). phi[0, n): the points' Cowper-Symonds factors on the curve
-/// (nullptr: none; h.scale must then be 1).
+/// (nullptr: none). h.scale must be 1 (the short curves' segment search reads the points
+/// unscaled; the factors come through phi).
 template <std::size_t W>
 inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const HardeningView& h,
                                          std::size_t n, double (&s_xx)[W], double (&s_yy)[W],
                                          double (&s_xy)[W], double* eps_p, double (&d_eps_zz_p)[W],
                                          const double* phi = nullptr) {
   static_assert(W % 4 == 0, "lanes come in groups of 4");
+  assert(h.scale == 1.0 && "per-point factors come through phi");
   constexpr double tol = kPlaneStressReturnTolerance;
   constexpr int kMaxIterations = 8;
   // The arrays are the caller's (inlined: its locals, no alias checks in the loops); eps_p is
@@ -308,7 +311,7 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
       if (fallback[l] == 0.0) continue;
       double sx = s_xx[l], sy = s_yy[l], sxy = s_xy[l], ep = ep_n[l];
       HardeningView hl = h;
-      if (phi != nullptr) hl.scale = phi[l];
+      if (phi != nullptr) hl.scale *= phi[l];
       d_eps_zz_p[l] = plane_stress_j2_return(c, hl, sx, sy, sxy, ep).d_eps_zz_p;
       s_xx[l] = sx;
       s_yy[l] = sy;

@@ -63,6 +63,11 @@ TEST_P(TaylorBar, EndsWithTheBalanceNoInversionAndTheWilkinsGuinanLength) {
   ASSERT_EQ(m.rigid_walls.size(), 1u);
   ASSERT_EQ(m.initial_velocities.size(), 1u);
   EXPECT_DOUBLE_EQ(m.initial_velocities[0].velocity_m_s[1], U);
+  // The deck's outputs: *DATABASE_GLSTAT ... DT 8e-8 s, D3PLOT 4e-6 s, the history nodes of set 1
+  // (the two node layers in box 1, 34 nodes each) as probes.
+  EXPECT_DOUBLE_EQ(m.controls.history_interval_s, 8.0e-8);
+  EXPECT_DOUBLE_EQ(m.controls.field_interval_s, 4.0e-6);
+  EXPECT_EQ(m.probes.size(), 68u);
   const model::Part& bar = m.parts[0];
   const std::size_t ne = bar.element_count();
   ASSERT_EQ(ne, 768u);

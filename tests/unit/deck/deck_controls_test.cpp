@@ -97,6 +97,28 @@ TEST_F(DeckControls, CowperSymondsRatesReadIntoTheMaterial) {
            &r),
       "");
   EXPECT_FALSE(r.model.materials[0].rate_dependent());
+  // VP without a rate coefficient changes nothing: read as written
+  ASSERT_EQ(read(with_material({"*MAT_PIECEWISE_LINEAR_PLASTICITY",
+                                "         1   7.85e-9  210000.0       0.3     250.0     100.0",
+                                "                                                 1"}),
+                 &r),
+            "");
+  EXPECT_FALSE(r.model.materials[0].rate_dependent());
+}
+
+// C is 1/time: 0.0404 per ms in mm-kg-ms is 40.4 1/s.
+TEST_F(DeckControls, RateCoefficientIsConvertedFromTheDecksTime) {
+  auto d = with_material({"*MAT_PLASTIC_KINEMATIC",
+                          "         1   7.85e-6     210.0       0.3     0.250     0.100       1.0",
+                          "    0.0404       5.0"});
+  d.push_back("*END");
+  std::string text;
+  for (const auto& line : d) text += line + "\n";
+  const auto path = dir_.write("ms.k", text);
+  const auto m = read_deck(path, {"mm-kg-ms", {}}).model;
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_NEAR(m.materials[0].rate_c_per_s, 40.4, 1e-12);
+  EXPECT_NEAR(m.materials[0].hardening.sigma_y_Pa[0], 250e6, 1e-3);
 }
 
 TEST_F(DeckControls, MistakesNameTheirField) {
@@ -115,11 +137,11 @@ TEST_F(DeckControls, MistakesNameTheirField) {
       {"negative rate coefficient",
        with_material({"*MAT_PLASTIC_KINEMATIC", k003, "     -40.4       5.0"}),
        "c.k:32: *MAT_PLASTIC_KINEMATIC field SRC (columns 1-10) = -40.4: must be >= 0 (0: no "
-       "strain-rate effect); fix: write C in 1/time of the deck's units (mild steel: 40.4 1/s)"},
+       "strain-rate effect); fix: write SRC in 1/time of the deck's units (mild steel: 40.4 1/s)"},
       {"rate coefficient without exponent",
        with_material({"*MAT_PLASTIC_KINEMATIC", k003, "      40.4"}),
-       "c.k:32: *MAT_PLASTIC_KINEMATIC field SRP (columns 11-20) = (blank): must be > 0 when the "
-       "rate coefficient is given; fix: write P (mild steel: 5)"},
+       "c.k:32: *MAT_PLASTIC_KINEMATIC field SRP (columns 11-20) = (blank): must be > 0 when SRC "
+       "is given; fix: write SRP (mild steel: 5)"},
       {"viscoplastic 003",
        with_material({"*MAT_PLASTIC_KINEMATIC", k003, "      40.4       5.0                   1"}),
        "c.k:32: *MAT_PLASTIC_KINEMATIC field VP (columns 31-40) = 1: the viscoplastic rate "
@@ -130,7 +152,7 @@ TEST_F(DeckControls, MistakesNameTheirField) {
                       "      40.4       5.0                             1"}),
        "c.k:32: *MAT_PIECEWISE_LINEAR_PLASTICITY field VP (columns 41-50) = 1: the viscoplastic "
        "rate formulation (VP 1) and the tables of VP 3 are not computed; fix: write VP 0 or -1 "
-       "(the yield stress scaled by the Cowper-Symonds factor of the deviatoric strain rate)"},
+       "(the yield stress scaled by the Cowper-Symonds factor)"},
       {"assumed-strain hourglass", plus(testing::two_cubes(), {"*CONTROL_HOURGLASS", "         6"}),
        "c.k:35: *CONTROL_HOURGLASS field IHQ (columns 1-10) = 6: crashlink computes the "
        "stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko for hexahedra, "

@@ -55,6 +55,24 @@ TEST_F(DeckOutput, IntervalsAndProbes) {
   EXPECT_TRUE(one_interval);
 }
 
+TEST_F(DeckOutput, StateCountHeadingsAndFreeSetMembers) {
+  // NPLTC 4 over ENDTIM 1e-5 s: a state every 2.5e-6 s, in place of DT; three headings 'tip'
+  // (and one 'tip_6') made unique; node 40 of set 3 is in no element: left out.
+  const auto d =
+      plus(testing::two_cubes(),
+           {"*NODE", "      40             9.0             9.0", "*DATABASE_BINARY_D3PLOT",
+            "   1.0E-06                             4", "*DATABASE_HISTORY_NODE_ID",
+            "         5tip", "         6tip", "         7tip_6", "         8tip", "*SET_NODE_LIST",
+            "         3", "        40         9", "*DATABASE_HISTORY_NODE_SET", "         3"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  const auto& m = r.model;
+  EXPECT_DOUBLE_EQ(m.controls.field_interval_s, 2.5e-6);
+  ASSERT_EQ(m.probes.size(), 5u);
+  const char* names[] = {"tip", "tip_6", "tip_6_7", "tip_8", "node_9"};
+  for (std::size_t k = 0; k < 5; ++k) EXPECT_EQ(m.probes[k].name, names[k]);
+}
+
 TEST_F(DeckOutput, WithoutThemEveryCycleAndTheEnds) {
   DeckRead r;
   ASSERT_EQ(read(testing::two_cubes(), &r), "");

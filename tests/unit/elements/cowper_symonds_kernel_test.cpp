@@ -118,15 +118,16 @@ TEST(CowperSymondsKernel, HexUniaxialStressFollowsTheScaledCurve) {
 
 TEST(CowperSymondsKernel, ShellMembraneStretchEqualsTheScaledCurve) {
   // One flat 10 x 10 mm shell, 5 points, stretched in its plane at constant true rates
-  // (a, b) = (500, -100) 1/s: v = (a x, b y, 0) at the current positions.
+  // (a, b) = (500, -100) 1/s: v = (a x, b y, 0) at the current positions; a second one beside it
+  // at rest, so that the kernel's packed return (the yielding points of a batch only) runs.
   crashlink::model::Part part;
   part.name = "one";
   part.kind = crashlink::model::ElementKind::Shell4;
   part.thickness_m = 0.001;
   part.through_thickness_points = 5;
   part.hourglass_coefficient = 0.1;
-  part.connectivity = {0, 1, 2, 3};
-  part.element_id = {1};
+  part.connectivity = {0, 1, 2, 3, 4, 5, 6, 7};
+  part.element_id = {1, 2};
   const double a = 500.0, b = -100.0, dt = 1e-7;
   // x^{n+1} = exp(a dt) x^n, v^{n+1/2} = (x^{n+1} - x^n) / dt; the kernel's rate on the mid-step
   // geometry is then (2 / dt) tanh(a dt / 2).
@@ -135,11 +136,12 @@ TEST(CowperSymondsKernel, ShellMembraneStretchEqualsTheScaledCurve) {
   const double phi = mt::cowper_symonds_factor(rate, kC, kP);
   mt::Material with_rate = rate_steel(true), scaled = rate_steel(false);
   for (double& y : scaled.hardening.sigma_y_Pa) y *= phi;
-  std::vector<double> x = {0, 0, 0, 0.01, 0, 0, 0.01, 0.01, 0, 0, 0.01, 0};
+  std::vector<double> x = {0, 0, 0, 0.01, 0, 0, 0.01, 0.01, 0, 0,   0.01, 0,
+                           1, 0, 0, 1.01, 0, 0, 1.01, 0.01, 0, 1.0, 0.01, 0};
   el::ShellState s1 = el::make_shell_state(part), s2 = el::make_shell_state(part);
   double worst = 0.0;
   for (int it = 0; it < 3000; ++it) {  // to 0.15 log strain in x
-    std::vector<double> v(12, 0.0), w(12, 0.0), f1(12, 0.0), m1(12, 0.0), f2(12, 0.0), m2(12, 0.0);
+    std::vector<double> v(24, 0.0), w(24, 0.0), f1(24, 0.0), m1(24, 0.0), f2(24, 0.0), m2(24, 0.0);
     if (it > 0)
       for (int n = 0; n < 4; ++n) {
         v[3 * n] = (std::exp(a * dt) - 1.0) / dt * x[3 * n];
