@@ -210,7 +210,7 @@ struct Deck {
   double history_dt = 0.0;
   double history_dt_max = 0.0;  ///< the largest of those DTs (a note when it differs)
   std::vector<std::string> history_dt_keywords;  ///< the keywords that set one (DT > 0)
-  double field_dt = 0.0;  ///< *DATABASE_BINARY_D3PLOT DT, deck time units; 0: none
+  double field_dt = 0.0;         ///< *DATABASE_BINARY_D3PLOT DT, deck time units; 0: none
   std::int64_t field_count = 0;  ///< its NPLTC: ENDTIM / NPLTC in place of DT when > 0
   std::vector<HistoryNodeCard> history_nodes;
   /// Keywords accepted but without effect in crashlink (*DATABASE_*), and how many times.
