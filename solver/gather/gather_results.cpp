@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "solver/core/errors.h"
 #include "solver/gather/coordinator_file.h"
@@ -183,6 +184,43 @@ void write_contacts(const model::Model& global, const partition::Decomposition& 
   }
 }
 
+/// /history/rigid_walls: a wall whose nodes lie in several domains is applied in each to its own
+/// nodes (partition::sub_model): its force and work are the sums, the other holders' rows
+/// interpolated in time onto the first's.
+void write_walls(const model::Model& global, const partition::Decomposition& dec,
+                 const std::vector<DomainFile>& files, double t_cut, io::ResultWriter& writer,
+                 GatherReport& report) {
+  for (std::size_t i = 0; i < global.rigid_walls.size(); ++i) {
+    const std::string& name = global.rigid_walls[i].name;
+    std::optional<io::ContactHistory> sum;
+    for (const DomainFile& f : files) {
+      const auto& list = dec.domains[static_cast<std::size_t>(f.domain)].model.rigid_walls;
+      if (!f.reader ||
+          std::none_of(list.begin(), list.end(), [&](const auto& x) { return x.name == name; }))
+        continue;
+      io::ContactHistory h;
+      try {
+        h = f.reader->wall(name);
+      } catch (const Error& e) {
+        report.notes.push_back(
+            fmt::format("rigid wall '{}': not read from domain '{}': {}", name, f.name, e.what()));
+        continue;
+      }
+      if (!sum)
+        sum = std::move(h);
+      else
+        add_interpolated(h, *sum);
+    }
+    if (!sum) {
+      report.notes.push_back(fmt::format("rigid wall '{}': no rows", name));
+      continue;
+    }
+    const std::size_t k = rows_until(sum->time_s, t_cut);
+    writer.append_wall_rows(i, std::span<const double>(sum->time_s.data(), k),
+                            io::contact_samples(*sum, k));
+  }
+}
+
 /// /timing/<domain> of every domain file that has one.
 std::vector<io::DomainTiming> domain_timings(const std::vector<DomainFile>& files,
                                              GatherReport& report) {
@@ -225,6 +263,7 @@ GatherReport gather_results(const model::Model& global, const partition::Decompo
   const double t_cut = write_glstat(files, writer, report);
   write_probes(global, dec, files, t_cut, writer, report);
   write_contacts(global, dec, files, t_cut, writer, report);
+  write_walls(global, dec, files, t_cut, writer, report);
   report.states = write_states(global, files, writer, report);
   writer.write_timing(coordinator.wall_seconds, coordinator.coordinator_cpu_seconds,
                       domain_timings(files, report));

@@ -260,6 +260,7 @@ void Solver::apply_rigid_walls(double dt_pair) {
   for (auto& rw : walls_) {
     const model::RigidWall& w = *rw.wall;
     const Vec3& nrm = w.normal;
+    rw.force_N = Vec3{};
     for (std::size_t k = 0; k < w.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(w.nodes[k]);
       double r[3] = {0.0, 0.0, 0.0};
@@ -280,8 +281,12 @@ void Solver::apply_rigid_walls(double dt_pair) {
         double& rp = rw.reaction_prev[3 * k + c];
         work += 0.5 * (rp + r[c]) * du_[3 * i + c];
         rp = r[c];
+        rw.force_N[c] += r[c];
       }
-      if (cycle_ > 0) energy_.external_work_J += work;
+      if (cycle_ > 0) {
+        energy_.external_work_J += work;
+        rw.work_J += work;
+      }
     }
   }
 }

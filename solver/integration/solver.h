@@ -191,6 +191,11 @@ class Solver {
   /// Contact interfaces (model.contacts order) and their last step (resultant force on the slave
   /// side at t^n).
   const std::vector<contact::ContactStep>& contact_steps() const { return contact_steps_; }
+  /// Rigid wall k (model.rigid_walls[k]): its force on the nodes it stops at this cycle, summed
+  /// over them [N] (along its normal), and the work it has done on them since t = 0 [J] (< 0:
+  /// kinetic energy it took).
+  Vec3 wall_force_N(std::size_t k) const { return walls_[k].force_N; }
+  double wall_work_J(std::size_t k) const { return walls_[k].work_J; }
 
  private:
   void assemble_masses();
@@ -286,6 +291,8 @@ class Solver {
   struct WallRuntime {
     const model::RigidWall* wall;
     std::vector<double> reaction_prev;
+    Vec3 force_N{};       ///< sum of the reactions of the last application [N]
+    double work_J = 0.0;  ///< its work since t = 0 (trapezoid rule) [J]
   };
   std::vector<WallRuntime> walls_;
   void apply_rigid_walls(double dt_pair);

@@ -108,8 +108,11 @@ void Solver::visit_state(V& v, Self& s) {
     for (std::size_t i = 0; i < reactions.size(); ++i)
       s.prescribed_[i].reaction_prev = reactions[i];
   }
-  for (std::size_t k = 0; k < s.walls_.size(); ++k)
+  for (std::size_t k = 0; k < s.walls_.size(); ++k) {
     v.sized(fmt::format("wall{}.reaction_prev", k), s.walls_[k].reaction_prev);
+    v.pod(fmt::format("wall{}.force", k), s.walls_[k].force_N);
+    v.num(fmt::format("wall{}.work", k), s.walls_[k].work_J);
+  }
   v.pod("energy", s.energy_);
   v.num("time_s", s.time_s_);
   v.integer("cycle", s.cycle_);

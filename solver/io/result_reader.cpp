@@ -138,6 +138,7 @@ struct ResultReader::Impl {
   };
   std::vector<ProbeEntry> probes;    // in link order
   std::vector<ProbeEntry> contacts;  // in link order
+  std::vector<ProbeEntry> walls;     // /history/rigid_walls, in link order
 
   /// The group at absolute path `object`; throws ResultFileError saying what is missing.
   GroupHandle group(const std::string& object, const char* what) const {
@@ -175,14 +176,15 @@ ResultReader::ResultReader(const std::string& h5_path) : path_(h5_path) {
             Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
       }
     }
-    if (link_exists(hat, "contacts")) {
-      GroupHandle contacts = open_group(hat, "contacts");
-      const Location cat{contacts.get(), h5_path, "/history/contacts"};
+    for (const auto& [group, list] :
+         {std::pair{"contacts", &impl->contacts}, std::pair{"rigid_walls", &impl->walls}}) {
+      if (!link_exists(hat, group)) continue;
+      GroupHandle gr = open_group(hat, group);
+      const Location cat{gr.get(), h5_path, std::string("/history/") + group};
       for (const std::string& link : child_names(cat)) {
         GroupHandle g = open_group(cat, link);
         const Location at{g.get(), h5_path, cat.child(link)};
-        impl->contacts.push_back(
-            Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
+        list->push_back(Impl::ProbeEntry{read_string_attribute(at, "name").value_or(link), link});
       }
     }
   }
@@ -272,21 +274,39 @@ std::vector<std::string> ResultReader::contact_names() const {
 }
 
 ContactHistory ResultReader::contact(const std::string& name) const {
-  auto it = std::find_if(impl_->contacts.begin(), impl_->contacts.end(),
+  return item_history(false, name);
+}
+
+std::vector<std::string> ResultReader::wall_names() const {
+  std::vector<std::string> names;
+  for (const auto& c : impl_->walls) names.push_back(c.name);
+  return names;
+}
+
+ContactHistory ResultReader::wall(const std::string& name) const {
+  return item_history(true, name);
+}
+
+ContactHistory ResultReader::item_history(bool wall, const std::string& name) const {
+  const auto& list = wall ? impl_->walls : impl_->contacts;
+  const char* what = wall ? "rigid wall" : "contact";
+  auto it = std::find_if(list.begin(), list.end(),
                          [&](const Impl::ProbeEntry& c) { return c.name == name; });
-  if (it == impl_->contacts.end()) {
-    it = std::find_if(impl_->contacts.begin(), impl_->contacts.end(),
+  if (it == list.end()) {
+    it = std::find_if(list.begin(), list.end(),
                       [&](const Impl::ProbeEntry& c) { return c.link == name; });
   }
-  if (it == impl_->contacts.end()) {
-    const std::vector<std::string> names = contact_names();
+  if (it == list.end()) {
+    std::vector<std::string> names;
+    for (const auto& c : list) names.push_back(c.name);
     throw InputError(fmt::format(
-        "{}: no contact named '{}'; the file has {}", path_, name,
-        names.empty() ? std::string("no contact histories")
-                      : fmt::format("{} contact(s): {}", names.size(), fmt::join(names, ", "))));
+        "{}: no {} named '{}'; the file has {}", path_, what, name,
+        names.empty() ? fmt::format("no {} histories", what)
+                      : fmt::format("{} {}(s): {}", names.size(), what, fmt::join(names, ", "))));
   }
-  const std::string object = "/history/contacts/" + it->link;
-  GroupHandle g = impl_->group(object, "contact history");
+  const std::string object =
+      std::string(wall ? "/history/rigid_walls/" : "/history/contacts/") + it->link;
+  GroupHandle g = impl_->group(object, wall ? "rigid wall history" : "contact history");
   const Location at{g.get(), impl_->h5_path, object};
   ContactHistory h;
   h.name = it->name;
@@ -294,8 +314,9 @@ ContactHistory ResultReader::contact(const std::string& name) const {
   std::array<std::size_t, 3> rows{};
   h.time_s = read_doubles(at, "time", 0, &rows[0]);
   h.force_N = read_doubles(at, "force", 3, &rows[1]);
-  const bool energy = link_exists(at, "energy");  // absent in files before 2026-11-26
-  if (energy) h.energy_J = read_doubles(at, "energy", 0, &rows[2]);
+  const char* third = wall ? "work" : "energy";
+  const bool energy = link_exists(at, third);  // a contact's: absent in files before 2026-11-26
+  if (energy) h.energy_J = read_doubles(at, third, 0, &rows[2]);
   const std::size_t k = std::min({rows[0], rows[1], energy ? rows[2] : rows[0]});  // common prefix
   h.time_s.resize(k);
   h.force_N.resize(3 * k);

@@ -115,6 +115,12 @@ class ResultReader {
   /// The contact with this user name or link name (rows: the common prefix of time, force and
   /// energy if present); throws InputError naming the contacts the file has if there is none.
   ContactHistory contact(const std::string& name) const;
+  /// The rigid walls' user names under /history/rigid_walls (none in files of models without
+  /// walls, or written before 2026-11-27).
+  std::vector<std::string> wall_names() const;
+  /// The rigid wall with this user name or link name: its force on the nodes it stops and, in
+  /// energy_J, its work on them (/history/rigid_walls/<name>/work); InputError if there is none.
+  ContactHistory wall(const std::string& name) const;
 
   /// /mesh/node_ids [n].
   std::vector<std::int64_t> node_ids() const;
@@ -132,6 +138,7 @@ class ResultReader {
   TimingData timing() const;
 
  private:
+  ContactHistory item_history(bool wall, const std::string& name) const;
   struct Impl;
   std::string path_;
   std::unique_ptr<Impl> impl_;

@@ -45,6 +45,12 @@ ReplayCounts replay_results(const std::string& from, ResultWriter& to, const mod
     counts.contact_rows += k;
   }
 
+  for (std::size_t w = 0; w < model.rigid_walls.size(); ++w) {
+    const ContactHistory h = in.wall(result_link_name(model.rigid_walls[w].name, "rigid wall", w));
+    const std::size_t k = rows_before(h.time_s, before_s);
+    to.append_wall_rows(w, std::span<const double>(h.time_s.data(), k), contact_samples(h, k));
+  }
+
   for (std::size_t s = 0; s < in.state_count(); ++s) {
     if (!(in.state_time(s) < before_s)) break;
     const StateData st = in.state(s);

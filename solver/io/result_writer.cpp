@@ -98,7 +98,8 @@ struct ProbeOut {
 };
 
 struct ContactOut {
-  std::string path;  // /history/contacts/<name>
+  std::string path;              // /history/contacts/<name> or /history/rigid_walls/<name>
+  std::string third = "energy";  // the third dataset: a contact's energy, a wall's work
   DatasetHandle time, force, energy;
   std::vector<double> t, f, e;  // buffered rows: [k], [3k], [k]
 };
@@ -113,6 +114,7 @@ struct ResultWriter::Impl {
   std::array<std::vector<double>, kGlstat.size()> glstat_buffer;
   std::vector<ProbeOut> probes;
   std::vector<ContactOut> contacts;
+  std::vector<ContactOut> walls;
   std::size_t buffered = 0;
   Clock::time_point last_flush = Clock::now();
   std::size_t node_count = 0;
@@ -141,6 +143,7 @@ struct ResultWriter::Impl {
       for (const auto& b : glstat_buffer) need += b.size();
       for (const ProbeOut& p : probes) need += p.t.size() + p.u.size() + p.v.size() + p.a.size();
       for (const ContactOut& c : contacts) need += c.t.size() + c.f.size() + c.e.size();
+      for (const ContactOut& c : walls) need += c.t.size() + c.f.size() + c.e.size();
       ensure_space(h5_path, "/history", 8 * need);
     }
     struct Clear {
@@ -153,11 +156,12 @@ struct ResultWriter::Impl {
           p.v.clear();
           p.a.clear();
         }
-        for (auto& c : self->contacts) {
-          c.t.clear();
-          c.f.clear();
-          c.e.clear();
-        }
+        for (auto* list : {&self->contacts, &self->walls})
+          for (auto& c : *list) {
+            c.t.clear();
+            c.f.clear();
+            c.e.clear();
+          }
         self->buffered = 0;
         self->last_flush = Clock::now();
       }
@@ -174,12 +178,18 @@ struct ResultWriter::Impl {
       append_rows(Location{p.velocity.get(), h5_path, p.path + "/velocity"}, p.v, 3);
       append_rows(Location{p.acceleration.get(), h5_path, p.path + "/acceleration"}, p.a, 3);
     }
-    for (ContactOut& c : contacts) {
-      append_rows(Location{c.time.get(), h5_path, c.path + "/time"}, c.t, 0);
-      append_rows(Location{c.force.get(), h5_path, c.path + "/force"}, c.f, 3);
-      append_rows(Location{c.energy.get(), h5_path, c.path + "/energy"}, c.e, 0);
-    }
+    for (ContactOut& c : contacts) append_contact_out(c);
+    for (ContactOut& c : walls) append_contact_out(c);
     return rows;
+  }
+
+  /// Appends the rows of `c` (buffered or given) to its three datasets.
+  void append_contact_out(ContactOut& c) { append_contact_rows_to(c, c.t, c.f, c.e); }
+  void append_contact_rows_to(ContactOut& c, std::span<const double> t, std::span<const double> f,
+                              std::span<const double> e) {
+    append_rows(Location{c.time.get(), h5_path, c.path + "/time"}, t, 0);
+    append_rows(Location{c.force.get(), h5_path, c.path + "/force"}, f, 3);
+    append_rows(Location{c.energy.get(), h5_path, c.path + "/" + c.third}, e, 0);
   }
 
   void write_mesh(const model::Model& m) {
@@ -277,6 +287,23 @@ struct ResultWriter::Impl {
       out.energy = create_extendible(at, "energy", 0, chunk, "J");
       contacts.push_back(std::move(out));
     }
+    if (m.rigid_walls.empty()) return;  // files without walls keep their old layout
+    GroupHandle wo = create_group(hat, "rigid_walls");
+    const Location wat{wo.get(), h5_path, "/history/rigid_walls"};
+    const std::vector<std::string> wall_links = link_names(
+        m.rigid_walls, [](const model::RigidWall& w) { return w.name; }, "rigid wall");
+    for (std::size_t i = 0; i < m.rigid_walls.size(); ++i) {
+      GroupHandle g = create_group(wat, wall_links[i]);
+      ContactOut out;
+      out.path = wat.child(wall_links[i]);
+      out.third = "work";
+      const Location at{g.get(), h5_path, out.path};
+      write_attribute(at, "name", m.rigid_walls[i].name);
+      out.time = create_extendible(at, "time", 0, chunk, "s");
+      out.force = create_extendible(at, "force", 3, chunk, "N");
+      out.energy = create_extendible(at, "work", 0, chunk, "J");
+      walls.push_back(std::move(out));
+    }
   }
 };
 
@@ -341,7 +368,8 @@ namespace {
 }  // namespace
 
 void ResultWriter::append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes,
-                                  const std::vector<ContactSample>& contacts) {
+                                  const std::vector<ContactSample>& contacts,
+                                  const std::vector<ContactSample>& walls) {
   if (!impl_) closed(h5_path_, "append_history");
   Impl& w = *impl_;
   if (contacts.size() != w.contacts.size()) {
@@ -350,12 +378,20 @@ void ResultWriter::append_history(const GlstatSample& g, const std::vector<Probe
                                       "contacts (pass one sample per model.contacts, same order)",
                                       contacts.size(), w.contacts.size()));
   }
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    ContactOut& c = w.contacts[i];
-    c.t.push_back(g.time_s);
-    c.f.insert(c.f.end(), contacts[i].force_N, contacts[i].force_N + 3);
-    c.e.push_back(contacts[i].energy_J);
+  if (walls.size() != w.walls.size()) {
+    throw ResultFileError(h5_path_, "/history/rigid_walls",
+                          fmt::format("append_history: {} wall samples given, the model has {} "
+                                      "rigid walls (pass one sample per model.rigid_walls, same "
+                                      "order)",
+                                      walls.size(), w.walls.size()));
   }
+  auto buffer = [&](ContactOut& c, const ContactSample& x) {
+    c.t.push_back(g.time_s);
+    c.f.insert(c.f.end(), x.force_N, x.force_N + 3);
+    c.e.push_back(x.energy_J);
+  };
+  for (std::size_t i = 0; i < contacts.size(); ++i) buffer(w.contacts[i], contacts[i]);
+  for (std::size_t i = 0; i < walls.size(); ++i) buffer(w.walls[i], walls[i]);
   if (probes.size() != w.probes.size()) {
     throw ResultFileError(h5_path_, "/history/probes",
                           fmt::format("append_history: {} probe samples given, the model has {} "
@@ -428,24 +464,34 @@ void ResultWriter::append_probe_rows(std::size_t probe, std::span<const double> 
 
 void ResultWriter::append_contact_rows(std::size_t contact, std::span<const double> time_s,
                                        std::span<const ContactSample> rows) {
+  append_item_rows(false, contact, time_s, rows);
+}
+
+void ResultWriter::append_wall_rows(std::size_t wall, std::span<const double> time_s,
+                                    std::span<const ContactSample> rows) {
+  append_item_rows(true, wall, time_s, rows);
+}
+
+void ResultWriter::append_item_rows(bool wall, std::size_t item, std::span<const double> time_s,
+                                    std::span<const ContactSample> rows) {
   flush_history();
   Impl& w = *impl_;
-  if (contact >= w.contacts.size() || time_s.size() != rows.size()) {
+  auto& list = wall ? w.walls : w.contacts;
+  if (item >= list.size() || time_s.size() != rows.size()) {
     throw ResultFileError(
-        h5_path_, "/history/contacts",
-        fmt::format("append_contact_rows: contact {} of {} with {} times and {} rows "
-                    "(internal error: one time per row, a model contact index)",
-                    contact, w.contacts.size(), time_s.size(), rows.size()));
+        h5_path_, wall ? "/history/rigid_walls" : "/history/contacts",
+        fmt::format("append_{}_rows: {} {} of {} with {} times and {} rows (internal error: one "
+                    "time per row, a model {} index)",
+                    wall ? "wall" : "contact", wall ? "wall" : "contact", item, list.size(),
+                    time_s.size(), rows.size(), wall ? "rigid wall" : "contact"));
   }
-  ContactOut& c = w.contacts[contact];
+  ContactOut& c = list[item];
   std::vector<double> f, e;
   for (const ContactSample& r : rows) {
     f.insert(f.end(), r.force_N, r.force_N + 3);
     e.push_back(r.energy_J);
   }
-  append_rows(Location{c.time.get(), h5_path_, c.path + "/time"}, time_s, 0);
-  append_rows(Location{c.force.get(), h5_path_, c.path + "/force"}, f, 3);
-  append_rows(Location{c.energy.get(), h5_path_, c.path + "/energy"}, e, 0);
+  w.append_contact_rows_to(c, time_s, f, e);
   w.flush_file();
 }
 

@@ -107,11 +107,14 @@ class ResultWriter {
   ResultWriter& operator=(const ResultWriter&) = delete;
   ~ResultWriter();  ///< close(); never throws (a failure is printed to stderr)
 
-  /// Buffers one history row; `probes` has one sample per model.probes and `contacts` one per
-  /// model.contacts (/history/contacts/<name>/{time, force, energy}), same order.
+  /// Buffers one history row; `probes` has one sample per model.probes, `contacts` one per
+  /// model.contacts (/history/contacts/<name>/{time, force, energy}) and `walls` one per
+  /// model.rigid_walls (/history/rigid_walls/<name>/{time, force, work}: the wall's force on the
+  /// nodes it stops and its work on them, in the sample's energy_J), same order.
   /// May flush (see ResultWriterOptions).
   void append_history(const GlstatSample& g, const std::vector<ProbeSample>& probes,
-                      const std::vector<ContactSample>& contacts = {});
+                      const std::vector<ContactSample>& contacts = {},
+                      const std::vector<ContactSample>& walls = {});
   /// Writes the buffered history rows and H5Fflush-es the file.
   void flush_history();
 
@@ -127,6 +130,9 @@ class ResultWriter {
                          std::span<const ProbeSample> rows);
   void append_contact_rows(std::size_t contact, std::span<const double> time_s,
                            std::span<const ContactSample> rows);
+  /// Rigid wall `wall` (model.rigid_walls): force and work (energy_J) rows.
+  void append_wall_rows(std::size_t wall, std::span<const double> time_s,
+                        std::span<const ContactSample> rows);
 
   /// Writes /states/<k> (k = 0, 1, ...), flushes, and rewrites result.xdmf.
   void write_field_state(const FieldState& s);
@@ -146,6 +152,8 @@ class ResultWriter {
   std::size_t history_rows_written() const { return history_rows_; }  ///< rows on disk (flushed)
 
  private:
+  void append_item_rows(bool wall, std::size_t item, std::span<const double> time_s,
+                        std::span<const ContactSample> rows);
   struct Impl;
   std::string h5_path_;
   std::string xdmf_path_;

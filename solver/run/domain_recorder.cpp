@@ -61,7 +61,13 @@ void DomainRecorder::write_history() {
     for (std::size_t d = 0; d < 3; ++d) contacts_[k].force_N[d] = c.resultant_N[d];
     contacts_[k].energy_J = c.energy_J;
   }
-  writer_.append_history(glstat(s), probes_, contacts_);
+  walls_.resize(s.model().rigid_walls.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const Vec3 f = s.wall_force_N(k);
+    for (std::size_t d = 0; d < 3; ++d) walls_[k].force_N[d] = f[d];
+    walls_[k].energy_J = s.wall_work_J(k);
+  }
+  writer_.append_history(glstat(s), probes_, contacts_, walls_);
 }
 
 void DomainRecorder::write_fields() {

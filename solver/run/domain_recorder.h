@@ -55,6 +55,7 @@ class DomainRecorder {
   // Buffers kept between samples (no allocation per state).
   std::vector<io::ProbeSample> probes_;
   std::vector<io::ContactSample> contacts_;
+  std::vector<io::ContactSample> walls_;  ///< force, and work in energy_J
   std::vector<std::vector<double>> eps_p_, von_mises_, stress_;
   std::vector<double> velocity_;
 };

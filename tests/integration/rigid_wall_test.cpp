@@ -17,7 +17,9 @@
 
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/solver.h"
+#include "solver/io/result_reader.h"
 #include "tests/integration/run_helpers.h"
+#include "tests/integration/shell_command.h"
 
 namespace crashlink {
 namespace {
@@ -30,7 +32,7 @@ constexpr double kGap = 0.05;                 // mm between the bar and the wall
 
 /// The bar along z in [gap, gap + L] mm, moving at -v toward a wall z = 0 with normal +z: NSID the
 /// nodes of its lower face (and all the nodes with `all_nodes`); everything turned by `r`.
-std::string bar_deck(bool all_nodes, const Mat3& r) {
+std::string bar_deck(bool all_nodes, const Mat3& r, bool two_parts = false) {
   auto turned = [&](double x, double y, double z) { return mul(r, Vec3{x, y, z}); };
   std::string s = "*KEYWORD\n*NODE\n";
   int id = 1;
@@ -46,19 +48,22 @@ std::string bar_deck(bool all_nodes, const Mat3& r) {
   for (int k = 0; k < kLayers; ++k) {
     const int b = 4 * k + 1, t = b + 4;
     char line[100];
-    std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d%8d%8d%8d%8d\n", k + 1, 1, b, b + 1, b + 3,
-                  b + 2, t, t + 1, t + 3, t + 2);
+    std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d%8d%8d%8d%8d\n", k + 1,
+                  two_parts && k >= kLayers / 2 ? 2 : 1, b, b + 1, b + 3, b + 2, t, t + 1, t + 3,
+                  t + 2);
     s += line;
   }
-  s += "*PART\nbar\n         1         1         1\n*SECTION_SOLID\n         1         1\n"
+  s += "*PART\nbar\n         1         1         1\n";
+  if (two_parts) s += "*PART\ntop\n         2         1         1\n";
+  s += "*SECTION_SOLID\n         1         1\n"
        "*MAT_ELASTIC\n         1   7.85e-9  210000.0       0.0\n"
        "*SET_NODE_LIST\n        10\n         1         2         3         4\n";
   const Vec3 v = turned(0.0, 0.0, -kV), head = turned(0.0, 0.0, 1000.0);
+  if (two_parts) s += "*SET_PART_LIST\n         7\n         1         2\n";
   char line[120];
-  std::snprintf(
-      line, sizeof line,
-      "*INITIAL_VELOCITY_GENERATION\n         1         2       0.0%10.3f%10.3f%10.3f\n\n", v[0],
-      v[1], v[2]);
+  std::snprintf(line, sizeof line,
+                "*INITIAL_VELOCITY_GENERATION\n%10d%10d       0.0%10.3f%10.3f%10.3f\n\n",
+                two_parts ? 7 : 1, two_parts ? 1 : 2, v[0], v[1], v[2]);
   s += line;
   s += "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n*RIGIDWALL_PLANAR_ID\n         1floor\n";
   s += all_nodes ? "         0\n" : "        10\n";
@@ -74,6 +79,9 @@ struct WallRun {
   double vz_end = 0.0;                ///< mass-weighted mean at the end [m/s]
   double z_min = 1e9;                 ///< lowest node position seen [m]
   double touch = -1.0, leave = -1.0;  ///< the lower face's first arrival and last departure [s]
+  double impulse = 0.0;               ///< sum of the wall's force along its normal x dt [N s]
+  double wall_work = 0.0;             ///< the wall's own work account at the end [J]
+  double mass = 0.0;                  ///< the bar's [kg]
 };
 
 WallRun run_bar(bool all_nodes, const Mat3& rot = identity3()) {
@@ -103,6 +111,8 @@ WallRun run_bar(bool all_nodes, const Mat3& rot = identity3()) {
       if (i < 4) face = std::min(face, z);
     }
     const bool on_wall = face < 1e-9;  // within 1 nm of the plane
+    const Vec3 f = sv.wall_force_N(0);
+    if (!sv.finished()) r.impulse += dot(f, m.rigid_walls[0].normal) * sv.dt_s();
     if (on_wall && r.touch < 0.0) r.touch = sv.time_s();
     if (on_wall) r.leave = sv.time_s();
   });
@@ -115,6 +125,8 @@ WallRun run_bar(bool all_nodes, const Mat3& rot = identity3()) {
     mass += s.mass()[i];
   }
   r.vz_end = p / mass;
+  r.mass = mass;
+  r.wall_work = s.wall_work_J(0);
   return r;
 }
 
@@ -141,6 +153,13 @@ TEST(RigidWall, ElasticBarReboundsAfterTwoLOverC) {
   // the wall's work: minus the kinetic energy of the nodes it stopped, a few layers' worth
   EXPECT_LT(r.external, 0.0);
   EXPECT_GT(r.external, -0.05 * r.e0);
+  // its force history (rwforc): the impulse is the bar's change of momentum, M (v_end + v); its
+  // own work account is the model's external work (the only external force)
+  const double dp = r.mass * (r.vz_end + kV * 1e-3);
+  std::printf("[measured] wall impulse %.6e N s, bar's momentum change %.6e N s (%.2e)\n",
+              r.impulse, dp, r.impulse / dp - 1.0);
+  EXPECT_NEAR(r.impulse, dp, 1e-4 * dp);
+  EXPECT_NEAR(r.wall_work, r.external, 1e-12 * r.e0);
 }
 
 // NSID 0 (every node): the same answer; a node never near the wall is never touched.
@@ -178,6 +197,60 @@ TEST(RigidWall, ATurnedWallGivesTheSameAnswer) {
   EXPECT_NEAR(b.external, a.external, 1e-3 * a.e0);
   EXPECT_GE(b.z_min, -1e-9);  // the deck's coordinates are written to 1e-9 of their size
   EXPECT_LT(b.worst / b.e0, 0.01);
+}
+
+// The wall's force history in result.h5 (/history/rigid_walls/floor: time, force, work), in mono
+// and in multi with the bar cut into two domains (the wall, NSID 0, applied in each to its own
+// nodes; the gather sums them): the same impulse, and the work equals the glstat external work.
+TEST(RigidWall, ForceHistoryInResultFileMonoAndMulti) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_rigid_wall_h5_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "bar.k") << bar_deck(true, identity3(), true);
+  std::ofstream(dir / "bar.yaml") << "model: {deck: bar.k, units: mm-t-s}\n"
+                                     "controls: {history_interval: 2.0e-7}\n"
+                                     "domains:\n  low: {parts: [1]}\n  high: {parts: [2]}\n";
+  struct Out {
+    double impulse = 0.0, work = 0.0, external = 0.0;
+    std::size_t rows = 0;
+  };
+  auto run = [&](const std::string& mode) {
+    int status = 0;
+    const auto out_dir = dir / mode;
+    const std::string text = testing::run_command(
+        std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " + (dir / "bar.yaml").string() +
+            " --mode " + mode + " --quiet --out " + out_dir.string(),
+        status);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+    const io::ResultReader r((out_dir / "result.h5").string());
+    EXPECT_EQ(r.wall_names(), std::vector<std::string>{"floor"});
+    const io::ContactHistory h = r.wall("floor");
+    Out o;
+    o.rows = h.size();
+    // trapezoid rule over the samples (every 0.2 us; the step is 0.34 us, so every cycle)
+    for (std::size_t k = 1; k < h.size(); ++k)
+      o.impulse +=
+          0.5 * (h.force_N[3 * k + 2] + h.force_N[3 * k - 1]) * (h.time_s[k] - h.time_s[k - 1]);
+    o.work = h.energy_J.back();
+    o.external = r.glstat().back().external_work_J;
+    return o;
+  };
+  const Out mono = run("mono"), multi = run("multi");
+  std::printf(
+      "[measured] wall history: mono %zu rows, impulse %.6e N s, work %.6e J (external %.6e J); "
+      "multi %zu rows, impulse %.6e N s, work %.6e J (external %.6e J)\n",
+      mono.rows, mono.impulse, mono.work, mono.external, multi.rows, multi.impulse, multi.work,
+      multi.external);
+  ASSERT_GT(mono.rows, 100u);
+  ASSERT_GT(multi.rows, 100u);
+  // M (v_end + v) ~ 2 M v: 0.785 N s (7.85e-3 kg x 5 m/s x 2, less the wall's 1.6 %)
+  EXPECT_NEAR(mono.impulse, 0.7787, 0.01);
+  EXPECT_NEAR(multi.impulse, mono.impulse, 0.01 * mono.impulse);
+  EXPECT_NEAR(mono.work, mono.external, 1e-9);
+  EXPECT_NEAR(multi.work, multi.external, 0.01 * std::abs(multi.external));
+  EXPECT_LT(mono.work, 0.0);
+  if (!::testing::Test::HasFailure()) std::filesystem::remove_all(dir);
 }
 
 }  // namespace
