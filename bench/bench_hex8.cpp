@@ -86,6 +86,13 @@ void BM_Hex8J2(benchmark::State& state) {
   run(state,
       {"j2", MaterialKind::J2Plastic, 7850.0, 210e9, 0.3, {{0.0, 0.1, 1.0}, {2e6, 5e6, 6e6}}});
 }
+// The same with Cowper-Symonds rate scaling (mild steel C 40.4 1/s, P 5): one pow per element.
+void BM_Hex8J2Rate(benchmark::State& state) {
+  Material m{"j2", MaterialKind::J2Plastic, 7850.0, 210e9, 0.3, {{0.0, 0.1, 1.0}, {2e6, 5e6, 6e6}}};
+  m.rate_c_per_s = 40.4;
+  m.rate_p = 5.0;
+  run(state, m);
+}
 void BM_Hex8J2Damped(benchmark::State& state) {
   run(state,
       {"j2", MaterialKind::J2Plastic, 7850.0, 210e9, 0.3, {{0.0, 0.1, 1.0}, {2e6, 5e6, 6e6}}},
@@ -96,6 +103,7 @@ void BM_Hex8J2Damped(benchmark::State& state) {
 
 BENCHMARK(BM_Hex8Elastic)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hex8J2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hex8J2Rate)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hex8ElasticDamped)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hex8J2Damped)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

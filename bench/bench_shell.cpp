@@ -116,6 +116,13 @@ void BM_ShellElastic5(benchmark::State& s) {
 void BM_ShellPlastic5(benchmark::State& s) {
   run(s, steel(true), 5, true);
 }
+// With Cowper-Symonds rate scaling (C 40.4 1/s, P 5): one pow per yielding batch's point.
+void BM_ShellPlastic5Rate(benchmark::State& s) {
+  auto m = steel(true);
+  m.rate_c_per_s = 40.4;
+  m.rate_p = 5.0;
+  run(s, m, 5, true);
+}
 void BM_ShellElastic5Damped(benchmark::State& s) {
   run(s, steel(false), 5, false, 0.05);
 }
@@ -128,6 +135,7 @@ void BM_ShellPlastic5Damped(benchmark::State& s) {
 BENCHMARK(BM_ShellElastic3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellElastic5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellPlastic5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShellPlastic5Rate)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellElastic5Damped)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShellPlastic5Damped)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -73,16 +73,30 @@ constexpr std::size_t kPrefetchHistory = 128, kPrefetchNodes = 16;
 /// whose return ends on the segment where it starts take the closed form d_ep = (q_tr -
 /// sigma_y) / (3 mu + H) lane-wise (solid_update.h, j2_segment), the others the scalar segment
 /// walk (j2_radial_return). y_low = j2_yield_lower_bound(h); ep: effective plastic strain, in:
-/// t^n, out: t^{n+1}; nl: real lanes; phi: the lanes' Cowper-Symonds factors (nullptr: none),
-/// which scale the curve (phi >= 1 keeps y_low a lower bound).
+/// t^n, out: t^{n+1}; nl: real lanes. With `rate` (a rate-dependent material) each lane's
+/// Cowper-Symonds factor of its effective strain rate sqrt(2/3 d':d') scales the curve
+/// (materials/cowper_symonds.h; phi >= 1 keeps y_low a lower bound); rd: the rate of
+/// deformation.
 void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int nl, vd (&sn)[6],
-               vd& ep, const double* phi) {
+               vd& ep, const materials::Material* rate, const vd (&rd)[6]) {
   const vd p = (sn[0] + sn[1] + sn[2]) * vd(1.0 / 3.0);
   vd s[6] = {sn[0] - p, sn[1] - p, sn[2] - p, sn[3], sn[4], sn[5]};
   const vd ss = madd(s[0], s[0], madd(s[1], s[1], s[2] * s[2])) +
                 vd(2.0) * madd(s[3], s[3], madd(s[4], s[4], s[5] * s[5]));
   const vd q_tr = sqrt(vd(1.5) * ss);
   if (none_of(q_tr > vd(y_low))) return;
+  alignas(64) double phi_lanes[W];
+  const double* phi = nullptr;
+  if (rate != nullptr) {
+    const vd m = (rd[0] + rd[1] + rd[2]) * vd(1.0 / 3.0);
+    const vd a = rd[0] - m, b = rd[1] - m, c = rd[2] - m;
+    const vd r2 =
+        madd(a, a, madd(b, b, c * c)) + vd(2.0) * madd(rd[3], rd[3], madd(rd[4], rd[4], rd[5] * rd[5]));
+    alignas(64) double r[W];
+    sqrt(vd(2.0 / 3.0) * r2).copy_to(r, stdx::vector_aligned);
+    materials::cowper_symonds_factors(r, rate->rate_c_per_s, rate->rate_p, phi_lanes, W);
+    phi = phi_lanes;
+  }
   alignas(64) double y[W], H[W], end[W];
   for (int l = 0; l < W; ++l) {
     const auto seg = materials::j2_segment(h, ep[l]);
@@ -365,16 +379,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     vd ep;
     if (j2 && update) {
       ep = load(ep_all);
-      alignas(64) double phi[W];
-      if (rate) {
-        // Cowper-Symonds factor of each lane's effective strain rate (cowper_symonds.h)
-        for (int l = 0; l < W; ++l)
-          phi[l] = materials::cowper_symonds_factor(
-              materials::effective_strain_rate(d[0][l], d[1][l], d[2][l], d[3][l], d[4][l],
-                                               d[5][l]),
-              mat.rate_c_per_s, mat.rate_p);
-      }
-      j2_return(mat.hardening, y_low, mu, nl, sn, ep, rate ? phi : nullptr);
+      j2_return(mat.hardening, y_low, mu, nl, sn, ep, rate ? &mat : nullptr, d);
     }
 
     // ---- b b^T (M4), its trace b.b and the lmax bound; length for the bulk viscosity

@@ -578,13 +578,15 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
         const double n_cand = (psum[0] + psum[1]) + (psum[2] + psum[3]);
         // Cowper-Symonds factor of each point's effective strain rate (cowper_symonds.h)
         double phi[kMax * L];
-        if (K.rate && n_cand != 0.0)
+        if (K.rate && n_cand != 0.0) {
+          double rate[kMax * L];
+          const double inv_dt = 1.0 / dt;
           for (std::size_t k = 0; k < nk; ++k)
             for (std::size_t l = 0; l < L; ++l)
-              phi[k * L + l] = materials::cowper_symonds_factor(
-                  materials::plane_effective_strain_rate(de[k][0][l] / dt, de[k][1][l] / dt,
-                                                         de[k][2][l] / dt),
-                  K.rate_c, K.rate_p);
+              rate[k * L + l] = materials::plane_effective_strain_rate(
+                  de[k][0][l] * inv_dt, de[k][1][l] * inv_dt, de[k][2][l] * inv_dt);
+          materials::cowper_symonds_factors(rate, K.rate_c, K.rate_p, phi, n_all);
+        }
         const double* const phi_all = K.rate ? phi : nullptr;
         double* const ep_blk = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
         if (K.j2 && n_cand == static_cast<double>(n_all)) {

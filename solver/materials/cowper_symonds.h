@@ -7,12 +7,37 @@
 // the rate of deformation D, rate = sqrt(2/3 D':D') (D' its deviator), which is the axial rate
 // of an isochoric uniaxial stretch.
 #include <cmath>
+#include <cstddef>
+#if defined(__AVX2__) && defined(__GLIBC__)
+#include <immintrin.h>
+// glibc's libmvec: pow of four doubles (AVX2), within 4 ulp of std::pow (glibc manual, "Known
+// Maximum Errors in Math Functions")
+extern "C" __m256d _ZGVdN4vv_pow(__m256d x, __m256d y);
+#define CRASHLINK_LIBMVEC_POW 1
+#endif
 
 namespace crashlink::materials {
 
 /// 1 + (rate / C)^(1/P): rate [1/s] >= 0, C [1/s] > 0, P > 0 [-].
 inline double cowper_symonds_factor(double rate_per_s, double c_per_s, double p) {
   return 1.0 + std::pow(rate_per_s / c_per_s, 1.0 / p);
+}
+
+/// phi[i] = cowper_symonds_factor(rate[i], C, P) for i < n (n a multiple of 4), four at a time
+/// with libmvec's vector pow where it is there (a scalar std::pow costs ~40 ns: +67 % on a
+/// yielding 5-point shell).
+inline void cowper_symonds_factors(const double* rate_per_s, double c_per_s, double p, double* phi,
+                                   std::size_t n) {
+#if defined(CRASHLINK_LIBMVEC_POW)
+  const __m256d inv_c = _mm256_set1_pd(1.0 / c_per_s), e = _mm256_set1_pd(1.0 / p);
+  const __m256d one = _mm256_set1_pd(1.0);
+  for (std::size_t i = 0; i < n; i += 4) {
+    const __m256d x = _mm256_mul_pd(_mm256_loadu_pd(rate_per_s + i), inv_c);
+    _mm256_storeu_pd(phi + i, _mm256_add_pd(one, _ZGVdN4vv_pow(x, e)));
+  }
+#else
+  for (std::size_t i = 0; i < n; ++i) phi[i] = cowper_symonds_factor(rate_per_s[i], c_per_s, p);
+#endif
 }
 
 /// sqrt(2/3 D':D') of a rate of deformation in Voigt order xx, yy, zz, xy, yz, zx (tensor
