@@ -90,8 +90,8 @@ void j2_return(const materials::HardeningCurve& h, double y_low, double mu, int 
   if (rate != nullptr) {
     const vd m = (rd[0] + rd[1] + rd[2]) * vd(1.0 / 3.0);
     const vd a = rd[0] - m, b = rd[1] - m, c = rd[2] - m;
-    const vd r2 =
-        madd(a, a, madd(b, b, c * c)) + vd(2.0) * madd(rd[3], rd[3], madd(rd[4], rd[4], rd[5] * rd[5]));
+    const vd r2 = madd(a, a, madd(b, b, c * c)) +
+                  vd(2.0) * madd(rd[3], rd[3], madd(rd[4], rd[4], rd[5] * rd[5]));
     alignas(64) double r[W];
     sqrt(vd(2.0 / 3.0) * r2).copy_to(r, stdx::vector_aligned);
     materials::cowper_symonds_factors(r, rate->rate_c_per_s, rate->rate_p, phi_lanes, W);
