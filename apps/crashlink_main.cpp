@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
     return crashlink::run::kExitInput;
+  } catch (const crashlink::ModelError& e) {
+    // a model the run cannot take (e.g. its decomposition): bad input, as the daemons report it
+    std::fprintf(stderr, "crashlink: model error: %s\n", e.what());
+    return crashlink::run::kExitInput;
   } catch (const crashlink::IoError& e) {
     std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
     return crashlink::run::kExitIo;

@@ -165,9 +165,12 @@ struct RigidWallCard {
   std::string keyword, heading;
   std::int64_t nsid = 0;
   std::array<double, 3> tail{}, head{};
+  bool moving = false;          ///< _MOVING: card 3 MASS, V0
+  double mass = 0.0, v0 = 0.0;  ///< deck units
   int cards = 0;
   CardRef ref;   ///< card 1
   CardRef ref2;  ///< card 2
+  CardRef ref3;  ///< card 3 (_MOVING)
 };
 
 /// One node (or node set) of *DATABASE_HISTORY_NODE(_ID|_SET): a probe.

@@ -110,6 +110,7 @@ constexpr KeywordName kKeywords[] = {
     {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
     {"*RIGIDWALL_PLANAR", Kw::RigidWall, false, true},
+    {"*RIGIDWALL_PLANAR_MOVING", Kw::RigidWall, false, true},
 };
 
 constexpr const char* kReaderKeywords[] = {"*KEYWORD",
@@ -129,6 +130,25 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 /// The keyword's handler and its suffixes; false if not supported.
 bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
   title = id = false;
+  if (k.rfind("*RIGIDWALL_PLANAR", 0) == 0) {
+    // the options in any order: _ID, _MOVING (_ORTHO, _FINITE and _FORCES are not computed)
+    std::string_view rest = k.substr(std::string_view("*RIGIDWALL_PLANAR").size());
+    bool moving = false;
+    while (!rest.empty()) {
+      if (!id && rest.rfind("_ID", 0) == 0 && (rest.size() == 3 || rest[3] == '_')) {
+        id = true;
+        rest.remove_prefix(3);
+      } else if (!moving && rest.rfind("_MOVING", 0) == 0) {
+        moving = true;
+        rest.remove_prefix(7);
+      } else {
+        id = false;
+        return false;
+      }
+    }
+    kw = Kw::RigidWall;
+    return true;
+  }
   if (k.rfind("*DATABASE_", 0) == 0) {
     // The outputs whose intervals crashlink takes, and the node histories (probes); the rest of
     // *DATABASE_* is accepted without effect.
@@ -214,6 +234,7 @@ class Parser {
     if (b_.kw == Kw::RigidWall) {
       RigidWallCard w;
       w.keyword = b_.keyword;
+      w.moving = b_.keyword.find("_MOVING") != std::string::npos;
       w.ref = ref;
       d_.rigid_walls.push_back(std::move(w));
     }
@@ -378,7 +399,8 @@ class Parser {
         ((b_.kw == Kw::Termination || b_.kw == Kw::ControlHourglass || b_.kw == Kw::ControlBulk) &&
          b_.card == 0) ||
         (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
-        (b_.kw == Kw::RigidWall && d_.rigid_walls.back().cards < 2) ||
+        (b_.kw == Kw::RigidWall &&
+         d_.rigid_walls.back().cards < (d_.rigid_walls.back().moving ? 3 : 2)) ||
         (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
          d_.curves.back().a.empty()) ||
         (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetPartListGenerate &&

@@ -161,9 +161,18 @@ void read_rigid_wall_card(const Card& c, int i, RigidWallCard& w) {
     w.ref2 = c.ref();
     return;
   }
-  c.fail(
-      "only cards 1 and 2 are read (the options _FINITE, _MOVING, _FORCES and their cards "
-      "are not computed); fix: remove the extra cards");
+  if (i == 2 && w.moving) {
+    const auto mass = c.field(L::kRigidWallMoving, 0);
+    w.mass = mass.real(0.0);
+    if (!(w.mass > 0.0))
+      mass.fail("a moving wall needs its mass (> 0); fix: write it in the deck's mass unit");
+    w.v0 = c.field(L::kRigidWallMoving, 1).real(0.0);
+    w.ref3 = c.ref();
+    return;
+  }
+  c.fail(w.moving ? "only cards 1 to 3 are read; fix: remove the extra cards"
+                  : "only cards 1 and 2 are read (the options _FINITE, _ORTHO and _FORCES and "
+                    "their cards are not computed); fix: remove the extra cards");
 }
 
 }  // namespace crashlink::deck

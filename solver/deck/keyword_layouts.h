@@ -113,5 +113,7 @@ inline constexpr FieldSpec kRigidWall1[] = {{"NSID", 10},   {"NSIDEX", 10}, {"BO
                                             {"RWKSF", 10}};
 inline constexpr FieldSpec kRigidWall2[] = {{"XT", 10}, {"YT", 10}, {"ZT", 10},   {"XH", 10},
                                             {"YH", 10}, {"ZH", 10}, {"FRIC", 10}, {"WVEL", 10}};
+/// *RIGIDWALL_PLANAR_MOVING's card: the wall's mass and initial velocity along its normal.
+inline constexpr FieldSpec kRigidWallMoving[] = {{"MASS", 10}, {"V0", 10}};
 
 }  // namespace crashlink::deck::layout

@@ -707,6 +707,10 @@ class Builder {
                 "the head point is the tail point: the wall has no normal; fix: put the head on "
                 "the side of the nodes the wall stops");
       w.normal = (1.0 / len) * n;
+      if (k.moving) {  // *RIGIDWALL_PLANAR_MOVING: MASS, V0 along the normal (toward the nodes)
+        w.mass_kg = k.mass * u_.mass_kg;
+        w.velocity_m_s = k.v0 * u_.velocity_m_s();
+      }
       if (k.nsid == 0) {
         for (std::size_t c = 0; c < m_.nodes.count(); ++c)
           w.nodes.push_back(static_cast<std::int32_t>(c));

@@ -243,6 +243,7 @@ void Solver::apply_initial_velocities() {
             "(fix: leave the body's nodes out of the wall's node set)",
             w.name, model_.nodes.id[static_cast<std::size_t>(c)]));
     walls_.push_back({&w, std::vector<double>(3 * w.nodes.size(), 0.0)});
+    walls_.back().velocity_m_s = w.velocity_m_s;
   }
   v_prev_ = v_;
   omega_prev_ = omega_;
@@ -261,14 +262,48 @@ void Solver::apply_rigid_walls(double dt_pair) {
     const model::RigidWall& w = *rw.wall;
     const Vec3& nrm = w.normal;
     rw.force_N = Vec3{};
+    // the plane at t^n: point + travel n; a node i stays on its side over the step when
+    // v_i.n >= V - d_i / dt (V the wall's velocity over the step)
+    auto gap = [&](std::size_t i) {
+      return (x_[3 * i] - w.point_m[0]) * nrm[0] + (x_[3 * i + 1] - w.point_m[1]) * nrm[1] +
+             (x_[3 * i + 2] - w.point_m[2]) * nrm[2] - rw.travel_m;
+    };
+    auto v_normal = [&](std::size_t i) {
+      return v_[3 * i] * nrm[0] + v_[3 * i + 1] * nrm[1] + v_[3 * i + 2] * nrm[2];
+    };
+    double V = rw.velocity_m_s;
+    if (w.moving()) {
+      // A moving wall of mass M meets the nodes it would pass in a perfectly plastic impact
+      // along its normal: those nodes end the step on the plane, v_i.n = V' - d_i / dt, and the
+      // normal momentum is kept, M V + sum m_i v_i.n = M V' + sum m_i (V' - d_i / dt), so
+      //   V' = (M V + sum_active m_i (v_i.n + d_i / dt)) / (M + sum_active m_i),
+      // the active nodes those with v_i.n < V' - d_i / dt (found by iterating from V' = V: a
+      // lighter wall slows, so the set can only shrink; a few passes).
+      const double M = w.mass_kg;
+      double V_new = V;
+      for (int pass = 0; pass < 50; ++pass) {
+        double num = M * V, den = M;
+        for (auto c : w.nodes) {
+          const auto i = static_cast<std::size_t>(c);
+          const double d = std::max(gap(i), 0.0);
+          const double vn = v_normal(i);
+          if (std::isfinite(d) && vn < V_new - d / dt) {
+            num += mass_[i] * (vn + d / dt);
+            den += mass_[i];
+          }
+        }
+        const double next = num / den;
+        if (next == V_new) break;
+        V_new = next;
+      }
+      V = V_new;
+    }
     for (std::size_t k = 0; k < w.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(w.nodes[k]);
       double r[3] = {0.0, 0.0, 0.0};
-      const double d = (x_[3 * i] - w.point_m[0]) * nrm[0] +
-                       (x_[3 * i + 1] - w.point_m[1]) * nrm[1] +
-                       (x_[3 * i + 2] - w.point_m[2]) * nrm[2];
-      const double vn = v_[3 * i] * nrm[0] + v_[3 * i + 1] * nrm[1] + v_[3 * i + 2] * nrm[2];
-      const double vn_min = -std::max(d, 0.0) / dt;
+      const double d = gap(i);
+      const double vn = v_normal(i);
+      const double vn_min = V - std::max(d, 0.0) / dt;
       if (std::isfinite(d) && vn < vn_min) {
         const double dv = vn_min - vn;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -288,6 +323,7 @@ void Solver::apply_rigid_walls(double dt_pair) {
         rw.work_J += work;
       }
     }
+    rw.velocity_m_s = V;
   }
 }
 
@@ -675,6 +711,7 @@ void Solver::end_cycle_positions() {
   // [2] for every node; the ghosts' values are provisional (apply_ghost_motion).
   advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
                        u_.size());
+  for (auto& rw : walls_) rw.travel_m += dt * rw.velocity_m_s;  // a moving wall's plane
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
   for (auto& b : bodies_) {

@@ -196,6 +196,10 @@ class Solver {
   /// kinetic energy it took).
   Vec3 wall_force_N(std::size_t k) const { return walls_[k].force_N; }
   double wall_work_J(std::size_t k) const { return walls_[k].work_J; }
+  /// A moving wall's travel along its normal since t = 0 at t^n [m] and its velocity over the
+  /// step about to be taken [m/s] (0 and 0 for a fixed wall).
+  double wall_travel_m(std::size_t k) const { return walls_[k].travel_m; }
+  double wall_velocity_m_s(std::size_t k) const { return walls_[k].velocity_m_s; }
 
  private:
   void assemble_masses();
@@ -291,8 +295,10 @@ class Solver {
   struct WallRuntime {
     const model::RigidWall* wall;
     std::vector<double> reaction_prev;
-    Vec3 force_N{};       ///< sum of the reactions of the last application [N]
-    double work_J = 0.0;  ///< its work since t = 0 (trapezoid rule) [J]
+    Vec3 force_N{};             ///< sum of the reactions of the last application [N]
+    double work_J = 0.0;        ///< its work since t = 0 (trapezoid rule) [J]
+    double travel_m = 0.0;      ///< a moving wall's displacement along its normal at t^n [m]
+    double velocity_m_s = 0.0;  ///< its velocity over [t^n, t^{n+1}] [m/s]
   };
   std::vector<WallRuntime> walls_;
   void apply_rigid_walls(double dt_pair);

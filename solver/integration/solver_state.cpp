@@ -112,6 +112,8 @@ void Solver::visit_state(V& v, Self& s) {
     v.sized(fmt::format("wall{}.reaction_prev", k), s.walls_[k].reaction_prev);
     v.pod(fmt::format("wall{}.force", k), s.walls_[k].force_N);
     v.num(fmt::format("wall{}.work", k), s.walls_[k].work_J);
+    v.num(fmt::format("wall{}.travel", k), s.walls_[k].travel_m);
+    v.num(fmt::format("wall{}.velocity", k), s.walls_[k].velocity_m_s);
   }
   v.pod("energy", s.energy_);
   v.num("time_s", s.time_s_);

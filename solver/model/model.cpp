@@ -107,6 +107,12 @@ void validate(const Model& m) {
     for (auto i : w.nodes)
       if (i < 0 || static_cast<std::size_t>(i) >= m.nodes.count())
         throw ModelError(fmt::format("rigid wall '{}': node index {} out of range", w.name, i));
+    if (!(w.mass_kg >= 0.0) || !std::isfinite(w.velocity_m_s) ||
+        (w.mass_kg == 0.0 && w.velocity_m_s != 0.0))
+      throw ModelError(fmt::format(
+          "rigid wall '{}': mass {} kg, velocity {} m/s; a fixed wall has mass 0 and no "
+          "velocity, a moving one a mass > 0 (fix: give the moving wall's mass)",
+          w.name, w.mass_kg, w.velocity_m_s));
   }
   const auto& idamp = m.coupling.interface_damping;
   if (!(idamp.ratio >= 0.0 && idamp.ratio <= 0.5))

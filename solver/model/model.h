@@ -110,6 +110,11 @@ struct RigidWall {
   Vec3 point_m{};                   ///< a point of the plane
   Vec3 normal{};                    ///< unit normal pointing to the side the nodes stay on
   std::vector<std::int32_t> nodes;  ///< node indices the wall stops
+  /// A moving wall (LS-DYNA *RIGIDWALL_PLANAR_MOVING): its mass [kg] (0: fixed) and initial
+  /// velocity along `normal` [m/s] (> 0: toward the nodes); it moves along its normal only.
+  double mass_kg = 0.0;
+  double velocity_m_s = 0.0;
+  bool moving() const { return mass_kg > 0.0; }
 };
 
 /// How a contact pairs its surfaces (solver/contact/contact_interface.cpp).

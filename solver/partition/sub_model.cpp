@@ -139,7 +139,17 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
   for (const auto& w : g.rigid_walls) {  // a kinematic condition, as a prescribed velocity
     auto nodes = restrict_nodes(w.nodes, false);
     if (nodes.empty()) continue;
-    m.rigid_walls.push_back({w.name, w.point_m, w.normal, std::move(nodes)});
+    // A moving wall's motion follows from every node it meets: all of them in one domain.
+    if (w.moving() && nodes.size() != w.nodes.size())
+      throw ModelError(fmt::format(
+          "moving rigid wall '{}': {} of its {} nodes are in domain '{}', the others elsewhere; a "
+          "moving wall is computed in one domain (fix: put the parts it meets in one domain, or "
+          "give it only the nodes of one domain's parts)",
+          w.name, nodes.size(), w.nodes.size(), out.name));
+    model::RigidWall sw{w.name, w.point_m, w.normal, std::move(nodes)};
+    sw.mass_kg = w.mass_kg;
+    sw.velocity_m_s = w.velocity_m_s;
+    m.rigid_walls.push_back(std::move(sw));
   }
   for (const auto& ld : g.loads) {
     auto nodes = restrict_nodes(ld.nodes, true);

@@ -32,7 +32,10 @@ constexpr double kGap = 0.05;                 // mm between the bar and the wall
 
 /// The bar along z in [gap, gap + L] mm, moving at -v toward a wall z = 0 with normal +z: NSID the
 /// nodes of its lower face (and all the nodes with `all_nodes`); everything turned by `r`.
-std::string bar_deck(bool all_nodes, const Mat3& r, bool two_parts = false) {
+/// With `wall_mass_t` > 0 the bar is at rest and the wall moves (*RIGIDWALL_PLANAR_MOVING, mass in
+/// t) toward it at kV.
+std::string bar_deck(bool all_nodes, const Mat3& r, bool two_parts = false,
+                     double wall_mass_t = 0.0) {
   auto turned = [&](double x, double y, double z) { return mul(r, Vec3{x, y, z}); };
   std::string s = "*KEYWORD\n*NODE\n";
   int id = 1;
@@ -58,18 +61,25 @@ std::string bar_deck(bool all_nodes, const Mat3& r, bool two_parts = false) {
   s += "*SECTION_SOLID\n         1         1\n"
        "*MAT_ELASTIC\n         1   7.85e-9  210000.0       0.0\n"
        "*SET_NODE_LIST\n        10\n         1         2         3         4\n";
-  const Vec3 v = turned(0.0, 0.0, -kV), head = turned(0.0, 0.0, 1000.0);
+  const Vec3 v = turned(0.0, 0.0, wall_mass_t > 0.0 ? 0.0 : -kV), head = turned(0.0, 0.0, 1000.0);
   if (two_parts) s += "*SET_PART_LIST\n         7\n         1         2\n";
   char line[120];
   std::snprintf(line, sizeof line,
                 "*INITIAL_VELOCITY_GENERATION\n%10d%10d       0.0%10.3f%10.3f%10.3f\n\n",
                 two_parts ? 7 : 1, two_parts ? 1 : 2, v[0], v[1], v[2]);
   s += line;
-  s += "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n*RIGIDWALL_PLANAR_ID\n         1floor\n";
+  s += wall_mass_t > 0.0 ? "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n"
+                           "*RIGIDWALL_PLANAR_MOVING_ID\n         1floor\n"
+                         : "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n"
+                           "*RIGIDWALL_PLANAR_ID\n         1floor\n";
   s += all_nodes ? "         0\n" : "        10\n";
   std::snprintf(line, sizeof line, "       0.0       0.0       0.0%10.4f%10.4f%10.4f\n", head[0],
                 head[1], head[2]);
   s += line;
+  if (wall_mass_t > 0.0) {
+    std::snprintf(line, sizeof line, "%10.4e%10.1f\n", wall_mass_t, kV);
+    s += line;
+  }
   s += "*CONTROL_TERMINATION\n   8.0E-05\n*END\n";
   return s;
 }
@@ -251,6 +261,84 @@ TEST(RigidWall, ForceHistoryInResultFileMonoAndMulti) {
   EXPECT_NEAR(multi.work, multi.external, 0.01 * std::abs(multi.external));
   EXPECT_LT(mono.work, 0.0);
   if (!::testing::Test::HasFailure()) std::filesystem::remove_all(dir);
+}
+
+// A moving wall (*RIGIDWALL_PLANAR_MOVING, mass M = the bar's, V0 = 5 m/s) strikes the elastic bar
+// at rest: Saint-Venant's impact of a mass on a long bar (Goldsmith, "Impact", 1960, sec. 3.2;
+// Johnson, "Impact Strength of Materials", 1972, sec. 1.5): until the wave returns from the far
+// end (2L/c), the end moves with the mass and the bar pushes on it with rho c A V, so
+// M dV/dt = -rho c A V and V = V0 exp(-t/tau), tau = M / (rho c A) = L/c here. The normal momentum
+// of wall and bar together is kept at every cycle (the wall's impact with the nodes is the only
+// force between them).
+TEST(RigidWall, MovingWallDeceleratesAsSaintVenantsMassOnABar) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_moving_wall_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto path = (dir / "bar.k").string();
+  const double bar_mass_t = kRho * kL * kA * kA;
+  std::ofstream(path) << bar_deck(false, identity3(), false, bar_mass_t);
+  const model::Model m = deck::read_deck(path, {"mm-t-s", {}}).model;
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(m.rigid_walls.size(), 1u);
+  ASSERT_TRUE(m.rigid_walls[0].moving());
+  const double M = bar_mass_t * 1e3, V0 = kV * 1e-3;  // kg, m/s
+  EXPECT_NEAR(m.rigid_walls[0].mass_kg, M, 1e-12);
+  EXPECT_DOUBLE_EQ(m.rigid_walls[0].velocity_m_s, V0);
+  const double c = std::sqrt(kE / kRho) * 1e-3, tau = kL * 1e-3 / c;  // m/s, s
+  integration::Solver s(m);
+  double touch = -1.0, worst_p = 0.0, worst_v = 0.0, v_at_1 = 0.0, v_at_15 = 0.0;
+  double wall_ke_loss = 0.0, wall_work = 0.0;
+  testing::run(s, [&](const integration::Solver& sv) {
+    const double V = sv.wall_velocity_m_s(0);
+    double p = M * V;
+    for (std::size_t i = 0; i < m.nodes.count(); ++i)
+      p += sv.mass()[i] * sv.velocity_mid()[3 * i + 2];
+    worst_p = std::max(worst_p, std::abs(p - M * V0) / (M * V0));
+    if (touch < 0.0 && V < V0) touch = sv.time_s();
+    if (touch >= 0.0) {
+      const double t = sv.time_s() - touch;
+      if (t > 0.1 * tau && t < 1.9 * tau)
+        worst_v = std::max(worst_v, std::abs(V - V0 * std::exp(-t / tau)) / V0);
+      if (v_at_1 == 0.0 && t >= tau) v_at_1 = V / V0;
+      if (v_at_15 == 0.0 && t >= 1.5 * tau) v_at_15 = V / V0;
+    }
+    wall_ke_loss = 0.5 * M * (V0 * V0 - V * V);
+    wall_work = sv.wall_work_J(0);
+  });
+  std::printf(
+      "[measured] moving wall (M = bar, 5 m/s) on an elastic bar: V/V0 %.4f at L/c (e^-1 = "
+      "%.4f), %.4f at 1.5 L/c (%.4f); largest |V - V0 exp(-t/tau)| %.4f V0 over (0.1, 1.9) L/c; "
+      "normal momentum kept to %.1e; wall's kinetic energy lost %.5f J, its work on the bar "
+      "%.5f J, balance %.2e E\n",
+      v_at_1, std::exp(-1.0), v_at_15, std::exp(-1.5), worst_v, worst_p, wall_ke_loss, wall_work,
+      s.energy().balance_J() / wall_ke_loss);
+  ASSERT_GT(touch, 0.0);
+  EXPECT_LT(worst_p, 1e-12);
+  EXPECT_LT(worst_v, 0.01);
+  // the bar's energy is the wall's work on it; the wall lost more (the nodes' plastic impacts)
+  EXPECT_GT(wall_work, 0.0);
+  EXPECT_LT(wall_work, wall_ke_loss);
+  EXPECT_LT(std::abs(s.energy().balance_J()), 1e-6 * wall_ke_loss);
+}
+
+// A moving wall whose nodes lie in two domains is refused before the run, with the fix.
+TEST(RigidWall, MovingWallAcrossDomainsIsRefused) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_moving_wall_domains_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "bar.k") << bar_deck(true, identity3(), true, kRho * kL * kA * kA);
+  std::ofstream(dir / "bar.yaml") << "model: {deck: bar.k, units: mm-t-s}\n"
+                                     "domains:\n  low: {parts: [1]}\n  high: {parts: [2]}\n";
+  int status = 0;
+  const std::string text = testing::run_command(
+      std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " + (dir / "bar.yaml").string() +
+          " --mode multi --quiet --out " + (dir / "out").string(),
+      status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << text;
+  EXPECT_NE(text.find("moving rigid wall 'floor': "), std::string::npos) << text;
+  EXPECT_NE(text.find("a moving wall is computed in one domain"), std::string::npos) << text;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -62,6 +62,13 @@ TEST_F(DeckControls, ViscousHourglassIsReadAsTheStiffnessFormWithANote) {
   EXPECT_TRUE(noted);
 }
 
+/// The two cubes and `more` lines after them.
+std::vector<std::string> with_lines(std::vector<std::string> more) {
+  auto d = testing::two_cubes();
+  d.insert(d.end(), more.begin(), more.end());
+  return d;
+}
+
 /// The two cubes with `mat` (lines) in place of their *MAT_ELASTIC (lines 30-31, index 29-30).
 std::vector<std::string> with_material(std::vector<std::string> mat) {
   auto d = testing::two_cubes();
@@ -119,6 +126,31 @@ TEST_F(DeckControls, RateCoefficientIsConvertedFromTheDecksTime) {
   ASSERT_EQ(m.materials.size(), 1u);
   EXPECT_NEAR(m.materials[0].rate_c_per_s, 40.4, 1e-12);
   EXPECT_NEAR(m.materials[0].hardening.sigma_y_Pa[0], 250e6, 1e-3);
+}
+
+// *RIGIDWALL_PLANAR_MOVING (either order with _ID): the mass and velocity in SI.
+TEST_F(DeckControls, MovingWallReadsItsMassAndVelocity) {
+  DeckRead r;
+  ASSERT_EQ(read(with_lines({"*RIGIDWALL_PLANAR_MOVING_ID", "         3ram", "         0",
+                             "       0.0       0.0      -1.0       0.0       0.0       1.0",
+                             "     0.250    5000.0"}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.rigid_walls.size(), 1u);
+  EXPECT_EQ(r.model.rigid_walls[0].name, "ram");
+  EXPECT_DOUBLE_EQ(r.model.rigid_walls[0].mass_kg, 250.0);  // t
+  EXPECT_DOUBLE_EQ(r.model.rigid_walls[0].velocity_m_s, 5.0);
+  ASSERT_EQ(
+      read(with_lines({"*RIGIDWALL_PLANAR_FINITE", "         0",
+                       "       0.0       0.0      -1.0       0.0       0.0       1.0"})),
+      "c.k:34: *RIGIDWALL_PLANAR_FINITE: not supported; fix: remove it, or pass --ignore "
+      "RIGIDWALL_PLANAR_FINITE to skip it (what it does is then missing from the run). "
+      "Supported: " +
+          [] {
+            std::string all;
+            for (const auto& k : supported_keywords()) all += (all.empty() ? "" : " ") + k;
+            return all;
+          }());
 }
 
 TEST_F(DeckControls, MistakesNameTheirField) {
@@ -197,6 +229,17 @@ TEST_F(DeckControls, MistakesNameTheirField) {
        plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0"}),
        "c.k:34: *RIGIDWALL_PLANAR: its cards are missing (the next keyword or the end of the file "
        "follows); fix: add them or remove the keyword"},
+      {"a moving wall without its mass",
+       plus(testing::two_cubes(),
+            {"*RIGIDWALL_PLANAR_MOVING", "         0",
+             "       0.0       0.0      -1.0       0.0       0.0       1.0", "          1000.0"}),
+       "c.k:37: *RIGIDWALL_PLANAR_MOVING field MASS (columns 1-10) = (blank): a moving wall "
+       "needs its mass (> 0); fix: write it in the deck's mass unit"},
+      {"a moving wall without its card 3",
+       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR_ID_MOVING", "         3ram", "         0",
+                                   "       0.0       0.0      -1.0       0.0       0.0       1.0"}),
+       "c.k:34: *RIGIDWALL_PLANAR_ID_MOVING: its cards are missing (the next keyword or the end "
+       "of the file follows); fix: add them or remove the keyword"},
   };
   for (const auto& k : mistakes) {
     SCOPED_TRACE(k.what);
