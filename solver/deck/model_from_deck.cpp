@@ -846,6 +846,24 @@ std::vector<std::string> plausible_unit_systems(const Deck& deck) {
   return out;
 }
 
+std::vector<std::string> inferable_unit_systems(const Deck& deck) {
+  std::vector<std::string> out;
+  const bool deformable = std::any_of(deck.materials.begin(), deck.materials.end(),
+                                      [](const auto& m) { return m.type != MaterialType::Rigid; });
+  if (!deformable) return out;
+  for (const auto& u : unit_systems()) {
+    bool ok = true;
+    for (const auto& m : deck.materials) {
+      if (m.type == MaterialType::Rigid) continue;
+      const double c = wave_speed_m_s(m, u), rho = m.rho * u.density_kg_m3();
+      ok = ok && c >= kMinWaveSpeed_m_s && c <= kMaxWaveSpeed_m_s && rho >= kMinDensity_kg_m3 &&
+           rho <= kMaxDensity_kg_m3;
+    }
+    if (ok) out.emplace_back(u.name);
+  }
+  return out;
+}
+
 model::Model model_from_deck(const Deck& deck, const UnitSystem& units) {
   Builder b(deck, units);
   return b.build();
@@ -856,21 +874,44 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
   po.ignore = options.ignore;
   const Deck deck = parse_deck(path, po);
   const UnitSystem* units = find_unit_system(options.units);
+  std::string inferred;
+  if (!units && options.units.empty()) {
+    // No system given: the one system in which the materials are crash materials, if one.
+    const auto fits = inferable_unit_systems(deck);
+    if (fits.size() == 1) {
+      units = find_unit_system(fits[0]);
+      inferred = fits[0];
+    }
+  }
   if (!units) {
     const auto fits = plausible_unit_systems(deck);
-    std::string fit_text;
+    const auto strict = inferable_unit_systems(deck);
+    std::string fit_text, strict_text;
     for (const auto& f : fits) fit_text += (fit_text.empty() ? "" : ", ") + f;
+    for (const auto& f : strict) strict_text += (strict_text.empty() ? "" : ", ") + f;
     throw InputError(
         path, 0, "--units",
-        fmt::format("{}; a deck writes no units down; fix: pass --units with one of {} (the "
-                    "materials' wave speeds fit: {})",
+        fmt::format("{}; a deck writes no units down{}; fix: pass --units with one of {} (the "
+                    "materials' wave speeds fit: {}; their densities too: {})",
                     options.units.empty()
                         ? std::string("not given")
                         : fmt::format("'{}' is not a known system", options.units),
-                    unit_system_names(), fit_text.empty() ? std::string("none") : fit_text));
+                    options.units.empty()
+                        ? std::string(", and no single system makes every material's wave "
+                                      "speed and density those of a crash material")
+                        : std::string(),
+                    unit_system_names(), fit_text.empty() ? std::string("none") : fit_text,
+                    strict_text.empty() ? std::string("none") : strict_text));
   }
   Builder b(deck, *units);
-  DeckRead out{b.build(), {}, {}, {}};
+  DeckRead out{b.build(), {}, {}, {}, std::string(units->name)};
+  if (!inferred.empty())
+    out.messages.push_back(fmt::format(
+        "units: --units not given; read in {}, the only system in which every material's wave "
+        "speed sqrt(E/RO) and density are those of a crash material ([{:.0f}, {:.0f}] m/s, "
+        "[{:.0f}, "
+        "{:.0f}] kg/m^3); pass --units to choose",
+        inferred, kMinWaveSpeed_m_s, kMaxWaveSpeed_m_s, kMinDensity_kg_m3, kMaxDensity_kg_m3));
   for (std::uint32_t f = 0; f < deck.files.count(); ++f) out.files.push_back(deck.files.name(f));
   for (const PartCard& pc : deck.parts)
     if (std::find(b.empty_parts_.begin(), b.empty_parts_.end(), pc.id) == b.empty_parts_.end())

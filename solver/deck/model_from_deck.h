@@ -27,6 +27,7 @@ struct DeckRead {
   std::vector<std::string> files;
   /// The *PART PID of each model part (model.parts order): `domains:` by part id.
   std::vector<std::int64_t> part_ids;
+  std::string units;  ///< the unit system read in (given, or inferred when not given)
 };
 
 /// parse_deck, then model_from_deck in the units of `options`.
@@ -42,6 +43,15 @@ std::vector<std::string> plausible_unit_systems(const Deck& deck);
 /// Wave speeds a crash material has [m/s]: soft foams ~100, steel 5200, beryllium 12 900.
 inline constexpr double kMinWaveSpeed_m_s = 100.0;
 inline constexpr double kMaxWaveSpeed_m_s = 20000.0;
+/// Densities a crash material has [kg/m^3]: foams and honeycombs from ~20, tungsten 19 300.
+inline constexpr double kMinDensity_kg_m3 = 10.0;
+inline constexpr double kMaxDensity_kg_m3 = 25000.0;
+
+/// The unit systems in which every deformable material has a crash material's wave speed and
+/// density (the ranges above): what read_deck infers when no system is given, if there is
+/// exactly one (none if the deck has no deformable material). The density separates the systems
+/// whose wave speeds agree (m-kg-s and mm-g-ms both read sqrt(E/RO) in m/s).
+std::vector<std::string> inferable_unit_systems(const Deck& deck);
 
 /// True if a file name looks like a keyword deck (.k, .key, .dyn, .kw; any case).
 bool is_deck_path(const std::string& path);

@@ -51,11 +51,18 @@ TEST(DeckRun, CommandLineRunsADeckAndRefusesMistakesWithExit2) {
   EXPECT_EQ(out.find("accepted without effect"), std::string::npos) << out;
   EXPECT_TRUE(std::filesystem::exists(dir / "result.h5"));
 
-  out = testing::run_command(kCrashlink + " run " + kDeck + " --out " + dir.string(), status);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
-  EXPECT_NE(out.find(kDeck + ":0: --units: not given; a deck writes no units down; fix: pass "
-                             "--units with one of mm-t-s"),
+  // Without --units: the one system its steel fits is inferred, and said.
+  out =
+      testing::run_command(kCrashlink + " run " + kDeck + " --quiet --out " + dir.string(), status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  EXPECT_NE(out.find("crashlink run: deck: units: --units not given; read in mm-t-s"),
             std::string::npos)
+      << out;
+  // An unknown system is refused.
+  out = testing::run_command(
+      kCrashlink + " run " + kDeck + " --units mm-t-ms --out " + dir.string(), status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
+  EXPECT_NE(out.find(kDeck + ":0: --units: 'mm-t-ms' is not a known system"), std::string::npos)
       << out;
 
   out = testing::run_command(

@@ -172,10 +172,26 @@ TEST_F(DeckErrors, UndefinedParameter) {
 }
 
 TEST_F(DeckErrors, UnitsMissingOrUnknownNameTheCandidates) {
-  EXPECT_EQ(error_of(cube(), ""),
-            "err.k:0: --units: not given; a deck writes no units down; fix: pass --units with one "
-            "of mm-t-s, m-kg-s, mm-kg-ms, mm-g-ms, cm-g-us, in-lbf-s (the materials' wave speeds "
-            "fit: mm-t-s)");
+  // Not given and inferable (steel in mm-t-s): read in mm-t-s, said so.
+  EXPECT_EQ(error_of(cube(), ""), "");
+  std::string text;
+  for (const auto& l : cube()) text += l + "\n";
+  const auto r = read_deck(dir_.write("ok.k", text), {"", {}});
+  EXPECT_EQ(r.units, "mm-t-s");
+  EXPECT_DOUBLE_EQ(r.model.materials[0].density_kg_m3, 7850.0);
+  ASSERT_FALSE(r.messages.empty());
+  EXPECT_EQ(r.messages[0],
+            "units: --units not given; read in mm-t-s, the only system in which every "
+            "material's wave speed sqrt(E/RO) and density are those of a crash material ([100, "
+            "20000] m/s, [10, 25000] kg/m^3); pass --units to choose");
+  // Not given and not inferable: RO without its e-9 is no crash material in any system.
+  auto d = cube();
+  d[18] = "         1      7.85  210000.0       0.3";
+  EXPECT_EQ(error_of(d, ""),
+            "err.k:0: --units: not given; a deck writes no units down, and no single system makes "
+            "every material's wave speed and density those of a crash material; fix: pass "
+            "--units with one of mm-t-s, m-kg-s, mm-kg-ms, mm-g-ms, cm-g-us, in-lbf-s (the "
+            "materials' wave speeds fit: m-kg-s, mm-kg-ms, mm-g-ms; their densities too: none)");
   EXPECT_NE(error_of(cube(), "mm-t-ms").find("--units: 'mm-t-ms' is not a known system"),
             std::string::npos);
 }
