@@ -35,12 +35,15 @@ struct Crush {
   double contact_min_J = 0.0, work_J = 0.0, t_end = 0.0;
 };
 
-/// The wall's numbers at the end; the balance and contact energy over the run.
-void finish(const model::RigidWall& w, double travel, double v, Crush& c) {
-  c.travel_m = travel;
+/// The wall at its deepest (the crush: it may stop and spring back before the end): the mean
+/// crush force is the kinetic energy it had lost there over its travel there.
+void track(const model::RigidWall& w, double travel, double v, Crush& c) {
+  if (travel > c.travel_m) {
+    c.travel_m = travel;
+    const double ke_lost = 0.5 * w.mass_kg * (w.velocity_m_s * w.velocity_m_s - v * v);
+    c.mean_force_N = ke_lost / travel;
+  }
   c.v_end = v;
-  const double ke_lost = 0.5 * w.mass_kg * (w.velocity_m_s * w.velocity_m_s - v * v);
-  c.mean_force_N = travel > 0.0 ? ke_lost / travel : 0.0;
 }
 
 Crush run_mono(const model::Model& m) {
@@ -50,13 +53,13 @@ Crush run_mono(const model::Model& m) {
   for (;;) {
     s.begin_cycle();
     c.balance_max = std::max(c.balance_max, std::abs(s.energy().balance_J()));
+    track(m.rigid_walls[0], s.wall_travel_m(0), s.wall_velocity_m_s(0), c);
     c.contact_min_J = std::min(c.contact_min_J, s.energy().contact_J);
     if (s.finished()) break;
     s.end_cycle();
   }
   c.t_end = s.time_s();
   c.work_J = s.wall_work_J(0);
-  finish(m.rigid_walls[0], s.wall_travel_m(0), s.wall_velocity_m_s(0), c);
   return c;
 }
 
@@ -82,11 +85,11 @@ Crush run_multi(const model::Model& m) {
     if (together) c.balance_max = std::max(c.balance_max, std::abs(net.energy().balance_J()));
     if (k != k_fine) return;
     c.t_end = net.seconds(net.stepper(k).time());
+    track(m.rigid_walls[0], sv.wall_travel_m(0), sv.wall_velocity_m_s(0), c);
   });
   const auto& fine = net.solver(k_fine);
   EXPECT_EQ(fine.model().rigid_walls.size(), 1u);
   c.work_J = fine.wall_work_J(0);
-  finish(m.rigid_walls[0], fine.wall_travel_m(0), fine.wall_velocity_m_s(0), c);
   return c;
 }
 
@@ -104,7 +107,8 @@ void crush_and_compare(const model::Model& m, double end_time_s) {
   const double e_in = 0.5 * 50.0 * 100.0;  // the wall's kinetic energy, J
   for (const auto* r : {&mono, &multi})
     std::printf(
-        "[measured] tube deck %s (%.0f ms, %zu elements): wall travel %.2f mm, v_end %.3f m/s, "
+        "[measured] tube deck %s (%.0f ms, %zu elements): wall's deepest travel %.2f mm, v_end "
+        "%.3f m/s, "
         "mean crush force "
         "%.0f N, wall work %.1f J, largest |balance| %.2e and contact energy min %.2e of the "
         "wall's 2500 J\n",
@@ -155,11 +159,12 @@ TEST(TubeDeck, MonoAndMultiTenMillisecondsLong) {
   crush_and_compare(generated("10ms", "--end-time 0.01"), 10e-3);
 }
 
-// 2.5 mm around and along the coarse part, 1 mm along the fine part, 16 ms.
+// 2.5 mm around and along the coarse part, 1 mm along the fine part, 8 ms (the wall stops
+// within about 5 ms: the rate-hardened tube takes its 2500 J in some 35 mm).
 TEST(TubeDeck, MonoAndMultiFineMeshLong) {
-  if (!long_runs()) GTEST_SKIP() << "long crush (an hour): set CRASHLINK_LONG=1";
-  crush_and_compare(generated("fine", "--end-time 0.016 --around 2.5 --coarse 2.5 --fine 1.0"),
-                    16e-3);
+  if (!long_runs()) GTEST_SKIP() << "long crush (half an hour): set CRASHLINK_LONG=1";
+  crush_and_compare(generated("fine", "--end-time 0.008 --around 2.5 --coarse 2.5 --fine 1.0"),
+                    8e-3);
 }
 
 }  // namespace
