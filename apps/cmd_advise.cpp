@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "apps/advise_process_sample.h"
+#include "solver/core/errors.h"
 #include "solver/cosim/split_advice.h"
+#include "solver/deck/model_from_deck.h"
 #include "solver/io/scenario_reader.h"
 
 namespace crashlink::apps {
@@ -40,9 +42,14 @@ std::string histogram(const std::vector<double>& dt, double lo, double hi) {
 CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options) {
   auto* cmd = app.add_subcommand(
       "advise", "element steps per part and the two-domain split with the best predicted gain");
-  cmd->add_option("scenario", options.scenario, "scenario YAML file")
+  cmd->add_option("scenario", options.scenario,
+                  "scenario YAML file, or a keyword deck (.k, .key, .dyn, .kw; docs/decks.md)")
       ->required()
       ->check(CLI::ExistingFile);
+  cmd->add_option("--units", options.units,
+                  "a keyword deck's unit system (as `crashlink run`; inferred if not given)");
+  cmd->add_option("--ignore", options.ignore, "a keyword deck's keywords to skip, without '*'")
+      ->delimiter(',');
   cmd->add_option("--step-safety", options.step_safety,
                   "the coupled run's factor on the domains' initial steps")
       ->check(CLI::Range(1e-6, 1.0))
@@ -55,7 +62,26 @@ CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options) {
 }
 
 int run_advise(const AdviseOptions& options, std::FILE* out) {
-  const auto model = io::read_scenario(options.scenario);
+  const bool deck = deck::is_deck_path(options.scenario);
+  if (!deck && (!options.units.empty() || !options.ignore.empty()))
+    throw InputError(options.scenario, 0, "--units",
+                     "--units and --ignore apply to keyword decks; this is a YAML scenario in SI "
+                     "units: remove them");
+  if (deck && options.process_sample > 0.0)
+    throw InputError(options.scenario, 0, "--process-sample",
+                     "times the scenario's own domains, which a deck does not name; fix: write "
+                     "the scenario this advice prints and pass it");
+  std::vector<std::int64_t> part_ids;
+  std::string units;
+  const model::Model model = [&] {
+    if (!deck) return io::read_scenario(options.scenario);
+    deck::DeckRead d = deck::read_deck(options.scenario, {options.units, options.ignore});
+    for (const auto& m : d.messages)
+      std::fprintf(stderr, "crashlink advise: deck: %s\n", m.c_str());
+    part_ids = std::move(d.part_ids);
+    units = d.units;
+    return std::move(d.model);
+  }();
   const auto a = cosim::advise_split(model, options.step_safety);
   std::fprintf(out, "crashlink advise: %s (%zu elements, %lld deformable)\n\n", model.name.c_str(),
                model.element_count(), a.deformable_elements);
@@ -116,18 +142,31 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
   }
   if (a.best >= 0) {
     const auto& b = a.candidates[static_cast<std::size_t>(a.best)];
+    // A deck's part by its *PART title, or by its PID where it has none (named part_<PID>).
+    auto ref = [&](std::size_t p) {
+      const std::string& n = model.parts[p].name;
+      if (deck && p < part_ids.size() && n == fmt::format("part_{}", part_ids[p]))
+        return fmt::format("{}", part_ids[p]);
+      return n;
+    };
     std::string fine, coarse;
-    for (const auto& n : b.fine_parts) fine.append(fine.empty() ? n : ", " + n);
-    for (const auto& p : model.parts) {
-      if (std::find(b.fine_parts.begin(), b.fine_parts.end(), p.name) != b.fine_parts.end())
-        continue;
-      coarse.append(coarse.empty() ? p.name : ", " + p.name);
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const bool is_fine = std::find(b.fine_parts.begin(), b.fine_parts.end(),
+                                     model.parts[p].name) != b.fine_parts.end();
+      std::string& list = is_fine ? fine : coarse;
+      list.append(list.empty() ? ref(p) : ", " + ref(p));
     }
+    const std::string head =
+        deck ? fmt::format(
+                   "a scenario naming the deck (then `crashlink run that.yaml --mode "
+                   "multi`):\nmodel: {{deck: {}, units: {}}}\n",
+                   options.scenario, units)
+             : std::string("in the scenario:\n");
     std::fprintf(out,
                  "\nbest: predicted gain %.3f from element counts and steps, %.3f from the timed "
-                 "sample (neither counts the coordinator's share); in the scenario:\ndomains:\n  "
+                 "sample (neither counts the coordinator's share); %sdomains:\n  "
                  "fine: {parts: [%s]}\n  coarse: {parts: [%s]}\n",
-                 b.predicted_gain, b.sampled_gain, fine.c_str(), coarse.c_str());
+                 b.predicted_gain, b.sampled_gain, head.c_str(), fine.c_str(), coarse.c_str());
   } else {
     std::fprintf(out, "\nno two-domain split is possible or useful for this model\n");
   }

@@ -4,10 +4,13 @@
 // maximises the predicted CPU gain over mono (solver/partition/split_advice.h for the rule), with
 // the `domains:` block to paste into the scenario; the scenario's own split is evaluated too.
 // --process-sample F: the scenario's own split also timed over processes (advise_process_sample.h),
-// which counts what the messages and the coordinator cost.
+// which counts what the messages and the coordinator cost. A keyword deck (`crashlink advise
+// model.k [--units U]`): the same advice, and the scenario to write around the deck (its `model:`
+// line and `domains:` by part title or PID).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "apps/shared_defaults.h"
 
@@ -19,6 +22,9 @@ struct AdviseOptions {
   /// > 0: also the scenario's own split timed on processes over [F, 2F] of the end time
   /// (advise_process_sample.h).
   double process_sample = 0.0;
+  /// A keyword deck's unit system and keywords to skip (as `crashlink run`); empty: inferred.
+  std::string units;
+  std::vector<std::string> ignore;
 };
 
 CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options);

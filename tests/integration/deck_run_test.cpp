@@ -8,6 +8,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/solver.h"
@@ -69,6 +72,51 @@ TEST(DeckRun, CommandLineRunsADeckAndRefusesMistakesWithExit2) {
       kCrashlink + " run " + kDeck + " --units mm-t-s --mode multi --out " + dir.string(), status);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
   EXPECT_NE(out.find("fix: write a scenario YAML that names the deck and its domains"),
+            std::string::npos)
+      << out;
+  std::filesystem::remove_all(dir);
+}
+
+// `crashlink advise` on a deck: the steps per part, the best split, and the scenario to write
+// around the deck (model line, domains by title, or by PID for a part without one).
+TEST(DeckRun, AdvisePrintsTheScenarioToWrite) {
+  const std::string two_rates =
+      std::string(CRASHLINK_TEST_DATA_DIR) + "/data/decks/two_rates/two_rates.k";
+  int status = 0;
+  std::string out = testing::run_command(kCrashlink + " advise " + two_rates, status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  EXPECT_NE(out.find("crashlink advise: deck: units: --units not given; read in mm-t-s"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("model: {deck: " + two_rates +
+                     ", units: mm-t-s}\ndomains:\n  fine: {parts: [fine]}\n  coarse: {parts: "
+                     "[coarse]}\n"),
+            std::string::npos)
+      << out;
+  // the same deck with the fine part's title blank: named by its PID
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_advise_deck_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy(
+      std::filesystem::path(two_rates).parent_path(), dir,
+      std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+  {
+    std::ifstream in(dir / "two_rates.k");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto at = text.find("*PART\nfine\n");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 11, "*PART\n\n");
+    std::ofstream(dir / "two_rates.k") << text;
+  }
+  out = testing::run_command(kCrashlink + " advise " + (dir / "two_rates.k").string(), status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  EXPECT_NE(out.find("  fine: {parts: [2]}\n  coarse: {parts: [coarse]}\n"), std::string::npos)
+      << out;
+  // --process-sample times a scenario's own domains: refused on a deck
+  out = testing::run_command(kCrashlink + " advise " + two_rates + " --process-sample 0.1", status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
+  EXPECT_NE(out.find("--process-sample: times the scenario's own domains, which a deck does not "
+                     "name"),
             std::string::npos)
       << out;
   std::filesystem::remove_all(dir);
