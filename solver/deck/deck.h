@@ -97,6 +97,19 @@ struct SpcCard {
   CardRef ref;
 };
 
+/// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET (velocity) or *LOAD_NODE_POINT/_SET: one dof of a node
+/// or node set driven by a curve.
+struct CurveDofCard {
+  std::int64_t target = 0;  ///< node id or node set id
+  bool set = false;
+  bool load = false;  ///< *LOAD_NODE_*: a force; else a prescribed velocity
+  int dof = 0;        ///< the deck's DOF: 1-3 translations, 5-7 rotations (motion only)
+  std::int64_t lcid = 0;
+  double sf = 1.0;
+  std::string keyword;
+  CardRef ref;
+};
+
 struct VelocityCard {
   std::int64_t target = 0;  ///< node, part, part set or node set id
   int styp = 0;  ///< *INITIAL_VELOCITY_GENERATION: 1 part set, 2 part, 3 node set; 0 node
@@ -206,6 +219,7 @@ struct Deck {
   bool bulk_shells = false;              ///< TYPE -2
   std::vector<BodyLoadCard> body_loads;
   std::vector<RigidWallCard> rigid_walls;
+  std::vector<CurveDofCard> curve_dofs;  ///< prescribed motions and nodal loads, in deck order
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;

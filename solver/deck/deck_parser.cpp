@@ -53,6 +53,8 @@ enum class Kw : std::uint8_t {
   ControlBulk,
   LoadBody,
   RigidWall,
+  Motion,
+  LoadNode,
   Database,
   DatabaseAscii,
   D3plot,
@@ -109,6 +111,10 @@ constexpr KeywordName kKeywords[] = {
     {"*LOAD_BODY_X", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
+    {"*BOUNDARY_PRESCRIBED_MOTION_NODE", Kw::Motion, false, true},
+    {"*BOUNDARY_PRESCRIBED_MOTION_SET", Kw::Motion, false, true},
+    {"*LOAD_NODE_POINT", Kw::LoadNode, false, false},
+    {"*LOAD_NODE_SET", Kw::LoadNode, false, false},
     {"*RIGIDWALL_PLANAR", Kw::RigidWall, false, true},
     {"*RIGIDWALL_PLANAR_MOVING", Kw::RigidWall, false, true},
 };
@@ -334,6 +340,9 @@ class Parser {
         return load_body(c);
       case Kw::RigidWall:
         return rigid_wall(c);
+      case Kw::Motion:
+      case Kw::LoadNode:
+        return curve_dof(c);
     }
   }
 
@@ -1126,6 +1135,67 @@ class Parser {
       if (f.blank() || f.integer(0) == 0) continue;
       d_.history_nodes.push_back({b_.keyword, {}, positive_id(f), set, k, c.ref()});
     }
+  }
+
+  /// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET (_ID: a heading card first): NID/NSID, DOF, VAD,
+  /// LCID, SF, VID, DEATH, BIRTH; *LOAD_NODE_POINT/_SET: NID/NSID, DOF, LCID, SF, CID, M1-M3.
+  void curve_dof(const Card& c) {
+    if (b_.id && b_.card == 0) {
+      b_.card = 1;
+      return;
+    }
+    if (blank(c)) return;
+    const bool load = b_.kw == Kw::LoadNode;
+    const bool set = b_.keyword.find("_SET") != std::string::npos;
+    const Layout l = load ? (set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                          : (set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+    CurveDofCard k;
+    k.keyword = b_.keyword;
+    k.set = set;
+    k.load = load;
+    k.target = positive_id(c.field(l, 0));
+    const auto dof = c.field(l, 1);
+    k.dof = static_cast<int>(dof.integer(0));
+    const bool rotation = k.dof >= 5 && k.dof <= 7;
+    if (!(k.dof >= 1 && k.dof <= 3) && !(rotation && !load))
+      dof.fail(load ? "crashlink loads a node along x, y or z (DOF 1, 2, 3); moments, follower "
+                      "forces and loads along a vector are not computed; fix: write 1, 2 or 3"
+                    : "crashlink prescribes x, y, z (DOF 1, 2, 3) or rotations about them (5, 6, "
+                      "7); motion along a vector (4, 8), in a local system (negative) or of all "
+                      "translations (9-12) is not computed; fix: one card per global dof");
+    if (load) {
+      k.lcid = positive_id(c.field(l, 2));
+      k.sf = c.field(l, 3).real(1.0);
+      if (k.sf == 0.0 && c.field(l, 3).blank()) k.sf = 1.0;
+      must_be_default(c.field(l, 4), 0.0,
+                      "a load in a local system (CID) is not computed; fix: write 0 (global axes)");
+      for (std::size_t f = 5; f < 8; ++f)
+        must_be_default(c.field(l, f), 0.0,
+                        "a follower force (M1-M3) is not computed; fix: leave M1-M3 blank");
+    } else {
+      const auto vad = c.field(l, 2);
+      if (vad.integer(0) != 0)
+        vad.fail(
+            "crashlink prescribes a velocity (VAD 0); an acceleration (1) or displacement "
+            "(2) curve is not converted; fix: give the velocity curve (VAD 0), the "
+            "displacement's slope on each segment");
+      k.lcid = positive_id(c.field(l, 3));
+      k.sf = c.field(l, 4).real(1.0);
+      if (k.sf == 0.0 && c.field(l, 4).blank()) k.sf = 1.0;
+      must_be_default(c.field(l, 5), 0.0,
+                      "a motion along a vector (VID) is not computed; fix: write 0 and a global "
+                      "DOF");
+      const auto death = c.field(l, 6);
+      if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
+        death.fail(
+            "a death time (DEATH) is not computed: the motion holds to the end; fix: "
+            "write 0, or end the curve's velocity yourself");
+      must_be_default(c.field(l, 7), 0.0,
+                      "a birth time (BIRTH) is not computed; fix: write 0 and start the curve "
+                      "at 0");
+    }
+    k.ref = c.ref();
+    d_.curve_dofs.push_back(std::move(k));
   }
 
   void termination(const Card& c) {

@@ -69,6 +69,16 @@ inline constexpr FieldSpec kD3plot[] = {
 /// *DATABASE_HISTORY_NODE and _SET: eight ids per card (_ID: kIdHeading per node).
 inline constexpr FieldSpec kHistoryIds[] = {{"ID1", 10}, {"ID2", 10}, {"ID3", 10}, {"ID4", 10},
                                             {"ID5", 10}, {"ID6", 10}, {"ID7", 10}, {"ID8", 10}};
+/// *BOUNDARY_PRESCRIBED_MOTION_NODE / _SET.
+inline constexpr FieldSpec kMotionNode[] = {{"NID", 10}, {"DOF", 10}, {"VAD", 10},   {"LCID", 10},
+                                            {"SF", 10},  {"VID", 10}, {"DEATH", 10}, {"BIRTH", 10}};
+inline constexpr FieldSpec kMotionSet[] = {{"NSID", 10}, {"DOF", 10}, {"VAD", 10},   {"LCID", 10},
+                                           {"SF", 10},   {"VID", 10}, {"DEATH", 10}, {"BIRTH", 10}};
+/// *LOAD_NODE_POINT / _SET.
+inline constexpr FieldSpec kLoadNode[] = {{"NID", 10}, {"DOF", 10}, {"LCID", 10}, {"SF", 10},
+                                          {"CID", 10}, {"M1", 10},  {"M2", 10},   {"M3", 10}};
+inline constexpr FieldSpec kLoadSet[] = {{"NSID", 10}, {"DOF", 10}, {"LCID", 10}, {"SF", 10},
+                                         {"CID", 10},  {"M1", 10},  {"M2", 10},   {"M3", 10}};
 inline constexpr FieldSpec kTermination[] = {{"ENDTIM", 10}, {"ENDCYC", 10}, {"DTMIN", 10},
                                              {"ENDENG", 10}, {"ENDMAS", 10}, {"NOSOL", 10}};
 inline constexpr FieldSpec kTimestep[] = {{"DTINIT", 10}, {"TSSFAC", 10}, {"ISDO", 10},

@@ -63,6 +63,7 @@ class Builder {
     velocities();
     contacts();
     rigid_walls();
+    curve_dofs();
     probes();
     controls();
     try {
@@ -732,6 +733,68 @@ class Builder {
         fail_at(d_, k.ref, k.keyword, L::kRigidWall1, 0,
                 "the wall stops no node of a deformable element; fix: correct NSID");
       m_.rigid_walls.push_back(std::move(w));
+    }
+  }
+
+  /// Curve `lcid` against time in SI: abscissa SFA (a + OFFA) [deck time] -> s, ordinate
+  /// SF SFO (o + OFFO) x `unit` (LS-DYNA's *DEFINE_CURVE remark: offsets first, then scales).
+  model::Curve time_curve(std::int64_t lcid, double sf, double unit, const CardRef& ref,
+                          const std::string& keyword, Layout l, std::size_t field) {
+    const auto it = curves_.find(lcid);
+    if (it == curves_.end())
+      fail_at(d_, ref, keyword, l, field,
+              fmt::format("curve {} is not defined; fix: add *DEFINE_CURVE {}", lcid, lcid));
+    const CurveCard& cv = d_.curves[static_cast<std::size_t>(it->second)];
+    model::Curve c;
+    for (std::size_t i = 0; i < cv.a.size(); ++i) {
+      c.t_s.push_back(cv.sfa * (cv.a[i] + cv.offa) * u_.time_s);
+      c.value.push_back(sf * cv.sfo * (cv.o[i] + cv.offo) * unit);
+    }
+    return c;
+  }
+
+  /// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET (VAD 0: velocity) -> model::PrescribedVelocity,
+  /// *LOAD_NODE_POINT/_SET -> model::NodalLoad (force per node), one dof each; a set's nodes in
+  /// no element are left out.
+  void curve_dofs() {
+    int motions = 0, loads = 0;
+    for (const CurveDofCard& k : d_.curve_dofs) {
+      const Layout l = k.load ? (k.set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                              : (k.set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+      std::vector<std::int64_t> one{k.target};
+      const auto& ids = k.set ? node_set(k.target, k.ref, k.keyword, l) : one;
+      std::vector<std::int32_t> nodes;
+      for (auto id : ids) {
+        const int i = node(id, k.ref, k.keyword.c_str(), l, 0);
+        if (i < 0 && !k.set)
+          fail_at(d_, k.ref, k.keyword, l, 0,
+                  fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
+                              "fix: drive a node of an element",
+                              id));
+        if (i >= 0) nodes.push_back(i);
+      }
+      if (nodes.empty())
+        fail_at(d_, k.ref, k.keyword, l, 0,
+                "the set holds no node of an element; fix: correct the set");
+      const bool rotation = k.dof >= 5;
+      const int dof = rotation ? k.dof - 2 : k.dof - 1;  // model: 0-2 x, y, z; 3-5 rotations
+      const std::size_t lcid_field = k.load ? 2 : 3;
+      if (k.load) {
+        model::NodalLoad ld;
+        ld.name = fmt::format("load_{}", ++loads);
+        ld.nodes = std::move(nodes);
+        ld.dof = dof;
+        ld.force = time_curve(k.lcid, k.sf, u_.force_N(), k.ref, k.keyword, l, lcid_field);
+        m_.loads.push_back(std::move(ld));
+      } else {
+        model::PrescribedVelocity pv;
+        pv.name = fmt::format("motion_{}", ++motions);
+        pv.nodes = std::move(nodes);
+        pv.dof = dof;
+        pv.velocity = time_curve(k.lcid, k.sf, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(),
+                                 k.ref, k.keyword, l, lcid_field);
+        m_.prescribed_velocities.push_back(std::move(pv));
+      }
     }
   }
 

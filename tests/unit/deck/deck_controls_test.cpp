@@ -153,6 +153,42 @@ TEST_F(DeckControls, MovingWallReadsItsMassAndVelocity) {
           }());
 }
 
+// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET and *LOAD_NODE_POINT/_SET onto the model's prescribed
+// velocities and nodal loads, the curve in SI (SFA, OFFA on time, SF x SFO, OFFO on the value).
+TEST_F(DeckControls, PrescribedMotionAndNodalLoads) {
+  DeckRead r;
+  ASSERT_EQ(
+      read(with_lines(
+               {"*DEFINE_CURVE", "         7       0.0       2.0       3.0       0.0       1.0",
+                "                 0.0                 0.0",
+                "                 1.0              1000.0", "*SET_NODE_LIST", "         4",
+                "         5         6         7         8", "*BOUNDARY_PRESCRIBED_MOTION_SET",
+                "         4         3         0         7       0.5",
+                "*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         6         0         7",
+                "*LOAD_NODE_POINT", "        16         1         7       2.0", "*LOAD_NODE_SET",
+                "         4         2         7"}),
+           &r),
+      "");
+  const auto& m = r.model;
+  ASSERT_EQ(m.prescribed_velocities.size(), 2u);
+  ASSERT_EQ(m.loads.size(), 2u);
+  const auto& pv = m.prescribed_velocities[0];
+  EXPECT_EQ(pv.dof, 2);  // DOF 3: z
+  EXPECT_EQ(pv.nodes.size(), 4u);
+  // SFA 2, SFO 3, OFFO 1: abscissae 2 x (0, 1) s; ordinates SF 0.5 x 3 x ((0, 1000) + 1) mm/s
+  ASSERT_EQ(pv.velocity.t_s.size(), 2u);
+  EXPECT_DOUBLE_EQ(pv.velocity.t_s[1], 2.0);
+  EXPECT_DOUBLE_EQ(pv.velocity.value[0], 0.5 * 3.0 * 1.0 * 1e-3);
+  EXPECT_DOUBLE_EQ(pv.velocity.value[1], 0.5 * 3.0 * 1001.0 * 1e-3);
+  EXPECT_EQ(m.prescribed_velocities[1].dof, 4);                            // DOF 6: about y
+  EXPECT_DOUBLE_EQ(m.prescribed_velocities[1].velocity.value[1], 3003.0);  // rad/s
+  EXPECT_EQ(m.loads[0].dof, 0);
+  EXPECT_EQ(m.nodes.id[static_cast<std::size_t>(m.loads[0].nodes[0])], 16);
+  EXPECT_DOUBLE_EQ(m.loads[0].force.value[1], 6006.0);  // N: 2 x 3 x 1001 (t mm/s^2)
+  EXPECT_EQ(m.loads[1].dof, 1);
+  EXPECT_EQ(m.loads[1].nodes.size(), 4u);
+}
+
 TEST_F(DeckControls, MistakesNameTheirField) {
   struct Mistake {
     const char* what;
@@ -166,6 +202,25 @@ TEST_F(DeckControls, MistakesNameTheirField) {
   const std::string k003 = "         1   7.85e-9  210000.0       0.3     250.0     100.0       1.0";
   const std::string k024 = "         1   7.85e-9  210000.0       0.3     250.0     100.0";
   const Mistake mistakes[] = {
+      {"motion along a vector",
+       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         4         0         7"}),
+       "c.k:35: *BOUNDARY_PRESCRIBED_MOTION_NODE field DOF (columns 11-20) = 4: crashlink "
+       "prescribes x, y, z (DOF 1, 2, 3) or rotations about them (5, 6, 7); motion along a "
+       "vector (4, 8), in a local system (negative) or of all translations (9-12) is not "
+       "computed; fix: one card per global dof"},
+      {"a displacement curve",
+       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         3         2         7"}),
+       "c.k:35: *BOUNDARY_PRESCRIBED_MOTION_NODE field VAD (columns 21-30) = 2: crashlink "
+       "prescribes a velocity (VAD 0); an acceleration (1) or displacement (2) curve is not "
+       "converted; fix: give the velocity curve (VAD 0), the displacement's slope on each "
+       "segment"},
+      {"an undefined curve", with_lines({"*LOAD_NODE_POINT", "         1         3        99"}),
+       "c.k:35: *LOAD_NODE_POINT field LCID (columns 21-30) = 99: curve 99 is not defined; fix: "
+       "add *DEFINE_CURVE 99"},
+      {"a moment", with_lines({"*LOAD_NODE_POINT", "         1         5         7"}),
+       "c.k:35: *LOAD_NODE_POINT field DOF (columns 11-20) = 5: crashlink loads a node along x, "
+       "y or z (DOF 1, 2, 3); moments, follower forces and loads along a vector are not "
+       "computed; fix: write 1, 2 or 3"},
       {"negative rate coefficient",
        with_material({"*MAT_PLASTIC_KINEMATIC", k003, "     -40.4       5.0"}),
        "c.k:32: *MAT_PLASTIC_KINEMATIC field SRC (columns 1-10) = -40.4: must be >= 0 (0: no "
