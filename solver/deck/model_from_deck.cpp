@@ -269,6 +269,7 @@ class Builder {
       const SectionCard& s = d_.sections[static_cast<std::size_t>(sections_.at(pc.section))];
       model::Part& part = parts[p];
       part.name = part_name(pc);
+      part.user_id = pc.id;
       part.kind = s.shell ? model::ElementKind::Shell4 : model::ElementKind::Hex8;
       part.material = materials_.at(pc.material);
       part.hourglass_coefficient = hourglass_coefficient(pc);

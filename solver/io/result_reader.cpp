@@ -342,6 +342,7 @@ std::vector<MeshPartInfo> ResultReader::mesh_parts() const {
     p.kind = read_string_attribute(at, "kind").value_or("");
     p.index = read_number_attribute<std::int64_t>(at, "index", H5T_NATIVE_INT64)
                   .value_or(static_cast<std::int64_t>(out.size()));
+    p.id = read_number_attribute<std::int64_t>(at, "id", H5T_NATIVE_INT64).value_or(0);
     p.element_ids = read_int64s(at, "element_ids");
     out.push_back(std::move(p));
   }

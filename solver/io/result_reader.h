@@ -50,6 +50,7 @@ struct MeshPartInfo {
   std::string link;                       ///< group name under /mesh/parts
   std::string kind;                       ///< "hex8" or "shell4" ("" if absent)
   std::int64_t index = 0;                 ///< attribute "index": model order
+  std::int64_t id = 0;                    ///< attribute "id": a deck's *PART PID (0: none)
   std::vector<std::int64_t> element_ids;  ///< [ne]
 };
 

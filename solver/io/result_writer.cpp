@@ -218,6 +218,7 @@ struct ResultWriter::Impl {
       write_attribute(gat, "kind",
                       std::string(p.kind == model::ElementKind::Hex8 ? "hex8" : "shell4"));
       write_attribute(gat, "index", static_cast<std::int64_t>(i));
+      if (p.user_id != 0) write_attribute(gat, "id", p.user_id);  // a deck's *PART PID
       const hsize_t cdims[2] = {ne, k};
       write_dataset(gat, "connectivity", std::span<const std::int32_t>(p.connectivity), cdims);
       const hsize_t edims[1] = {ne};
@@ -229,8 +230,10 @@ struct ResultWriter::Impl {
         write_dataset(gat, "element_ids", std::span<const std::int64_t>(ids), edims);
       }
       part_elements.push_back(ne);
+      // ParaView lists the grids by name: a deck's part shows its PID too
       xdmf.parts.push_back(
-          XdmfPart{p.name, p.kind == model::ElementKind::Hex8, ne, gat.path + "/connectivity"});
+          XdmfPart{p.user_id != 0 ? fmt::format("{} (PID {})", p.name, p.user_id) : p.name,
+                   p.kind == model::ElementKind::Hex8, ne, gat.path + "/connectivity"});
     }
   }
 

@@ -33,6 +33,7 @@ struct Nodes {
 /// A part: elements of one kind, one material, one set of section properties.
 struct Part {
   std::string name;
+  std::int64_t user_id = 0;  ///< the user's part id (a deck's *PART PID); 0: none
   ElementKind kind = ElementKind::Hex8;
   int material = -1;                       ///< index into Model::materials
   std::vector<std::int32_t> connectivity;  ///< [k*ne], see the header comment

@@ -77,6 +77,7 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     lp.thickness_m = gp.thickness_m;
     lp.through_thickness_points = gp.through_thickness_points;
     lp.hourglass_coefficient = gp.hourglass_coefficient;
+    lp.user_id = gp.user_id;
     lp.damping_ratio = gp.damping_ratio;
     // Interface damping (Placement::elem_damping_ratio): max(own, interface) per element; the
     // per-element vector is only created when some element of the part gets more than its own.

@@ -14,6 +14,7 @@
 
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/solver.h"
+#include "solver/io/result_reader.h"
 #include "tests/integration/run_helpers.h"
 #include "tests/integration/shell_command.h"
 
@@ -53,6 +54,24 @@ TEST(DeckRun, CommandLineRunsADeckAndRefusesMistakesWithExit2) {
   // *DATABASE_GLSTAT and _BINARY_D3PLOT set the output intervals: nothing is without effect.
   EXPECT_EQ(out.find("accepted without effect"), std::string::npos) << out;
   EXPECT_TRUE(std::filesystem::exists(dir / "result.h5"));
+  {
+    // the deck's part ids in result.h5 (/mesh/parts/<name> attribute "id") and in the XDMF
+    const io::ResultReader r((dir / "result.h5").string());
+    const auto parts = r.mesh_parts();
+    ASSERT_FALSE(parts.empty());
+    const model::Model m = deck::read_deck(kDeck, {"mm-t-s", {}}).model;
+    ASSERT_EQ(parts.size(), m.parts.size());
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      EXPECT_EQ(parts[p].name, m.parts[p].name);
+      EXPECT_EQ(parts[p].id, m.parts[p].user_id);
+      EXPECT_GT(parts[p].id, 0);
+    }
+    std::ifstream x(dir / "result.xdmf");
+    const std::string xdmf((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
+    EXPECT_NE(
+        xdmf.find("<Grid Name=\"" + parts[0].name + " (PID " + std::to_string(parts[0].id) + ")\""),
+        std::string::npos);
+  }
 
   // Without --units: the one system its steel fits is inferred, and said.
   out =

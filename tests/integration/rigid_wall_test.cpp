@@ -244,6 +244,11 @@ TEST(RigidWall, ForceHistoryInResultFileMonoAndMulti) {
           0.5 * (h.force_N[3 * k + 2] + h.force_N[3 * k - 1]) * (h.time_s[k] - h.time_s[k - 1]);
     o.work = h.energy_J.back();
     o.external = r.glstat().back().external_work_J;
+    // the deck's PIDs on the parts, also in the file gathered from the domains
+    const auto parts = r.mesh_parts();
+    EXPECT_EQ(parts.size(), 2u);
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      EXPECT_EQ(parts[p].id, static_cast<std::int64_t>(p + 1)) << mode;
     return o;
   };
   const Out mono = run("mono"), multi = run("multi");
