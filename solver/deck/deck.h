@@ -35,6 +35,15 @@ struct PartCard {
   std::string title;
   std::string keyword = "*PART";
   CardRef ref;  ///< the card with PID, SECID, MID
+  /// *PART_INERTIA (deck units): centre (or NODEID's position), mass, inertia tensor IXX IXY IXZ
+  /// IYY IYZ IZZ about the centre, initial velocity and angular velocity.
+  bool inertia = false;
+  std::array<double, 3> centre{};
+  double mass = 0.0;
+  std::int64_t centre_node = 0;
+  std::array<double, 6> tensor{};
+  std::array<double, 3> velocity{}, angular_velocity{};
+  CardRef inertia_ref;  ///< card 3 (TM)
 };
 
 struct SectionCard {
@@ -112,7 +121,8 @@ struct CurveDofCard {
 
 struct VelocityCard {
   std::int64_t target = 0;  ///< node, part, part set or node set id
-  int styp = 0;  ///< *INITIAL_VELOCITY_GENERATION: 1 part set, 2 part, 3 node set; 0 node
+  int styp = 0;  ///< *INITIAL_VELOCITY_GENERATION: 1 part set, 2 part, 3 node set; 0 node;
+                 ///< 4: *INITIAL_VELOCITY (node set NSID, 0: every node)
   std::array<double, 3> v{};  ///< deck velocity units, in the system ICID
   std::int64_t icid = 0;      ///< *DEFINE_COORDINATE_SYSTEM id; 0: global axes
   std::string keyword;

@@ -43,6 +43,7 @@ enum class Kw : std::uint8_t {
   SpcSet,
   VelocityGeneration,
   VelocityNode,
+  VelocityPlain,
   Termination,
   Timestep,
   DefineBox,
@@ -75,6 +76,7 @@ constexpr KeywordName kKeywords[] = {
     {"*ELEMENT_SHELL", Kw::ElementShell, false, false},
     {"*ELEMENT_SOLID", Kw::ElementSolid, false, false},
     {"*PART", Kw::Part, false, false},
+    {"*PART_INERTIA", Kw::Part, false, false},
     {"*SECTION_SHELL", Kw::SectionShell, true, false},
     {"*SECTION_SOLID", Kw::SectionSolid, true, false},
     {"*MAT_ELASTIC", Kw::MatElastic, true, false},
@@ -95,6 +97,7 @@ constexpr KeywordName kKeywords[] = {
     {"*BOUNDARY_SPC_SET", Kw::SpcSet, false, true},
     {"*INITIAL_VELOCITY_GENERATION", Kw::VelocityGeneration, false, false},
     {"*INITIAL_VELOCITY_NODE", Kw::VelocityNode, false, false},
+    {"*INITIAL_VELOCITY", Kw::VelocityPlain, false, false},
     {"*CONTROL_TERMINATION", Kw::Termination, false, false},
     {"*CONTROL_TIMESTEP", Kw::Timestep, false, false},
     {"*DEFINE_BOX", Kw::DefineBox, true, false},
@@ -320,6 +323,8 @@ class Parser {
         return velocity_generation(c);
       case Kw::VelocityNode:
         return velocity_node(c);
+      case Kw::VelocityPlain:
+        return velocity_plain(c);
       case Kw::Termination:
         return termination(c);
       case Kw::Timestep:
@@ -386,6 +391,7 @@ class Parser {
         return d_.spcs.size();
       case Kw::VelocityGeneration:
       case Kw::VelocityNode:
+      case Kw::VelocityPlain:
         return d_.velocities.size();
       case Kw::DefineBox:
         return d_.boxes.size();
@@ -408,6 +414,7 @@ class Parser {
         ((b_.kw == Kw::Termination || b_.kw == Kw::ControlHourglass || b_.kw == Kw::ControlBulk) &&
          b_.card == 0) ||
         (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
+        (b_.kw == Kw::VelocityPlain && b_.card == 1) ||
         (b_.kw == Kw::RigidWall &&
          d_.rigid_walls.back().cards < (d_.rigid_walls.back().moving ? 3 : 2)) ||
         (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
@@ -420,6 +427,13 @@ class Parser {
                            ? "the curve has no point; fix: add its points (A, O) after LCID"
                            : "its cards are missing (the next keyword or the end of the file "
                              "follows); fix: add them or remove the keyword");
+    if (b_.kw == Kw::Part && b_.keyword == "*PART_INERTIA" && b_.card >= 2)
+      throw InputError(d_.files.name(d_.parts.back().ref.file), d_.parts.back().ref.line,
+                       b_.keyword,
+                       fmt::format("card {} of the part's inertia is missing (3: XC YC ZC TM "
+                                   "IRCS NODEID, 4: IXX IXY IXZ IYY IYZ IZZ, 5: VTX VTY VTZ VRX "
+                                   "VRY VRZ); fix: add it",
+                                   b_.card + 1));
     if (b_.kw == Kw::ElementSolid && b_.card == 1) {
       // "EID PID" card without its node card: the deck ends inside an element.
       throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
@@ -523,7 +537,9 @@ class Parser {
       last_ = c.ref();
       return;
     }
+    if (b_.card >= 2) return part_inertia(c);
     PartCard p;
+    p.keyword = b_.keyword;
     p.id = positive_id(c.field(L::kPart, 0));
     p.section = positive_id(c.field(L::kPart, 1));
     p.material = positive_id(c.field(L::kPart, 2));
@@ -536,8 +552,38 @@ class Parser {
                     "thermal materials are not computed; fix: leave TMID blank");
     p.title = std::move(b_.pending_title);
     p.ref = c.ref();
+    p.inertia = b_.keyword == "*PART_INERTIA";
     d_.parts.push_back(std::move(p));
-    b_.card = 0;
+    b_.card = d_.parts.back().inertia ? 2 : 0;
+  }
+
+  /// *PART_INERTIA's cards 3 (XC YC ZC TM IRCS NODEID), 4 (the inertia tensor about the centre,
+  /// global axes) and 5 (VTX VTY VTZ VRX VRY VRZ).
+  void part_inertia(const Card& c) {
+    PartCard& p = d_.parts.back();
+    if (b_.card == 2) {
+      for (std::size_t k = 0; k < 3; ++k) p.centre[k] = c.field(L::kPartInertia3, k).real(0.0);
+      const auto tm = c.field(L::kPartInertia3, 3);
+      p.mass = tm.real(0.0);
+      if (!(p.mass > 0.0)) tm.fail("the part's mass must be > 0; fix: write it (deck mass unit)");
+      must_be_default(c.field(L::kPartInertia3, 4), 0.0,
+                      "an inertia tensor in the principal or a local system (IRCS 1) is not "
+                      "read; fix: write IRCS 0 and the tensor in global axes");
+      p.centre_node = c.field(L::kPartInertia3, 5).integer(0);
+      if (p.centre_node < 0)
+        c.field(L::kPartInertia3, 5).fail("must be a node id or 0; fix: write one");
+      p.inertia_ref = c.ref();
+    } else if (b_.card == 3) {
+      for (std::size_t k = 0; k < 6; ++k) p.tensor[k] = c.field(L::kPartInertia4, k).real(0.0);
+    } else {
+      for (std::size_t k = 0; k < 3; ++k) {
+        p.velocity[k] = c.field(L::kPartInertia5, k).real(0.0);
+        p.angular_velocity[k] = c.field(L::kPartInertia5, 3 + k).real(0.0);
+      }
+      b_.card = 0;  // the next part's title
+      return;
+    }
+    ++b_.card;
   }
 
   void section_shell(const Card& c) {
@@ -871,6 +917,42 @@ class Parser {
       return;
     }
     b_.card = 0;  // card 2: the rotation's centre and axis, without effect at OMEGA = 0
+  }
+
+  /// *INITIAL_VELOCITY: card 1 NSID (0: every node), NSIDEX, BOXID, IRIGID, ICID; card 2 VX VY
+  /// VZ (and VXR-VZR, which must be 0).
+  void velocity_plain(const Card& c) {
+    if (b_.card == 0) {
+      VelocityCard v;
+      v.keyword = b_.keyword;
+      v.styp = 4;
+      v.target = c.field(L::kInitialVelocity1, 0).integer(0);
+      if (v.target < 0)
+        c.field(L::kInitialVelocity1, 0).fail("must be a node set id or 0 (every node); fix");
+      must_be_default(c.field(L::kInitialVelocity1, 1), 0.0,
+                      "exempted nodes (NSIDEX) are not computed; fix: write 0 and leave them "
+                      "out of NSID");
+      must_be_default(c.field(L::kInitialVelocity1, 2), 0.0,
+                      "a box (BOXID) is not computed here; fix: write 0 and give the nodes in "
+                      "NSID (e.g. *SET_NODE_GENERAL BOX)");
+      must_be_default(c.field(L::kInitialVelocity1, 3), 0.0,
+                      "IRIGID is not computed; fix: write 0 and give a rigid part's velocity with "
+                      "*INITIAL_VELOCITY_GENERATION on the part");
+      v.icid = c.field(L::kInitialVelocity1, 4).integer(0);
+      if (v.icid < 0)
+        c.field(L::kInitialVelocity1, 4)
+            .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+      v.ref = c.ref();
+      d_.velocities.push_back(std::move(v));
+      b_.card = 1;
+      return;
+    }
+    VelocityCard& v = d_.velocities.back();
+    for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kInitialVelocity2, k).real(0.0);
+    for (std::size_t k = 3; k < 6; ++k)
+      must_be_default(c.field(L::kInitialVelocity2, k), 0.0,
+                      "angular velocities (VXR, VYR, VZR) are not read; fix: leave them blank");
+    b_.card = 0;
   }
 
   void velocity_node(const Card& c) {

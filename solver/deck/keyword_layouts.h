@@ -16,6 +16,13 @@ inline constexpr FieldSpec kTitle[] = {{"TITLE", 80}};
 inline constexpr FieldSpec kIdHeading[] = {{"ID", 10}, {"HEADING", 70}};
 inline constexpr FieldSpec kPart[] = {{"PID", 10},  {"SECID", 10}, {"MID", 10},    {"EOSID", 10},
                                       {"HGID", 10}, {"GRAV", 10},  {"ADPOPT", 10}, {"TMID", 10}};
+/// *PART_INERTIA's cards 3-5: centre and mass, inertia tensor, initial velocities.
+inline constexpr FieldSpec kPartInertia3[] = {{"XC", 10}, {"YC", 10},   {"ZC", 10},
+                                              {"TM", 10}, {"IRCS", 10}, {"NODEID", 10}};
+inline constexpr FieldSpec kPartInertia4[] = {{"IXX", 10}, {"IXY", 10}, {"IXZ", 10},
+                                              {"IYY", 10}, {"IYZ", 10}, {"IZZ", 10}};
+inline constexpr FieldSpec kPartInertia5[] = {{"VTX", 10}, {"VTY", 10}, {"VTZ", 10},
+                                              {"VRX", 10}, {"VRY", 10}, {"VRZ", 10}};
 inline constexpr FieldSpec kSectionShell1[] = {{"SECID", 10}, {"ELFORM", 10}, {"SHRF", 10},
                                                {"NIP", 10},   {"PROPT", 10},  {"QR/IRID", 10},
                                                {"ICOMP", 10}, {"SETYP", 10}};
@@ -59,6 +66,11 @@ inline constexpr FieldSpec kVelocityGeneration1[] = {{"ID", 10},    {"STYP", 10}
 inline constexpr FieldSpec kVelocityGeneration2[] = {{"XC", 10},    {"YC", 10},    {"ZC", 10},
                                                      {"NX", 10},    {"NY", 10},    {"NZ", 10},
                                                      {"PHASE", 10}, {"IRIGID", 10}};
+/// *INITIAL_VELOCITY: card 1 (the nodes), card 2 (the velocity).
+inline constexpr FieldSpec kInitialVelocity1[] = {
+    {"NSID", 10}, {"NSIDEX", 10}, {"BOXID", 10}, {"IRIGID", 10}, {"ICID", 10}};
+inline constexpr FieldSpec kInitialVelocity2[] = {{"VX", 10},  {"VY", 10},  {"VZ", 10},
+                                                  {"VXR", 10}, {"VYR", 10}, {"VZR", 10}};
 inline constexpr FieldSpec kVelocityNode[] = {{"NID", 10}, {"VX", 10},  {"VY", 10},  {"VZ", 10},
                                               {"VXR", 10}, {"VYR", 10}, {"VZR", 10}, {"ICID", 10}};
 /// *DATABASE_GLSTAT, _NODOUT, _RCFORC, _RWFORC, _MATSUM, _SLEOUT (the ASCII histories).

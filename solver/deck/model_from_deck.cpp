@@ -278,15 +278,53 @@ class Builder {
         part.through_thickness_points = s.nip;
       }
       part_index_[pc.id] = static_cast<int>(m_.parts.size());
+      if (pc.inertia && m_.materials[static_cast<std::size_t>(part.material)].kind !=
+                            materials::MaterialKind::Rigid)
+        fail_at(d_, pc.inertia_ref, pc.keyword, L::kPartInertia3, 3,
+                "crashlink reads *PART_INERTIA on rigid parts (*MAT_RIGID) only: a deformable "
+                "part's mass comes from its elements; fix: write *PART, or give the part a "
+                "*MAT_RIGID material");
       m_.parts.push_back(std::move(part));
       if (m_.materials[static_cast<std::size_t>(m_.parts.back().material)].kind ==
           materials::MaterialKind::Rigid) {
         model::RigidBody rb;
         rb.name = m_.parts.back().name;
         rb.parts.push_back(static_cast<int>(m_.parts.size() - 1));
+        if (pc.inertia) part_inertia(pc, rb);
         rigid_body_of_part_[pc.id] = static_cast<int>(m_.rigid_bodies.size());
         m_.rigid_bodies.push_back(std::move(rb));
       }
+    }
+  }
+
+  /// *PART_INERTIA on a rigid part: the body's mass, centre (NODEID's position if given),
+  /// inertia tensor about it (global axes) and initial velocities, in SI. (*INITIAL_VELOCITY_
+  /// GENERATION on the part, read later, replaces the translational velocity.)
+  void part_inertia(const PartCard& pc, model::RigidBody& rb) {
+    const double L = u_.length_m, M = u_.mass_kg, T = u_.time_s;
+    rb.mass_kg = pc.mass * M;
+    rb.centre_given = true;
+    if (pc.centre_node != 0) {
+      const auto it = nodes_.find(pc.centre_node);
+      if (it == nodes_.end())
+        fail_at(d_, pc.inertia_ref, pc.keyword, L::kPartInertia3, 5,
+                fmt::format("node {} is not defined; fix: add it under *NODE or write 0 and the "
+                            "centre XC, YC, ZC",
+                            pc.centre_node));
+      const auto i = static_cast<std::size_t>(it->second);  // index into the deck's nodes
+      for (std::size_t k = 0; k < 3; ++k) rb.centre_m[k] = d_.nodes.x[3 * i + k] * L;
+    } else {
+      for (std::size_t k = 0; k < 3; ++k) rb.centre_m[k] = pc.centre[k] * L;
+    }
+    const auto& I = pc.tensor;  // IXX IXY IXZ IYY IYZ IZZ
+    const double s = M * L * L;
+    rb.inertia_given = true;
+    rb.inertia_kg_m2 = {{{I[0] * s, I[1] * s, I[2] * s},
+                         {I[1] * s, I[3] * s, I[4] * s},
+                         {I[2] * s, I[4] * s, I[5] * s}}};
+    for (std::size_t k = 0; k < 3; ++k) {
+      rb.velocity_m_s[k] = pc.velocity[k] * L / T;
+      rb.angular_velocity_rad_s[k] = pc.angular_velocity[k] / T;
     }
   }
 
@@ -518,8 +556,11 @@ class Builder {
   void velocities() {
     for (const auto& v : d_.velocities) {
       const bool generation = v.styp != 0;
-      const Layout l = generation ? Layout(L::kVelocityGeneration1) : Layout(L::kVelocityNode);
-      const Mat3 r = frame(v.icid, v.ref, v.keyword, l, 7);
+      const bool plain = v.styp == 4;  // *INITIAL_VELOCITY
+      const Layout l = plain        ? Layout(L::kInitialVelocity1)
+                       : generation ? Layout(L::kVelocityGeneration1)
+                                    : Layout(L::kVelocityNode);
+      const Mat3 r = frame(v.icid, v.ref, v.keyword, l, plain ? 4 : 7);
       const Vec3 vel = mul(r, Vec3{v.v[0] * u_.velocity_m_s(), v.v[1] * u_.velocity_m_s(),
                                    v.v[2] * u_.velocity_m_s()});
       std::vector<std::int64_t> part_ids;
@@ -538,6 +579,8 @@ class Builder {
           fail_at(d_, v.ref, v.keyword, l, 0,
                   fmt::format("part {} is not defined (STYP 2); fix: correct the id", v.target));
         part_ids.push_back(v.target);
+      } else if (plain && v.target == 0) {
+        node_ids = m_.nodes.id;  // NSID 0: every node (a rigid body's follow its body)
       } else {
         node_ids = node_set(v.target, v.ref, v.keyword, l);
       }
@@ -559,6 +602,15 @@ class Builder {
       }
       std::sort(iv.nodes.begin(), iv.nodes.end());
       iv.nodes.erase(std::unique(iv.nodes.begin(), iv.nodes.end()), iv.nodes.end());
+      if (plain) {  // a rigid body's nodes take the body's velocity, not a node's
+        std::vector<char> on_body(m_.nodes.count(), 0);
+        for (const auto& rb : m_.rigid_bodies)
+          for (int p : rb.parts)
+            for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+              on_body[static_cast<std::size_t>(c)] = 1;
+        std::erase_if(iv.nodes,
+                      [&](std::int32_t c) { return on_body[static_cast<std::size_t>(c)] != 0; });
+      }
       if (iv.nodes.empty()) continue;
       // Consecutive *INITIAL_VELOCITY_NODE cards with one velocity make one entry.
       if (!generation && !m_.initial_velocities.empty() && last_was_node_ &&

@@ -189,6 +189,65 @@ TEST_F(DeckControls, PrescribedMotionAndNodalLoads) {
   EXPECT_EQ(m.loads[1].nodes.size(), 4u);
 }
 
+// *PART_INERTIA on a rigid part: the body's mass, centre, inertia tensor and velocities in SI;
+// on a deformable part it is refused.
+TEST_F(DeckControls, PartInertiaGivesTheRigidBody) {
+  auto d = testing::two_cubes();
+  // part 2 (lines 25-27, index 24-26) with its inertia, on a rigid material 2
+  d.erase(d.begin() + 24, d.begin() + 27);
+  d.insert(d.begin() + 24, {"*PART_INERTIA", "upper", "         2         1         2",
+                            "       0.5       0.5       2.0     0.004",
+                            "      10.0       1.0       0.0      20.0       0.0      30.0",
+                            "       0.0       0.0   -5000.0       0.0       0.0     100.0"});
+  d.insert(d.end(), {"*MAT_RIGID", "         2   7.85e-9  210000.0       0.3"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  ASSERT_EQ(r.model.rigid_bodies.size(), 1u);
+  const auto& b = r.model.rigid_bodies[0];
+  EXPECT_EQ(b.name, "upper");
+  EXPECT_DOUBLE_EQ(b.mass_kg, 4.0);  // 0.004 t
+  ASSERT_TRUE(b.centre_given);
+  EXPECT_DOUBLE_EQ(b.centre_m[2], 2.0e-3);
+  ASSERT_TRUE(b.inertia_given);
+  EXPECT_DOUBLE_EQ(b.inertia_kg_m2[0][0], 10.0e-3);  // t mm^2 = 1e-3 kg m^2
+  EXPECT_DOUBLE_EQ(b.inertia_kg_m2[0][1], 1.0e-3);
+  EXPECT_DOUBLE_EQ(b.inertia_kg_m2[1][0], 1.0e-3);
+  EXPECT_DOUBLE_EQ(b.inertia_kg_m2[2][2], 30.0e-3);
+  EXPECT_DOUBLE_EQ(b.velocity_m_s[2], -5.0);
+  EXPECT_DOUBLE_EQ(b.angular_velocity_rad_s[2], 100.0);
+  // the same on the deformable part 1: refused at TM
+  auto e = testing::two_cubes();
+  e.erase(e.begin() + 21, e.begin() + 24);
+  e.insert(e.begin() + 21, {"*PART_INERTIA", "lower", "         1         1         1",
+                            "       0.5       0.5       0.5     0.004", "", ""});
+  EXPECT_EQ(read(e),
+            "c.k:25: *PART_INERTIA field TM (columns 31-40) = 0.004: crashlink reads "
+            "*PART_INERTIA on rigid parts (*MAT_RIGID) only: a deformable part's mass comes from "
+            "its elements; fix: write *PART, or give the part a *MAT_RIGID material");
+}
+
+// *INITIAL_VELOCITY: NSID 0 is every node, else the node set; ICID turns the velocity.
+TEST_F(DeckControls, PlainInitialVelocity) {
+  DeckRead r;
+  ASSERT_EQ(
+      read(with_lines({"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0"}), &r),
+      "");
+  ASSERT_EQ(r.model.initial_velocities.size(), 1u);
+  EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 16u);
+  EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[0], 1.0);
+  EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[2], -2.0);
+  ASSERT_EQ(read(with_lines({"*SET_NODE_LIST", "         3", "         1         2",
+                             "*INITIAL_VELOCITY", "         3", "       0.0    3000.0"}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.initial_velocities.size(), 1u);
+  EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[1], 3.0);
+  EXPECT_EQ(read(with_lines({"*INITIAL_VELOCITY", "         0"})),
+            "c.k:34: *INITIAL_VELOCITY: its cards are missing (the next keyword or the end of the "
+            "file follows); fix: add them or remove the keyword");
+}
+
 TEST_F(DeckControls, MistakesNameTheirField) {
   struct Mistake {
     const char* what;
