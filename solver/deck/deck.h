@@ -233,6 +233,9 @@ struct Deck {
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;
+  double slsfac = 0.1;  ///< *CONTROL_CONTACT SLSFAC: the penalty scale per unit SFS
+  bool has_control_shell = false;
+  int istupd = 0;  ///< *CONTROL_SHELL ISTUPD (LS-DYNA's default 0: no thinning)
   /// The smallest DT of the ASCII histories (*DATABASE_GLSTAT, ...), deck time units; 0: none.
   double history_dt = 0.0;
   double history_dt_max = 0.0;  ///< the largest of those DTs (a note when it differs)

@@ -56,6 +56,8 @@ enum class Kw : std::uint8_t {
   RigidWall,
   Motion,
   LoadNode,
+  ControlContact,
+  ControlShell,
   Database,
   DatabaseAscii,
   D3plot,
@@ -111,6 +113,9 @@ constexpr KeywordName kKeywords[] = {
     {"*HOURGLASS", Kw::Hourglass, true, false},
     {"*CONTROL_HOURGLASS", Kw::ControlHourglass, false, false},
     {"*CONTROL_BULK_VISCOSITY", Kw::ControlBulk, false, false},
+    {"*CONTROL_CONTACT", Kw::ControlContact, false, false},
+    {"*CONTROL_SHELL", Kw::ControlShell, false, false},
+    {"*CONTROL_ENERGY", Kw::Database, false, false},
     {"*LOAD_BODY_X", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
@@ -348,6 +353,10 @@ class Parser {
       case Kw::Motion:
       case Kw::LoadNode:
         return curve_dof(c);
+      case Kw::ControlContact:
+        return control_contact(c);
+      case Kw::ControlShell:
+        return control_shell(c);
     }
   }
 
@@ -1278,6 +1287,54 @@ class Parser {
     }
     k.ref = c.ref();
     d_.curve_dofs.push_back(std::move(k));
+  }
+
+  /// *CONTROL_CONTACT: SLSFAC (blank or 0: 0.1), the scale of every contact's penalty with its
+  /// SFS; the other fields of card 1 and the later cards change nothing crashlink computes the
+  /// same way, and are noted when given.
+  void control_contact(const Card& c) {
+    if (b_.card++ != 0) {
+      if (!blank(c))
+        d_.notes.push_back(fmt::format("{}:{}: *CONTROL_CONTACT card {} not read", c.file(),
+                                       c.ref().line, b_.card));
+      return;
+    }
+    const auto f = c.field(L::kControlContact, 0);
+    d_.slsfac = f.real(0.1);
+    if (d_.slsfac == 0.0) d_.slsfac = 0.1;
+    if (!(d_.slsfac > 0.0)) f.fail("must be > 0; fix: write 0.1 (the default)");
+    for (std::size_t k = 1; k < 8; ++k)
+      if (!c.field(L::kControlContact, k).blank() &&
+          c.field(L::kControlContact, k).real(0.0) != 0.0)
+        d_.notes.push_back(fmt::format("{}:{}: *CONTROL_CONTACT {} not read", c.file(),
+                                       c.ref().line, L::kControlContact[k].name));
+  }
+
+  /// *CONTROL_SHELL: THEORY (blank, 0 or 2: Belytschko-Tsay), ISTUPD (crashlink's shells always
+  /// take their thickness from the thickness strain, LS-DYNA's ISTUPD 1; 0, the default, keeps
+  /// it: noted); the rest noted when given.
+  void control_shell(const Card& c) {
+    if (b_.card++ != 0) {
+      if (!blank(c))
+        d_.notes.push_back(
+            fmt::format("{}:{}: *CONTROL_SHELL card {} not read", c.file(), c.ref().line, b_.card));
+      return;
+    }
+    d_.has_control_shell = true;
+    const auto theory = c.field(L::kControlShell, 4);
+    const auto th = theory.integer(0);
+    if (th != 0 && th != 2)
+      theory.fail("crashlink computes the Belytschko-Tsay shell (THEORY 2) only; fix: write 2");
+    const auto istupd = c.field(L::kControlShell, 3);
+    d_.istupd = static_cast<int>(istupd.integer(0));
+    if (d_.istupd < 0 || d_.istupd > 4)
+      istupd.fail(
+          "must be 0 to 4; fix: write 1 (the thickness follows the membrane strain, as "
+          "crashlink computes it)");
+    for (std::size_t k : {0u, 1u, 2u, 5u, 6u, 7u})
+      if (!c.field(L::kControlShell, k).blank() && c.field(L::kControlShell, k).real(0.0) != 0.0)
+        d_.notes.push_back(fmt::format("{}:{}: *CONTROL_SHELL {} not read", c.file(), c.ref().line,
+                                       L::kControlShell[k].name));
   }
 
   void termination(const Card& c) {

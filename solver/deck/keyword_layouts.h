@@ -91,6 +91,13 @@ inline constexpr FieldSpec kLoadNode[] = {{"NID", 10}, {"DOF", 10}, {"LCID", 10}
                                           {"CID", 10}, {"M1", 10},  {"M2", 10},   {"M3", 10}};
 inline constexpr FieldSpec kLoadSet[] = {{"NSID", 10}, {"DOF", 10}, {"LCID", 10}, {"SF", 10},
                                          {"CID", 10},  {"M1", 10},  {"M2", 10},   {"M3", 10}};
+/// *CONTROL_CONTACT card 1, *CONTROL_SHELL card 1, *CONTROL_ENERGY card 1.
+inline constexpr FieldSpec kControlContact[] = {{"SLSFAC", 10}, {"RWPNAL", 10}, {"ISLCHK", 10},
+                                                {"SHLTHK", 10}, {"PENOPT", 10}, {"THKCHG", 10},
+                                                {"ORIEN", 10},  {"ENMASS", 10}};
+inline constexpr FieldSpec kControlShell[] = {{"WRPANG", 10}, {"ESORT", 10},  {"IRNXX", 10},
+                                              {"ISTUPD", 10}, {"THEORY", 10}, {"BWC", 10},
+                                              {"MITER", 10},  {"PROJ", 10}};
 inline constexpr FieldSpec kTermination[] = {{"ENDTIM", 10}, {"ENDCYC", 10}, {"DTMIN", 10},
                                              {"ENDENG", 10}, {"ENDMAS", 10}, {"NOSOL", 10}};
 inline constexpr FieldSpec kTimestep[] = {{"DTINIT", 10}, {"TSSFAC", 10}, {"ISDO", 10},

@@ -723,7 +723,7 @@ class Builder {
                 fmt::format("crashlink has one penalty scale per contact and SFS = {}; fix: "
                             "write SFM = SFS",
                             k.sfs));
-      c.penalty_scale = 0.1 * k.sfs;
+      c.penalty_scale = d_.slsfac * k.sfs;  // *CONTROL_CONTACT SLSFAC (default 0.1)
       c.soft = k.soft == 1;
       c.soft_scale = k.sofscl;
       c.static_friction = k.fs;
@@ -1032,6 +1032,16 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
   for (const PartCard& pc : deck.parts)
     if (std::find(b.empty_parts_.begin(), b.empty_parts_.end(), pc.id) == b.empty_parts_.end())
       out.part_ids.push_back(pc.id);
+  // LS-DYNA keeps a shell's thickness unless *CONTROL_SHELL ISTUPD asks; crashlink's shells
+  // always take it from the thickness strain (ISTUPD 1).
+  const bool shells =
+      std::any_of(out.model.parts.begin(), out.model.parts.end(),
+                  [](const auto& p) { return p.kind == model::ElementKind::Shell4; });
+  if (shells && deck.istupd == 0)
+    out.messages.push_back(
+        "shells: crashlink updates their thickness from the thickness strain (LS-DYNA's "
+        "*CONTROL_SHELL ISTUPD 1); the deck leaves ISTUPD at 0, under which LS-DYNA keeps it: "
+        "compare with ISTUPD 1");
   if (!deck.without_effect.empty()) {
     std::string s;
     for (const auto& [k, n] : deck.without_effect) s += (s.empty() ? "" : ", ") + k;

@@ -248,6 +248,36 @@ TEST_F(DeckControls, PlainInitialVelocity) {
             "file follows); fix: add them or remove the keyword");
 }
 
+// *CONTROL_CONTACT SLSFAC scales every contact's penalty; *CONTROL_SHELL THEORY 2 and ISTUPD are
+// read (LS-DYNA's ISTUPD 0 noted: crashlink's shells thin); *CONTROL_ENERGY is without effect.
+TEST_F(DeckControls, ContactShellAndEnergyControls) {
+  const std::vector<std::string> contact = {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE",
+                                            "         1         2         3         3", "",
+                                            "       2.0       2.0"};
+  DeckRead r;
+  ASSERT_EQ(read(with_lines(contact), &r), "");
+  ASSERT_EQ(r.model.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.model.contacts[0].penalty_scale, 0.2);  // 0.1 x SFS 2
+  auto with_control = contact;
+  with_control.insert(with_control.end(),
+                      {"*CONTROL_CONTACT", "      0.05                             1",
+                       "*CONTROL_SHELL", "                                       1         2",
+                       "*CONTROL_ENERGY", "         2         2"});
+  ASSERT_EQ(read(with_lines(with_control), &r), "");
+  EXPECT_DOUBLE_EQ(r.model.contacts[0].penalty_scale, 0.1);  // 0.05 x SFS 2
+  std::string all;
+  for (const auto& m : r.messages) all += m + "\n";
+  EXPECT_NE(all.find("*CONTROL_CONTACT SHLTHK not read"), std::string::npos) << all;
+  EXPECT_NE(all.find("accepted without effect (crashlink writes its own output): "
+                     "*CONTROL_ENERGY"),
+            std::string::npos)
+      << all;
+  EXPECT_EQ(
+      read(with_lines({"*CONTROL_SHELL", "                                       1         1"})),
+      "c.k:35: *CONTROL_SHELL field THEORY (columns 41-50) = 1: crashlink computes the "
+      "Belytschko-Tsay shell (THEORY 2) only; fix: write 2");
+}
+
 TEST_F(DeckControls, MistakesNameTheirField) {
   struct Mistake {
     const char* what;
