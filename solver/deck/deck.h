@@ -125,6 +125,9 @@ struct VelocityCard {
                  ///< 4: *INITIAL_VELOCITY (node set NSID, 0: every node)
   std::array<double, 3> v{};  ///< deck velocity units, in the system ICID
   std::int64_t icid = 0;      ///< *DEFINE_COORDINATE_SYSTEM id; 0: global axes
+  /// *INITIAL_VELOCITY_GENERATION card 2 IRIGID: 1 overrides a *PART_INERTIA body's velocity
+  /// (0, the default, keeps it).
+  int irigid = 0;
   std::string keyword;
   CardRef ref;
 };

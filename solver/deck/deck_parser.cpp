@@ -402,6 +402,9 @@ class Parser {
       case Kw::VelocityNode:
       case Kw::VelocityPlain:
         return d_.velocities.size();
+      case Kw::Motion:
+      case Kw::LoadNode:
+        return d_.curve_dofs.size();
       case Kw::DefineBox:
         return d_.boxes.size();
       case Kw::CoordinateSystem:
@@ -925,13 +928,21 @@ class Parser {
       b_.card = 1;
       return;
     }
-    b_.card = 0;  // card 2: the rotation's centre and axis, without effect at OMEGA = 0
+    // card 2: the rotation's centre and axis, without effect at OMEGA = 0; IRIGID
+    const auto irigid = c.field(L::kVelocityGeneration2, 7);
+    d_.velocities.back().irigid = static_cast<int>(irigid.integer(0));
+    if (d_.velocities.back().irigid < 0 || d_.velocities.back().irigid > 1)
+      irigid.fail(
+          "must be 0 (keep a *PART_INERTIA body's velocity) or 1 (override it); fix: "
+          "write one");
+    b_.card = 0;
   }
 
   /// *INITIAL_VELOCITY: card 1 NSID (0: every node), NSIDEX, BOXID, IRIGID, ICID; card 2 VX VY
   /// VZ (and VXR-VZR, which must be 0).
   void velocity_plain(const Card& c) {
     if (b_.card == 0) {
+      if (blank(c)) return;  // a blank line between records (write NSID 0 for every node)
       VelocityCard v;
       v.keyword = b_.keyword;
       v.styp = 4;

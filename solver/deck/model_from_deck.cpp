@@ -290,7 +290,10 @@ class Builder {
         model::RigidBody rb;
         rb.name = m_.parts.back().name;
         rb.parts.push_back(static_cast<int>(m_.parts.size() - 1));
-        if (pc.inertia) part_inertia(pc, rb);
+        if (pc.inertia) {
+          part_inertia(pc, rb);
+          inertia_bodies_.insert(static_cast<int>(m_.rigid_bodies.size()));
+        }
         rigid_body_of_part_[pc.id] = static_cast<int>(m_.rigid_bodies.size());
         m_.rigid_bodies.push_back(std::move(rb));
       }
@@ -588,7 +591,14 @@ class Builder {
       iv.velocity_m_s = vel;
       for (auto pid : part_ids) {
         if (const auto rb = rigid_body_of_part_.find(pid); rb != rigid_body_of_part_.end()) {
-          m_.rigid_bodies[static_cast<std::size_t>(rb->second)].velocity_m_s = vel;
+          // LS-DYNA's IRIGID 0 (default) keeps a *PART_INERTIA body's velocity; 1 overrides it
+          if (inertia_bodies_.count(rb->second) == 0 || v.irigid == 1)
+            m_.rigid_bodies[static_cast<std::size_t>(rb->second)].velocity_m_s = vel;
+          else
+            d_notes_.push_back(
+                fmt::format("{}: {}: part {} keeps the velocity of its *PART_INERTIA (IRIGID 0; 1 "
+                            "overrides it)",
+                            at(d_, v.ref), v.keyword, pid));
           continue;
         }
         const auto p = part_index_.find(pid);
@@ -602,14 +612,28 @@ class Builder {
       }
       std::sort(iv.nodes.begin(), iv.nodes.end());
       iv.nodes.erase(std::unique(iv.nodes.begin(), iv.nodes.end()), iv.nodes.end());
-      if (plain) {  // a rigid body's nodes take the body's velocity, not a node's
-        std::vector<char> on_body(m_.nodes.count(), 0);
-        for (const auto& rb : m_.rigid_bodies)
-          for (int p : rb.parts)
+      if (plain) {
+        // A rigid body with nodes in the set takes the velocity (LS-DYNA: IRIGID 0 protects
+        // only *PART_INERTIA velocities); its nodes follow the body, so they leave the list.
+        std::vector<int> body_of(m_.nodes.count(), -1);
+        for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b)
+          for (int p : m_.rigid_bodies[b].parts)
             for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
-              on_body[static_cast<std::size_t>(c)] = 1;
+              body_of[static_cast<std::size_t>(c)] = static_cast<int>(b);
+        std::vector<char> moved(m_.rigid_bodies.size(), 0);
+        for (auto c : iv.nodes) {
+          const int b = body_of[static_cast<std::size_t>(c)];
+          if (b < 0 || moved[static_cast<std::size_t>(b)]) continue;
+          moved[static_cast<std::size_t>(b)] = 1;
+          if (inertia_bodies_.count(b) == 0)
+            m_.rigid_bodies[static_cast<std::size_t>(b)].velocity_m_s = vel;
+          else
+            d_notes_.push_back(fmt::format(
+                "{}: {}: rigid body '{}' keeps the velocity of its *PART_INERTIA", at(d_, v.ref),
+                v.keyword, m_.rigid_bodies[static_cast<std::size_t>(b)].name));
+        }
         std::erase_if(iv.nodes,
-                      [&](std::int32_t c) { return on_body[static_cast<std::size_t>(c)] != 0; });
+                      [&](std::int32_t c) { return body_of[static_cast<std::size_t>(c)] >= 0; });
       }
       if (iv.nodes.empty()) continue;
       // Consecutive *INITIAL_VELOCITY_NODE cards with one velocity make one entry.
@@ -750,6 +774,12 @@ class Builder {
       const RigidWallCard& k = d_.rigid_walls[i];
       model::RigidWall w;
       w.name = k.heading.empty() ? fmt::format("rigidwall_{}", i + 1) : k.heading;
+      if (!used_wall_names_.insert(w.name).second) {  // a heading met twice: made unique
+        const std::string base = w.name;
+        w.name = fmt::format("{} ({})", base, i + 1);
+        for (int extra = 2; !used_wall_names_.insert(w.name).second; ++extra)
+          w.name = fmt::format("{} ({}) #{}", base, i + 1, extra);
+      }
       Vec3 n{};
       for (std::size_t c = 0; c < 3; ++c) {
         w.point_m[c] = k.tail[c] * u_.length_m;
@@ -942,6 +972,8 @@ class Builder {
   std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_;
   IdMap boxes_;
   std::unordered_map<std::string, int> used_contact_names_;
+  std::unordered_set<std::string> used_wall_names_;
+  std::unordered_set<int> inertia_bodies_;  ///< bodies whose velocity *PART_INERTIA gave
   std::unordered_map<std::int64_t, Mat3> frames_;
   bool last_was_node_ = false;
 };

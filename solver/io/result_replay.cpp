@@ -45,7 +45,8 @@ ReplayCounts replay_results(const std::string& from, ResultWriter& to, const mod
     counts.contact_rows += k;
   }
 
-  for (std::size_t w = 0; w < model.rigid_walls.size(); ++w) {
+  const auto wall_names = in.wall_names();  // none in files written before 2026-11-27
+  for (std::size_t w = 0; w < model.rigid_walls.size() && !wall_names.empty(); ++w) {
     const ContactHistory h = in.wall(result_link_name(model.rigid_walls[w].name, "rigid wall", w));
     const std::size_t k = rows_before(h.time_s, before_s);
     to.append_wall_rows(w, std::span<const double>(h.time_s.data(), k), contact_samples(h, k));

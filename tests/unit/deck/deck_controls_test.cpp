@@ -129,6 +129,20 @@ TEST_F(DeckControls, RateCoefficientIsConvertedFromTheDecksTime) {
 }
 
 // *RIGIDWALL_PLANAR_MOVING (either order with _ID): the mass and velocity in SI.
+// Two walls with one heading: the second gets its number (result.h5 needs distinct names).
+TEST_F(DeckControls, WallHeadingsAreMadeUnique) {
+  DeckRead r;
+  const std::vector<std::string> wall = {
+      "*RIGIDWALL_PLANAR_ID", "         1floor", "         0",
+      "       0.0       0.0      -1.0       0.0       0.0       1.0"};
+  auto lines = wall;
+  lines.insert(lines.end(), wall.begin(), wall.end());
+  ASSERT_EQ(read(with_lines(lines), &r), "");
+  ASSERT_EQ(r.model.rigid_walls.size(), 2u);
+  EXPECT_EQ(r.model.rigid_walls[0].name, "floor");
+  EXPECT_EQ(r.model.rigid_walls[1].name, "floor (2)");
+}
+
 TEST_F(DeckControls, MovingWallReadsItsMassAndVelocity) {
   DeckRead r;
   ASSERT_EQ(read(with_lines({"*RIGIDWALL_PLANAR_MOVING_ID", "         3ram", "         0",
@@ -215,6 +229,16 @@ TEST_F(DeckControls, PartInertiaGivesTheRigidBody) {
   EXPECT_DOUBLE_EQ(b.inertia_kg_m2[2][2], 30.0e-3);
   EXPECT_DOUBLE_EQ(b.velocity_m_s[2], -5.0);
   EXPECT_DOUBLE_EQ(b.angular_velocity_rad_s[2], 100.0);
+  // *INITIAL_VELOCITY_GENERATION on the part: IRIGID 0 (default) keeps the inertia card's
+  // velocity, with a note; 1 replaces it; the plain *INITIAL_VELOCITY keeps it too
+  for (const char* irigid : {"         0", "         1"}) {
+    auto g = d;
+    g.insert(g.end(), {"*INITIAL_VELOCITY_GENERATION", "         2         2       0.0    7000.0",
+                       std::string(70, ' ') + irigid});
+    ASSERT_EQ(read(g, &r), "");
+    EXPECT_DOUBLE_EQ(r.model.rigid_bodies[0].velocity_m_s[0], irigid[9] == '1' ? 7.0 : 0.0);
+    EXPECT_DOUBLE_EQ(r.model.rigid_bodies[0].velocity_m_s[2], irigid[9] == '1' ? 0.0 : -5.0);
+  }
   // the same on the deformable part 1: refused at TM
   auto e = testing::two_cubes();
   e.erase(e.begin() + 21, e.begin() + 24);
@@ -243,6 +267,17 @@ TEST_F(DeckControls, PlainInitialVelocity) {
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 2u);
   EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[1], 3.0);
+  // a rigid body with nodes in the set takes the velocity (its nodes follow it); a blank line
+  // between records is skipped
+  auto d = with_lines({"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0", ""});
+  d[26] = "         2         1         2";
+  d.insert(d.end(), {"*MAT_RIGID", "         2   7.85e-9  210000.0       0.3"});
+  ASSERT_EQ(read(d, &r), "");
+  ASSERT_EQ(r.model.rigid_bodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.model.rigid_bodies[0].velocity_m_s[0], 1.0);
+  EXPECT_DOUBLE_EQ(r.model.rigid_bodies[0].velocity_m_s[2], -2.0);
+  ASSERT_EQ(r.model.initial_velocities.size(), 1u);
+  EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 8u);  // the deformable cube's
   EXPECT_EQ(read(with_lines({"*INITIAL_VELOCITY", "         0"})),
             "c.k:34: *INITIAL_VELOCITY: its cards are missing (the next keyword or the end of the "
             "file follows); fix: add them or remove the keyword");
@@ -373,6 +408,10 @@ TEST_F(DeckControls, MistakesNameTheirField) {
        plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0"}),
        "c.k:34: *RIGIDWALL_PLANAR: its cards are missing (the next keyword or the end of the file "
        "follows); fix: add them or remove the keyword"},
+      {"a prescribed motion without its card",
+       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "*END"}),
+       "c.k:34: *BOUNDARY_PRESCRIBED_MOTION_NODE: its cards are missing (the next keyword or "
+       "the end of the file follows); fix: add them or remove the keyword"},
       {"a moving wall without its mass",
        plus(testing::two_cubes(),
             {"*RIGIDWALL_PLANAR_MOVING", "         0",
