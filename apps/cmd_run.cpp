@@ -95,9 +95,18 @@ model::Model read_input(const RunCommandOptions& o, std::string& hash) {
   }
   deck::DeckRead d = deck::read_deck(o.scenario, {o.units, o.ignore});
   for (const auto& m : d.messages) std::printf("crashlink run: deck: %s\n", m.c_str());
-  std::ifstream in(o.scenario, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  hash = fmt::format("{:016x}", io::fnv1a64(bytes + "\n--units " + o.units));
+  // The fingerprint: the bytes of the deck and of every file it includes, in reading order, the
+  // unit system read in (given or inferred) and the keywords skipped: a restart with a changed
+  // include or another reading is refused.
+  std::string bytes;
+  for (const auto& f : d.files) {
+    std::ifstream in(f, std::ios::binary);
+    bytes.append((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bytes += '\0';
+  }
+  bytes += "\n--units " + d.units + "\n--ignore";
+  for (const auto& k : o.ignore) bytes += " " + k;
+  hash = fmt::format("{:016x}", io::fnv1a64(bytes));
   return std::move(d.model);
 }
 

@@ -141,5 +141,32 @@ TEST(DeckRun, AdvisePrintsTheScenarioToWrite) {
   std::filesystem::remove_all(dir);
 }
 
+// A deck's restart fingerprint covers its includes: a checkpointed run of the two-rate deck (its
+// nodes in an *INCLUDE) restarts as it is, and is refused once the included file changed.
+TEST(DeckRun, RestartIsRefusedWhenAnIncludedFileChanged) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_deck_restart_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto src = std::filesystem::path(CRASHLINK_TEST_DATA_DIR) / "data/decks/two_rates";
+  for (const char* f : {"two_rates.k", "bar_nodes.k"}) std::filesystem::copy_file(src / f, dir / f);
+  const std::string deck = (dir / "two_rates.k").string(), out = (dir / "out").string();
+  int status = 0;
+  std::string text = testing::run_command(
+      kCrashlink + " run " + deck + " --quiet --checkpoint-interval 2e-5 --out " + out, status);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+  text = testing::run_command(kCrashlink + " run " + deck + " --quiet --restart " + out, status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+  {  // one byte of the included file: a comment line
+    std::ofstream(dir / "bar_nodes.k", std::ios::app) << "$ changed\n";
+  }
+  text = testing::run_command(kCrashlink + " run " + deck + " --quiet --restart " + out, status);
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+  EXPECT_NE(text.find("restart with the scenario file and the --mode that wrote it"),
+            std::string::npos)
+      << text;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace crashlink
