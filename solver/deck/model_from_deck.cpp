@@ -416,12 +416,21 @@ class Builder {
       for (std::size_t r = 0; r < s.ranges.size(); ++r) {
         const auto [lo, hi] = s.ranges[r];
         std::size_t found = 0;
-        if (static_cast<double>(hi - lo) < 1e7) {
+        const IdMap& defined = s.parts ? parts_ : nodes_;
+        if (static_cast<double>(hi) - static_cast<double>(lo) <
+            static_cast<double>(defined.size())) {
           for (std::int64_t id = lo; id <= hi; ++id)
-            if (s.parts ? parts_.count(id) > 0 : nodes_.count(id) > 0) {
+            if (defined.count(id) > 0) {
               ids.push_back(id);
               ++found;
             }
+        } else {  // a range wider than the ids there are: the ids in it, ascending
+          std::vector<std::int64_t> in;
+          for (const auto& [id, index] : defined)
+            if (id >= lo && id <= hi) in.push_back(id);
+          std::sort(in.begin(), in.end());
+          found = in.size();
+          ids.insert(ids.end(), in.begin(), in.end());
         }
         if (found == 0)
           fail_at(d_, s.range_ref[r], s.keyword, L::kSetGenerate, 2 * (r % 4),

@@ -278,6 +278,13 @@ TEST_F(DeckControls, PlainInitialVelocity) {
   EXPECT_DOUBLE_EQ(r.model.rigid_bodies[0].velocity_m_s[2], -2.0);
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 8u);  // the deformable cube's
+  // a generated range far wider than the ids there are (1 to 1e9): its defined ids
+  ASSERT_EQ(read(with_lines({"*SET_NODE_LIST_GENERATE", "         5", "         91000000000",
+                             "*INITIAL_VELOCITY", "         5", "       0.0       0.0    1000.0"}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.initial_velocities.size(), 1u);
+  EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 8u);  // nodes 9-16
   EXPECT_EQ(read(with_lines({"*INITIAL_VELOCITY", "         0"})),
             "c.k:34: *INITIAL_VELOCITY: its cards are missing (the next keyword or the end of the "
             "file follows); fix: add them or remove the keyword");
