@@ -376,7 +376,13 @@ class Parser {
  private:
   const std::vector<std::string>& ignored() {
     if (ignored_.empty())
-      for (const auto& k : o_.ignore) ignored_.push_back(upper(k.front() == '*' ? k.substr(1) : k));
+      for (const auto& k : o_.ignore) {
+        if (k.empty() || k == "*")  // k.front() of an empty name would be undefined
+          throw InputError(d_.files.name(0), 0, "--ignore",
+                           "an empty keyword name; fix: list keywords without '*' and without "
+                           "empty entries, e.g. --ignore ELEMENT_BEAM,DAMPING_GLOBAL");
+        ignored_.push_back(upper(k.front() == '*' ? k.substr(1) : k));
+      }
     return ignored_;
   }
 

@@ -196,6 +196,12 @@ TEST_F(DeckErrors, UnitsMissingOrUnknownNameTheCandidates) {
             std::string::npos);
 }
 
+TEST_F(DeckErrors, EmptyIgnoreEntryIsRefused) {
+  EXPECT_EQ(error_of(cube(), "mm-t-s", {""}),
+            "err.k:0: --ignore: an empty keyword name; fix: list keywords without '*' and "
+            "without empty entries, e.g. --ignore ELEMENT_BEAM,DAMPING_GLOBAL");
+}
+
 TEST_F(DeckErrors, ImplausibleWaveSpeed) {
   auto d = cube();
   d[18] = "         1      7.85  210000.0       0.3";  // RO without its e-9
