@@ -74,9 +74,10 @@ std::string format_box(const std::pair<Vec3, Vec3>& b) {
 int read_part_reference(const YamlNode& ref, const ScenarioBuild& b) {
   const std::string name = ref.text();
   int p = b.model.part_index(name);
-  if (p < 0 && !b.deck_part_ids.empty() && !name.empty() &&
+  if (p < 0 && !b.deck_part_ids.empty() && !name.empty() && name.size() <= 18 &&
       name.find_first_not_of("0123456789") == std::string::npos) {
-    // A deck's part by its *PART PID (a title made of digits is matched first, above).
+    // A deck's part by its *PART PID (a title made of digits is matched first, above; more
+    // than 18 digits is no PID: unknown below, not an overflow).
     const auto it = std::find(b.deck_part_ids.begin(), b.deck_part_ids.end(),
                               static_cast<std::int64_t>(std::stoll(name)));
     if (it != b.deck_part_ids.end()) p = static_cast<int>(it - b.deck_part_ids.begin());

@@ -136,6 +136,15 @@ TEST(ScenarioDeck, MistakesAreRefusedAtTheirLine) {
   EXPECT_NE(message_of((c.dir / "e.yaml").string()).find("'1 (coarse)', '2 (fine)'"),
             std::string::npos)
       << message_of((c.dir / "e.yaml").string());
+  // a PID of 21 digits is unknown, not an overflow (it threw std::out_of_range: exit 4)
+  c.write("f.yaml",
+          "model: {deck: two_rates.k, units: mm-t-s}\ndomains:\n  a: {parts: [1]}\n"
+          "  b: {parts: [123456789012345678901]}\n");
+  EXPECT_NE(message_of((c.dir / "f.yaml").string())
+                .find("f.yaml:4: domains.b.parts[0]: unknown part '123456789012345678901' in the "
+                      "deck;"),
+            std::string::npos)
+      << message_of((c.dir / "f.yaml").string());
 
   // A mistake inside the deck keeps the deck's own file:line.
   std::string deck = c.read("two_rates.k");
