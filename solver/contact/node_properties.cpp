@@ -50,11 +50,11 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
         const double A = segment_area(x0, q);
         const double k = shell_stiffness(penalty_scale, K, A, segment_max_diagonal(x0, q));
         const bool tri = q[3] == q[2];
-        share = rho * part.thickness_m * A / (tri ? 3.0 : 4.0);
+        share = rho * part.thickness_of(e) * A / (tri ? 3.0 : 4.0);
         for (std::size_t a = 0; a < (tri ? 3u : 4u); ++a) {
           const auto i = static_cast<std::size_t>(q[a]);
           if (!mine) continue;
-          np.half_thickness_m[i] = std::max(np.half_thickness_m[i], 0.5 * part.thickness_m);
+          np.half_thickness_m[i] = std::max(np.half_thickness_m[i], 0.5 * part.thickness_of(e));
           if (!rigid) np.stiffness_N_m[i] = std::max(np.stiffness_N_m[i], k);
           np.mass_kg[i] += share;
         }

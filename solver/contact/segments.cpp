@@ -130,7 +130,7 @@ void push_face(const model::Model& m, const FaceRef& f, const std::array<std::in
   const bool shell = f.face == 255;
   if (shell) {
     k = shell_stiffness(penalty_scale, K, A, segment_max_diagonal(x0, q.data()));
-    offset = 0.5 * part.thickness_m;
+    offset = 0.5 * part.thickness_of(static_cast<std::size_t>(f.element));
   } else {
     const double V = hex_volume(x0, &part.connectivity[8 * static_cast<std::size_t>(f.element)]);
     k = solid_face_stiffness(penalty_scale, K, A, V);

@@ -27,6 +27,9 @@ struct ElementCards {
   std::vector<CardRef> ref;            ///< the card holding the node ids
   std::vector<std::int32_t> id_line;   ///< the line holding EID and PID (two-card solids: above)
   std::vector<std::uint8_t> two_card;  ///< solids: 1 if written as "EID PID" + "N1..N10"
+  /// shells of *ELEMENT_SHELL_THICKNESS: THIC1-THIC4 (deck length; 0: the section's); else
+  /// empty
+  std::vector<std::array<double, 4>> thickness;
   std::size_t count() const { return id.size(); }
 };
 

@@ -76,6 +76,7 @@ constexpr KeywordName kKeywords[] = {
     {"*TITLE", Kw::Title, false, false},
     {"*NODE", Kw::Node, false, false},
     {"*ELEMENT_SHELL", Kw::ElementShell, false, false},
+    {"*ELEMENT_SHELL_THICKNESS", Kw::ElementShell, false, false},
     {"*ELEMENT_SOLID", Kw::ElementSolid, false, false},
     {"*PART", Kw::Part, false, false},
     {"*PART_INERTIA", Kw::Part, false, false},
@@ -452,6 +453,10 @@ class Parser {
                                    "IRCS NODEID, 4: IXX IXY IXZ IYY IYZ IZZ, 5: VTX VTY VTZ VRX "
                                    "VRY VRZ); fix: add it",
                                    b_.card + 1));
+    if (b_.kw == Kw::ElementShell && b_.card == 1)
+      throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
+                       "an element's thickness card (THIC1-THIC4) is missing after its node "
+                       "card; fix: add it");
     if (b_.kw == Kw::ElementSolid && b_.card == 1) {
       // "EID PID" card without its node card: the deck ends inside an element.
       throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
@@ -499,6 +504,20 @@ class Parser {
   void shell(const Card& c) {
     if (blank(c)) return;
     auto& e = d_.shells;
+    const bool with_thickness = b_.keyword == "*ELEMENT_SHELL_THICKNESS";
+    if (with_thickness && b_.card == 1) {  // THIC1-THIC4 (0: the section's), BETA
+      std::array<double, 4> t{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const auto f = c.field(L::kShellThickness, k);
+        t[k] = f.real(0.0);
+        if (t[k] < 0.0) f.fail("must be >= 0 (0: the section's thickness); fix: write it");
+      }
+      // BETA, the material angle: without effect on an isotropic material
+      e.thickness.resize(e.count());
+      e.thickness.back() = t;
+      b_.card = 0;
+      return;
+    }
     e.id.push_back(positive_id(c.field(L::kElement, 0)));
     e.part.push_back(positive_id(c.field(L::kElement, 1)));
     for (std::size_t k = 2; k < 6; ++k) e.nodes.push_back(positive_id(c.field(L::kElement, k)));
@@ -508,6 +527,10 @@ class Parser {
     e.ref.push_back(c.ref());
     e.id_line.push_back(c.ref().line);
     e.two_card.push_back(0);
+    if (with_thickness) {
+      b_.card = 1;
+      last_ = c.ref();
+    }
   }
 
   void solid(const Card& c) {

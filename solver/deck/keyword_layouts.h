@@ -12,6 +12,9 @@ inline constexpr FieldSpec kElement[] = {{"EID", 8}, {"PID", 8}, {"N1", 8}, {"N2
 /// *ELEMENT_SOLID's second card in the two-card layout.
 inline constexpr FieldSpec kSolidNodes[] = {{"N1", 8}, {"N2", 8}, {"N3", 8}, {"N4", 8}, {"N5", 8},
                                             {"N6", 8}, {"N7", 8}, {"N8", 8}, {"N9", 8}, {"N10", 8}};
+/// *ELEMENT_SHELL_THICKNESS's second card: the corner thicknesses and the material angle.
+inline constexpr FieldSpec kShellThickness[] = {
+    {"THIC1", 16}, {"THIC2", 16}, {"THIC3", 16}, {"THIC4", 16}, {"BETA", 16}};
 inline constexpr FieldSpec kTitle[] = {{"TITLE", 80}};
 inline constexpr FieldSpec kIdHeading[] = {{"ID", 10}, {"HEADING", 70}};
 inline constexpr FieldSpec kPart[] = {{"PID", 10},  {"SECID", 10}, {"MID", 10},    {"EOSID", 10},

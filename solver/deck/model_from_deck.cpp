@@ -230,6 +230,8 @@ class Builder {
     const std::size_t np = d_.parts.size();
     std::vector<model::Part> parts(np);
     std::vector<std::size_t> counts(np, 0);
+    std::vector<std::vector<std::array<double, 4>>> shell_thickness(np);
+    std::vector<char> any_thickness(np, 0);
     for (int pass = 0; pass < 2; ++pass) {
       const bool shell = pass == 0;
       // LS-DYNA numbers each element type on its own: a shell and a solid may share an id.
@@ -257,6 +259,15 @@ class Builder {
         const std::int32_t* q = part.connectivity.data() + part.connectivity.size() - k;
         check_distinct(q, k, shell, c.ref[e], kw, l, first_node_field);
         part.element_id.push_back(c.id[e]);
+        if (shell) {  // *ELEMENT_SHELL_THICKNESS: kept in deck units until the section is known
+          const bool given = e < c.thickness.size();
+          shell_thickness[static_cast<std::size_t>(p)].push_back(given ? c.thickness[e]
+                                                                       : std::array<double, 4>{});
+          any_thickness[static_cast<std::size_t>(p)] =
+              any_thickness[static_cast<std::size_t>(p)] ||
+              (given && (c.thickness[e][0] != 0.0 || c.thickness[e][1] != 0.0 ||
+                         c.thickness[e][2] != 0.0 || c.thickness[e][3] != 0.0));
+        }
         ++counts[static_cast<std::size_t>(p)];
       }
     }
@@ -276,6 +287,20 @@ class Builder {
       if (s.shell) {
         part.thickness_m = s.thickness * u_.length_m;
         part.through_thickness_points = s.nip;
+        if (any_thickness[p]) {
+          // *ELEMENT_SHELL_THICKNESS: the mean of the corners' thicknesses (the
+          // Belytschko-Tsay element's one point), a zero corner taking the section's
+          for (std::size_t e = 0; e < shell_thickness[p].size(); ++e) {
+            const auto& t = shell_thickness[p][e];
+            const bool tri = part.connectivity[4 * e + 3] == part.connectivity[4 * e + 2];
+            const int corners = tri ? 3 : 4;
+            double sum = 0.0;
+            for (int k = 0; k < corners; ++k)
+              sum += t[static_cast<std::size_t>(k)] > 0.0 ? t[static_cast<std::size_t>(k)]
+                                                          : s.thickness;
+            part.element_thickness_m.push_back(sum / corners * u_.length_m);
+          }
+        }
       }
       part_index_[pc.id] = static_cast<int>(m_.parts.size());
       if (pc.inertia && m_.materials[static_cast<std::size_t>(part.material)].kind !=

@@ -12,7 +12,6 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
                        double* mass, double* inertia) {
   const std::size_t ne = part.element_count();
   const double rho = mat.density_kg_m3;
-  const double h = part.thickness_m;
   auto node = [&](std::int32_t n) {
     const std::size_t i = 3 * static_cast<std::size_t>(n);
     return Vec3{x0[i], x0[i + 1], x0[i + 2]};
@@ -29,6 +28,7 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
           part.name, part.element_id[e], A));
     const bool triangle = c[3] == c[2];
     const int corners = triangle ? 3 : 4;
+    const double h = part.thickness_of(e);
     const double m_node = rho * h * A / corners;
     // Rotary inertia with area scaling: I = m_node max(h^2/12, A/8) (see shell_bt.h).
     const double I_node = m_node * std::max(h * h / 12.0, A / 8.0);

@@ -58,6 +58,8 @@ ShellState make_shell_state(const model::Part& part) {
   st.eps_p.assign(npts * st.stride, 0.0);
   st.shear_Pa.assign(2 * st.stride, 0.0);
   st.thickness_m.assign(st.stride, part.thickness_m);
+  for (std::size_t e = 0; e < part.element_thickness_m.size(); ++e)
+    st.thickness_m[e] = part.element_thickness_m[e];
   st.bulk_q_Pa.assign(st.stride, 0.0);
   st.hourglass.assign(5 * st.stride, 0.0);
   if (part.damped()) {

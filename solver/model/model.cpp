@@ -70,6 +70,18 @@ void validate(const Model& m) {
           "part '{}': damping ratio {} outside [0, 0.5]; give the fraction of critical damping at "
           "the element's highest frequency, e.g. 0.05 (0: no damping)",
           p.name, p.damping_ratio));
+    if (!p.element_thickness_m.empty()) {
+      if (p.kind != ElementKind::Shell4 || p.element_thickness_m.size() != p.element_count())
+        throw ModelError(fmt::format(
+            "part '{}': {} element thicknesses for {} elements of a {} part (internal error: one "
+            "per shell element)",
+            p.name, p.element_thickness_m.size(), p.element_count(),
+            p.kind == ElementKind::Shell4 ? "shell" : "solid"));
+      for (std::size_t e = 0; e < p.element_thickness_m.size(); ++e)
+        if (!(p.element_thickness_m[e] > 0.0))
+          throw ModelError(fmt::format("part '{}', shell element {}: thickness {} m must be > 0",
+                                       p.name, p.element_id[e], p.element_thickness_m[e]));
+    }
     if (!p.element_damping_ratio.empty()) {
       if (p.element_damping_ratio.size() != p.element_count())
         throw ModelError(fmt::format(

@@ -39,6 +39,9 @@ struct Part {
   std::vector<std::int32_t> connectivity;  ///< [k*ne], see the header comment
   std::vector<std::int64_t> element_id;    ///< [ne] user ids
   double thickness_m = 0.0;                ///< Shell4 only
+  /// Shell4: [ne] or empty: each element's initial thickness [m] (a deck's
+  /// *ELEMENT_SHELL_THICKNESS), overriding thickness_m.
+  std::vector<double> element_thickness_m;
   int through_thickness_points = 5;    ///< Shell4 only: Gauss points through the thickness (>= 3)
   double hourglass_coefficient = 0.1;  ///< Flanagan–Belytschko / BT stiffness coefficient [-]
   /// Stiffness-proportional (Rayleigh beta) damping, LS-DYNA *DAMPING_PART_STIFFNESS: xi, the
@@ -50,6 +53,10 @@ struct Part {
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
+  }
+  /// Initial thickness of shell element e [m] (element_thickness_m if given, else thickness_m).
+  double thickness_of(std::size_t e) const {
+    return element_thickness_m.empty() ? thickness_m : element_thickness_m[e];
   }
   /// xi of element e (element_damping_ratio if given, else damping_ratio).
   double damping_ratio_of(std::size_t e) const {

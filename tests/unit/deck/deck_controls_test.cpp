@@ -333,6 +333,18 @@ TEST_F(DeckControls, MistakesNameTheirField) {
   const std::string k003 = "         1   7.85e-9  210000.0       0.3     250.0     100.0       1.0";
   const std::string k024 = "         1   7.85e-9  210000.0       0.3     250.0     100.0";
   const Mistake mistakes[] = {
+      {"a shell element without its thickness card",
+       with_lines({"*NODE", "      41             0.0             0.0             5.0",
+                   "      42             1.0             0.0             5.0",
+                   "      43             1.0             1.0             5.0",
+                   "*ELEMENT_SHELL_THICKNESS", "       9       1      41      42      43      43"}),
+       "c.k:39: *ELEMENT_SHELL_THICKNESS: an element's thickness card (THIC1-THIC4) is missing "
+       "after its node card; fix: add it"},
+      {"a negative shell thickness",
+       with_lines({"*ELEMENT_SHELL_THICKNESS", "       9       1       1       2       3       3",
+                   "            -1.0"}),
+       "c.k:36: *ELEMENT_SHELL_THICKNESS field THIC1 (columns 1-16) = -1.0: must be >= 0 (0: the "
+       "section's thickness); fix: write it"},
       {"motion along a vector",
        with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         4         0         7"}),
        "c.k:35: *BOUNDARY_PRESCRIBED_MOTION_NODE field DOF (columns 11-20) = 4: crashlink "

@@ -64,11 +64,13 @@ TEST_F(DeckErrors, UnsupportedKeywordListsTheSupportedOnes) {
   auto d = cube();
   d.insert(d.begin() + 21, {"*ELEMENT_BEAM", "       9       1       1       2"});
   const std::string msg = error_of(d);
-  EXPECT_EQ(msg.rfind("err.k:22: *ELEMENT_BEAM: not supported; fix: remove it, or pass --ignore "
-                      "ELEMENT_BEAM to skip it (what it does is then missing from the run). "
-                      "Supported: *TITLE *NODE *ELEMENT_SHELL *ELEMENT_SOLID *PART",
-                      0),
-            0u)
+  EXPECT_EQ(
+      msg.rfind("err.k:22: *ELEMENT_BEAM: not supported; fix: remove it, or pass --ignore "
+                "ELEMENT_BEAM to skip it (what it does is then missing from the run). "
+                "Supported: *TITLE *NODE *ELEMENT_SHELL *ELEMENT_SHELL_THICKNESS *ELEMENT_SOLID "
+                "*PART *PART_INERTIA *SECTION_SHELL(_TITLE)",
+                0),
+      0u)
       << msg;
   EXPECT_NE(msg.find("*MAT_PIECEWISE_LINEAR_PLASTICITY(_TITLE)"), std::string::npos);
   EXPECT_EQ(error_of(d, "mm-t-s", {"ELEMENT_BEAM"}), "");  // skipped on request
