@@ -1,0 +1,391 @@
+// The cards of the run's conditions (keyword_parser.h): constraints, initial velocities,
+// hourglass and the other controls, body and nodal loads, prescribed motions, output intervals
+// and node histories, termination and time step.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/core/errors.h"
+#include "solver/deck/field_checks.h"
+#include "solver/deck/keyword_layouts.h"
+#include "solver/deck/keyword_parser.h"
+
+namespace crashlink::deck::detail {
+
+namespace L = layout;
+
+void Parser::spc(const Card& c) {
+  if (b_.id && b_.card == 0) {  // the ID/HEADING card
+    b_.card = 1;
+    return;
+  }
+  if (blank(c)) return;
+  const Layout l = b_.kw == Kw::SpcNode ? Layout(L::kSpcNode) : Layout(L::kSpcSet);
+  SpcCard s;
+  s.keyword = b_.keyword;
+  s.set = b_.kw == Kw::SpcSet;
+  s.target = positive_id(c.field(l, 0));
+  must_be_default(c.field(l, 1), 0.0,
+                  "constraints in a local coordinate system are not computed; fix: write CID "
+                  "0 (global axes)");
+  for (std::size_t k = 2; k < 8; ++k) {
+    const auto f = c.field(l, k);
+    const auto v = f.integer(0);
+    if (v != 0 && v != 1) f.fail("must be 0 (free) or 1 (fixed); fix: write 0 or 1");
+    if (v == 1) s.mask = static_cast<std::uint8_t>(s.mask | (1u << (k - 2)));
+  }
+  s.ref = c.ref();
+  d_.spcs.push_back(std::move(s));
+}
+
+void Parser::velocity_generation(const Card& c) {
+  if (b_.card == 0) {
+    VelocityCard v;
+    v.keyword = b_.keyword;
+    v.target = positive_id(c.field(L::kVelocityGeneration1, 0));
+    const auto styp = c.field(L::kVelocityGeneration1, 1);
+    v.styp = static_cast<int>(styp.integer(0));
+    if (v.styp < 1 || v.styp > 3)
+      styp.fail("must be 1 (part set), 2 (part) or 3 (node set); fix: write one of them");
+    must_be_default(c.field(L::kVelocityGeneration1, 2), 0.0,
+                    "rotational initial velocity (OMEGA) is not read yet; fix: write OMEGA 0 "
+                    "(translation only)");
+    for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kVelocityGeneration1, 3 + k).real(0.0);
+    must_be_default(c.field(L::kVelocityGeneration1, 6), 0.0,
+                    "IVATN 1 is not computed; fix: write IVATN 0");
+    v.icid = c.field(L::kVelocityGeneration1, 7).integer(0);
+    if (v.icid < 0)
+      c.field(L::kVelocityGeneration1, 7)
+          .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+    v.ref = c.ref();
+    d_.velocities.push_back(std::move(v));
+    b_.card = 1;
+    return;
+  }
+  // card 2: the rotation's centre and axis, without effect at OMEGA = 0; IRIGID
+  const auto irigid = c.field(L::kVelocityGeneration2, 7);
+  d_.velocities.back().irigid = static_cast<int>(irigid.integer(0));
+  if (d_.velocities.back().irigid < 0 || d_.velocities.back().irigid > 1)
+    irigid.fail(
+        "must be 0 (keep a *PART_INERTIA body's velocity) or 1 (override it); fix: "
+        "write one");
+  b_.card = 0;
+}
+
+void Parser::velocity_plain(const Card& c) {
+  if (b_.card == 0) {
+    if (blank(c)) return;  // a blank line between records (write NSID 0 for every node)
+    VelocityCard v;
+    v.keyword = b_.keyword;
+    v.styp = 4;
+    v.target = c.field(L::kInitialVelocity1, 0).integer(0);
+    if (v.target < 0)
+      c.field(L::kInitialVelocity1, 0).fail("must be a node set id or 0 (every node); fix");
+    must_be_default(c.field(L::kInitialVelocity1, 1), 0.0,
+                    "exempted nodes (NSIDEX) are not computed; fix: write 0 and leave them "
+                    "out of NSID");
+    must_be_default(c.field(L::kInitialVelocity1, 2), 0.0,
+                    "a box (BOXID) is not computed here; fix: write 0 and give the nodes in "
+                    "NSID (e.g. *SET_NODE_GENERAL BOX)");
+    must_be_default(c.field(L::kInitialVelocity1, 3), 0.0,
+                    "IRIGID is not computed; fix: write 0 and give a rigid part's velocity with "
+                    "*INITIAL_VELOCITY_GENERATION on the part");
+    v.icid = c.field(L::kInitialVelocity1, 4).integer(0);
+    if (v.icid < 0)
+      c.field(L::kInitialVelocity1, 4)
+          .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+    v.ref = c.ref();
+    d_.velocities.push_back(std::move(v));
+    b_.card = 1;
+    return;
+  }
+  VelocityCard& v = d_.velocities.back();
+  for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kInitialVelocity2, k).real(0.0);
+  for (std::size_t k = 3; k < 6; ++k)
+    must_be_default(c.field(L::kInitialVelocity2, k), 0.0,
+                    "angular velocities (VXR, VYR, VZR) are not read; fix: leave them blank");
+  b_.card = 0;
+}
+
+void Parser::velocity_node(const Card& c) {
+  if (blank(c)) return;
+  VelocityCard v;
+  v.keyword = b_.keyword;
+  v.target = positive_id(c.field(L::kVelocityNode, 0));
+  for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kVelocityNode, 1 + k).real(0.0);
+  for (std::size_t k = 4; k < 7; ++k)
+    must_be_default(c.field(L::kVelocityNode, k), 0.0,
+                    "nodal angular velocities are not read yet; fix: leave VXR, VYR, VZR blank");
+  v.icid = c.field(L::kVelocityNode, 7).integer(0);
+  if (v.icid < 0)
+    c.field(L::kVelocityNode, 7)
+        .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+  v.ref = c.ref();
+  d_.velocities.push_back(std::move(v));
+}
+
+void Parser::hourglass_type(const Field& ihq_f, HourglassCard& h) {
+  h.ihq = static_cast<int>(ihq_f.integer(0));
+  if (h.ihq == 0 || h.ihq == 1) {
+    d_.notes.push_back(
+        fmt::format("{}:{}: {} IHQ {}: LS-DYNA's viscous hourglass control; crashlink computes the "
+                    "stiffness form (IHQ 4) with the coefficient QM",
+                    d_.files.name(h.ref.file), h.ref.line, h.keyword,
+                    ihq_f.blank() ? std::string("blank") : std::to_string(h.ihq)));
+    return;
+  }
+  if (h.ihq != 4 && h.ihq != 5)
+    ihq_f.fail(
+        "crashlink computes the stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko "
+        "for hexahedra, Belytschko-Tsay for shells); the viscous forms 2 and 3 and the "
+        "assumed-strain ones (6 and up) are not computed; fix: write IHQ 4");
+}
+
+double Parser::hourglass_coefficient(const Field& f) {
+  double q = f.real(0.1);
+  if (q == 0.0) q = 0.1;
+  if (!(q > 0.0 && q <= 0.3)) f.fail("must lie in (0, 0.3]; fix: write 0.05-0.1 (stiffness form)");
+  return q;
+}
+
+void Parser::hourglass(const Card& c) {
+  if (title_card(c)) return;
+  HourglassCard h;
+  h.keyword = b_.keyword;
+  h.ref = c.ref();
+  h.id = positive_id(c.field(L::kHourglass, 0));
+  hourglass_type(c.field(L::kHourglass, 1), h);
+  h.qm = hourglass_coefficient(c.field(L::kHourglass, 2));
+  must_be_default(c.field(L::kHourglass, 3), 0.0, "IBQ is not read; fix: leave it blank");
+  for (std::size_t k : {std::size_t{4}, std::size_t{5}})
+    must_be_default(c.field(L::kHourglass, k), 0.0,
+                    "a bulk viscosity per part (Q1, Q2) is not computed; fix: leave them blank "
+                    "and set the model's in *CONTROL_BULK_VISCOSITY");
+  d_.hourglass.push_back(std::move(h));
+  b_.card = 0;
+}
+
+void Parser::control_hourglass(const Card& c) {
+  if (b_.card++ != 0) return;
+  HourglassCard& h = d_.control_hourglass;
+  h.keyword = b_.keyword;
+  h.ref = c.ref();
+  hourglass_type(c.field(L::kControlHourglass, 0), h);
+  h.qm = hourglass_coefficient(c.field(L::kControlHourglass, 1));
+  d_.has_control_hourglass = true;
+}
+
+void Parser::control_bulk(const Card& c) {
+  if (b_.card++ != 0) return;
+  const auto q1 = c.field(L::kControlBulk, 0), q2 = c.field(L::kControlBulk, 1);
+  d_.bulk_q1 = q1.real(1.5);
+  d_.bulk_q2 = q2.real(0.06);
+  if (d_.bulk_q1 == 0.0 && q1.blank()) d_.bulk_q1 = 1.5;
+  if (d_.bulk_q2 == 0.0 && q2.blank()) d_.bulk_q2 = 0.06;
+  if (d_.bulk_q1 < 0.0) q1.fail("must be >= 0; fix: write 1.5 (the default)");
+  if (d_.bulk_q2 < 0.0) q2.fail("must be >= 0; fix: write 0.06 (the default)");
+  const auto type = c.field(L::kControlBulk, 2);
+  const auto t = type.integer(1);
+  if (t != 1 && t != -2 && t != 0)
+    type.fail(
+        "crashlink computes the standard bulk viscosity of solids (TYPE 1) and, with TYPE -2, "
+        "of shells too; fix: write 1 or -2");
+  d_.bulk_shells = t == -2;
+  d_.has_bulk = true;
+}
+
+void Parser::load_body(const Card& c) {
+  if (blank(c)) return;
+  BodyLoadCard l;
+  l.keyword = b_.keyword;
+  l.axis = b_.keyword.back() - 'X';
+  l.ref = c.ref();
+  l.curve = positive_id(c.field(L::kLoadBody, 0));
+  l.sf = c.field(L::kLoadBody, 1).real(1.0);
+  must_be_default(c.field(L::kLoadBody, 2), 0.0,
+                  "dynamic relaxation (LCIDDR) is not computed; fix: write 0");
+  must_be_default(c.field(L::kLoadBody, 6), 0.0,
+                  "a body load in a local system (CID) is not computed; fix: write 0 (global "
+                  "axes)");
+  d_.body_loads.push_back(std::move(l));
+}
+
+void Parser::output_interval(const Card& c) {
+  if (b_.card++ != 0) return;
+  const bool d3plot = b_.kw == Kw::D3plot;
+  const Layout l = d3plot ? Layout(L::kD3plot) : Layout(L::kDatabaseAscii);
+  const auto dt_field = c.field(l, 0);
+  const double dt = dt_field.real(0.0);
+  if (dt < 0.0)
+    dt_field.fail("an output interval must be >= 0; fix: write the interval (0: no output)");
+  must_be_default(c.field(l, d3plot ? 1 : 2), 0.0,
+                  "an output interval from a curve is not read; fix: leave it blank and give "
+                  "DT");
+  if (d3plot) {
+    // NPLTC > 0: ENDTIM / NPLTC, in place of DT (LS-DYNA), set once the end time is known
+    const auto npltc = c.field(l, 3);
+    d_.field_count = npltc.integer(0);
+    if (d_.field_count < 0)
+      npltc.fail("must be >= 0 (the number of states over the run); fix: write it or DT");
+    d_.field_dt = dt;
+    return;
+  }
+  if (dt == 0.0) return;
+  d_.history_dt = d_.history_dt > 0.0 ? std::min(d_.history_dt, dt) : dt;
+  d_.history_dt_max = std::max(d_.history_dt_max, dt);
+  d_.history_dt_keywords.push_back(b_.keyword);
+}
+
+void Parser::history_node(const Card& c) {
+  const bool set = b_.keyword.find("_SET") != std::string::npos;
+  if (b_.id) {
+    if (blank(c)) return;
+    HistoryNodeCard h{b_.keyword,
+                      std::string(trim(c.field(L::kIdHeading, 1).raw())),
+                      positive_id(c.field(L::kIdHeading, 0)),
+                      false,
+                      0,
+                      c.ref()};
+    d_.history_nodes.push_back(std::move(h));
+    return;
+  }
+  for (std::size_t k = 0; k < 8; ++k) {
+    const auto f = c.field(L::kHistoryIds, k);
+    if (f.blank() || f.integer(0) == 0) continue;
+    d_.history_nodes.push_back({b_.keyword, {}, positive_id(f), set, k, c.ref()});
+  }
+}
+
+void Parser::curve_dof(const Card& c) {
+  if (b_.id && b_.card == 0) {
+    b_.card = 1;
+    return;
+  }
+  if (blank(c)) return;
+  const bool load = b_.kw == Kw::LoadNode;
+  const bool set = b_.keyword.find("_SET") != std::string::npos;
+  const Layout l = load ? (set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                        : (set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+  CurveDofCard k;
+  k.keyword = b_.keyword;
+  k.set = set;
+  k.load = load;
+  k.target = positive_id(c.field(l, 0));
+  const auto dof = c.field(l, 1);
+  k.dof = static_cast<int>(dof.integer(0));
+  const bool rotation = k.dof >= 5 && k.dof <= 7;
+  if (!(k.dof >= 1 && k.dof <= 3) && !(rotation && !load))
+    dof.fail(load ? "crashlink loads a node along x, y or z (DOF 1, 2, 3); moments, follower "
+                    "forces and loads along a vector are not computed; fix: write 1, 2 or 3"
+                  : "crashlink prescribes x, y, z (DOF 1, 2, 3) or rotations about them (5, 6, "
+                    "7); motion along a vector (4, 8), in a local system (negative) or of all "
+                    "translations (9-12) is not computed; fix: one card per global dof");
+  if (load) {
+    k.lcid = positive_id(c.field(l, 2));
+    k.sf = c.field(l, 3).real(1.0);
+    if (k.sf == 0.0 && c.field(l, 3).blank()) k.sf = 1.0;
+    must_be_default(c.field(l, 4), 0.0,
+                    "a load in a local system (CID) is not computed; fix: write 0 (global axes)");
+    for (std::size_t f = 5; f < 8; ++f)
+      must_be_default(c.field(l, f), 0.0,
+                      "a follower force (M1-M3) is not computed; fix: leave M1-M3 blank");
+  } else {
+    const auto vad = c.field(l, 2);
+    if (vad.integer(0) != 0)
+      vad.fail(
+          "crashlink prescribes a velocity (VAD 0); an acceleration (1) or displacement "
+          "(2) curve is not converted; fix: give the velocity curve (VAD 0), the "
+          "displacement's slope on each segment");
+    k.lcid = positive_id(c.field(l, 3));
+    k.sf = c.field(l, 4).real(1.0);
+    if (k.sf == 0.0 && c.field(l, 4).blank()) k.sf = 1.0;
+    must_be_default(c.field(l, 5), 0.0,
+                    "a motion along a vector (VID) is not computed; fix: write 0 and a global "
+                    "DOF");
+    const auto death = c.field(l, 6);
+    if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
+      death.fail(
+          "a death time (DEATH) is not computed: the motion holds to the end; fix: "
+          "write 0, or end the curve's velocity yourself");
+    must_be_default(c.field(l, 7), 0.0,
+                    "a birth time (BIRTH) is not computed; fix: write 0 and start the curve "
+                    "at 0");
+  }
+  k.ref = c.ref();
+  d_.curve_dofs.push_back(std::move(k));
+}
+
+void Parser::control_contact(const Card& c) {
+  if (b_.card++ != 0) {
+    if (!blank(c))
+      d_.notes.push_back(
+          fmt::format("{}:{}: *CONTROL_CONTACT card {} not read", c.file(), c.ref().line, b_.card));
+    return;
+  }
+  const auto f = c.field(L::kControlContact, 0);
+  d_.slsfac = f.real(0.1);
+  if (d_.slsfac == 0.0) d_.slsfac = 0.1;
+  if (!(d_.slsfac > 0.0)) f.fail("must be > 0; fix: write 0.1 (the default)");
+  for (std::size_t k = 1; k < 8; ++k)
+    if (!c.field(L::kControlContact, k).blank() && c.field(L::kControlContact, k).real(0.0) != 0.0)
+      d_.notes.push_back(fmt::format("{}:{}: *CONTROL_CONTACT {} not read", c.file(), c.ref().line,
+                                     L::kControlContact[k].name));
+}
+
+void Parser::control_shell(const Card& c) {
+  if (b_.card++ != 0) {
+    if (!blank(c))
+      d_.notes.push_back(
+          fmt::format("{}:{}: *CONTROL_SHELL card {} not read", c.file(), c.ref().line, b_.card));
+    return;
+  }
+  d_.has_control_shell = true;
+  const auto theory = c.field(L::kControlShell, 4);
+  const auto th = theory.integer(0);
+  if (th != 0 && th != 2)
+    theory.fail("crashlink computes the Belytschko-Tsay shell (THEORY 2) only; fix: write 2");
+  const auto istupd = c.field(L::kControlShell, 3);
+  d_.istupd = static_cast<int>(istupd.integer(0));
+  if (d_.istupd < 0 || d_.istupd > 4)
+    istupd.fail(
+        "must be 0 to 4; fix: write 1 (the thickness follows the membrane strain, as "
+        "crashlink computes it)");
+  for (std::size_t k : {0u, 1u, 2u, 5u, 6u, 7u})
+    if (!c.field(L::kControlShell, k).blank() && c.field(L::kControlShell, k).real(0.0) != 0.0)
+      d_.notes.push_back(fmt::format("{}:{}: *CONTROL_SHELL {} not read", c.file(), c.ref().line,
+                                     L::kControlShell[k].name));
+}
+
+void Parser::termination(const Card& c) {
+  if (b_.card++ != 0) return;
+  const auto endtim = c.field(L::kTermination, 0);
+  d_.end_time = positive(endtim, "0.01 (s) or 10 (ms)");
+  d_.has_end_time = true;
+  must_be_default(c.field(L::kTermination, 1), 0.0,
+                  "ending on a cycle count is not computed; fix: leave ENDCYC blank");
+  for (std::size_t k = 3; k < 5; ++k)
+    must_be_default(c.field(L::kTermination, k), 0.0,
+                    "ending on energy or mass change is not computed; fix: leave ENDENG and "
+                    "ENDMAS blank");
+  if (!c.field(L::kTermination, 2).blank())
+    d_.notes.push_back(
+        fmt::format("{}:{}: *CONTROL_TERMINATION DTMIN not read (crashlink's "
+                    "guard stops a collapsing step)",
+                    c.file(), c.ref().line));
+}
+
+void Parser::timestep(const Card& c) {
+  if (b_.card++ != 0) return;
+  const auto tssfac = c.field(L::kTimestep, 1);
+  d_.tssfac = tssfac.real(0.9);
+  if (d_.tssfac == 0.0) d_.tssfac = 0.9;  // LS-DYNA: 0 reads as the default
+  if (!(d_.tssfac > 0.0 && d_.tssfac <= 1.0))
+    tssfac.fail("must lie in (0, 1]; fix: write 0.9 (the default)");
+  must_be_default(c.field(L::kTimestep, 4), 0.0,
+                  "mass scaling (DT2MS) is not computed yet; fix: leave DT2MS blank");
+  must_be_default(c.field(L::kTimestep, 5), 0.0,
+                  "a step limit curve (LCTM) is not computed; fix: leave LCTM blank");
+}
+
+}  // namespace crashlink::deck::detail

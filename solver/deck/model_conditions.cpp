@@ -1,0 +1,406 @@
+// The run's conditions from a parsed deck: constraints, initial velocities, contacts, rigid walls,
+// prescribed motions and loads, probes, controls.
+#include <algorithm>
+#include <cmath>
+
+#include "solver/core/errors.h"
+#include "solver/deck/model_builder.h"
+#include "solver/materials/bilinear_hardening.h"
+
+namespace crashlink::deck::detail {
+
+void Builder::constraints() {
+  for (const auto& s : d_.spcs) {
+    const Layout l = s.set ? Layout(L::kSpcSet) : Layout(L::kSpcNode);
+    std::vector<std::int64_t> one{s.target};
+    const auto& ids = s.set ? node_set(s.target, s.ref, s.keyword, l) : one;
+    for (auto id : ids) {
+      const int i = node(id, s.ref, s.keyword.c_str(), l, 0);
+      if (i >= 0) m_.fixed[static_cast<std::size_t>(i)] |= s.mask;
+    }
+  }
+}
+
+void Builder::velocities() {
+  for (const auto& v : d_.velocities) {
+    const bool generation = v.styp != 0;
+    const bool plain = v.styp == 4;  // *INITIAL_VELOCITY
+    const Layout l = plain        ? Layout(L::kInitialVelocity1)
+                     : generation ? Layout(L::kVelocityGeneration1)
+                                  : Layout(L::kVelocityNode);
+    const Mat3 r = frame(v.icid, v.ref, v.keyword, l, plain ? 4 : 7);
+    const Vec3 vel = mul(r, Vec3{v.v[0] * u_.velocity_m_s(), v.v[1] * u_.velocity_m_s(),
+                                 v.v[2] * u_.velocity_m_s()});
+    std::vector<std::int64_t> part_ids;
+    std::vector<std::int64_t> node_ids;
+    if (v.styp == 0) {
+      node_ids.push_back(v.target);
+    } else if (v.styp == 1) {
+      const auto it = part_set_members_.find(v.target);
+      if (it == part_set_members_.end())
+        fail_at(d_, v.ref, v.keyword, l, 0,
+                fmt::format("part set {} is not defined (STYP 1); fix: add *SET_PART_LIST {}",
+                            v.target, v.target));
+      part_ids = it->second;
+    } else if (v.styp == 2) {
+      if (!parts_.count(v.target))
+        fail_at(d_, v.ref, v.keyword, l, 0,
+                fmt::format("part {} is not defined (STYP 2); fix: correct the id", v.target));
+      part_ids.push_back(v.target);
+    } else if (plain && v.target == 0) {
+      node_ids = m_.nodes.id;  // NSID 0: every node (a rigid body's follow its body)
+    } else {
+      node_ids = node_set(v.target, v.ref, v.keyword, l);
+    }
+    model::InitialVelocity iv;
+    iv.velocity_m_s = vel;
+    for (auto pid : part_ids) {
+      if (const auto rb = rigid_body_of_part_.find(pid); rb != rigid_body_of_part_.end()) {
+        // LS-DYNA's IRIGID 0 (default) keeps a *PART_INERTIA body's velocity; 1 overrides it
+        if (inertia_bodies_.count(rb->second) == 0 || v.irigid == 1)
+          m_.rigid_bodies[static_cast<std::size_t>(rb->second)].velocity_m_s = vel;
+        else
+          d_notes_.push_back(
+              fmt::format("{}: {}: part {} keeps the velocity of its *PART_INERTIA (IRIGID 0; 1 "
+                          "overrides it)",
+                          at(d_, v.ref), v.keyword, pid));
+        continue;
+      }
+      const auto p = part_index_.find(pid);
+      if (p == part_index_.end()) continue;  // a part without elements
+      for (auto i : m_.parts[static_cast<std::size_t>(p->second)].connectivity)
+        iv.nodes.push_back(i);
+    }
+    for (auto id : node_ids) {
+      const int i = node(id, v.ref, v.keyword.c_str(), l, 0);
+      if (i >= 0) iv.nodes.push_back(i);
+    }
+    std::sort(iv.nodes.begin(), iv.nodes.end());
+    iv.nodes.erase(std::unique(iv.nodes.begin(), iv.nodes.end()), iv.nodes.end());
+    if (plain) {
+      // A rigid body with nodes in the set takes the velocity (LS-DYNA: IRIGID 0 protects
+      // only *PART_INERTIA velocities); its nodes follow the body, so they leave the list.
+      std::vector<int> body_of(m_.nodes.count(), -1);
+      for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b)
+        for (int p : m_.rigid_bodies[b].parts)
+          for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+            body_of[static_cast<std::size_t>(c)] = static_cast<int>(b);
+      std::vector<char> moved(m_.rigid_bodies.size(), 0);
+      for (auto c : iv.nodes) {
+        const int b = body_of[static_cast<std::size_t>(c)];
+        if (b < 0 || moved[static_cast<std::size_t>(b)]) continue;
+        moved[static_cast<std::size_t>(b)] = 1;
+        if (inertia_bodies_.count(b) == 0)
+          m_.rigid_bodies[static_cast<std::size_t>(b)].velocity_m_s = vel;
+        else
+          d_notes_.push_back(fmt::format(
+              "{}: {}: rigid body '{}' keeps the velocity of its *PART_INERTIA", at(d_, v.ref),
+              v.keyword, m_.rigid_bodies[static_cast<std::size_t>(b)].name));
+      }
+      std::erase_if(iv.nodes,
+                    [&](std::int32_t c) { return body_of[static_cast<std::size_t>(c)] >= 0; });
+    }
+    if (iv.nodes.empty()) continue;
+    // Consecutive *INITIAL_VELOCITY_NODE cards with one velocity make one entry.
+    if (!generation && !m_.initial_velocities.empty() && last_was_node_ &&
+        m_.initial_velocities.back().velocity_m_s == vel) {
+      auto& back = m_.initial_velocities.back().nodes;
+      back.insert(back.end(), iv.nodes.begin(), iv.nodes.end());
+    } else {
+      m_.initial_velocities.push_back(std::move(iv));
+    }
+    last_was_node_ = !generation;
+  }
+}
+
+std::vector<int> Builder::surface_parts(const ContactCard& k, bool slave) {
+  const std::int64_t id = slave ? k.ssid : k.msid;
+  const int typ = slave ? k.sstyp : k.mstyp;
+  const std::size_t id_field = slave ? 0 : 1, typ_field = slave ? 2 : 3;
+  std::vector<int> out;
+  const bool all = typ == 5 || (id == 0 && k.kind == ContactCard::Kind::SingleSurface);
+  if (all) {
+    for (std::size_t p = 0; p < m_.parts.size(); ++p) out.push_back(static_cast<int>(p));
+    return out;
+  }
+  if (id == 0)
+    fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+            fmt::format("the {} surface is not given; fix: write a part (TYP 3) or part set "
+                        "(TYP 2) id",
+                        slave ? "slave" : "master"));
+  std::vector<std::int64_t> pids;
+  if (typ == 3) {
+    if (!parts_.count(id))
+      fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+              fmt::format("part {} is not defined; fix: correct the id", id));
+    pids.push_back(id);
+  } else if (typ == 2) {
+    const auto it = part_set_members_.find(id);
+    if (it == part_set_members_.end())
+      fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+              fmt::format("part set {} is not defined; fix: add *SET_PART_LIST {}", id, id));
+    pids = it->second;
+  } else {
+    fail_at(d_, k.ref, k.keyword, L::kContact1, typ_field,
+            fmt::format("surface type {} is not read: crashlink takes a contact surface as "
+                        "parts (3), a part set (2){}{}; fix: name the parts",
+                        typ,
+                        slave && k.kind != ContactCard::Kind::SingleSurface
+                            ? ", a node set (4, slave only)"
+                            : "",
+                        " or all parts (5)"));
+  }
+  for (auto pid : pids)
+    if (const auto p = part_index_.find(pid); p != part_index_.end()) out.push_back(p->second);
+  if (out.empty())
+    fail_at(d_, k.ref, k.keyword, L::kContact1, id_field,
+            fmt::format("the {} surface holds no element; fix: name parts with elements",
+                        slave ? "slave" : "master"));
+  return out;
+}
+
+std::string Builder::contact_name(const ContactCard& k, std::size_t i) {
+  const std::string tag = k.cid > 0 ? std::to_string(k.cid) : std::to_string(i + 1);
+  std::string name = k.heading.empty() ? "contact_" + tag : k.heading;
+  if (used_contact_names_.count(name)) name += k.cid > 0 ? " (CID " + tag + ")" : " (" + tag + ")";
+  for (int extra = 2; used_contact_names_.count(name); ++extra)
+    name = fmt::format("{} #{}", name, extra);
+  used_contact_names_.emplace(name, 0);
+  return name;
+}
+
+void Builder::contacts() {
+  for (std::size_t i = 0; i < d_.contacts.size(); ++i) {
+    const ContactCard& k = d_.contacts[i];
+    model::Contact c;
+    c.name = contact_name(k, i);
+    c.kind = k.kind == ContactCard::Kind::SingleSurface    ? model::ContactKind::SingleSurface
+             : k.kind == ContactCard::Kind::NodesToSurface ? model::ContactKind::NodeToSurface
+                                                           : model::ContactKind::SurfaceToSurface;
+    if (k.kind == ContactCard::Kind::SingleSurface) {
+      c.master_parts = surface_parts(k, true);
+    } else {
+      if (k.sstyp == 4) {
+        for (auto id : node_set(k.ssid, k.ref, k.keyword, L::kContact1)) {
+          const int n = node(id, k.ref, k.keyword.c_str(), L::kContact1, 0);
+          if (n >= 0) c.slave_nodes.push_back(n);
+        }
+      } else {
+        for (int p : surface_parts(k, true))
+          for (auto n : m_.parts[static_cast<std::size_t>(p)].connectivity)
+            c.slave_nodes.push_back(n);
+      }
+      std::sort(c.slave_nodes.begin(), c.slave_nodes.end());
+      c.slave_nodes.erase(std::unique(c.slave_nodes.begin(), c.slave_nodes.end()),
+                          c.slave_nodes.end());
+      if (c.slave_nodes.empty())
+        fail_at(d_, k.ref, k.keyword, L::kContact1, 0,
+                "the slave surface holds no node of an element; fix: correct the set");
+      c.master_parts = surface_parts(k, false);
+    }
+    if (k.sfs != k.sfm && k.kind != ContactCard::Kind::SingleSurface)
+      fail_at(d_, k.ref3, k.keyword, L::kContact3, 1,
+              fmt::format("crashlink has one penalty scale per contact and SFS = {}; fix: "
+                          "write SFM = SFS",
+                          k.sfs));
+    c.penalty_scale = d_.slsfac * k.sfs;  // *CONTROL_CONTACT SLSFAC (default 0.1)
+    c.soft = k.soft == 1;
+    c.soft_scale = k.sofscl;
+    c.static_friction = k.fs;
+    c.dynamic_friction = k.fd == 0.0 && k.dc == 0.0 ? k.fs : k.fd;
+    c.friction_decay_s_m = k.dc * u_.time_s / u_.length_m;
+    if (!k.automatic)
+      d_notes_.push_back(fmt::format(
+          "{}: {}: computed as its automatic form (crashlink's contact finds either side of "
+          "a shell, whatever its normal)",
+          at(d_, k.ref), k.keyword));
+    m_.contacts.push_back(std::move(c));
+  }
+}
+
+void Builder::rigid_walls() {
+  std::vector<char> on_body(m_.nodes.count(), 0);
+  for (const auto& rb : m_.rigid_bodies)
+    for (int p : rb.parts)
+      for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+        on_body[static_cast<std::size_t>(c)] = 1;
+  for (std::size_t i = 0; i < d_.rigid_walls.size(); ++i) {
+    const RigidWallCard& k = d_.rigid_walls[i];
+    model::RigidWall w;
+    w.name = k.heading.empty() ? fmt::format("rigidwall_{}", i + 1) : k.heading;
+    if (!used_wall_names_.insert(w.name).second) {  // a heading met twice: made unique
+      const std::string base = w.name;
+      w.name = fmt::format("{} ({})", base, i + 1);
+      for (int extra = 2; !used_wall_names_.insert(w.name).second; ++extra)
+        w.name = fmt::format("{} ({}) #{}", base, i + 1, extra);
+    }
+    Vec3 n{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      w.point_m[c] = k.tail[c] * u_.length_m;
+      n[c] = k.head[c] - k.tail[c];
+    }
+    const double len = norm(n);
+    if (!(len > 0.0))
+      fail_at(d_, k.ref2, k.keyword, L::kRigidWall2, 3,
+              "the head point is the tail point: the wall has no normal; fix: put the head on "
+              "the side of the nodes the wall stops");
+    w.normal = (1.0 / len) * n;
+    if (k.moving) {  // *RIGIDWALL_PLANAR_MOVING: MASS, V0 along the normal (toward the nodes)
+      w.mass_kg = k.mass * u_.mass_kg;
+      w.velocity_m_s = k.v0 * u_.velocity_m_s();
+    }
+    if (k.nsid == 0) {
+      for (std::size_t c = 0; c < m_.nodes.count(); ++c)
+        w.nodes.push_back(static_cast<std::int32_t>(c));
+    } else {
+      for (auto id : node_set(k.nsid, k.ref, k.keyword, L::kRigidWall1)) {
+        const int c = node(id, k.ref, k.keyword.c_str(), L::kRigidWall1, 0);
+        if (c >= 0) w.nodes.push_back(c);
+      }
+      std::sort(w.nodes.begin(), w.nodes.end());
+      w.nodes.erase(std::unique(w.nodes.begin(), w.nodes.end()), w.nodes.end());
+    }
+    // A rigid body's nodes follow the body: the wall leaves them out, and says so.
+    const auto rigid = std::erase_if(
+        w.nodes, [&](std::int32_t c) { return on_body[static_cast<std::size_t>(c)] != 0; });
+    if (rigid > 0)
+      d_notes_.push_back(fmt::format("{}: {}: {} nodes of rigid bodies left out of the wall",
+                                     at(d_, k.ref), k.keyword, rigid));
+    if (w.nodes.empty())
+      fail_at(d_, k.ref, k.keyword, L::kRigidWall1, 0,
+              "the wall stops no node of a deformable element; fix: correct NSID");
+    m_.rigid_walls.push_back(std::move(w));
+  }
+}
+
+model::Curve Builder::time_curve(std::int64_t lcid, double sf, double unit, const CardRef& ref,
+                                 const std::string& keyword, Layout l, std::size_t field) {
+  const auto it = curves_.find(lcid);
+  if (it == curves_.end())
+    fail_at(d_, ref, keyword, l, field,
+            fmt::format("curve {} is not defined; fix: add *DEFINE_CURVE {}", lcid, lcid));
+  const CurveCard& cv = d_.curves[static_cast<std::size_t>(it->second)];
+  model::Curve c;
+  for (std::size_t i = 0; i < cv.a.size(); ++i) {
+    c.t_s.push_back(cv.sfa * (cv.a[i] + cv.offa) * u_.time_s);
+    c.value.push_back(sf * cv.sfo * (cv.o[i] + cv.offo) * unit);
+  }
+  return c;
+}
+
+void Builder::curve_dofs() {
+  int motions = 0, loads = 0;
+  for (const CurveDofCard& k : d_.curve_dofs) {
+    const Layout l = k.load ? (k.set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                            : (k.set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+    std::vector<std::int64_t> one{k.target};
+    const auto& ids = k.set ? node_set(k.target, k.ref, k.keyword, l) : one;
+    std::vector<std::int32_t> nodes;
+    for (auto id : ids) {
+      const int i = node(id, k.ref, k.keyword.c_str(), l, 0);
+      if (i < 0 && !k.set)
+        fail_at(d_, k.ref, k.keyword, l, 0,
+                fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
+                            "fix: drive a node of an element",
+                            id));
+      if (i >= 0) nodes.push_back(i);
+    }
+    if (nodes.empty())
+      fail_at(d_, k.ref, k.keyword, l, 0,
+              "the set holds no node of an element; fix: correct the set");
+    const bool rotation = k.dof >= 5;
+    const int dof = rotation ? k.dof - 2 : k.dof - 1;  // model: 0-2 x, y, z; 3-5 rotations
+    const std::size_t lcid_field = k.load ? 2 : 3;
+    if (k.load) {
+      model::NodalLoad ld;
+      ld.name = fmt::format("load_{}", ++loads);
+      ld.nodes = std::move(nodes);
+      ld.dof = dof;
+      ld.force = time_curve(k.lcid, k.sf, u_.force_N(), k.ref, k.keyword, l, lcid_field);
+      m_.loads.push_back(std::move(ld));
+    } else {
+      model::PrescribedVelocity pv;
+      pv.name = fmt::format("motion_{}", ++motions);
+      pv.nodes = std::move(nodes);
+      pv.dof = dof;
+      pv.velocity = time_curve(k.lcid, k.sf, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(), k.ref,
+                               k.keyword, l, lcid_field);
+      m_.prescribed_velocities.push_back(std::move(pv));
+    }
+  }
+}
+
+void Builder::probes() {
+  std::unordered_map<std::int64_t, int> seen;
+  std::unordered_set<std::string> names;
+  for (const HistoryNodeCard& h : d_.history_nodes) {
+    const bool with_id = h.keyword.ends_with("_ID");
+    const Layout l = with_id ? Layout(L::kIdHeading) : Layout(L::kHistoryIds);
+    std::vector<std::int64_t> one{h.id};
+    const auto& ids = h.set ? node_set(h.id, h.ref, h.keyword, l, h.field) : one;
+    for (const auto id : ids) {
+      const int c = node(id, h.ref, h.keyword.c_str(), l, h.field);
+      if (c < 0 && h.set) continue;  // a set's node in no element: left out, as everywhere
+      if (c < 0)
+        fail_at(d_, h.ref, h.keyword, l, h.field,
+                fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
+                            "fix: probe a node of an element",
+                            id));
+      if (!seen.emplace(id, c).second) continue;
+      model::Probe p;
+      // The heading names the probe (an HDF5 path element: no '/'); a heading met twice gets
+      // the node id appended.
+      p.name = h.heading.empty() ? fmt::format("node_{}", id) : h.heading;
+      std::replace(p.name.begin(), p.name.end(), '/', '_');
+      if (!names.insert(p.name).second) {
+        const std::string base = p.name;
+        p.name = fmt::format("{}_{}", base, id);
+        for (int k = 2; !names.insert(p.name).second; ++k)
+          p.name = fmt::format("{}_{}_{}", base, id, k);
+      }
+      p.kind = model::Probe::Kind::Node;
+      p.index = c;
+      m_.probes.push_back(std::move(p));
+    }
+  }
+}
+
+void Builder::controls() {
+  if (!d_.has_end_time)
+    throw InputError(d_.files.name(0), 0, "*CONTROL_TERMINATION",
+                     "missing: the deck sets no end time; fix: add *CONTROL_TERMINATION with "
+                     "ENDTIM");
+  m_.controls.end_time_s = d_.end_time * u_.time_s;
+  m_.controls.dt_scale = d_.tssfac;
+  // *DATABASE_GLSTAT ... DT: one history interval for every series (the smallest given);
+  // *DATABASE_BINARY_D3PLOT DT: the field states' interval.
+  m_.controls.history_interval_s = d_.history_dt * u_.time_s;
+  m_.controls.field_interval_s = d_.field_count > 0
+                                     ? m_.controls.end_time_s / static_cast<double>(d_.field_count)
+                                     : d_.field_dt * u_.time_s;
+  if (d_.has_bulk) {
+    m_.controls.bulk_q_quadratic = d_.bulk_q1;
+    m_.controls.bulk_q_linear = d_.bulk_q2;
+    m_.controls.shell_bulk_viscosity = d_.bulk_shells;
+  }
+  // *LOAD_BODY_*: a base acceleration a (LS-DYNA): the body load is -rho a, so gravity along
+  // -z is *LOAD_BODY_Z with +9.81 m/s^2. Constant curves only.
+  for (const auto& l : d_.body_loads) {
+    const auto it = curves_.find(l.curve);
+    if (it == curves_.end())
+      fail_at(d_, l.ref, l.keyword, L::kLoadBody, 0,
+              fmt::format("curve {} is not defined; fix: add *DEFINE_CURVE {}", l.curve, l.curve));
+    const CurveCard& cv = d_.curves[static_cast<std::size_t>(it->second)];
+    const double a0 = cv.sfo * (cv.o.front() + cv.offo);
+    for (double o : cv.o)
+      if (std::abs(cv.sfo * (o + cv.offo) - a0) > 1e-12 * std::abs(a0))
+        fail_at(d_, l.ref, l.keyword, L::kLoadBody, 0,
+                fmt::format("curve {} changes in time ({} at {}:{}): crashlink's body "
+                            "acceleration is constant; fix: a curve with one value",
+                            l.curve, cv.keyword, d_.files.name(cv.ref.file), cv.ref.line));
+    const double a_m_s2 = l.sf * a0 * u_.length_m / (u_.time_s * u_.time_s);
+    m_.controls.gravity_m_s2[static_cast<std::size_t>(l.axis)] -= a_m_s2;
+  }
+}
+
+}  // namespace crashlink::deck::detail
