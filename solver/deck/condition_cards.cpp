@@ -284,7 +284,6 @@ void Parser::curve_dof(const Card& c) {
   if (load) {
     k.lcid = positive_id(c.field(l, 2));
     k.sf = c.field(l, 3).real(1.0);
-    if (k.sf == 0.0 && c.field(l, 3).blank()) k.sf = 1.0;
     must_be_default(c.field(l, 4), 0.0,
                     "a load in a local system (CID) is not computed; fix: write 0 (global axes)");
     for (std::size_t f = 5; f < 8; ++f)
@@ -299,15 +298,12 @@ void Parser::curve_dof(const Card& c) {
           "displacement's slope on each segment");
     k.lcid = positive_id(c.field(l, 3));
     k.sf = c.field(l, 4).real(1.0);
-    if (k.sf == 0.0 && c.field(l, 4).blank()) k.sf = 1.0;
     must_be_default(c.field(l, 5), 0.0,
                     "a motion along a vector (VID) is not computed; fix: write 0 and a global "
                     "DOF");
-    const auto death = c.field(l, 6);
-    if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
-      death.fail(
-          "a death time (DEATH) is not computed: the motion holds to the end; fix: "
-          "write 0, or end the curve's velocity yourself");
+    must_never_die(c.field(l, 6),
+                   "a death time (DEATH) is not computed: the motion holds to the end; fix: write "
+                   "0, or end the curve's velocity yourself");
     must_be_default(c.field(l, 7), 0.0,
                     "a birth time (BIRTH) is not computed; fix: write 0 and start the curve "
                     "at 0");

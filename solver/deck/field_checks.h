@@ -30,4 +30,11 @@ inline void must_be_default(const Field& f, double zero, std::string_view what) 
   if (f.real(zero) != zero) f.fail(what);
 }
 
+/// A death time crashlink does not compute: blank, 0 or 1e20 and up (LS-DYNA's "never").
+inline void must_never_die(const Field& f, std::string_view what) {
+  if (f.blank()) return;
+  const double t = f.real(0.0);
+  if (t != 0.0 && t < 1e20) f.fail(what);
+}
+
 }  // namespace crashlink::deck

@@ -55,9 +55,8 @@ void read_contact_card(const Card& c, int i, ContactCard& k, std::vector<std::st
     must_be_default(c.field(L::kContact2, 6), 0.0,
                     "a birth time (BT) is not computed: the contact acts from the start; fix: "
                     "write 0");
-    const auto dt = c.field(L::kContact2, 7);
-    if (!dt.blank() && dt.real(0.0) != 0.0 && dt.real(0.0) < 1e20)
-      dt.fail("a death time (DT) is not computed: the contact acts to the end; fix: write 0");
+    must_never_die(c.field(L::kContact2, 7),
+                   "a death time (DT) is not computed: the contact acts to the end; fix: write 0");
     return;
   }
   if (i == 2) {
@@ -141,9 +140,8 @@ void read_rigid_wall_card(const Card& c, int i, RigidWallCard& w) {
                     "an offset of the wall (OFFSET) is not computed; fix: move the tail point");
     must_be_default(c.field(L::kRigidWall1, 4), 0.0,
                     "a birth time (BIRTH) is not computed; fix: write 0");
-    const auto death = c.field(L::kRigidWall1, 5);
-    if (!death.blank() && death.real(0.0) != 0.0 && death.real(0.0) < 1e20)
-      death.fail("a death time (DEATH) is not computed: the wall acts to the end; fix: write 0");
+    must_never_die(c.field(L::kRigidWall1, 5),
+                   "a death time (DEATH) is not computed: the wall acts to the end; fix: write 0");
     // RWKSF scales the penalty wall's stiffness: without effect on the constraint wall.
     w.ref = c.ref();
     return;

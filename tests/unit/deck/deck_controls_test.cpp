@@ -62,13 +62,6 @@ TEST_F(DeckControls, ViscousHourglassIsReadAsTheStiffnessFormWithANote) {
   EXPECT_TRUE(noted);
 }
 
-/// The two cubes and `more` lines after them.
-std::vector<std::string> with_lines(std::vector<std::string> more) {
-  auto d = testing::two_cubes();
-  d.insert(d.end(), more.begin(), more.end());
-  return d;
-}
-
 /// The two cubes with `mat` (lines) in place of their *MAT_ELASTIC (lines 30-31, index 29-30).
 std::vector<std::string> with_material(std::vector<std::string> mat) {
   auto d = testing::two_cubes();
@@ -137,7 +130,7 @@ TEST_F(DeckControls, WallHeadingsAreMadeUnique) {
       "       0.0       0.0      -1.0       0.0       0.0       1.0"};
   auto lines = wall;
   lines.insert(lines.end(), wall.begin(), wall.end());
-  ASSERT_EQ(read(with_lines(lines), &r), "");
+  ASSERT_EQ(read(testing::two_cubes_with(lines), &r), "");
   ASSERT_EQ(r.model.rigid_walls.size(), 2u);
   EXPECT_EQ(r.model.rigid_walls[0].name, "floor");
   EXPECT_EQ(r.model.rigid_walls[1].name, "floor (2)");
@@ -145,18 +138,20 @@ TEST_F(DeckControls, WallHeadingsAreMadeUnique) {
 
 TEST_F(DeckControls, MovingWallReadsItsMassAndVelocity) {
   DeckRead r;
-  ASSERT_EQ(read(with_lines({"*RIGIDWALL_PLANAR_MOVING_ID", "         3ram", "         0",
-                             "       0.0       0.0      -1.0       0.0       0.0       1.0",
-                             "     0.250    5000.0"}),
-                 &r),
-            "");
+  ASSERT_EQ(
+      read(testing::two_cubes_with({"*RIGIDWALL_PLANAR_MOVING_ID", "         3ram", "         0",
+                                    "       0.0       0.0      -1.0       0.0       0.0       1.0",
+                                    "     0.250    5000.0"}),
+           &r),
+      "");
   ASSERT_EQ(r.model.rigid_walls.size(), 1u);
   EXPECT_EQ(r.model.rigid_walls[0].name, "ram");
   EXPECT_DOUBLE_EQ(r.model.rigid_walls[0].mass_kg, 250.0);  // t
   EXPECT_DOUBLE_EQ(r.model.rigid_walls[0].velocity_m_s, 5.0);
   ASSERT_EQ(
-      read(with_lines({"*RIGIDWALL_PLANAR_FINITE", "         0",
-                       "       0.0       0.0      -1.0       0.0       0.0       1.0"})),
+      read(testing::two_cubes_with(
+          {"*RIGIDWALL_PLANAR_FINITE", "         0",
+           "       0.0       0.0      -1.0       0.0       0.0       1.0"})),
       "c.k:34: *RIGIDWALL_PLANAR_FINITE: not supported; fix: remove it, or pass --ignore "
       "RIGIDWALL_PLANAR_FINITE to skip it (what it does is then missing from the run). "
       "Supported: " +
@@ -172,7 +167,7 @@ TEST_F(DeckControls, MovingWallReadsItsMassAndVelocity) {
 TEST_F(DeckControls, PrescribedMotionAndNodalLoads) {
   DeckRead r;
   ASSERT_EQ(
-      read(with_lines(
+      read(testing::two_cubes_with(
                {"*DEFINE_CURVE", "         7       0.0       2.0       3.0       0.0       1.0",
                 "                 0.0                 0.0",
                 "                 1.0              1000.0", "*SET_NODE_LIST", "         4",
@@ -253,23 +248,26 @@ TEST_F(DeckControls, PartInertiaGivesTheRigidBody) {
 // *INITIAL_VELOCITY: NSID 0 is every node, else the node set; ICID turns the velocity.
 TEST_F(DeckControls, PlainInitialVelocity) {
   DeckRead r;
-  ASSERT_EQ(
-      read(with_lines({"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0"}), &r),
-      "");
+  ASSERT_EQ(read(testing::two_cubes_with(
+                     {"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0"}),
+                 &r),
+            "");
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 16u);
   EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[0], 1.0);
   EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[2], -2.0);
-  ASSERT_EQ(read(with_lines({"*SET_NODE_LIST", "         3", "         1         2",
-                             "*INITIAL_VELOCITY", "         3", "       0.0    3000.0"}),
-                 &r),
-            "");
+  ASSERT_EQ(
+      read(testing::two_cubes_with({"*SET_NODE_LIST", "         3", "         1         2",
+                                    "*INITIAL_VELOCITY", "         3", "       0.0    3000.0"}),
+           &r),
+      "");
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 2u);
   EXPECT_DOUBLE_EQ(r.model.initial_velocities[0].velocity_m_s[1], 3.0);
   // a rigid body with nodes in the set takes the velocity (its nodes follow it); a blank line
   // between records is skipped
-  auto d = with_lines({"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0", ""});
+  auto d = testing::two_cubes_with(
+      {"*INITIAL_VELOCITY", "         0", "    1000.0       0.0   -2000.0", ""});
   d[26] = "         2         1         2";
   d.insert(d.end(), {"*MAT_RIGID", "         2   7.85e-9  210000.0       0.3"});
   ASSERT_EQ(read(d, &r), "");
@@ -279,13 +277,14 @@ TEST_F(DeckControls, PlainInitialVelocity) {
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 8u);  // the deformable cube's
   // a generated range far wider than the ids there are (1 to 1e9): its defined ids
-  ASSERT_EQ(read(with_lines({"*SET_NODE_LIST_GENERATE", "         5", "         91000000000",
-                             "*INITIAL_VELOCITY", "         5", "       0.0       0.0    1000.0"}),
+  ASSERT_EQ(read(testing::two_cubes_with({"*SET_NODE_LIST_GENERATE", "         5",
+                                          "         91000000000", "*INITIAL_VELOCITY", "         5",
+                                          "       0.0       0.0    1000.0"}),
                  &r),
             "");
   ASSERT_EQ(r.model.initial_velocities.size(), 1u);
   EXPECT_EQ(r.model.initial_velocities[0].nodes.size(), 8u);  // nodes 9-16
-  EXPECT_EQ(read(with_lines({"*INITIAL_VELOCITY", "         0"})),
+  EXPECT_EQ(read(testing::two_cubes_with({"*INITIAL_VELOCITY", "         0"})),
             "c.k:34: *INITIAL_VELOCITY: its cards are missing (the next keyword or the end of the "
             "file follows); fix: add them or remove the keyword");
 }
@@ -297,7 +296,7 @@ TEST_F(DeckControls, ContactShellAndEnergyControls) {
                                             "         1         2         3         3", "",
                                             "       2.0       2.0"};
   DeckRead r;
-  ASSERT_EQ(read(with_lines(contact), &r), "");
+  ASSERT_EQ(read(testing::two_cubes_with(contact), &r), "");
   ASSERT_EQ(r.model.contacts.size(), 1u);
   EXPECT_DOUBLE_EQ(r.model.contacts[0].penalty_scale, 0.2);  // 0.1 x SFS 2
   auto with_control = contact;
@@ -305,7 +304,7 @@ TEST_F(DeckControls, ContactShellAndEnergyControls) {
                       {"*CONTROL_CONTACT", "      0.05                             1",
                        "*CONTROL_SHELL", "                                       1         2",
                        "*CONTROL_ENERGY", "         2         2"});
-  ASSERT_EQ(read(with_lines(with_control), &r), "");
+  ASSERT_EQ(read(testing::two_cubes_with(with_control), &r), "");
   EXPECT_DOUBLE_EQ(r.model.contacts[0].penalty_scale, 0.1);  // 0.05 x SFS 2
   std::string all;
   for (const auto& m : r.messages) all += m + "\n";
@@ -314,10 +313,10 @@ TEST_F(DeckControls, ContactShellAndEnergyControls) {
                      "*CONTROL_ENERGY"),
             std::string::npos)
       << all;
-  EXPECT_EQ(
-      read(with_lines({"*CONTROL_SHELL", "                                       1         1"})),
-      "c.k:35: *CONTROL_SHELL field THEORY (columns 41-50) = 1: crashlink computes the "
-      "Belytschko-Tsay shell (THEORY 2) only; fix: write 2");
+  EXPECT_EQ(read(testing::two_cubes_with(
+                {"*CONTROL_SHELL", "                                       1         1"})),
+            "c.k:35: *CONTROL_SHELL field THEORY (columns 41-50) = 1: crashlink computes the "
+            "Belytschko-Tsay shell (THEORY 2) only; fix: write 2");
 }
 
 TEST_F(DeckControls, MistakesNameTheirField) {
@@ -326,41 +325,42 @@ TEST_F(DeckControls, MistakesNameTheirField) {
     std::vector<std::string> deck;
     std::string message;
   };
-  auto plus = [](std::vector<std::string> d, std::vector<std::string> more) {
-    d.insert(d.end(), more.begin(), more.end());
-    return d;
-  };
   const std::string k003 = "         1   7.85e-9  210000.0       0.3     250.0     100.0       1.0";
   const std::string k024 = "         1   7.85e-9  210000.0       0.3     250.0     100.0";
   const Mistake mistakes[] = {
       {"a shell element without its thickness card",
-       with_lines({"*NODE", "      41             0.0             0.0             5.0",
-                   "      42             1.0             0.0             5.0",
-                   "      43             1.0             1.0             5.0",
-                   "*ELEMENT_SHELL_THICKNESS", "       9       1      41      42      43      43"}),
+       testing::two_cubes_with({"*NODE", "      41             0.0             0.0             5.0",
+                                "      42             1.0             0.0             5.0",
+                                "      43             1.0             1.0             5.0",
+                                "*ELEMENT_SHELL_THICKNESS",
+                                "       9       1      41      42      43      43"}),
        "c.k:39: *ELEMENT_SHELL_THICKNESS: an element's thickness card (THIC1-THIC4) is missing "
        "after its node card; fix: add it"},
       {"a negative shell thickness",
-       with_lines({"*ELEMENT_SHELL_THICKNESS", "       9       1       1       2       3       3",
-                   "            -1.0"}),
+       testing::two_cubes_with({"*ELEMENT_SHELL_THICKNESS",
+                                "       9       1       1       2       3       3",
+                                "            -1.0"}),
        "c.k:36: *ELEMENT_SHELL_THICKNESS field THIC1 (columns 1-16) = -1.0: must be >= 0 (0: the "
        "section's thickness); fix: write it"},
       {"motion along a vector",
-       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         4         0         7"}),
+       testing::two_cubes_with(
+           {"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         4         0         7"}),
        "c.k:35: *BOUNDARY_PRESCRIBED_MOTION_NODE field DOF (columns 11-20) = 4: crashlink "
        "prescribes x, y, z (DOF 1, 2, 3) or rotations about them (5, 6, 7); motion along a "
        "vector (4, 8), in a local system (negative) or of all translations (9-12) is not "
        "computed; fix: one card per global dof"},
       {"a displacement curve",
-       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         3         2         7"}),
+       testing::two_cubes_with(
+           {"*BOUNDARY_PRESCRIBED_MOTION_NODE", "         1         3         2         7"}),
        "c.k:35: *BOUNDARY_PRESCRIBED_MOTION_NODE field VAD (columns 21-30) = 2: crashlink "
        "prescribes a velocity (VAD 0); an acceleration (1) or displacement (2) curve is not "
        "converted; fix: give the velocity curve (VAD 0), the displacement's slope on each "
        "segment"},
-      {"an undefined curve", with_lines({"*LOAD_NODE_POINT", "         1         3        99"}),
+      {"an undefined curve",
+       testing::two_cubes_with({"*LOAD_NODE_POINT", "         1         3        99"}),
        "c.k:35: *LOAD_NODE_POINT field LCID (columns 21-30) = 99: curve 99 is not defined; fix: "
        "add *DEFINE_CURVE 99"},
-      {"a moment", with_lines({"*LOAD_NODE_POINT", "         1         5         7"}),
+      {"a moment", testing::two_cubes_with({"*LOAD_NODE_POINT", "         1         5         7"}),
        "c.k:35: *LOAD_NODE_POINT field DOF (columns 11-20) = 5: crashlink loads a node along x, "
        "y or z (DOF 1, 2, 3); moments, follower forces and loads along a vector are not "
        "computed; fix: write 1, 2 or 3"},
@@ -383,7 +383,7 @@ TEST_F(DeckControls, MistakesNameTheirField) {
        "c.k:32: *MAT_PIECEWISE_LINEAR_PLASTICITY field VP (columns 41-50) = 1: the viscoplastic "
        "rate formulation (VP 1) and the tables of VP 3 are not computed; fix: write VP 0 or -1 "
        "(the yield stress scaled by the Cowper-Symonds factor)"},
-      {"assumed-strain hourglass", plus(testing::two_cubes(), {"*CONTROL_HOURGLASS", "         6"}),
+      {"assumed-strain hourglass", testing::two_cubes_with({"*CONTROL_HOURGLASS", "         6"}),
        "c.k:35: *CONTROL_HOURGLASS field IHQ (columns 1-10) = 6: crashlink computes the "
        "stiffness hourglass control (IHQ 4 and 5: Flanagan-Belytschko for hexahedra, "
        "Belytschko-Tsay for shells); the viscous forms 2 and 3 and the assumed-strain ones (6 "
@@ -392,54 +392,54 @@ TEST_F(DeckControls, MistakesNameTheirField) {
        "c.k:27: *PART field HGID (columns 41-50) = 3: *HOURGLASS 3 is not defined; fix: add it "
        "or leave HGID blank"},
       {"coefficient too large",
-       plus(testing::two_cubes(), {"*HOURGLASS", "         3         4       0.5"}),
+       testing::two_cubes_with({"*HOURGLASS", "         3         4       0.5"}),
        "c.k:35: *HOURGLASS field QM (columns 21-30) = 0.5: must lie in (0, 0.3]; fix: write "
        "0.05-0.1 (stiffness form)"},
       {"bulk viscosity per part",
-       plus(testing::two_cubes(),
-            {"*HOURGLASS", "         3         4      0.05         0       1.5"}),
+       testing::two_cubes_with(
+           {"*HOURGLASS", "         3         4      0.05         0       1.5"}),
        "c.k:35: *HOURGLASS field Q1 (columns 41-50) = 1.5: a bulk viscosity per part (Q1, Q2) is "
        "not computed; fix: leave them blank and set the model's in *CONTROL_BULK_VISCOSITY"},
       {"a body load that changes",
-       plus(testing::two_cubes(), {"*DEFINE_CURVE", "        11", "0.0, 0.0", "1.0, 9810.0",
-                                   "*LOAD_BODY_Y", "        11"}),
+       testing::two_cubes_with({"*DEFINE_CURVE", "        11", "0.0, 0.0", "1.0, 9810.0",
+                                "*LOAD_BODY_Y", "        11"}),
        "c.k:39: *LOAD_BODY_Y field LCID (columns 1-10) = 11: curve 11 changes in time "
        "(*DEFINE_CURVE at c.k:35): crashlink's body acceleration is constant; fix: a curve with "
        "one value"},
       {"bulk viscosity type",
-       plus(testing::two_cubes(), {"*CONTROL_BULK_VISCOSITY", "       1.5      0.06         2"}),
+       testing::two_cubes_with({"*CONTROL_BULK_VISCOSITY", "       1.5      0.06         2"}),
        "c.k:35: *CONTROL_BULK_VISCOSITY field TYPE (columns 21-30) = 2: crashlink computes the "
        "standard bulk viscosity of solids (TYPE 1) and, with TYPE -2, of shells too; fix: write "
        "1 or -2"},
       {"friction on a rigid wall",
-       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0",
-                                   "       0.0       0.0       0.0       0.0       0.0       1.0"
-                                   "       0.3"}),
+       testing::two_cubes_with({"*RIGIDWALL_PLANAR", "         0",
+                                "       0.0       0.0       0.0       0.0       0.0       1.0"
+                                "       0.3"}),
        "c.k:36: *RIGIDWALL_PLANAR field FRIC (columns 61-70) = 0.3: friction on the wall (FRIC) "
        "is not computed: the wall is frictionless; fix: write 0"},
       {"a rigid wall without a normal",
-       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0",
-                                   "       0.0       0.0       0.0       0.0       0.0       0.0"}),
+       testing::two_cubes_with({"*RIGIDWALL_PLANAR", "         0",
+                                "       0.0       0.0       0.0       0.0       0.0       0.0"}),
        "c.k:36: *RIGIDWALL_PLANAR field XH (columns 31-40) = 0.0: the head point is the tail "
        "point: the wall has no normal; fix: put the head on the side of the nodes the wall "
        "stops"},
       {"a rigid wall without its card 2",
-       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR", "         0"}),
+       testing::two_cubes_with({"*RIGIDWALL_PLANAR", "         0"}),
        "c.k:34: *RIGIDWALL_PLANAR: its cards are missing (the next keyword or the end of the file "
        "follows); fix: add them or remove the keyword"},
       {"a prescribed motion without its card",
-       with_lines({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "*END"}),
+       testing::two_cubes_with({"*BOUNDARY_PRESCRIBED_MOTION_NODE", "*END"}),
        "c.k:34: *BOUNDARY_PRESCRIBED_MOTION_NODE: its cards are missing (the next keyword or "
        "the end of the file follows); fix: add them or remove the keyword"},
       {"a moving wall without its mass",
-       plus(testing::two_cubes(),
-            {"*RIGIDWALL_PLANAR_MOVING", "         0",
-             "       0.0       0.0      -1.0       0.0       0.0       1.0", "          1000.0"}),
+       testing::two_cubes_with({"*RIGIDWALL_PLANAR_MOVING", "         0",
+                                "       0.0       0.0      -1.0       0.0       0.0       1.0",
+                                "          1000.0"}),
        "c.k:37: *RIGIDWALL_PLANAR_MOVING field MASS (columns 1-10) = (blank): a moving wall "
        "needs its mass (> 0); fix: write it in the deck's mass unit"},
       {"a moving wall without its card 3",
-       plus(testing::two_cubes(), {"*RIGIDWALL_PLANAR_ID_MOVING", "         3ram", "         0",
-                                   "       0.0       0.0      -1.0       0.0       0.0       1.0"}),
+       testing::two_cubes_with({"*RIGIDWALL_PLANAR_ID_MOVING", "         3ram", "         0",
+                                "       0.0       0.0      -1.0       0.0       0.0       1.0"}),
        "c.k:34: *RIGIDWALL_PLANAR_ID_MOVING: its cards are missing (the next keyword or the end "
        "of the file follows); fix: add them or remove the keyword"},
   };

@@ -14,19 +14,13 @@ namespace {
 
 class DeckOutput : public testing::DeckLinesTest {};
 
-std::vector<std::string> plus(std::vector<std::string> d, std::vector<std::string> more) {
-  d.insert(d.end(), more.begin(), more.end());
-  return d;
-}
-
 TEST_F(DeckOutput, IntervalsAndProbes) {
-  const auto d =
-      plus(testing::two_cubes(),
-           {"*DATABASE_GLSTAT", "   2.0E-07         3", "*DATABASE_NODOUT", "   1.0E-07         3",
-            "*DATABASE_ELOUT", "   5.0E-08", "*DATABASE_BINARY_D3PLOT", "   1.0E-06",
-            "*DATABASE_HISTORY_NODE", "         8         1         8", "*DATABASE_HISTORY_NODE_ID",
-            "        16tip of the upper cube", "*SET_NODE_LIST", "         3",
-            "         9        10         1", "*DATABASE_HISTORY_NODE_SET", "         3"});
+  const auto d = testing::two_cubes_with(
+      {"*DATABASE_GLSTAT", "   2.0E-07         3", "*DATABASE_NODOUT", "   1.0E-07         3",
+       "*DATABASE_ELOUT", "   5.0E-08", "*DATABASE_BINARY_D3PLOT", "   1.0E-06",
+       "*DATABASE_HISTORY_NODE", "         8         1         8", "*DATABASE_HISTORY_NODE_ID",
+       "        16tip of the upper cube", "*SET_NODE_LIST", "         3",
+       "         9        10         1", "*DATABASE_HISTORY_NODE_SET", "         3"});
   DeckRead r;
   ASSERT_EQ(read(d, &r), "");
   const auto& m = r.model;
@@ -58,12 +52,11 @@ TEST_F(DeckOutput, IntervalsAndProbes) {
 TEST_F(DeckOutput, StateCountHeadingsAndFreeSetMembers) {
   // NPLTC 4 over ENDTIM 1e-5 s: a state every 2.5e-6 s, in place of DT; three headings 'tip'
   // (and one 'tip_6') made unique; node 40 of set 3 is in no element: left out.
-  const auto d =
-      plus(testing::two_cubes(),
-           {"*NODE", "      40             9.0             9.0", "*DATABASE_BINARY_D3PLOT",
-            "   1.0E-06                             4", "*DATABASE_HISTORY_NODE_ID",
-            "         5tip", "         6tip", "         7tip_6", "         8tip", "*SET_NODE_LIST",
-            "         3", "        40         9", "*DATABASE_HISTORY_NODE_SET", "         3"});
+  const auto d = testing::two_cubes_with(
+      {"*NODE", "      40             9.0             9.0", "*DATABASE_BINARY_D3PLOT",
+       "   1.0E-06                             4", "*DATABASE_HISTORY_NODE_ID", "         5tip",
+       "         6tip", "         7tip_6", "         8tip", "*SET_NODE_LIST", "         3",
+       "        40         9", "*DATABASE_HISTORY_NODE_SET", "         3"});
   DeckRead r;
   ASSERT_EQ(read(d, &r), "");
   const auto& m = r.model;
@@ -87,20 +80,20 @@ TEST_F(DeckOutput, MistakesNameTheirField) {
     std::string message;
   };
   const Mistake mistakes[] = {
-      {plus(testing::two_cubes(), {"*DATABASE_GLSTAT", "   1.0E-07         3         5"}),
+      {testing::two_cubes_with({"*DATABASE_GLSTAT", "   1.0E-07         3         5"}),
        "c.k:35: *DATABASE_GLSTAT field LCUR (columns 21-30) = 5: an output interval from a curve "
        "is not read; fix: leave it blank and give DT"},
-      {plus(testing::two_cubes(), {"*DATABASE_BINARY_D3PLOT", "  -1.0E-06"}),
+      {testing::two_cubes_with({"*DATABASE_BINARY_D3PLOT", "  -1.0E-06"}),
        "c.k:35: *DATABASE_BINARY_D3PLOT field DT (columns 1-10) = -1.0E-06: an output interval "
        "must be >= 0; fix: write the interval (0: no output)"},
-      {plus(testing::two_cubes(), {"*DATABASE_HISTORY_NODE", "         1        99"}),
+      {testing::two_cubes_with({"*DATABASE_HISTORY_NODE", "         1        99"}),
        "c.k:35: *DATABASE_HISTORY_NODE field ID2 (columns 11-20) = 99: node 99 is not defined; "
        "fix: add it under *NODE or correct the id"},
-      {plus(testing::two_cubes(), {"*DATABASE_HISTORY_NODE_SET", "         0         7"}),
+      {testing::two_cubes_with({"*DATABASE_HISTORY_NODE_SET", "         0         7"}),
        "c.k:35: *DATABASE_HISTORY_NODE_SET field ID2 (columns 11-20) = 7: node set 7 is not "
        "defined; fix: add *SET_NODE_LIST 7"},
-      {plus(testing::two_cubes(), {"*NODE", "      40             9.0             9.0",
-                                   "*DATABASE_HISTORY_NODE_ID", "        40"}),
+      {testing::two_cubes_with({"*NODE", "      40             9.0             9.0",
+                                "*DATABASE_HISTORY_NODE_ID", "        40"}),
        "c.k:37: *DATABASE_HISTORY_NODE_ID field ID (columns 1-10) = 40: node 40 belongs to no "
        "element (crashlink leaves such nodes out); fix: probe a node of an element"},
   };

@@ -72,6 +72,13 @@ inline std::vector<std::string> two_cubes() {
   return d;
 }
 
+/// two_cubes() and `more` lines after them.
+inline std::vector<std::string> two_cubes_with(const std::vector<std::string>& more) {
+  auto d = two_cubes();
+  d.insert(d.end(), more.begin(), more.end());
+  return d;
+}
+
 /// Reads `lines` (+ "*END") as c.k in mm-t-s into `out` (if given); the InputError message with
 /// the folder left out, or "".
 inline std::string read_lines(const DeckFolder& dir, std::vector<std::string> lines,

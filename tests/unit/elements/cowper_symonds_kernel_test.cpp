@@ -11,15 +11,14 @@
 #include <vector>
 
 #include "solver/elements/hex8.h"
-#include "solver/elements/hex8_geometry.h"
 #include "solver/elements/shell_bt.h"
 #include "solver/materials/cowper_symonds.h"
+#include "tests/unit/elements/hex8_uniaxial_driver.h"
 
 namespace {
 
 namespace el = crashlink::elements;
 namespace mt = crashlink::materials;
-using crashlink::elements::hex8::kPhi;
 
 // Mild steel (N. Jones, Structural Impact, table 8.1: C = 40.4 1/s, P = 5).
 constexpr double kC = 40.4, kP = 5.0;
@@ -39,72 +38,22 @@ mt::Material rate_steel(bool rate) {
 /// plastic steps were compared with the analytic stress.
 int hex_uniaxial(double rate) {
   const mt::Material mat = rate_steel(true);
-  crashlink::model::Part part;
-  part.name = "one";
-  part.connectivity = {0, 1, 2, 3, 4, 5, 6, 7};
-  part.element_id = {1};
-  std::vector<double> X(24);
-  for (int I = 0; I < 8; ++I)
-    for (int i = 0; i < 3; ++i) X[3 * I + i] = 0.5 * (kPhi[i][I] + 1.0);
-  auto config = [&](double lx, double lt) {
-    std::vector<double> x(24);
-    for (int I = 0; I < 8; ++I) {
-      x[3 * I] = lx * X[3 * I];
-      x[3 * I + 1] = lt * X[3 * I + 1];
-      x[3 * I + 2] = lt * X[3 * I + 2];
-    }
-    return x;
-  };
-  el::StepInfo step;
-  step.bulk_viscosity = false;
-  auto st = el::make_hex8_state(part);
-  std::vector<double> v(24, 0.0), f(24, 0.0);
-  el::hex8_internal_forces(part, mat, st, {X.data(), v.data(), nullptr, f.data(), nullptr}, step);
   const double eps_end = 0.1;
   const int steps = 2000;
-  const double dt = eps_end / (rate * steps);
-  step.dt_s = dt;
-  double lt = 1.0;
-  std::vector<double> xn = X;
-  int checked = 0;
   const double phi = mt::cowper_symonds_factor(rate, kC, kP);
-  for (int s = 1; s <= steps; ++s) {
-    const double lx = std::exp(eps_end * s / steps);
-    auto trial = [&](double t, el::Hex8State& h) {
-      const auto x1 = config(lx, t);
-      for (int k = 0; k < 24; ++k) v[k] = (x1[k] - xn[k]) / dt;
-      std::fill(f.begin(), f.end(), 0.0);
-      el::hex8_internal_forces(part, mat, h, {x1.data(), v.data(), nullptr, f.data(), nullptr},
-                               step);
-      return h.stress[1];
-    };
-    double t0 = lt, t1 = lt * (1.0 - 0.3 * eps_end / steps);
-    auto h0 = st;
-    double r0 = trial(t0, h0);
-    for (int it = 0; it < 50; ++it) {
-      auto h1 = st;
-      const double r1 = trial(t1, h1);
-      if (std::abs(r1) < 1e-7 * 250e6 || r1 == r0) {
-        t0 = t1;
-        break;
-      }
-      const double t2 = t1 - r1 * (t1 - t0) / (r1 - r0);
-      t0 = t1;
-      r0 = r1;
-      t1 = t2;
-    }
-    lt = t0;
-    trial(lt, st);
-    xn = config(lx, lt);
-    // Once the flow is plastic the lateral rate is -rate/2 up to the elastic part (the curve's
-    // slope over E, under 0.1 %): the effective rate is the axial one.
-    const double ep = st.eps_p[0];
-    if (ep > 0.005) {
-      const double expected = phi * mat.hardening.yield(ep);
-      EXPECT_NEAR(st.stress[0], expected, 2e-3 * expected) << "rate " << rate << " step " << s;
-      ++checked;
-    }
-  }
+  int checked = 0;
+  crashlink::testing::drive_hex8_uniaxial(
+      mat, eps_end, steps, eps_end / (rate * steps), 1e-7 * 250e6,
+      [&](int s, double, const el::Hex8State& st) {
+        // Once the flow is plastic the lateral rate is -rate/2 up to the elastic part (the
+        // curve's slope over E, under 0.1 %): the effective rate is the axial one.
+        const double ep = st.eps_p[0];
+        if (ep > 0.005) {
+          const double expected = phi * mat.hardening.yield(ep);
+          EXPECT_NEAR(st.stress[0], expected, 2e-3 * expected) << "rate " << rate << " step " << s;
+          ++checked;
+        }
+      });
   return checked;
 }
 
