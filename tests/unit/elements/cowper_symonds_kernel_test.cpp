@@ -116,3 +116,47 @@ TEST(CowperSymondsKernel, ShellMembraneStretchEqualsTheScaledCurve) {
       "eps_p %.4f, largest stress difference %.1e of phi sigma_y0\n",
       a, b, rate, phi, s1.eps_p[0], worst);
 }
+
+// Bending: each Gauss point's rate is proportional to |zeta| (rate = |zeta| h/2 kappa_dot), so
+// at convergence of the return vm_k / sigma_y(eps_p,k) - 1 = (|zeta_k| R / C)^(1/P) for some R
+// common to the points, and the ratio of that between the outer and the inner points is
+// (zeta_outer / zeta_inner)^(1/P), whatever the curvature rate: each point's own rate scales its
+// own curve (the per-point factors are not swapped or shared).
+TEST(CowperSymondsKernel, ShellBendingScalesEachPointByItsOwnRate) {
+  crashlink::model::Part part;
+  part.name = "one";
+  part.kind = crashlink::model::ElementKind::Shell4;
+  part.thickness_m = 0.001;
+  part.through_thickness_points = 5;
+  part.hourglass_coefficient = 0.1;
+  part.connectivity = {0, 1, 2, 3};
+  part.element_id = {1};
+  const mt::Material mat = rate_steel(true);
+  const std::vector<double> x = {0, 0, 0, 0.01, 0, 0, 0.01, 0.01, 0, 0, 0.01, 0};
+  // omega_y = a x: a curvature rate a [1/(m s)]; outer points (zeta 0.906, h/2 0.5 mm) at
+  // 0.906 x 0.5e-3 x 1e6 = 453 1/s
+  const double a = 1e6, dt = 1e-8;
+  el::ShellState st = el::make_shell_state(part);
+  for (int it = 0; it < 4000; ++it) {  // to a surface strain of 0.018, 0.011 inside
+    std::vector<double> v(12, 0.0), w(12, 0.0), f(12, 0.0), m(12, 0.0);
+    for (int n = 0; n < 4; ++n) w[3 * n + 1] = a * x[3 * n];
+    el::shell_internal_forces(part, mat, st, {x.data(), v.data(), w.data(), f.data(), m.data()},
+                              el::StepInfo{it == 0 ? 0.0 : dt, false});
+  }
+  auto excess = [&](int k) {  // vm / sigma_y(eps_p) - 1 at point k
+    const double sx = st.sigma(0, k, 0), sy = st.sigma(1, k, 0), sxy = st.sigma(2, k, 0);
+    const double vm = std::sqrt(sx * sx + sy * sy - sx * sy + 3.0 * sxy * sxy);
+    return vm / mat.hardening.yield(st.plastic_strain(k, 0)) - 1.0;
+  };
+  // points 0..4 at zeta -0.906, -0.538, 0, 0.538, 0.906 (Gauss-Legendre)
+  ASSERT_GT(st.plastic_strain(1, 0), 0.0);
+  ASSERT_GT(st.plastic_strain(3, 0), 0.0);
+  const double expected = std::pow(st.zeta[4] / st.zeta[3], 1.0 / kP);
+  std::printf(
+      "[measured] shell bending: factor - 1 at the outer/inner points %.6f, %.6f (top), %.6f, "
+      "%.6f (bottom); outer/inner %.9f, (zeta_o/zeta_i)^(1/P) = %.9f\n",
+      excess(4), excess(3), excess(0), excess(1), excess(4) / excess(3), expected);
+  EXPECT_NEAR(excess(4) / excess(3), expected, 1e-6 * expected);
+  EXPECT_NEAR(excess(0) / excess(1), expected, 1e-6 * expected);
+  EXPECT_GT(excess(3), 0.5);  // the rate effect is there (factor 1.5 and more)
+}
