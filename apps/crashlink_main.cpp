@@ -1,6 +1,6 @@
 // crashlink: the user's command. Subcommands: run, hic, gather, compare, report, advise,
-// stability-map, sweep, keygen. A usage error (any subcommand, or none) exits 2 with CLI11's
-// message (apps/program_cli.h); --help and --version exit 0.
+// stability-map, sweep, keygen, export. A usage error (any subcommand, or none) exits 2 with
+// CLI11's message (apps/program_cli.h); --help and --version exit 0.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -15,6 +15,7 @@
 
 #include "apps/cmd_advise.h"
 #include "apps/cmd_compare.h"
+#include "apps/cmd_export.h"
 #include "apps/cmd_gather.h"
 #include "apps/cmd_hic.h"
 #include "apps/cmd_keygen.h"
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
   cl::StabilityMapOptions map_options;
   cl::SweepOptions sweep_options;
   cl::KeygenOptions keygen_options;
+  cl::ExportOptions export_options;
   add(run_options, cl::add_run_command, cl::run_run);
   add(hic_options, cl::add_hic_command, [](const cl::HicOptions& o) { return cl::run_hic(o); });
   add(gather_options, cl::add_gather_command, cl::run_gather);
@@ -56,6 +58,8 @@ int main(int argc, char** argv) {
   add(map_options, cl::add_stability_map_command, cl::run_stability_map);
   add(sweep_options, cl::add_sweep_command, cl::run_sweep);
   add(keygen_options, cl::add_keygen_command, cl::run_keygen);
+  add(export_options, cl::add_export_command,
+      [](const cl::ExportOptions& o) { return cl::run_export(o); });
 
   try {
     app.parse(argc, argv);

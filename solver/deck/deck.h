@@ -101,6 +101,15 @@ struct SetCard {
   CardRef ref;
 };
 
+/// *SET_SEGMENT: faces given by their corners (a triangle repeats N3 as N4).
+struct SegmentSetCard {
+  std::int64_t id = 0;
+  std::vector<std::int64_t> nodes;   ///< [4 per segment] node ids
+  std::vector<CardRef> segment_ref;  ///< the card of each segment
+  std::string keyword;
+  CardRef ref;
+};
+
 struct SpcCard {
   std::int64_t target = 0;  ///< node id or node set id
   bool set = false;
@@ -222,6 +231,7 @@ struct Deck {
   std::vector<MaterialCard> materials;
   std::vector<CurveCard> curves;
   std::vector<SetCard> sets;
+  std::vector<SegmentSetCard> segment_sets;
   std::vector<SpcCard> spcs;
   std::vector<VelocityCard> velocities;
   std::vector<BoxCard> boxes;
@@ -249,6 +259,8 @@ struct Deck {
   double field_dt = 0.0;         ///< *DATABASE_BINARY_D3PLOT DT, deck time units; 0: none
   std::int64_t field_count = 0;  ///< its NPLTC: ENDTIM / NPLTC in place of DT when > 0
   std::vector<HistoryNodeCard> history_nodes;
+  /// *DATABASE_RBDOUT given: every rigid body's motion is a probe (named after the body).
+  bool rigid_body_output = false;
   /// Keywords accepted but without effect in crashlink (*DATABASE_*), and how many times.
   std::map<std::string, int> without_effect;
   /// Keywords skipped on request (--ignore), with their cards counted.

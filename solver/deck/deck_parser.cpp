@@ -55,6 +55,7 @@ constexpr KeywordName kKeywords[] = {
     {"*SET_NODE_GENERAL", Kw::SetNodeGeneral, true, false},
     {"*SET_PART_LIST", Kw::SetPartList, true, false},
     {"*SET_PART_LIST_GENERATE", Kw::SetPartListGenerate, true, false},
+    {"*SET_SEGMENT", Kw::SetSegment, true, false},
     {"*BOUNDARY_SPC_NODE", Kw::SpcNode, false, true},
     {"*BOUNDARY_SPC_SET", Kw::SpcSet, false, true},
     {"*INITIAL_VELOCITY_GENERATION", Kw::VelocityGeneration, false, false},
@@ -127,10 +128,15 @@ bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
     // The outputs whose intervals crashlink takes, and the node histories (probes); the rest of
     // *DATABASE_* is accepted without effect.
     static constexpr std::pair<const char*, Kw> kRead[] = {
-        {"*DATABASE_GLSTAT", Kw::DatabaseAscii},        {"*DATABASE_NODOUT", Kw::DatabaseAscii},
-        {"*DATABASE_RCFORC", Kw::DatabaseAscii},        {"*DATABASE_RWFORC", Kw::DatabaseAscii},
-        {"*DATABASE_MATSUM", Kw::DatabaseAscii},        {"*DATABASE_SLEOUT", Kw::DatabaseAscii},
-        {"*DATABASE_BINARY_D3PLOT", Kw::D3plot},        {"*DATABASE_HISTORY_NODE", Kw::HistoryNode},
+        {"*DATABASE_GLSTAT", Kw::DatabaseAscii},
+        {"*DATABASE_NODOUT", Kw::DatabaseAscii},
+        {"*DATABASE_RCFORC", Kw::DatabaseAscii},
+        {"*DATABASE_RWFORC", Kw::DatabaseAscii},
+        {"*DATABASE_MATSUM", Kw::DatabaseAscii},
+        {"*DATABASE_SLEOUT", Kw::DatabaseAscii},
+        {"*DATABASE_RBDOUT", Kw::DatabaseAscii},
+        {"*DATABASE_BINARY_D3PLOT", Kw::D3plot},
+        {"*DATABASE_HISTORY_NODE", Kw::HistoryNode},
         {"*DATABASE_HISTORY_NODE_SET", Kw::HistoryNode}};
     kw = Kw::Database;
     for (const auto& [name, what] : kRead) {
@@ -219,6 +225,13 @@ void Parser::keyword(std::string_view k, const CardRef& ref) {
     s.ref = ref;
     d_.sets.push_back(std::move(s));
   }
+  if (b_.kw == Kw::SetSegment) {
+    SegmentSetCard s;
+    s.keyword = b_.keyword;
+    s.ref = ref;
+    d_.segment_sets.push_back(std::move(s));
+  }
+  if (b_.keyword == "*DATABASE_RBDOUT") d_.rigid_body_output = true;
 }
 
 void Parser::card(const Card& c) {
@@ -266,6 +279,8 @@ void Parser::card(const Card& c) {
       return set(c);
     case Kw::SetNodeGeneral:
       return set_general(c);
+    case Kw::SetSegment:
+      return segment_set(c);
     case Kw::SpcNode:
     case Kw::SpcSet:
       return spc(c);
@@ -381,7 +396,8 @@ void Parser::finish_block() {
       (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
        d_.curves.back().a.empty()) ||
       (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetPartListGenerate &&
-       d_.sets.back().id == 0);
+       d_.sets.back().id == 0) ||
+      (b_.kw == Kw::SetSegment && d_.segment_sets.back().id == 0);
   if (empty && !b_.keyword.empty())
     throw InputError(d_.files.name(b_.ref.file), b_.ref.line, b_.keyword,
                      b_.kw == Kw::DefineCurve && records_of(b_.kw) != before
@@ -593,6 +609,27 @@ void Parser::set(const Card& c) {
     s.members.push_back(positive_id(f));
     s.member_ref.push_back(c.ref());
   }
+}
+
+void Parser::segment_set(const Card& c) {
+  if (title_card(c)) return;
+  SegmentSetCard& s = d_.segment_sets.back();
+  if (card_index() == 0) {
+    s.id = positive_id(c.field(L::kSetHeader, 0));
+    s.ref = c.ref();
+    b_.card = b_.title ? 2 : 1;
+    return;
+  }
+  if (blank(c)) return;
+  std::int64_t n[4];
+  for (std::size_t k = 0; k < 4; ++k) n[k] = positive_id(c.field(L::kSetSegment, k));
+  for (std::size_t a = 0; a < 4; ++a)
+    for (std::size_t b = a + 1; b < 4; ++b)
+      if (n[a] == n[b] && !(a == 2 && b == 3))
+        c.field(L::kSetSegment, b)
+            .fail("repeats a corner; a triangle is written N1 N2 N3 N3; fix: correct the corners");
+  s.nodes.insert(s.nodes.end(), n, n + 4);
+  s.segment_ref.push_back(c.ref());
 }
 
 void Parser::set_general(const Card& c) {

@@ -56,6 +56,9 @@ inline constexpr FieldSpec kSetHeader[] = {{"SID", 10}, {"DA1", 10}, {"DA2", 10}
                                            {"DA3", 10}, {"DA4", 10}, {"SOLVER", 10}};
 inline constexpr FieldSpec kSetList[] = {{"ID1", 10}, {"ID2", 10}, {"ID3", 10}, {"ID4", 10},
                                          {"ID5", 10}, {"ID6", 10}, {"ID7", 10}, {"ID8", 10}};
+/// *SET_SEGMENT's data cards: the corners and four attributes.
+inline constexpr FieldSpec kSetSegment[] = {{"N1", 10}, {"N2", 10}, {"N3", 10}, {"N4", 10},
+                                            {"A1", 10}, {"A2", 10}, {"A3", 10}, {"A4", 10}};
 inline constexpr FieldSpec kSetGenerate[] = {{"B1BEG", 10}, {"B1END", 10}, {"B2BEG", 10},
                                              {"B2END", 10}, {"B3BEG", 10}, {"B3END", 10},
                                              {"B4BEG", 10}, {"B4END", 10}};

@@ -31,6 +31,7 @@ enum class Kw : std::uint8_t {
   SetNodeGeneral,
   SetPartList,
   SetPartListGenerate,
+  SetSegment,
   SpcNode,
   SpcSet,
   VelocityGeneration,
@@ -122,6 +123,9 @@ class Parser {
   void curve(const Card& c);
 
   void set(const Card& c);
+
+  /// *SET_SEGMENT: SID, then N1-N4 per card (A1-A4 without effect).
+  void segment_set(const Card& c);
 
   void spc(const Card& c);
 

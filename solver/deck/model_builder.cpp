@@ -256,10 +256,16 @@ void Builder::elements() {
           const bool tri = part.connectivity[4 * e + 3] == part.connectivity[4 * e + 2];
           const int corners = tri ? 3 : 4;
           double sum = 0.0;
-          for (int k = 0; k < corners; ++k)
-            sum +=
-                t[static_cast<std::size_t>(k)] > 0.0 ? t[static_cast<std::size_t>(k)] : s.thickness;
-          part.element_thickness_m.push_back(sum / corners * u_.length_m);
+          bool equal = true;  // equal corners: that value, bit for bit (no rounding of a mean)
+          const auto corner = [&](int k) {
+            return t[static_cast<std::size_t>(k)] > 0.0 ? t[static_cast<std::size_t>(k)]
+                                                        : s.thickness;
+          };
+          for (int k = 0; k < corners; ++k) {
+            sum += corner(k);
+            equal = equal && corner(k) == corner(0);
+          }
+          part.element_thickness_m.push_back((equal ? corner(0) : sum / corners) * u_.length_m);
         }
       }
     }
@@ -377,6 +383,8 @@ int Builder::model_node(std::int64_t id, const CardRef& ref, const char* kw, Lay
 
 void Builder::sets() {
   IdMap node_sets, part_sets;
+  const IdMap segment_sets = index_ids(d_, d_.segment_sets, L::kSetHeader, "segment set");
+  (void)segment_sets;  // looked up by the contacts that name one (segment_faces)
   for (std::size_t i = 0; i < d_.sets.size(); ++i) {
     const SetCard& s = d_.sets[i];
     auto& map = s.parts ? part_sets : node_sets;

@@ -5,8 +5,10 @@
 // and model_from_deck.cpp (the units and read_deck). Internal to crashlink::deck.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -126,6 +128,12 @@ class Builder {
   /// need distinct names).
   std::string contact_name(const ContactCard& k, std::size_t i);
 
+  /// The slave faces of SSTYP 0 (*SET_SEGMENT SSID): 4 model node indices each, in the set's
+  /// order; each must be a face of an element.
+  std::vector<std::int32_t> segment_faces(const ContactCard& k);
+  static std::array<std::int32_t, 4> face_key(std::int32_t a, std::int32_t b, std::int32_t c,
+                                              std::int32_t d);
+
   /// *CONTACT_* onto model::Contact (docs/decks.md "Contacts"): penalty_scale = 0.1 SFS (SLSFAC's
   /// default 0.1), SOFT 1 adds the mass-and-step stiffness scaled by SOFSCL, Coulomb friction
   /// mu = FD + (FS - FD) exp(-DC |v_rel|) as crashlink's.
@@ -170,6 +178,7 @@ class Builder {
   std::unordered_set<int> inertia_bodies_;  ///< bodies whose velocity *PART_INERTIA gave
   std::unordered_map<std::int64_t, Mat3> frames_;
   bool last_was_node_ = false;
+  std::set<std::array<std::int32_t, 4>> element_faces_;  ///< segment_faces' lookup
 };
 
 }  // namespace crashlink::deck::detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/contact/segments.h"
 #include "solver/core/errors.h"
 #include "solver/deck/model_builder.h"
 #include "solver/materials/bilinear_hardening.h"
@@ -146,7 +147,7 @@ std::vector<int> Builder::surface_parts(const ContactCard& k, bool slave) {
                         "parts (3), a part set (2){}{}; fix: name the parts",
                         typ,
                         slave && k.kind != ContactCard::Kind::SingleSurface
-                            ? ", a node set (4, slave only)"
+                            ? ", a segment set (0, slave only), a node set (4, slave only)"
                             : "",
                         " or all parts (5)"));
   }
@@ -157,6 +158,61 @@ std::vector<int> Builder::surface_parts(const ContactCard& k, bool slave) {
             fmt::format("the {} surface holds no element; fix: name parts with elements",
                         slave ? "slave" : "master"));
   return out;
+}
+
+std::vector<std::int32_t> Builder::segment_faces(const ContactCard& k) {
+  const auto it = std::find_if(d_.segment_sets.begin(), d_.segment_sets.end(),
+                               [&](const SegmentSetCard& s) { return s.id == k.ssid; });
+  if (k.ssid == 0 || it == d_.segment_sets.end())
+    fail_at(d_, k.ref, k.keyword, L::kContact1, 0,
+            fmt::format("segment set {} is not defined (SSTYP 0: a segment set); fix: add "
+                        "*SET_SEGMENT {}, or name parts (SSTYP 3) or a part set (SSTYP 2)",
+                        k.ssid, k.ssid));
+  const SegmentSetCard& s = *it;
+  if (element_faces_.empty()) {  // every element's faces, corners sorted, as keys
+    for (const auto& p : m_.parts) {
+      const auto& q = p.connectivity;
+      if (p.kind == model::ElementKind::Shell4) {
+        for (std::size_t e = 0; 4 * e < q.size(); ++e)
+          element_faces_.insert(face_key(q[4 * e], q[4 * e + 1], q[4 * e + 2], q[4 * e + 3]));
+      } else {
+        for (std::size_t e = 0; 8 * e < q.size(); ++e)
+          for (const auto& f : contact::kHexFaces)
+            element_faces_.insert(face_key(q[8 * e + static_cast<std::size_t>(f[0])],
+                                           q[8 * e + static_cast<std::size_t>(f[1])],
+                                           q[8 * e + static_cast<std::size_t>(f[2])],
+                                           q[8 * e + static_cast<std::size_t>(f[3])]));
+      }
+    }
+  }
+  std::vector<std::int32_t> faces;
+  faces.reserve(s.nodes.size());
+  for (std::size_t f = 0; f < s.segment_ref.size(); ++f) {
+    std::int32_t n[4];
+    for (std::size_t j = 0; j < 4; ++j) {
+      n[j] = node(s.nodes[4 * f + j], s.segment_ref[f], s.keyword.c_str(), L::kSetSegment, j);
+      if (n[j] < 0)
+        fail_at(d_, s.segment_ref[f], s.keyword, L::kSetSegment, j,
+                fmt::format("node {} belongs to no element; fix: give the faces of elements",
+                            s.nodes[4 * f + j]));
+    }
+    if (!element_faces_.count(face_key(n[0], n[1], n[2], n[3])))
+      fail_at(d_, s.segment_ref[f], s.keyword, L::kSetSegment, 0,
+              "is not a face of an element (a shell, or a side of a hexahedron); fix: give "
+              "the corners of an element's face");
+    faces.insert(faces.end(), n, n + 4);
+  }
+  if (faces.empty())
+    fail_at(d_, s.ref, s.keyword, L::kSetHeader, 0,
+            "holds no segment; fix: list the faces (N1 N2 N3 N4 per card)");
+  return faces;
+}
+
+std::array<std::int32_t, 4> Builder::face_key(std::int32_t a, std::int32_t b, std::int32_t c,
+                                              std::int32_t d) {
+  std::array<std::int32_t, 4> k{a, b, c, d};
+  std::sort(k.begin(), k.end());
+  return k;
 }
 
 std::string Builder::contact_name(const ContactCard& k, std::size_t i) {
@@ -180,7 +236,12 @@ void Builder::contacts() {
     if (k.kind == ContactCard::Kind::SingleSurface) {
       c.master_parts = surface_parts(k, true);
     } else {
-      if (k.sstyp == 4) {
+      if (k.sstyp == 0) {
+        // *SET_SEGMENT: the faces as given; their nodes are the slave nodes.
+        const auto faces = segment_faces(k);
+        c.slave_nodes.assign(faces.begin(), faces.end());
+        if (k.kind == ContactCard::Kind::SurfaceToSurface) c.slave_faces = faces;
+      } else if (k.sstyp == 4) {
         for (auto id : node_set(k.ssid, k.ref, k.keyword, L::kContact1)) {
           const int n = node(id, k.ref, k.keyword.c_str(), L::kContact1, 0);
           if (n >= 0) c.slave_nodes.push_back(n);
@@ -333,6 +394,17 @@ void Builder::curve_dofs() {
 void Builder::probes() {
   std::unordered_map<std::int64_t, int> seen;
   std::unordered_set<std::string> names;
+  // *DATABASE_RBDOUT: every rigid body's motion (LS-DYNA's rbdout), named after the body.
+  if (d_.rigid_body_output)
+    for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b) {
+      model::Probe p;
+      p.name = m_.rigid_bodies[b].name;
+      std::replace(p.name.begin(), p.name.end(), '/', '_');
+      names.insert(p.name);
+      p.kind = model::Probe::Kind::RigidBody;
+      p.index = static_cast<int>(b);
+      m_.probes.push_back(std::move(p));
+    }
   for (const HistoryNodeCard& h : d_.history_nodes) {
     const bool with_id = h.keyword.ends_with("_ID");
     const Layout l = with_id ? Layout(L::kIdHeading) : Layout(L::kHistoryIds);

@@ -106,11 +106,11 @@ struct Mistake {
 
 TEST_F(DeckContacts, MistakesNameTheirField) {
   const Mistake mistakes[] = {
-      {"segment set surface",
-       {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", "         2         1         0         3"},
-       "c.k:35: *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE field SSTYP (columns 21-30) = 0: surface "
-       "type 0 is not read: crashlink takes a contact surface as parts (3), a part set (2), a "
-       "node set (4, slave only) or all parts (5); fix: name the parts"},
+      {"segment set master surface",
+       {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", "         2         1         3         0"},
+       "c.k:35: *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE field MSTYP (columns 31-40) = 0: surface "
+       "type 0 is not read: crashlink takes a contact surface as parts (3), a part set (2) or "
+       "all parts (5); fix: name the parts"},
       {"SOFT 2",
        {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", "         2         1         3         3", "", "",
         "         2"},
@@ -210,6 +210,64 @@ TEST_F(DeckContacts, RepeatedHeadingsGetDistinctNamesAndLaterCardsAreNoted) {
     noted =
         noted || m.find("optional cards D and later are read without effect") != std::string::npos;
   EXPECT_TRUE(noted);
+}
+
+}  // namespace
+}  // namespace crashlink::deck
+
+namespace crashlink::deck {
+namespace {
+
+class DeckSegmentSets : public testing::DeckLinesTest {};
+
+// SSTYP 0: the slave side as a *SET_SEGMENT, its faces kept in order (the two-pass contact's
+// slave faces) and their nodes the slave nodes.
+TEST_F(DeckSegmentSets, SlaveFacesAreTheSegmentsGiven) {
+  DeckRead r;
+  ASSERT_EQ(read(testing::two_cubes_with({"*SET_SEGMENT_TITLE", "lower top", "         3",
+                                          "         5         6         8         7",
+                                          "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE",
+                                          "         3         2         0         3", "", "",
+                                          "*CONTACT_AUTOMATIC_NODES_TO_SURFACE",
+                                          "         3         2         0         3", "", ""}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.contacts.size(), 2u);
+  const auto& c = r.model.contacts[0];
+  ASSERT_EQ(c.slave_faces.size(), 4u);
+  const std::vector<std::int64_t> want{5, 6, 8, 7};
+  for (std::size_t j = 0; j < 4; ++j)
+    EXPECT_EQ(r.model.nodes.id[static_cast<std::size_t>(c.slave_faces[j])], want[j]);
+  EXPECT_EQ(c.slave_nodes.size(), 4u);
+  EXPECT_TRUE(r.model.contacts[1].slave_faces.empty()) << "one pass: the nodes only";
+  EXPECT_EQ(r.model.contacts[1].slave_nodes, c.slave_nodes);
+}
+
+TEST_F(DeckSegmentSets, MistakesNameTheirField) {
+  const std::string contact = "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE";
+  const std::string card = "         3         2         0         3";
+  // not a face of an element (a diagonal plane of the cube)
+  EXPECT_NE(read(testing::two_cubes_with({"*SET_SEGMENT", "         3",
+                                          "         1         2         8         7", contact, card,
+                                          "", ""}))
+                .find("c.k:36: *SET_SEGMENT field N1 (columns 1-10) = 1: is not a face of an "
+                      "element"),
+            std::string::npos);
+  // a corner twice that is not the triangle's N3 = N4
+  EXPECT_NE(read(testing::two_cubes_with(
+                     {"*SET_SEGMENT", "         3", "         5         5         8         7"}))
+                .find("field N2 (columns 11-20) = 5: repeats a corner"),
+            std::string::npos);
+  // the set is not there
+  EXPECT_NE(read(testing::two_cubes_with({contact, card, "", ""}))
+                .find("segment set 3 is not defined (SSTYP 0: a segment set)"),
+            std::string::npos);
+  // two sets with one id
+  EXPECT_NE(read(testing::two_cubes_with(
+                     {"*SET_SEGMENT", "         3", "         5         6         8         7",
+                      "*SET_SEGMENT", "         3", "         5         6         8         7"}))
+                .find("segment set 3 is already defined"),
+            std::string::npos);
 }
 
 }  // namespace

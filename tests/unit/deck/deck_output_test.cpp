@@ -74,6 +74,25 @@ TEST_F(DeckOutput, WithoutThemEveryCycleAndTheEnds) {
   EXPECT_TRUE(r.model.probes.empty());
 }
 
+// *DATABASE_RBDOUT: every rigid body's motion is a probe named after it (the HIC channel of a
+// headform), before the node probes; its DT is a history interval like the others'.
+TEST_F(DeckOutput, RigidBodyOutputProbesEveryBody) {
+  auto d = testing::two_cubes();
+  for (auto& l : d)
+    if (l == "         2         1         1") l = "         2         2         2";
+  d.insert(d.end(), {"*SECTION_SOLID", "         2         1", "*MAT_RIGID",
+                     "         2   7.85e-9  210000.0       0.3", "*DATABASE_HISTORY_NODE_ID",
+                     "         1corner", "*DATABASE_RBDOUT", "    1.0e-6"});
+  DeckRead r;
+  ASSERT_EQ(read(d, &r), "");
+  ASSERT_EQ(r.model.probes.size(), 2u);
+  EXPECT_EQ(r.model.probes[0].name, "upper");
+  EXPECT_EQ(r.model.probes[0].kind, model::Probe::Kind::RigidBody);
+  EXPECT_EQ(r.model.probes[0].index, 0);
+  EXPECT_EQ(r.model.probes[1].name, "corner");
+  EXPECT_DOUBLE_EQ(r.model.controls.history_interval_s, 1e-6);
+}
+
 TEST_F(DeckOutput, MistakesNameTheirField) {
   struct Mistake {
     std::vector<std::string> deck;

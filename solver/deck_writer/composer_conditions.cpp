@@ -1,0 +1,256 @@
+// The run's conditions: constraints, initial velocities, prescribed motions and loads, contacts,
+// rigid walls, probes; and the sets and curves they name.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "solver/contact/segments.h"
+#include "solver/core/errors.h"
+#include "solver/deck_writer/composer.h"
+
+namespace crashlink::deck_writer::detail {
+
+namespace {
+
+/// The model's nodes of part p, ascending.
+std::vector<std::int32_t> part_nodes(const model::Part& p) {
+  std::vector<std::int32_t> n(p.connectivity.begin(), p.connectivity.end());
+  std::sort(n.begin(), n.end());
+  n.erase(std::unique(n.begin(), n.end()), n.end());
+  return n;
+}
+
+std::vector<std::int32_t> sorted_unique(std::vector<std::int32_t> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+}  // namespace
+
+std::int64_t Composer::node_set(const std::vector<std::int32_t>& nodes, const std::string& title) {
+  const std::int64_t id = next_node_set_++;
+  KeywordBlock b("*SET_NODE_LIST_TITLE");
+  b.line(title);
+  b.card(L::kSetHeader, {static_cast<long long>(id)});
+  std::vector<std::int64_t> ids;
+  ids.reserve(nodes.size());
+  for (auto n : nodes) ids.push_back(node_id(n));
+  list_cards(b, ids);
+  emit(b);
+  return id;
+}
+
+std::int64_t Composer::part_set(const std::vector<int>& parts, const std::string& title) {
+  const std::int64_t id = next_part_set_++;
+  KeywordBlock b("*SET_PART_LIST_TITLE");
+  b.line(title);
+  b.card(L::kSetHeader, {static_cast<long long>(id)});
+  std::vector<std::int64_t> ids;
+  for (int p : parts) ids.push_back(part_id_[static_cast<std::size_t>(p)]);
+  list_cards(b, ids);
+  emit(b);
+  return id;
+}
+
+std::int64_t Composer::curve(const std::vector<double>& a, const std::vector<double>& o,
+                             const std::string& title) {
+  const std::int64_t id = next_curve_++;
+  KeywordBlock b("*DEFINE_CURVE_TITLE");
+  b.line(title);
+  b.card(L::kCurve, {static_cast<long long>(id)});
+  for (std::size_t k = 0; k < a.size(); ++k) b.card(L::kCurvePoint, {a[k], o[k]});
+  emit(b);
+  return id;
+}
+
+std::int64_t Composer::curve(const model::Curve& c, double value_unit_SI,
+                             const std::string& title) {
+  std::vector<double> a, o;
+  for (std::size_t k = 0; k < c.t_s.size(); ++k) {
+    a.push_back(time(c.t_s[k]));
+    o.push_back(c.value[k] / value_unit_SI);
+  }
+  if (a.empty()) a = {0.0}, o = {0.0};
+  const double end = time(m_.controls.end_time_s);
+  if (a.size() == 1 && end > a[0]) {  // a constant: two points over the run (LS-DYNA's habit)
+    a.push_back(end);
+    o.push_back(o[0]);
+  }
+  return curve(a, o, title);
+}
+
+void Composer::constraints() {
+  // One node set per combination of fixed dofs.
+  std::map<std::uint8_t, std::vector<std::int32_t>> by_mask;
+  for (std::size_t i = 0; i < m_.fixed.size(); ++i)
+    if (m_.fixed[i] != 0) by_mask[m_.fixed[i]].push_back(static_cast<std::int32_t>(i));
+  for (const auto& [mask, nodes] : by_mask) {
+    std::string dofs;
+    for (int d = 0; d < 6; ++d)
+      if (mask & (1 << d))
+        dofs += std::string(dofs.empty() ? "" : " ") + (d < 3 ? "" : "r") + "xyz"[d % 3];
+    const std::int64_t sid = node_set(nodes, "fixed " + dofs);
+    KeywordBlock b("*BOUNDARY_SPC_SET");
+    std::vector<Value> v{static_cast<long long>(sid), 0};
+    for (int d = 0; d < 6; ++d) v.emplace_back((mask & (1 << d)) ? 1 : 0);
+    b.card(L::kSpcSet, std::move(v));
+    emit(b);
+  }
+}
+
+void Composer::initial_velocities() {
+  for (std::size_t k = 0; k < m_.initial_velocities.size(); ++k) {
+    const auto& iv = m_.initial_velocities[k];
+    const std::int64_t sid = node_set(iv.nodes, fmt::format("initial velocity {}", k + 1));
+    KeywordBlock b("*INITIAL_VELOCITY");
+    b.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
+    b.card(L::kInitialVelocity2, {velocity(iv.velocity_m_s[0]), velocity(iv.velocity_m_s[1]),
+                                  velocity(iv.velocity_m_s[2])});
+    emit(b);
+  }
+}
+
+void Composer::curve_dofs() {
+  for (const auto& pv : m_.prescribed_velocities) {
+    const bool rotation = pv.dof >= 3;
+    const std::int64_t sid = node_set(pv.nodes, "prescribed " + pv.name);
+    const std::int64_t lcid = curve(pv.velocity, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(),
+                                    pv.name + (rotation ? " [rad/time]" : " [velocity]"));
+    KeywordBlock b("*BOUNDARY_PRESCRIBED_MOTION_SET");
+    // DOF 1-3 translations, 5-7 rotations; VAD 0: velocity.
+    b.card(L::kMotionSet, {static_cast<long long>(sid), rotation ? pv.dof + 2 : pv.dof + 1, 0,
+                           static_cast<long long>(lcid), 1.0});
+    emit(b);
+  }
+  for (const auto& ld : m_.loads) {
+    const std::int64_t sid = node_set(ld.nodes, "load " + ld.name);
+    const std::int64_t lcid = curve(ld.force, u_.force_N(), ld.name + " [force per node]");
+    KeywordBlock b("*LOAD_NODE_SET");
+    b.card(L::kLoadSet,
+           {static_cast<long long>(sid), ld.dof + 1, static_cast<long long>(lcid), 1.0});
+    emit(b);
+  }
+}
+
+void Composer::contacts() {
+  for (std::size_t k = 0; k < m_.contacts.size(); ++k) {
+    const auto& c = m_.contacts[k];
+    long long ssid = 0, msid = 0;
+    int sstyp = 0, mstyp = 0;
+    std::string kw;
+    if (c.kind == model::ContactKind::SingleSurface) {
+      kw = "*CONTACT_AUTOMATIC_SINGLE_SURFACE_ID";
+      ssid = part_set(c.master_parts, c.name + " surface");
+      sstyp = 2;
+    } else {
+      kw = c.kind == model::ContactKind::NodeToSurface ? "*CONTACT_AUTOMATIC_NODES_TO_SURFACE_ID"
+                                                       : "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID";
+      // The slave side: whole parts if the slave nodes are exactly some parts' nodes; else
+      // (surface to surface) the faces made of slave nodes as a segment set, if they hold every
+      // slave node; else a node set.
+      const auto slave = sorted_unique(c.slave_nodes);
+      std::vector<int> whole;
+      std::vector<std::int32_t> covered;
+      for (std::size_t p = 0; p < m_.parts.size(); ++p) {
+        const auto n = part_nodes(m_.parts[p]);
+        if (std::includes(slave.begin(), slave.end(), n.begin(), n.end())) {
+          whole.push_back(static_cast<int>(p));
+          covered.insert(covered.end(), n.begin(), n.end());
+        }
+      }
+      std::vector<std::int32_t> faces;
+      if (c.kind == model::ContactKind::SurfaceToSurface)
+        faces =
+            c.slave_faces.empty() ? contact::slave_faces(m_, slave, c.master_parts) : c.slave_faces;
+      if (!whole.empty() && sorted_unique(covered) == slave && c.slave_faces.empty()) {
+        ssid = part_set(whole, c.name + " slave parts");
+        sstyp = 2;
+      } else if (!faces.empty() && sorted_unique(faces) == slave) {
+        const long long id = next_segment_set_++;
+        KeywordBlock b("*SET_SEGMENT_TITLE");
+        b.line(c.name + " slave faces");
+        b.card(L::kSetHeader, {id});
+        for (std::size_t f = 0; 4 * f < faces.size(); ++f)
+          b.card(L::kSetSegment, {static_cast<long long>(node_id(faces[4 * f])),
+                                  static_cast<long long>(node_id(faces[4 * f + 1])),
+                                  static_cast<long long>(node_id(faces[4 * f + 2])),
+                                  static_cast<long long>(node_id(faces[4 * f + 3]))});
+        emit(b);
+        ssid = id;
+        sstyp = 0;
+      } else {
+        ssid = node_set(slave, c.name + " slave nodes");
+        sstyp = 4;
+        if (c.kind == model::ContactKind::SurfaceToSurface)
+          notes_.push_back(fmt::format(
+              "contact '{}': slave nodes that no face of their own holds are written as a node "
+              "set (SSTYP 4), which LS-DYNA takes in NODES_TO_SURFACE contacts only",
+              c.name));
+      }
+      msid = part_set(c.master_parts, c.name + " master parts");
+      mstyp = 2;
+    }
+    KeywordBlock b(kw);
+    b.card(L::kIdHeading, {static_cast<long long>(k + 1), c.name});
+    b.card(L::kContact1, {ssid, msid, sstyp, mstyp});
+    // crashlink's friction decays from FS to FD with DC [time/length]; with DC = 0 it is FS.
+    const double fd = c.friction_decay_s_m > 0.0 ? c.dynamic_friction : c.static_friction;
+    b.card(L::kContact2, {c.static_friction, fd, c.friction_decay_s_m * u_.length_m / u_.time_s});
+    b.card(L::kContact3, {c.penalty_scale, c.penalty_scale});
+    b.card(L::kContactA, {c.soft ? 1 : 0, c.soft_scale});
+    emit(b);
+  }
+}
+
+void Composer::rigid_walls() {
+  for (std::size_t k = 0; k < m_.rigid_walls.size(); ++k) {
+    const auto& w = m_.rigid_walls[k];
+    const std::int64_t sid = node_set(w.nodes, w.name + " nodes");
+    KeywordBlock b(w.moving() ? "*RIGIDWALL_PLANAR_MOVING_ID" : "*RIGIDWALL_PLANAR_ID");
+    b.card(L::kIdHeading, {static_cast<long long>(k + 1), w.name});
+    b.card(L::kRigidWall1, {static_cast<long long>(sid)});
+    // Tail on the plane, head one length unit along the normal (the nodes' side).
+    const Vec3 t = w.point_m;
+    b.card(L::kRigidWall2, {length(t[0]), length(t[1]), length(t[2]), length(t[0]) + w.normal[0],
+                            length(t[1]) + w.normal[1], length(t[2]) + w.normal[2]});
+    if (w.moving()) b.card(L::kRigidWallMoving, {mass(w.mass_kg), velocity(w.velocity_m_s)});
+    emit(b);
+  }
+}
+
+void Composer::probes() {
+  bool rigid = false;
+  for (const auto& p : m_.probes) {
+    if (p.kind == model::Probe::Kind::RigidBody) {
+      rigid = true;
+      const auto& body = m_.rigid_bodies[static_cast<std::size_t>(p.index)];
+      const auto& part = m_.parts[static_cast<std::size_t>(body.parts[0])];
+      if (p.name != part.name)
+        notes_.push_back(
+            fmt::format("probe '{}' of rigid body '{}' is named '{}' in the deck "
+                        "(*DATABASE_RBDOUT names each body after its part)",
+                        p.name, body.name, part.name));
+      continue;
+    }
+    KeywordBlock b("*DATABASE_HISTORY_NODE_ID");
+    b.card(L::kIdHeading, {static_cast<long long>(node_id(p.index)), p.name});
+    emit(b);
+  }
+  const double dt = time(m_.controls.history_interval_s);
+  if (rigid) {
+    KeywordBlock b("*DATABASE_RBDOUT");  // every rigid body's motion: crashlink's body probes
+    b.card(L::kDatabaseAscii, {dt});
+    emit(b);
+  }
+  bool nodes = false;
+  for (const auto& p : m_.probes) nodes = nodes || p.kind == model::Probe::Kind::Node;
+  if (nodes) {
+    KeywordBlock b("*DATABASE_NODOUT");
+    b.card(L::kDatabaseAscii, {dt});
+    emit(b);
+  }
+}
+
+}  // namespace crashlink::deck_writer::detail

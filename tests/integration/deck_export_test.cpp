@@ -1,0 +1,336 @@
+// The deck writer's round trip (issue #22 acceptance 1): `crashlink export` of the two main
+// scenes, read back with the deck reader, gives the same model to the bit (node positions,
+// elements in the same order, sections, materials, constraints, rigid bodies, contacts, probes,
+// controls, domains), and running it gives the same answer to the bit, mono and multi.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "solver/contact/segments.h"
+#include "solver/cosim/layer_network.h"
+#include "solver/deck/model_from_deck.h"
+#include "solver/deck_writer/deck_writer.h"
+#include "solver/integration/solver.h"
+#include "solver/io/scenario_reader.h"
+#include "tests/integration/shell_command.h"
+
+namespace crashlink {
+namespace {
+
+const std::string kScenes = std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/";
+const std::string kCrashlink = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink";
+
+std::filesystem::path temp_dir(const std::string& tag) {
+  auto d = std::filesystem::temp_directory_path() /
+           ("crashlink_export_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+/// Writes the export of `m` into `dir` (deck.k and, if any, deck.yaml); returns the model read
+/// back (through the scenario when one was written).
+model::Model round_trip(const model::Model& m, const std::filesystem::path& dir,
+                        deck_writer::ExportText* text_out = nullptr) {
+  const auto text =
+      deck_writer::export_deck(m, *deck::find_unit_system("m-kg-s"), "deck.k", "test");
+  std::ofstream(dir / "deck.k") << text.deck;
+  if (text_out) *text_out = text;
+  if (text.scenario.empty())
+    return deck::read_deck((dir / "deck.k").string(), {"m-kg-s", {}}).model;
+  std::ofstream(dir / "deck.yaml") << text.scenario;
+  return io::read_scenario((dir / "deck.yaml").string());
+}
+
+void expect_same_curve(const model::Curve& a, const model::Curve& b, double end) {
+  for (int k = 0; k <= 100; ++k) EXPECT_EQ(a.at(end * k / 100.0), b.at(end * k / 100.0));
+}
+
+/// Every field the run reads, compared exactly (names where the deck keeps them).
+void expect_same_model(const model::Model& a, const model::Model& d,
+                       std::size_t rounded_coordinates) {
+  EXPECT_EQ(d.name, a.name);
+  ASSERT_EQ(d.nodes.count(), a.nodes.count());
+  EXPECT_EQ(d.nodes.id, a.nodes.id);
+  // To the bit where LS-DYNA's 20 columns hold the 17 digits a double may need; else within
+  // the round-off of the model's size (a coordinate of 1e-18 m generator noise, or 17 digits
+  // below 1 cm, written to 16 digits).
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.nodes.x0.size(); ++i)
+    if (d.nodes.x0[i] != a.nodes.x0[i]) {
+      ++differ;
+      EXPECT_NEAR(d.nodes.x0[i], a.nodes.x0[i], 1e-16 * (1.0 + std::abs(a.nodes.x0[i])));
+    }
+  EXPECT_LE(differ, rounded_coordinates) << "coordinates not bit-equal";
+  ASSERT_EQ(d.materials.size(), a.materials.size());
+  for (std::size_t i = 0; i < a.materials.size(); ++i) {
+    const auto &x = a.materials[i], &y = d.materials[i];
+    EXPECT_EQ(y.name, x.name);
+    EXPECT_EQ(y.kind, x.kind);
+    EXPECT_EQ(y.density_kg_m3, x.density_kg_m3);
+    EXPECT_EQ(y.youngs_modulus_Pa, x.youngs_modulus_Pa);
+    EXPECT_EQ(y.poisson_ratio, x.poisson_ratio);
+    EXPECT_EQ(y.hardening.eps_p, x.hardening.eps_p);
+    EXPECT_EQ(y.hardening.sigma_y_Pa, x.hardening.sigma_y_Pa);
+    EXPECT_EQ(y.rate_c_per_s, x.rate_c_per_s);
+    EXPECT_EQ(y.rate_p, x.rate_p);
+  }
+  ASSERT_EQ(d.parts.size(), a.parts.size());
+  for (std::size_t p = 0; p < a.parts.size(); ++p) {
+    SCOPED_TRACE(a.parts[p].name);
+    const auto &x = a.parts[p], &y = d.parts[p];
+    EXPECT_EQ(y.name, x.name);
+    EXPECT_EQ(y.kind, x.kind);
+    EXPECT_EQ(y.material, x.material);
+    EXPECT_EQ(y.connectivity, x.connectivity);
+    EXPECT_EQ(y.element_id, x.element_id);
+    EXPECT_EQ(y.thickness_m, x.thickness_m);
+    EXPECT_EQ(y.element_thickness_m, x.element_thickness_m);
+    if (x.kind == model::ElementKind::Shell4) {
+      EXPECT_EQ(y.through_thickness_points, x.through_thickness_points);
+    }
+    EXPECT_EQ(y.hourglass_coefficient, x.hourglass_coefficient);
+  }
+  EXPECT_EQ(d.fixed, a.fixed);
+  ASSERT_EQ(d.initial_velocities.size(), a.initial_velocities.size());
+  for (std::size_t k = 0; k < a.initial_velocities.size(); ++k) {
+    EXPECT_EQ(d.initial_velocities[k].nodes, a.initial_velocities[k].nodes);
+    EXPECT_EQ(d.initial_velocities[k].velocity_m_s, a.initial_velocities[k].velocity_m_s);
+  }
+  ASSERT_EQ(d.prescribed_velocities.size(), a.prescribed_velocities.size());
+  for (std::size_t k = 0; k < a.prescribed_velocities.size(); ++k) {
+    EXPECT_EQ(d.prescribed_velocities[k].nodes, a.prescribed_velocities[k].nodes);
+    EXPECT_EQ(d.prescribed_velocities[k].dof, a.prescribed_velocities[k].dof);
+    expect_same_curve(d.prescribed_velocities[k].velocity, a.prescribed_velocities[k].velocity,
+                      a.controls.end_time_s);
+  }
+  ASSERT_EQ(d.loads.size(), a.loads.size());
+  for (std::size_t k = 0; k < a.loads.size(); ++k) {
+    EXPECT_EQ(d.loads[k].nodes, a.loads[k].nodes);
+    EXPECT_EQ(d.loads[k].dof, a.loads[k].dof);
+    expect_same_curve(d.loads[k].force, a.loads[k].force, a.controls.end_time_s);
+  }
+  ASSERT_EQ(d.rigid_bodies.size(), a.rigid_bodies.size());
+  for (std::size_t b = 0; b < a.rigid_bodies.size(); ++b) {
+    const auto &x = a.rigid_bodies[b], &y = d.rigid_bodies[b];
+    EXPECT_EQ(y.parts, x.parts);
+    EXPECT_EQ(y.velocity_m_s, x.velocity_m_s);
+    EXPECT_EQ(y.angular_velocity_rad_s, x.angular_velocity_rad_s);
+    if (x.mass_kg > 0.0) {
+      EXPECT_EQ(y.mass_kg, x.mass_kg);
+    }
+    if (x.inertia_given) {
+      EXPECT_EQ(y.inertia_kg_m2, x.inertia_kg_m2);
+    }
+  }
+  ASSERT_EQ(d.contacts.size(), a.contacts.size());
+  for (std::size_t k = 0; k < a.contacts.size(); ++k) {
+    const auto &x = a.contacts[k], &y = d.contacts[k];
+    SCOPED_TRACE(x.name);
+    EXPECT_EQ(y.name, x.name);
+    EXPECT_EQ(y.kind, x.kind);
+    EXPECT_EQ(y.slave_nodes, x.slave_nodes);
+    EXPECT_EQ(y.master_parts, x.master_parts);
+    // Faces given by a segment set are the ones the model derives from its slave nodes.
+    const auto faces = [&](const model::Model& m, const model::Contact& c) {
+      return c.slave_faces.empty() && c.kind == model::ContactKind::SurfaceToSurface
+                 ? contact::slave_faces(m, c.slave_nodes, c.master_parts)
+                 : c.slave_faces;
+    };
+    EXPECT_EQ(faces(d, y), faces(a, x));
+    EXPECT_EQ(y.penalty_scale, x.penalty_scale);
+    EXPECT_EQ(y.soft, x.soft);
+    EXPECT_EQ(y.soft_scale, x.soft_scale);
+    EXPECT_EQ(y.static_friction, x.static_friction);
+    if (x.friction_decay_s_m > 0.0) {
+      EXPECT_EQ(y.dynamic_friction, x.dynamic_friction);
+    }
+    EXPECT_EQ(y.friction_decay_s_m, x.friction_decay_s_m);
+  }
+  std::map<std::string, std::pair<model::Probe::Kind, int>> pa, pd;
+  for (const auto& p : a.probes) pa[p.name] = {p.kind, p.index};
+  for (const auto& p : d.probes) pd[p.name] = {p.kind, p.index};
+  EXPECT_EQ(pd, pa);
+  const auto &c = a.controls, &e = d.controls;
+  EXPECT_EQ(e.end_time_s, c.end_time_s);
+  EXPECT_EQ(e.dt_scale, c.dt_scale);
+  EXPECT_EQ(e.dt_max_s, c.dt_max_s);
+  EXPECT_EQ(e.history_interval_s, c.history_interval_s);
+  EXPECT_EQ(e.field_interval_s, c.field_interval_s);
+  EXPECT_EQ(e.bulk_q_linear, c.bulk_viscosity ? c.bulk_q_linear : 0.0);
+  EXPECT_EQ(e.bulk_q_quadratic, c.bulk_viscosity ? c.bulk_q_quadratic : 0.0);
+  EXPECT_EQ(e.shell_bulk_viscosity, c.shell_bulk_viscosity);
+  EXPECT_EQ(e.energy_tolerance, c.energy_tolerance);
+  EXPECT_EQ(e.gravity_m_s2, c.gravity_m_s2);
+  ASSERT_EQ(d.domains.size(), a.domains.size());
+  for (std::size_t k = 0; k < a.domains.size(); ++k) {
+    EXPECT_EQ(d.domains[k].name, a.domains[k].name);
+    EXPECT_EQ(d.domains[k].parts, a.domains[k].parts);
+  }
+  EXPECT_EQ(d.coupling.interface_damping.ratio, a.coupling.interface_damping.ratio);
+}
+
+TEST(DeckExport, PlateImpactReadsBackToTheSameModel) {
+  const model::Model yaml = io::read_scenario(kScenes + "plate_impact.yaml");
+  deck_writer::ExportText text;
+  const model::Model deck = round_trip(yaml, temp_dir("plate"), &text);
+  expect_same_model(yaml, deck, 0);
+  EXPECT_TRUE(text.scenario.empty()) << "no domains: the deck says everything";
+}
+
+TEST(DeckExport, HeadImpactReadsBackToTheSameModel) {
+  const model::Model yaml = io::read_scenario(kScenes + "head_impact.yaml");
+  deck_writer::ExportText text;
+  const model::Model deck = round_trip(yaml, temp_dir("head"), &text);
+  expect_same_model(yaml, deck, text.rounding.rounded);
+  std::printf("[measured] head impact export: %zu values rounded, largest %.2e relative\n",
+              text.rounding.rounded, text.rounding.max_relative);
+  EXPECT_LT(text.rounding.max_relative, 1e-13);
+  EXPECT_FALSE(text.scenario.empty()) << "the domains go into a scenario naming the deck";
+  for (const auto& n : text.notes) std::printf("[export note] %s\n", n.c_str());
+}
+
+/// A model cut short at `end_s` (the runs below compare the first millisecond of contact).
+model::Model shortened(model::Model m, double end_s) {
+  m.controls.end_time_s = end_s;
+  return m;
+}
+
+/// Mono: the YAML scene and its exported deck run the same cycles (the same steps, to the bit)
+/// to the same headform accelerations and displacements to round-off. (Not to the bit: the
+/// headform's centre, 1e-18 m of generator noise in x and y, needs 17 digits that LS-DYNA's 20
+/// columns cannot hold, and the 1e-32 m it moves reaches the last bits of the contact forces.)
+TEST(DeckExport, PlateImpactDeckRunsAsTheScenario) {
+  const model::Model yaml = shortened(io::read_scenario(kScenes + "plate_impact.yaml"), 1.5e-3);
+  const model::Model deck = round_trip(yaml, temp_dir("plate_run"));
+  integration::Solver a(yaml), b(deck);
+  a.initialize();
+  b.initialize();
+  std::size_t cycles = 0;
+  double peak = 0.0, diff = 0.0;
+  for (;;) {
+    a.begin_cycle();
+    b.begin_cycle();
+    ASSERT_EQ(a.time_s(), b.time_s()) << "after " << cycles << " cycles";
+    const auto va = a.probe(yaml.probes[0]).acceleration_m_s2;  // the headform
+    const auto vb = b.probe(deck.probes[0]).acceleration_m_s2;
+    peak = std::max(peak, norm(va));
+    diff = std::max(diff, norm(va - vb));
+    if (a.finished() || b.finished()) break;
+    a.end_cycle();
+    b.end_cycle();
+    ++cycles;
+  }
+  EXPECT_TRUE(a.finished() && b.finished());
+  double u_scale = 0.0, u_diff = 0.0;
+  for (std::size_t i = 0; i < a.displacement().size(); ++i) {
+    u_scale = std::max(u_scale, std::abs(a.displacement()[i]));
+    u_diff = std::max(u_diff, std::abs(a.displacement()[i] - b.displacement()[i]));
+  }
+  std::printf(
+      "[measured] plate impact, YAML and exported deck: %zu cycles to %.2f ms, peak %.1f "
+      "g, max |da| %.2e of it, max |du| %.2e of max |u| %.2e m\n",
+      cycles, 1e3 * a.time_s(), peak / 9.81, diff / peak, u_diff / u_scale, u_scale);
+  EXPECT_GT(peak, 100.0 * 9.81) << "the headform has struck the plate";
+  EXPECT_LE(diff, 1e-10 * peak);
+  EXPECT_LE(u_diff, 1e-10 * u_scale);
+}
+
+/// Multi (the layer scheme in-process, the head-impact scene's two domains at their own steps):
+/// the scenario the export writes beside the deck gives the same run as the YAML.
+TEST(DeckExport, HeadImpactDeckRunsInMultiAsTheScenario) {
+  const model::Model yaml = shortened(io::read_scenario(kScenes + "head_impact.yaml"), 1.0e-3);
+  const model::Model deck = round_trip(yaml, temp_dir("head_run"));
+  ASSERT_EQ(deck.domains.size(), 2u);
+  cosim::LayerNetworkOptions o;
+  o.step_safety = 0.9;
+  cosim::LayerNetwork a(yaml, o), b(deck, o);
+  a.initialize();
+  b.initialize();
+  ASSERT_TRUE(a.run());
+  ASSERT_TRUE(b.run());
+  const auto ua = a.global_displacement(), ub = b.global_displacement();
+  ASSERT_EQ(ua.size(), ub.size());
+  double scale = 0.0, diff = 0.0;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < ua.size(); ++i) {
+    scale = std::max(scale, std::abs(ua[i]));
+    diff = std::max(diff, std::abs(ua[i] - ub[i]));
+    differ += ua[i] != ub[i] ? 1 : 0;
+  }
+  const auto ea = a.energy(), eb = b.energy();
+  std::printf(
+      "[measured] head impact multi, YAML and exported deck at 1 ms: max |du| %.2e m of "
+      "max |u| %.2e m, %zu of %zu values differ; internal energy %.9e / %.9e J\n",
+      diff, scale, differ, ua.size(), ea.internal_J, eb.internal_J);
+  EXPECT_GT(scale, 1e-4) << "the hood has been struck";
+  EXPECT_LE(diff, 1e-12 * scale);
+  EXPECT_NEAR(eb.internal_J, ea.internal_J, 1e-9 * ea.internal_J);
+}
+
+/// The command: the deck and the scenario beside it written, how to run them printed; what a
+/// deck cannot hold refused with exit 2 and the fix, nothing written.
+TEST(DeckExport, CommandWritesTheDeckAndTheScenarioOrRefuses) {
+  const auto dir = temp_dir("cli");
+  int status = 0;
+  std::string out =
+      testing::run_command(kCrashlink + " export " + kScenes + "head_impact.yaml --deck " +
+                               (dir / "head.k").string() + " 2>&1",
+                           status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("15431 nodes, 14172 elements, 7 parts, 3 contacts, units m-kg-s"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(
+      out.find("run it with `crashlink run " + (dir / "head.yaml").string() + " --mode multi`"),
+      std::string::npos)
+      << out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "head.yaml"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "head.k.tmp"));
+
+  // mm-t-s: the numbers a crash engineer reads (the round trip then to round-off)
+  out = testing::run_command(kCrashlink + " export " + kScenes + "plate_impact.yaml --deck " +
+                                 (dir / "plate_mm.k").string() + " --units mm-t-s 2>&1",
+                             status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  const model::Model mm = deck::read_deck((dir / "plate_mm.k").string(), {"mm-t-s", {}}).model;
+  const model::Model si = io::read_scenario(kScenes + "plate_impact.yaml");
+  ASSERT_EQ(mm.nodes.count(), si.nodes.count());
+  for (std::size_t i = 0; i < si.nodes.x0.size(); ++i)
+    ASSERT_NEAR(mm.nodes.x0[i], si.nodes.x0[i], 1e-15);
+  EXPECT_NEAR(mm.materials[0].youngs_modulus_Pa, si.materials[0].youngs_modulus_Pa, 1e-3);
+  EXPECT_NEAR(mm.rigid_bodies[0].velocity_m_s[2], -9.72, 1e-14);
+
+  // a rigid body of two parts: a deck would need *CONSTRAINED_RIGID_BODIES
+  std::ofstream(dir / "two.yaml") << R"(name: two
+controls: {end_time: 1.0e-4}
+materials:
+  steel: {type: rigid, density: 7850.0}
+parts:
+  a: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0], size: [0.1, 0.1], normal: z, divisions: [2, 2]}}
+  b: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0.1], size: [0.1, 0.1], normal: z, divisions: [2, 2]}}
+rigid_bodies:
+  body: {parts: [a, b], velocity: [0.0, 0.0, -1.0]}
+)";
+  out = testing::run_command(kCrashlink + " export " + (dir / "two.yaml").string() + " --deck " +
+                                 (dir / "two.k").string() + " 2>&1",
+                             status);
+  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_NE(out.find("rigid body 'body' is made of 2 parts"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "two.k"));
+  out = testing::run_command(kCrashlink + " export " + kScenes + "plate_impact.yaml --deck " +
+                                 (dir / "p.k").string() + " --units furlong 2>&1",
+                             status);
+  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_NE(out.find("--units furlong is not a unit system; fix: one of mm-t-s"), std::string::npos)
+      << out;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace crashlink
