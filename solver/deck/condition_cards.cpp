@@ -378,8 +378,24 @@ void Parser::timestep(const Card& c) {
   if (d_.tssfac == 0.0) d_.tssfac = 0.9;  // LS-DYNA: 0 reads as the default
   if (!(d_.tssfac > 0.0 && d_.tssfac <= 1.0))
     tssfac.fail("must lie in (0, 1]; fix: write 0.9 (the default)");
-  must_be_default(c.field(L::kTimestep, 4), 0.0,
-                  "mass scaling (DT2MS) is not computed yet; fix: leave DT2MS blank");
+  // DT2MS < 0: conventional mass scaling of the elements below |DT2MS| (integration/
+  // mass_scaling.h), done at the first step (LS-DYNA's MS1ST 1).
+  const auto dt2ms = c.field(L::kTimestep, 4);
+  d_.dt2ms = dt2ms.real(0.0);
+  if (d_.dt2ms > 0.0)
+    dt2ms.fail(
+        "a positive DT2MS (every element's mass set for one uniform step, mass removed too) is "
+        "not computed; fix: write it negative (-DT2MS: mass added only to the elements below "
+        "that step)");
+  if (d_.dt2ms < 0.0) {
+    const auto ms1st = c.field(L::kTimestep, 7);
+    if (ms1st.integer(0) == 0)
+      d_.notes.push_back(fmt::format(
+          "{}:{}: *CONTROL_TIMESTEP DT2MS {}: crashlink adds the mass at the first step only "
+          "(LS-DYNA's MS1ST 1); an element that shrinks later takes a smaller step where LS-DYNA "
+          "(MS1ST {}) would add more mass",
+          c.file(), c.ref().line, d_.dt2ms, ms1st.blank() ? std::string("blank") : ms1st.raw()));
+  }
   must_be_default(c.field(L::kTimestep, 5), 0.0,
                   "a step limit curve (LCTM) is not computed; fix: leave LCTM blank");
 }

@@ -249,6 +249,7 @@ struct Deck {
   bool has_end_time = false;
   double end_time = 0.0;  ///< ENDTIM, deck time units
   double tssfac = 0.9;
+  double dt2ms = 0.0;   ///< *CONTROL_TIMESTEP DT2MS (deck time; < 0: mass scaling), 0: none
   double slsfac = 0.1;  ///< *CONTROL_CONTACT SLSFAC: the penalty scale per unit SFS
   bool has_control_shell = false;
   int istupd = 0;  ///< *CONTROL_SHELL ISTUPD (LS-DYNA's default 0: no thinning)

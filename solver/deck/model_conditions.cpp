@@ -444,6 +444,7 @@ void Builder::controls() {
                      "ENDTIM");
   m_.controls.end_time_s = d_.end_time * u_.time_s;
   m_.controls.dt_scale = d_.tssfac;
+  m_.controls.mass_scaling_dt_s = std::abs(d_.dt2ms) * u_.time_s;  // applied by read_deck
   // *DATABASE_GLSTAT ... DT: one history interval for every series (the smallest given);
   // *DATABASE_BINARY_D3PLOT DT: the field states' interval.
   m_.controls.history_interval_s = d_.history_dt * u_.time_s;

@@ -28,6 +28,12 @@ void Composer::check_exportable() const {
           "*DAMPING_PART_STIFFNESS and crashlink's deck reader does not read yet; fix: export "
           "the scenario without `damping` on the part",
           p.name));
+  for (const auto& p : m_.parts)
+    if (!p.element_density_scale.empty() && !(m_.controls.mass_scaling_dt_s > 0.0))
+      throw ModelError(fmt::format(
+          "export: part '{}' has per-element densities without the mass scaling that sets them "
+          "(controls.mass_scaling_dt); a deck writes only DT2MS; fix: the model",
+          p.name));
   for (const auto& rb : m_.rigid_bodies)
     if (rb.parts.size() != 1)
       throw ModelError(fmt::format(

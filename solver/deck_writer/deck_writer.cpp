@@ -80,7 +80,13 @@ void Composer::controls() {
   term.card(L::kTermination, {time(c.end_time_s)});
   emit(term);
   KeywordBlock step("*CONTROL_TIMESTEP");
-  step.card(L::kTimestep, {Value(), c.dt_scale});
+  // DT2MS < 0: the mass scaling the model was read with (MS1ST 1: at the first step, as
+  // crashlink computes it); the reader applies it again to the unscaled masses it reads.
+  if (c.mass_scaling_dt_s > 0.0)
+    step.card(L::kTimestep, {Value(), c.dt_scale, Value(), Value(), -time(c.mass_scaling_dt_s),
+                             Value(), Value(), 1});
+  else
+    step.card(L::kTimestep, {Value(), c.dt_scale});
   emit(step);
   // Q1 quadratic, Q2 linear (LS-DYNA's names); TYPE -2: shells too. Off: both 0 (crashlink reads
   // zeros as written; LS-DYNA may take 0 as its default).

@@ -161,7 +161,7 @@ void hex8_lumped_mass(const model::Part& part, const materials::Material& mat, c
       for (int i = 0; i < 3; ++i) x[i][I][0] = x0[3 * conn[8 * e + I] + i];
     hex8::volume_gradient<1>(x, dvdx, gx, vol);
     if (!(vol[0] > 0.0)) throw_bad_volume(part, e, vol[0], "the reference configuration");
-    const double m = mat.density_kg_m3 * vol[0] / 8.0;
+    const double m = mat.density_kg_m3 * part.density_scale_of(e) * vol[0] / 8.0;  // mass scaling
     for (int I = 0; I < 8; ++I) mass[conn[8 * e + I]] += m;
   }
 }
@@ -201,7 +201,11 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
   // lane-uniform constants
   const vd dt_v(dt), zero(0.0), one(1.0), half(0.5), eighth(0.125);
   const vd lambda_v(lambda), two_mu(2.0 * mu), lambda_pos(std::max(lambda, 0.0));
-  const vd rho_v(rho), c_v(c), inv_c(1.0 / c), bulk_v(step.bulk_viscosity ? 1.0 : 0.0);
+  const vd rho0_v(rho), c0_v(c), inv_c0(1.0 / c), bulk_v(step.bulk_viscosity ? 1.0 : 0.0);
+  // Mass scaling (model::Part::element_density_scale): each element's density rho s, its wave
+  // speed c / sqrt(s), in the stable step and the bulk viscosity.
+  const double* const density_scale =
+      part.element_density_scale.empty() ? nullptr : part.element_density_scale.data();
   const vd q1_v(step.q_linear), q2_v(step.q_quadratic);
   const bool linear_both = step.linear_in_expansion;  // Q1 term in expansion too (hex8.h)
   const vd k_hg_coef(kappa * m_mod / 8.0);            // k = kappa (lambda + 2 mu) b.b / (8 V)
@@ -260,6 +264,13 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       else
         for (int l = 0; l < nl; ++l) p[eid[l]] = x[l];
     };
+    vd rho_v = rho0_v, c_v = c0_v, inv_c = inv_c0;
+    if (density_scale) {
+      const vd s = load(density_scale), rs = sqrt(s);
+      rho_v = rho0_v * s;
+      c_v = c0_v / rs;
+      inv_c = inv_c0 * rs;
+    }
 
     // ---- gather x^{n+1} and v^{n+1/2}; their modes X_k, V_k (M1)
     vd X[7][3], Vw[7][3];

@@ -291,16 +291,17 @@ struct ExpansionLanes {
 };
 
 /// The bulk viscosity's linear term in expansion (header comment) on the lanes where the main
-/// loop left q = 0: q = -rho Le Q1 c tr (rho_q1_c = rho Q1 c), xi = Q1, its work and the
-/// membrane resultants. Out of line and cold: off by default, it must not weigh on that loop.
-[[gnu::noinline, gnu::cold]] void linear_in_expansion(const ExpansionLanes& s, double rho_q1_c,
-                                                      double xi_q1, double dt) {
+/// loop left q = 0: q = -rho Le Q1 c tr (rho_q1_c = rho Q1 c per lane), xi = Q1, its work and
+/// the membrane resultants. Out of line and cold: off by default, it must not weigh on that loop.
+[[gnu::noinline, gnu::cold]] void linear_in_expansion(const ExpansionLanes& s,
+                                                      const double* rho_q1_c, double xi_q1,
+                                                      double dt) {
   for (std::size_t l = 0; l < L; ++l) {
     const double tr_m = s.dxx[l] + s.dyy[l];
     if (tr_m < 0.0) continue;
     const double h1 = s.h1[l];
     const double vol_mid = 0.5 * (s.h0[l] + h1) * s.area[l];
-    const double q = -rho_q1_c * s.le[l] * tr_m;
+    const double q = -rho_q1_c[l] * s.le[l] * tr_m;
     s.xi[l] = xi_q1;
     s.q[l] = q;
     s.ework[l] -= 0.5 * q * tr_m * vol_mid * dt;
@@ -367,8 +368,16 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   const std::size_t first = step.first_element, end = std::min(ne, step.end_element);
   CRASHLINK_ASSERT(first % L == 0);
   CRASHLINK_ASSERT((first == 0 && end == ne) || (update && (!kDamped || !record_beta)));
+  const bool scaled = !part.element_density_scale.empty();
   for (std::size_t b0 = first; b0 < end; b0 += L) {
     const std::size_t nl = std::min(L, end - b0);
+    // Mass scaling (model::Part::element_density_scale): density rho s and wave speed c / sqrt(s)
+    // per lane in the bulk viscosity and the stable step; 1 for a part without it.
+    double ms[L], mrs[L];
+    for (std::size_t l = 0; l < L; ++l) {
+      ms[l] = scaled ? part.element_density_scale[b0 + std::min(l, nl - 1)] : 1.0;
+      mrs[l] = scaled ? std::sqrt(ms[l]) : 1.0;
+    }
     // ---- gather ------------------------------------------------------------------------------
     std::int32_t nd[4][L];
     for (std::size_t l = 0; l < L; ++l) {
@@ -660,7 +669,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
     if constexpr (kDamped) {
       if (record_beta) {
         for (std::size_t l = 0; l < L; ++l)
-          beta[0][l] = part.damping_ratio_of(b0 + std::min(l, nl - 1)) * Le[l] * inv_c;
+          beta[0][l] = part.damping_ratio_of(b0 + std::min(l, nl - 1)) * Le[l] * inv_c * mrs[l];
         store_block(beta_all + b0, beta);
       } else {
         load_block(beta_all + b0, beta);
@@ -714,8 +723,9 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
       const double on = tr_m < 0.0 ? bulk_on : 0.0;
       const double tr = on * tr_m;
-      const double q = on * rho * Le[l] * (q2 * Le[l] * tr * tr - q1 * K.c_plate * tr);
-      xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c);
+      const double q =
+          on * rho * ms[l] * Le[l] * (q2 * Le[l] * tr * tr - q1 * (K.c_plate / mrs[l]) * tr);
+      xi[l] = on * (q1 - q2 * Le[l] * tr * inv_c * mrs[l]);
       q_new[0][l] = q;
       // The pressure acts in the forces at t^n (q^n) and t^{n+1} (q): trapezoid work with the full
       // area rate (q^n still acts when a compressed element expands), as in the hex kernel.
@@ -741,9 +751,12 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       ehg[l] = eh;
     }
-    if (linear_in_expansion_on)  // the linear term in expansion (header comment), q = 0 above
+    if (linear_in_expansion_on) {  // the linear term in expansion (header comment), q = 0 above
+      double rho_q1_c[L];
+      for (std::size_t l = 0; l < L; ++l) rho_q1_c[l] = rho * ms[l] * q1 * K.c_plate / mrs[l];
       linear_in_expansion({dm[0], dm[1], h[0], h_new[0], Am, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
-                          rho * q1 * K.c_plate, q1, dt);
+                          rho_q1_c, q1, dt);
+    }
     // Nodal forces and moments, local frame -> global (header comment).
     for (int I = 0; I < 4; ++I)
       for (std::size_t l = 0; l < L; ++l) {
@@ -767,14 +780,14 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
     // the current L_e / c: beta c / L_e; BLM section 6.3 with the two ratios added).
     double dte[L];
     if constexpr (kDamped)
-      for (std::size_t l = 0; l < L; ++l) xi[l] += beta[0][l] * K.c_plate / Le[l];
+      for (std::size_t l = 0; l < L; ++l) xi[l] += beta[0][l] * (K.c_plate / mrs[l]) / Le[l];
     if (bulk || kDamped) {
       double x2[L], rt[L];
       for (std::size_t l = 0; l < L; ++l) x2[l] = 1.0 + xi[l] * xi[l];
       sqrt_lanes(x2, rt, L);
-      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c * (rt[l] - xi[l]);
+      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c * mrs[l] * (rt[l] - xi[l]);
     } else {
-      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c;
+      for (std::size_t l = 0; l < L; ++l) dte[l] = Le[l] * inv_c * mrs[l];
     }
 
     // ---- scatter-add, reductions (real lanes only) --------------------------------------------

@@ -29,7 +29,7 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
     const bool triangle = c[3] == c[2];
     const int corners = triangle ? 3 : 4;
     const double h = part.thickness_of(e);
-    const double m_node = rho * h * A / corners;
+    const double m_node = rho * part.density_scale_of(e) * h * A / corners;  // mass scaling
     // Rotary inertia with area scaling: I = m_node max(h^2/12, A/8) (see shell_bt.h).
     const double I_node = m_node * std::max(h * h / 12.0, A / 8.0);
     for (int i = 0; i < corners; ++i) {

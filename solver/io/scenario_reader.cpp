@@ -7,6 +7,7 @@
 
 #include "solver/core/errors.h"
 #include "solver/deck/model_from_deck.h"
+#include "solver/integration/mass_scaling.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_sections.h"
 
@@ -47,7 +48,8 @@ std::vector<std::int32_t> ScenarioBuild::part_nodes(int p) const {
 
 void read_controls(const YamlNode& c, model::Controls& out, bool end_time_required) {
   c.expect_keys({"end_time", "dt_scale", "dt_max", "history_interval", "field_interval",
-                 "bulk_viscosity", "energy_tolerance", "gravity", "plausibility_checks"});
+                 "bulk_viscosity", "energy_tolerance", "gravity", "plausibility_checks",
+                 "mass_scaling_dt"});
   if (end_time_required)
     out.end_time_s = c.required("end_time", "simulated time in s, e.g. 0.01").positive();
   else if (auto v = c.optional("end_time"))
@@ -72,6 +74,9 @@ void read_controls(const YamlNode& c, model::Controls& out, bool end_time_requir
         bv->boolean_or("linear_in_expansion", out.bulk_linear_in_expansion);
   }
   out.energy_tolerance = c.positive_or("energy_tolerance", out.energy_tolerance);
+  // Conventional mass scaling at t = 0 to this element step [s] (integration/mass_scaling.h;
+  // a deck's DT2MS < 0): applied once the model is built.
+  out.mass_scaling_dt_s = c.non_negative_or("mass_scaling_dt", out.mass_scaling_dt_s);
   out.gravity_m_s2 = c.vec3_or("gravity", out.gravity_m_s2);
 }
 
@@ -175,6 +180,7 @@ model::Model build_deck_scenario(const YamlNode& root, const std::string& name_f
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);
   if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
+  if (b.model.controls.mass_scaling_dt_s > 0.0) (void)integration::apply_mass_scaling(b.model);
   try {
     model::validate(b.model);
   } catch (const ModelError& e) {
@@ -215,6 +221,7 @@ model::Model build_model(YamlTree tree, const std::string& name_for_messages,
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);
   if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
+  if (b.model.controls.mass_scaling_dt_s > 0.0) (void)integration::apply_mass_scaling(b.model);
 
   try {
     model::validate(b.model);

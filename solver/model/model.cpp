@@ -94,6 +94,19 @@ void validate(const Model& m) {
               "part '{}' element {}: damping ratio {} outside [0, 0.5]; use e.g. 0.05 (0: none)",
               p.name, p.element_id[e], p.element_damping_ratio[e]));
     }
+    if (!p.element_density_scale.empty()) {
+      if (p.element_density_scale.size() != p.element_count())
+        throw ModelError(
+            fmt::format("part '{}': {} density factors for {} elements (internal "
+                        "error of the mass scaling)",
+                        p.name, p.element_density_scale.size(), p.element_count()));
+      for (std::size_t e = 0; e < p.element_density_scale.size(); ++e)
+        if (!(p.element_density_scale[e] >= 1.0) || !std::isfinite(p.element_density_scale[e]))
+          throw ModelError(fmt::format(
+              "part '{}' element {}: density factor {} of the mass scaling must be >= 1 and "
+              "finite (internal error)",
+              p.name, p.element_id[e], p.element_density_scale[e]));
+    }
     if (p.damped() &&
         m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid)
       throw ModelError(

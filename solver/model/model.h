@@ -50,6 +50,10 @@ struct Part {
   double damping_ratio = 0.0;
   /// [ne] or empty: per-element xi overriding damping_ratio (same range).
   std::vector<double> element_damping_ratio;
+  /// Mass scaling (integration/mass_scaling.h, LS-DYNA *CONTROL_TIMESTEP DT2MS): [ne] or empty:
+  /// each element's density is its material's times this factor (>= 1) in its mass, its stable
+  /// step and its bulk viscosity; empty: 1.
+  std::vector<double> element_density_scale;
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
@@ -57,6 +61,10 @@ struct Part {
   /// Initial thickness of shell element e [m] (element_thickness_m if given, else thickness_m).
   double thickness_of(std::size_t e) const {
     return element_thickness_m.empty() ? thickness_m : element_thickness_m[e];
+  }
+  /// Density factor of element e (mass scaling; 1 if none).
+  double density_scale_of(std::size_t e) const {
+    return element_density_scale.empty() ? 1.0 : element_density_scale[e];
   }
   /// xi of element e (element_damping_ratio if given, else damping_ratio).
   double damping_ratio_of(std::size_t e) const {
@@ -186,6 +194,10 @@ struct Controls {
   /// rest is judged at the model's scale; 0 (a scenario, a single domain): the solver's own.
   double model_energy_scale_J = 0.0;
   Vec3 gravity_m_s2{};  ///< body acceleration
+  /// Conventional mass scaling (LS-DYNA DT2MS < 0, applied at t = 0 by
+  /// integration::apply_mass_scaling): every deformable element whose stable step (no safety
+  /// factor) is below this gets the density that brings it there [s]; 0: none.
+  double mass_scaling_dt_s = 0.0;
 };
 
 /// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds

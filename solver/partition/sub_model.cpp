@@ -103,6 +103,8 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
         lp.element_damping_ratio.push_back(gp.element_damping_ratio[ue]);
       if (!gp.element_thickness_m.empty())
         lp.element_thickness_m.push_back(gp.element_thickness_m[ue]);
+      if (!gp.element_density_scale.empty())
+        lp.element_density_scale.push_back(gp.element_density_scale[ue]);
     }
     g2l_part[p] = static_cast<int>(m.parts.size());
     m.parts.push_back(std::move(lp));

@@ -91,6 +91,7 @@ void expect_same_model(const model::Model& a, const model::Model& d,
     EXPECT_EQ(y.element_id, x.element_id);
     EXPECT_EQ(y.thickness_m, x.thickness_m);
     EXPECT_EQ(y.element_thickness_m, x.element_thickness_m);
+    EXPECT_EQ(y.element_density_scale, x.element_density_scale);
     if (x.kind == model::ElementKind::Shell4) {
       EXPECT_EQ(y.through_thickness_points, x.through_thickness_points);
     }
@@ -167,6 +168,7 @@ void expect_same_model(const model::Model& a, const model::Model& d,
   EXPECT_EQ(e.shell_bulk_viscosity, c.shell_bulk_viscosity);
   EXPECT_EQ(e.energy_tolerance, c.energy_tolerance);
   EXPECT_EQ(e.gravity_m_s2, c.gravity_m_s2);
+  EXPECT_EQ(e.mass_scaling_dt_s, c.mass_scaling_dt_s);
   ASSERT_EQ(d.domains.size(), a.domains.size());
   for (std::size_t k = 0; k < a.domains.size(); ++k) {
     EXPECT_EQ(d.domains[k].name, a.domains[k].name);
