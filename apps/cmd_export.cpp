@@ -68,6 +68,15 @@ int run_export(const ExportOptions& o, std::FILE* out) {
                              : io::read_scenario(o.scenario);
   const auto text = deck_writer::export_deck(m, *units, deck_path.filename().string(),
                                              std::filesystem::path(o.scenario).filename().string());
+  auto yaml = deck_path;
+  yaml.replace_extension(".yaml");
+  std::error_code ec;
+  for (const auto& out_path : {deck_path, yaml})
+    if (std::filesystem::exists(out_path) && std::filesystem::equivalent(out_path, o.scenario, ec))
+      throw InputError(fmt::format(
+          "export: writing {} would overwrite the scenario being exported; fix: name the deck "
+          "otherwise (--deck {}_deck.k)",
+          out_path.string(), deck_path.stem().string()));
   write_whole(deck_path, text.deck);
   std::size_t elements = 0;
   for (const auto& p : m.parts) elements += p.element_count();
@@ -76,8 +85,6 @@ int run_export(const ExportOptions& o, std::FILE* out) {
                o.deck.c_str(), m.nodes.count(), elements, m.parts.size(), m.contacts.size(),
                o.units.c_str());
   if (!text.scenario.empty()) {
-    auto yaml = deck_path;
-    yaml.replace_extension(".yaml");
     write_whole(yaml, text.scenario);
     std::fprintf(out,
                  "crashlink export: %s: the scenario naming the deck, with what a deck does not "

@@ -10,6 +10,7 @@
 #include "apps/stop_signal.h"
 #include "solver/core/errors.h"
 #include "solver/deck/model_from_deck.h"
+#include "solver/integration/mass_scaling.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/exit_codes.h"
@@ -91,6 +92,9 @@ model::Model read_input(const RunCommandOptions& o, std::string& hash) {
           o.scenario));
     auto read = io::read_scenario_with_hash(o.scenario);  // a named deck's bytes hashed too
     hash = std::move(read.hash);
+    if (read.model.controls.mass_scaling_dt_s > 0.0)
+      std::printf("crashlink run: %s\n",
+                  integration::describe_mass_scaling(read.model).summary().c_str());
     return std::move(read.model);
   }
   deck::DeckRead d = deck::read_deck(o.scenario, {o.units, o.ignore});

@@ -20,6 +20,7 @@
 #include "solver/core/errors.h"
 #include "solver/gather/gather_results.h"
 #include "solver/gather/history_merge.h"
+#include "solver/integration/mass_scaling.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/model/run_estimate.h"
@@ -149,6 +150,8 @@ int run_coupled(const RunCommandOptions& o) {
         "--no-drift switches the drift correction [11] of --coupling paper off; "
         "`layer` has none");
   const auto model = io::read_scenario(o.scenario);
+  if (model.controls.mass_scaling_dt_s > 0.0)
+    std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
   const auto dec =
       partition::decompose(model, paper ? partition::Scheme::Paper : partition::Scheme::Layer);
   std::vector<std::string> domains, emptied;

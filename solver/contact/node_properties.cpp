@@ -50,7 +50,8 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
         const double A = segment_area(x0, q);
         const double k = shell_stiffness(penalty_scale, K, A, segment_max_diagonal(x0, q));
         const bool tri = q[3] == q[2];
-        share = rho * part.thickness_of(e) * A / (tri ? 3.0 : 4.0);
+        // (the element's density rho s with mass scaling, as the solver's lumped mass)
+        share = rho * part.density_scale_of(e) * part.thickness_of(e) * A / (tri ? 3.0 : 4.0);
         for (std::size_t a = 0; a < (tri ? 3u : 4u); ++a) {
           const auto i = static_cast<std::size_t>(q[a]);
           if (!mine) continue;
@@ -61,7 +62,7 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
         continue;
       }
       const double V = hex_volume(x0, q);
-      share = rho * V / 8.0;
+      share = rho * part.density_scale_of(e) * V / 8.0;
       double A = 0.0;
       for (const auto& f : kHexFaces) {
         const std::int32_t fq[4] = {q[f[0]], q[f[1]], q[f[2]], q[f[3]]};
@@ -86,6 +87,7 @@ NodeProperties node_properties(const model::Model& m, const model::Contact& c, c
       const auto& conn = m.parts[static_cast<std::size_t>(p)].connectivity;
       nodes.insert(nodes.end(), conn.begin(), conn.end());
     }
+    nodes.insert(nodes.end(), rb.nodes.begin(), rb.nodes.end());  // its extra nodes
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     double body = rb.mass_kg;

@@ -39,6 +39,85 @@ void Parser::spc(const Card& c) {
   d_.spcs.push_back(std::move(s));
 }
 
+void Parser::rigid_constraint(const Card& c) {
+  if (title_card(c)) return;
+  if (blank(c)) return;
+  RigidConstraintCard r;
+  r.keyword = b_.keyword;
+  r.ref = c.ref();
+  const std::string_view k = b_.keyword;
+  if (k.starts_with("*CONSTRAINED_SPOTWELD")) {
+    if (b_.id && b_.card % 2 == 0) {  // _ID: a WID card before each weld
+      b_.pending_eid = positive_id(c.field(L::kSpotWeldId, 0));
+      ++b_.card;
+      return;
+    }
+    if (b_.id) ++b_.card;
+    r.kind = RigidConstraintCard::Kind::SpotWeld;
+    r.pid = b_.id ? b_.pending_eid : 0;
+    const Layout l = L::kSpotWeld;
+    r.target = positive_id(c.field(l, 0));
+    r.n2 = positive_id(c.field(l, 1));
+    if (r.n2 == r.target) c.field(l, 1).fail("is N1; fix: weld two distinct nodes");
+    r.sn = c.field(l, 2).real(0.0);
+    r.ss = c.field(l, 3).real(0.0);
+    if (r.sn < 0.0) c.field(l, 2).fail("must be >= 0 (0: no normal term); fix: the strength");
+    if (r.ss < 0.0) c.field(l, 3).fail("must be >= 0 (0: no shear term); fix: the strength");
+    r.exp_n = c.field(l, 4).real(0.0);
+    r.exp_m = c.field(l, 5).real(0.0);
+    if (r.sn > 0.0 && !(r.exp_n > 0.0))
+      c.field(l, 4).fail(
+          "the normal term's exponent must be > 0 with SN > 0; fix: write it (2: a "
+          "quadratic criterion)");
+    if (r.ss > 0.0 && !(r.exp_m > 0.0))
+      c.field(l, 5).fail(
+          "the shear term's exponent must be > 0 with SS > 0; fix: write it (2: a "
+          "quadratic criterion)");
+    r.tf = c.field(l, 6).real(0.0);
+    if (r.tf < 0.0) c.field(l, 6).fail("must be >= 0 (0 or 1e20: none); fix: the failure time");
+    if (r.tf >= 1e19) r.tf = 0.0;  // LS-DYNA's default 1e20: never
+    const auto ep = c.field(l, 7);
+    if (!ep.blank() && ep.real(0.0) < 1e19)
+      ep.fail(
+          "failure at a plastic strain (EP) is not computed: the weld is a rigid link; fix: "
+          "leave EP blank (or 1e20)");
+    d_.rigid_constraints.push_back(std::move(r));
+    return;
+  }
+  if (k.starts_with("*CONSTRAINED_NODAL_RIGID_BODY")) {
+    r.kind = RigidConstraintCard::Kind::NodalBody;
+    r.title = std::move(b_.pending_title);
+    r.pid = positive_id(c.field(L::kNodalRigidBody, 0));
+    // CID: the frame of the output and of the release flags, without effect when they are 0
+    r.target = positive_id(c.field(L::kNodalRigidBody, 2));
+    must_be_default(c.field(L::kNodalRigidBody, 3), 0.0,
+                    "a node for the body's output (PNODE) is not read; fix: write 0");
+    must_be_default(c.field(L::kNodalRigidBody, 5), 0.0,
+                    "releasing translations (DRFLAG) is not computed: the body is whole; fix: "
+                    "write 0");
+    must_be_default(
+        c.field(L::kNodalRigidBody, 6), 0.0,
+        "releasing rotations (RRFLAG) is not computed: the body is whole; fix: write 0");
+  } else if (k.starts_with("*CONSTRAINED_EXTRA_NODES")) {
+    r.kind = RigidConstraintCard::Kind::ExtraNodes;
+    r.set = k.ends_with("_SET");
+    r.pid = positive_id(c.field(L::kExtraNodes, 0));
+    r.target = positive_id(c.field(L::kExtraNodes, 1));
+    must_be_default(c.field(L::kExtraNodes, 2), 0.0,
+                    "updating a *PART_INERTIA body's mass and inertia with the extra nodes "
+                    "(IFLAG 1) is not computed; fix: write 0 (a body without *PART_INERTIA "
+                    "counts its nodes' masses anyway)");
+  } else {
+    r.kind = RigidConstraintCard::Kind::MergeBodies;
+    r.pid = positive_id(c.field(L::kRigidBodies, 0));
+    r.target = positive_id(c.field(L::kRigidBodies, 1));
+    must_be_default(c.field(L::kRigidBodies, 2), 0.0,
+                    "updating the lead body's *PART_INERTIA with the constrained part (IFLAG 1) "
+                    "is not computed; fix: write 0");
+  }
+  d_.rigid_constraints.push_back(std::move(r));
+}
+
 void Parser::velocity_generation(const Card& c) {
   if (b_.card == 0) {
     VelocityCard v;

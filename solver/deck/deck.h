@@ -110,6 +110,26 @@ struct SegmentSetCard {
   CardRef ref;
 };
 
+/// *CONSTRAINED_NODAL_RIGID_BODY (a body of the nodes of NSID), *CONSTRAINED_EXTRA_NODES_NODE /
+/// _SET (nodes added to rigid part PID's body), *CONSTRAINED_RIGID_BODIES (part PIDC's body
+/// merged into part PID's) or *CONSTRAINED_SPOTWELD (a breakable body of nodes N1, N2).
+struct RigidConstraintCard {
+  enum class Kind : std::uint8_t {
+    NodalBody,
+    ExtraNodes,
+    MergeBodies,
+    SpotWeld  ///< *CONSTRAINED_SPOTWELD: pid the WID (0: none), target N1, n2 N2
+  } kind = Kind::NodalBody;
+  std::int64_t n2 = 0;
+  double sn = 0.0, ss = 0.0, exp_n = 0.0, exp_m = 0.0, tf = 0.0;  ///< SpotWeld, deck units
+  std::int64_t pid = 0;     ///< the body's PID (NodalBody), the rigid part (ExtraNodes), PIDL
+  std::int64_t target = 0;  ///< NSID (NodalBody), NID or NSID (ExtraNodes), PIDC (MergeBodies)
+  bool set = false;         ///< ExtraNodes: target is a node set
+  std::string title;        ///< NodalBody _TITLE: the body's name
+  std::string keyword;
+  CardRef ref;
+};
+
 struct SpcCard {
   std::int64_t target = 0;  ///< node id or node set id
   bool set = false;
@@ -233,6 +253,7 @@ struct Deck {
   std::vector<SetCard> sets;
   std::vector<SegmentSetCard> segment_sets;
   std::vector<SpcCard> spcs;
+  std::vector<RigidConstraintCard> rigid_constraints;  ///< in deck order
   std::vector<VelocityCard> velocities;
   std::vector<BoxCard> boxes;
   std::vector<CoordinateSystemCard> coordinate_systems;

@@ -56,6 +56,11 @@ constexpr KeywordName kKeywords[] = {
     {"*SET_PART_LIST", Kw::SetPartList, true, false},
     {"*SET_PART_LIST_GENERATE", Kw::SetPartListGenerate, true, false},
     {"*SET_SEGMENT", Kw::SetSegment, true, false},
+    {"*CONSTRAINED_NODAL_RIGID_BODY", Kw::RigidConstraint, true, false},
+    {"*CONSTRAINED_EXTRA_NODES_NODE", Kw::RigidConstraint, false, false},
+    {"*CONSTRAINED_EXTRA_NODES_SET", Kw::RigidConstraint, false, false},
+    {"*CONSTRAINED_RIGID_BODIES", Kw::RigidConstraint, false, false},
+    {"*CONSTRAINED_SPOTWELD", Kw::RigidConstraint, false, true},
     {"*BOUNDARY_SPC_NODE", Kw::SpcNode, false, true},
     {"*BOUNDARY_SPC_SET", Kw::SpcSet, false, true},
     {"*INITIAL_VELOCITY_GENERATION", Kw::VelocityGeneration, false, false},
@@ -284,6 +289,8 @@ void Parser::card(const Card& c) {
     case Kw::SpcNode:
     case Kw::SpcSet:
       return spc(c);
+    case Kw::RigidConstraint:
+      return rigid_constraint(c);
     case Kw::VelocityGeneration:
       return velocity_generation(c);
     case Kw::VelocityNode:
@@ -362,6 +369,8 @@ std::size_t Parser::records_of(Kw kw) const {
     case Kw::SpcNode:
     case Kw::SpcSet:
       return d_.spcs.size();
+    case Kw::RigidConstraint:
+      return d_.rigid_constraints.size();
     case Kw::VelocityGeneration:
     case Kw::VelocityNode:
     case Kw::VelocityPlain:

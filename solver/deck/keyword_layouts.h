@@ -62,6 +62,18 @@ inline constexpr FieldSpec kSetSegment[] = {{"N1", 10}, {"N2", 10}, {"N3", 10}, 
 inline constexpr FieldSpec kSetGenerate[] = {{"B1BEG", 10}, {"B1END", 10}, {"B2BEG", 10},
                                              {"B2END", 10}, {"B3BEG", 10}, {"B3END", 10},
                                              {"B4BEG", 10}, {"B4END", 10}};
+/// *CONSTRAINED_NODAL_RIGID_BODY card 1.
+inline constexpr FieldSpec kNodalRigidBody[] = {{"PID", 10},   {"CID", 10},  {"NSID", 10},
+                                                {"PNODE", 10}, {"IPRT", 10}, {"DRFLAG", 10},
+                                                {"RRFLAG", 10}};
+/// *CONSTRAINED_EXTRA_NODES_NODE / _SET.
+inline constexpr FieldSpec kExtraNodes[] = {{"PID", 10}, {"NID/NSID", 10}, {"IFLAG", 10}};
+/// *CONSTRAINED_SPOTWELD (after the _ID card's WID).
+inline constexpr FieldSpec kSpotWeld[] = {{"N1", 10}, {"N2", 10}, {"SN", 10}, {"SS", 10},
+                                          {"N", 10},  {"M", 10},  {"TF", 10}, {"EP", 10}};
+inline constexpr FieldSpec kSpotWeldId[] = {{"WID", 10}};
+/// *CONSTRAINED_RIGID_BODIES.
+inline constexpr FieldSpec kRigidBodies[] = {{"PIDL", 10}, {"PIDC", 10}, {"IFLAG", 10}};
 inline constexpr FieldSpec kSpcNode[] = {{"NID", 10},  {"CID", 10},   {"DOFX", 10},  {"DOFY", 10},
                                          {"DOFZ", 10}, {"DOFRX", 10}, {"DOFRY", 10}, {"DOFRZ", 10}};
 inline constexpr FieldSpec kSpcSet[] = {{"NSID", 10}, {"CID", 10},   {"DOFX", 10},  {"DOFY", 10},

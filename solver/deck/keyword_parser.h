@@ -33,6 +33,7 @@ enum class Kw : std::uint8_t {
   SetPartListGenerate,
   SetSegment,
   SpcNode,
+  RigidConstraint,
   SpcSet,
   VelocityGeneration,
   VelocityNode,
@@ -128,6 +129,11 @@ class Parser {
   void segment_set(const Card& c);
 
   void spc(const Card& c);
+
+  /// *CONSTRAINED_NODAL_RIGID_BODY (PID CID NSID PNODE IPRT DRFLAG RRFLAG; _TITLE: its name),
+  /// *CONSTRAINED_EXTRA_NODES_NODE/_SET (PID NID/NSID IFLAG), *CONSTRAINED_RIGID_BODIES (PIDL
+  /// PIDC IFLAG): one record per card.
+  void rigid_constraint(const Card& c);
 
   void velocity_generation(const Card& c);
 

@@ -22,6 +22,7 @@ model::Model Builder::build() {
   boxes();
   coordinate_systems();
   sets();
+  rigid_constraints();
   constraints();
   velocities();
   contacts();

@@ -115,6 +115,11 @@ class Builder {
   const std::vector<std::int64_t>& node_set(std::int64_t id, const CardRef& ref,
                                             const std::string& kw, Layout l, std::size_t field = 0);
 
+  /// *CONSTRAINED_NODAL_RIGID_BODY (a body of nodes), *CONSTRAINED_EXTRA_NODES (nodes added to
+  /// a rigid part's body), *CONSTRAINED_RIGID_BODIES (a rigid part's body merged into the lead
+  /// part's), in deck order.
+  void rigid_constraints();
+
   void constraints();
 
   void velocities();
@@ -178,6 +183,7 @@ class Builder {
   std::unordered_set<int> inertia_bodies_;  ///< bodies whose velocity *PART_INERTIA gave
   std::unordered_map<std::int64_t, Mat3> frames_;
   bool last_was_node_ = false;
+  int spot_welds_ = 0;  ///< welds named by their order (without _ID)
   std::set<std::array<std::int32_t, 4>> element_faces_;  ///< segment_faces' lookup
 };
 

@@ -78,14 +78,20 @@ void Builder::velocities() {
     }
     std::sort(iv.nodes.begin(), iv.nodes.end());
     iv.nodes.erase(std::unique(iv.nodes.begin(), iv.nodes.end()), iv.nodes.end());
-    if (plain) {
+    {
       // A rigid body with nodes in the set takes the velocity (LS-DYNA: IRIGID 0 protects
       // only *PART_INERTIA velocities); its nodes follow the body, so they leave the list.
+      // *INITIAL_VELOCITY: any body; the other cards: the bodies of extra nodes (a nodal rigid
+      // body in a part set moving), the rigid parts' bodies being set by part above.
       std::vector<int> body_of(m_.nodes.count(), -1);
-      for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b)
-        for (int p : m_.rigid_bodies[b].parts)
-          for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
-            body_of[static_cast<std::size_t>(c)] = static_cast<int>(b);
+      for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b) {
+        if (plain)
+          for (int p : m_.rigid_bodies[b].parts)
+            for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+              body_of[static_cast<std::size_t>(c)] = static_cast<int>(b);
+        for (auto c : m_.rigid_bodies[b].nodes)
+          body_of[static_cast<std::size_t>(c)] = static_cast<int>(b);
+      }
       std::vector<char> moved(m_.rigid_bodies.size(), 0);
       for (auto c : iv.nodes) {
         const int b = body_of[static_cast<std::size_t>(c)];
@@ -112,6 +118,116 @@ void Builder::velocities() {
     }
     last_was_node_ = !generation;
   }
+}
+
+void Builder::rigid_constraints() {
+  std::vector<char> merged(m_.rigid_bodies.size(), 0);
+  std::unordered_map<std::int64_t, int> nodal_ids;  // *CONSTRAINED_NODAL_RIGID_BODY PID -> body
+  const auto body_of_part = [&](const RigidConstraintCard& r, std::int64_t pid, Layout l,
+                                std::size_t f) {
+    const auto it = rigid_body_of_part_.find(pid);
+    if (it == rigid_body_of_part_.end())
+      fail_at(d_, r.ref, r.keyword, l, f,
+              parts_.count(pid)
+                  ? fmt::format("part {} is not rigid (*MAT_RIGID); fix: name a rigid part", pid)
+                  : fmt::format("part {} is not defined; fix: correct the id", pid));
+    return it->second;
+  };
+  const auto add_nodes = [&](const RigidConstraintCard& r, std::vector<std::int64_t> ids, Layout l,
+                             std::size_t f, model::RigidBody& rb) {
+    for (auto id : ids) {
+      const int c = node(id, r.ref, r.keyword.c_str(), l, f);
+      if (c < 0)
+        fail_at(d_, r.ref, r.keyword, l, f,
+                fmt::format("node {} belongs to no element (it would have no mass); fix: leave "
+                            "it out",
+                            id));
+      if (std::find(rb.nodes.begin(), rb.nodes.end(), c) == rb.nodes.end()) rb.nodes.push_back(c);
+    }
+  };
+  for (const auto& r : d_.rigid_constraints) {
+    using K = RigidConstraintCard::Kind;
+    if (r.kind == K::NodalBody) {
+      const Layout l = L::kNodalRigidBody;
+      if (parts_.count(r.pid))
+        fail_at(d_, r.ref, r.keyword, l, 0,
+                fmt::format("{} is a *PART's id; a nodal rigid body takes an id of its own; fix: "
+                            "renumber it",
+                            r.pid));
+      if (!nodal_ids.emplace(r.pid, 0).second)
+        fail_at(d_, r.ref, r.keyword, l, 0,
+                fmt::format("nodal rigid body {} is already defined; fix: give each its own id",
+                            r.pid));
+      model::RigidBody rb;
+      rb.name = r.title.empty() ? fmt::format("nodal_rigid_body_{}", r.pid) : r.title;
+      for (const auto& other : m_.rigid_bodies)
+        if (other.name == rb.name) rb.name += fmt::format(" (PID {})", r.pid);
+      add_nodes(r, node_set(r.target, r.ref, r.keyword, l, 2), l, 2, rb);
+      m_.rigid_bodies.push_back(std::move(rb));
+      merged.push_back(0);
+    } else if (r.kind == K::SpotWeld) {
+      const Layout l = L::kSpotWeld;
+      model::RigidBody w;
+      w.name =
+          r.pid > 0 ? fmt::format("spotweld_{}", r.pid) : fmt::format("spotweld_{}", ++spot_welds_);
+      add_nodes(r, {r.target}, l, 0, w);
+      add_nodes(r, {r.n2}, l, 1, w);
+      const auto a = static_cast<std::size_t>(w.nodes[0]), b = static_cast<std::size_t>(w.nodes[1]);
+      double gap = 0.0;
+      for (std::size_t d = 0; d < 3; ++d)
+        gap += (m_.nodes.x0[3 * a + d] - m_.nodes.x0[3 * b + d]) *
+               (m_.nodes.x0[3 * a + d] - m_.nodes.x0[3 * b + d]);
+      if (!(gap > 0.0))
+        fail_at(d_, r.ref, r.keyword, l, 1,
+                "lies where N1 lies: a weld's normal runs from N1 to N2; fix: weld nodes of the "
+                "two sheets, apart by their gap");
+      w.failure.normal_N = r.sn * u_.force_N();
+      w.failure.shear_N = r.ss * u_.force_N();
+      w.failure.exp_n = r.exp_n > 0.0 ? r.exp_n : 2.0;
+      w.failure.exp_m = r.exp_m > 0.0 ? r.exp_m : 2.0;
+      w.failure.time_s = r.tf * u_.time_s;
+      m_.rigid_bodies.push_back(std::move(w));
+      merged.push_back(0);
+    } else if (r.kind == K::ExtraNodes) {
+      const Layout l = L::kExtraNodes;
+      const int b = body_of_part(r, r.pid, l, 0);
+      add_nodes(r, r.set ? node_set(r.target, r.ref, r.keyword, l, 1) : std::vector{r.target}, l, 1,
+                m_.rigid_bodies[static_cast<std::size_t>(b)]);
+    } else {
+      const Layout l = L::kRigidBodies;
+      const int lead = body_of_part(r, r.pid, l, 0), other = body_of_part(r, r.target, l, 1);
+      if (lead == other) continue;  // already one body
+      auto& to = m_.rigid_bodies[static_cast<std::size_t>(lead)];
+      auto& from = m_.rigid_bodies[static_cast<std::size_t>(other)];
+      if (inertia_bodies_.count(other))
+        d_notes_.push_back(
+            fmt::format("{}: {}: part {}'s *PART_INERTIA is left out: the body of "
+                        "lead part {} is the merged body's (LS-DYNA)",
+                        at(d_, r.ref), r.keyword, r.target, r.pid));
+      to.parts.insert(to.parts.end(), from.parts.begin(), from.parts.end());
+      for (auto c : from.nodes)
+        if (std::find(to.nodes.begin(), to.nodes.end(), c) == to.nodes.end()) to.nodes.push_back(c);
+      from.parts.clear();
+      from.nodes.clear();
+      merged[static_cast<std::size_t>(other)] = 1;
+      for (auto& [pid, b] : rigid_body_of_part_)
+        if (b == other) b = lead;
+    }
+  }
+  // Drop the merged bodies, renumbering the maps that hold body indices.
+  std::vector<int> index(m_.rigid_bodies.size(), -1);
+  std::vector<model::RigidBody> kept;
+  for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b) {
+    if (merged[b]) continue;
+    index[b] = static_cast<int>(kept.size());
+    kept.push_back(std::move(m_.rigid_bodies[b]));
+  }
+  m_.rigid_bodies = std::move(kept);
+  for (auto& [pid, b] : rigid_body_of_part_) b = index[static_cast<std::size_t>(b)];
+  std::unordered_set<int> inertia;
+  for (int b : inertia_bodies_)
+    if (index[static_cast<std::size_t>(b)] >= 0) inertia.insert(index[static_cast<std::size_t>(b)]);
+  inertia_bodies_ = std::move(inertia);
 }
 
 std::vector<int> Builder::surface_parts(const ContactCard& k, bool slave) {
@@ -392,7 +508,7 @@ void Builder::curve_dofs() {
 }
 
 void Builder::probes() {
-  std::unordered_map<std::int64_t, int> seen;
+  std::unordered_set<std::string> seen;  // node id and heading: a node named twice alike once
   std::unordered_set<std::string> names;
   // *DATABASE_RBDOUT: every rigid body's motion (LS-DYNA's rbdout), named after the body.
   if (d_.rigid_body_output)
@@ -418,7 +534,7 @@ void Builder::probes() {
                 fmt::format("node {} belongs to no element (crashlink leaves such nodes out); "
                             "fix: probe a node of an element",
                             id));
-      if (!seen.emplace(id, c).second) continue;
+      if (!seen.insert(fmt::format("{}|{}", id, h.heading)).second) continue;
       model::Probe p;
       // The heading names the probe (an HDF5 path element: no '/'); a heading met twice gets
       // the node id appended.

@@ -98,8 +98,13 @@ DeckRead read_deck(const std::string& path, const DeckOptions& options) {
         "{:.0f}] kg/m^3); pass --units to choose",
         inferred, kMinWaveSpeed_m_s, kMaxWaveSpeed_m_s, kMinDensity_kg_m3, kMaxDensity_kg_m3));
   // DT2MS: the elements below the step get their density (integration/mass_scaling.h).
-  if (out.model.controls.mass_scaling_dt_s > 0.0)
-    out.messages.push_back(integration::apply_mass_scaling(out.model).summary());
+  if (options.mass_scaling && out.model.controls.mass_scaling_dt_s > 0.0) {
+    try {
+      out.messages.push_back(integration::apply_mass_scaling(out.model).summary());
+    } catch (const ModelError& e) {
+      throw InputError(path, 0, "*CONTROL_TIMESTEP DT2MS", e.what());
+    }
+  }
   for (std::uint32_t f = 0; f < deck.files.count(); ++f) out.files.push_back(deck.files.name(f));
   for (const PartCard& pc : deck.parts)
     if (std::find(b.empty_parts_.begin(), b.empty_parts_.end(), pc.id) == b.empty_parts_.end())

@@ -15,6 +15,9 @@ namespace crashlink::deck {
 struct DeckOptions {
   std::string units;                ///< a name of unit_systems(); empty: refused with candidates
   std::vector<std::string> ignore;  ///< keywords to skip (ParseOptions::ignore)
+  /// Apply DT2MS (integration::apply_mass_scaling) and report it; false: the caller does, once
+  /// its own controls are known (a scenario naming the deck may change mass_scaling_dt).
+  bool mass_scaling = true;
 };
 
 struct DeckRead {

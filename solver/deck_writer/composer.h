@@ -38,6 +38,9 @@ class Composer {
   void elements();
 
   // composer_conditions.cpp
+  /// Rigid bodies beyond one part: *CONSTRAINED_RIGID_BODIES, *CONSTRAINED_EXTRA_NODES_SET,
+  /// *CONSTRAINED_NODAL_RIGID_BODY_TITLE (and its velocity as *INITIAL_VELOCITY on its nodes).
+  void rigid_constraints();
   void constraints();
   void initial_velocities();
   void curve_dofs();

@@ -81,6 +81,61 @@ std::int64_t Composer::curve(const model::Curve& c, double value_unit_SI,
   return curve(a, o, title);
 }
 
+void Composer::rigid_constraints() {
+  std::int64_t next_pid = 0;  // nodal rigid bodies' ids: above every part's
+  for (auto pid : part_id_) next_pid = std::max(next_pid, pid);
+  for (std::size_t k = 0; k < m_.rigid_bodies.size(); ++k) {
+    const auto& rb = m_.rigid_bodies[k];
+    if (rb.failure.any()) {  // a spot weld (its name is not kept: the deck numbers it)
+      const auto& f = rb.failure;
+      KeywordBlock b("*CONSTRAINED_SPOTWELD");
+      b.card(L::kSpotWeld,
+             {static_cast<long long>(node_id(rb.nodes[0])),
+              static_cast<long long>(node_id(rb.nodes[1])), force(f.normal_N), force(f.shear_N),
+              f.exp_n, f.exp_m, f.time_s > 0.0 ? Value(time(f.time_s)) : Value()});
+      emit(b);
+      if (norm(rb.velocity_m_s) > 0.0) {
+        const std::int64_t sid = node_set(rb.nodes, rb.name + " nodes");
+        KeywordBlock v("*INITIAL_VELOCITY");
+        v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
+        v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
+                                      velocity(rb.velocity_m_s[2])});
+        emit(v);
+      }
+      continue;
+    }
+    if (rb.parts.empty()) {
+      const std::int64_t sid = node_set(rb.nodes, rb.name + " nodes");
+      KeywordBlock b("*CONSTRAINED_NODAL_RIGID_BODY_TITLE");
+      b.line(rb.name);
+      b.card(L::kNodalRigidBody,
+             {static_cast<long long>(++next_pid), 0, static_cast<long long>(sid)});
+      emit(b);
+      if (norm(rb.velocity_m_s) > 0.0) {  // its velocity through its nodes (the reader's rule)
+        KeywordBlock v("*INITIAL_VELOCITY");
+        v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
+        v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
+                                      velocity(rb.velocity_m_s[2])});
+        emit(v);
+      }
+      continue;
+    }
+    const long long lead = part_id_[static_cast<std::size_t>(rb.parts[0])];
+    for (std::size_t j = 1; j < rb.parts.size(); ++j) {
+      KeywordBlock b("*CONSTRAINED_RIGID_BODIES");
+      b.card(L::kRigidBodies,
+             {lead, static_cast<long long>(part_id_[static_cast<std::size_t>(rb.parts[j])])});
+      emit(b);
+    }
+    if (!rb.nodes.empty()) {
+      const std::int64_t sid = node_set(rb.nodes, rb.name + " extra nodes");
+      KeywordBlock b("*CONSTRAINED_EXTRA_NODES_SET");
+      b.card(L::kExtraNodes, {lead, static_cast<long long>(sid)});
+      emit(b);
+    }
+  }
+}
+
 void Composer::constraints() {
   // One node set per combination of fixed dofs.
   std::map<std::uint8_t, std::vector<std::int32_t>> by_mask;
@@ -225,13 +280,15 @@ void Composer::probes() {
   for (const auto& p : m_.probes) {
     if (p.kind == model::Probe::Kind::RigidBody) {
       rigid = true;
+      // the deck's body: named after its lead part, or a nodal rigid body's title
       const auto& body = m_.rigid_bodies[static_cast<std::size_t>(p.index)];
-      const auto& part = m_.parts[static_cast<std::size_t>(body.parts[0])];
-      if (p.name != part.name)
+      const std::string& deck_name =
+          body.parts.empty() ? body.name : m_.parts[static_cast<std::size_t>(body.parts[0])].name;
+      if (p.name != deck_name)
         notes_.push_back(
             fmt::format("probe '{}' of rigid body '{}' is named '{}' in the deck "
                         "(*DATABASE_RBDOUT names each body after its part)",
-                        p.name, body.name, part.name));
+                        p.name, body.name, deck_name));
       continue;
     }
     KeywordBlock b("*DATABASE_HISTORY_NODE_ID");
@@ -240,6 +297,16 @@ void Composer::probes() {
   }
   const double dt = time(m_.controls.history_interval_s);
   if (rigid) {
+    // *DATABASE_RBDOUT probes every body: those the model does not probe gain one
+    std::vector<char> probed(m_.rigid_bodies.size(), 0);
+    for (const auto& p : m_.probes)
+      if (p.kind == model::Probe::Kind::RigidBody) probed[static_cast<std::size_t>(p.index)] = 1;
+    std::string extra;
+    for (std::size_t b = 0; b < probed.size(); ++b)
+      if (!probed[b]) extra += (extra.empty() ? "'" : ", '") + m_.rigid_bodies[b].name + "'";
+    if (!extra.empty())
+      notes_.push_back("*DATABASE_RBDOUT probes every rigid body: " + extra +
+                       " gain a probe in the deck");
     KeywordBlock b("*DATABASE_RBDOUT");  // every rigid body's motion: crashlink's body probes
     b.card(L::kDatabaseAscii, {dt});
     emit(b);

@@ -26,7 +26,7 @@ void Composer::check_exportable() const {
       throw ModelError(fmt::format(
           "export: part '{}' has stiffness damping, which a deck would write as "
           "*DAMPING_PART_STIFFNESS and crashlink's deck reader does not read yet; fix: export "
-          "the scenario without `damping` on the part",
+          "the scenario without `damping_ratio` on the part",
           p.name));
   for (const auto& p : m_.parts)
     if (!p.element_density_scale.empty() && !(m_.controls.mass_scaling_dt_s > 0.0))
@@ -35,14 +35,16 @@ void Composer::check_exportable() const {
           "(controls.mass_scaling_dt); a deck writes only DT2MS; fix: the model",
           p.name));
   for (const auto& rb : m_.rigid_bodies)
-    if (rb.parts.size() != 1)
+    if (rb.parts.empty() && (rb.mass_kg > 0.0 || rb.inertia_given || rb.centre_given ||
+                             norm(rb.angular_velocity_rad_s) > 0.0))
       throw ModelError(fmt::format(
-          "export: rigid body '{}' is made of {} parts; a deck joins them with "
-          "*CONSTRAINED_RIGID_BODIES, which crashlink's deck reader does not read yet; fix: make "
-          "the body one part",
-          rb.name, rb.parts.size()));
+          "export: rigid body '{}' of nodes only has a given mass, inertia, centre or angular "
+          "velocity, which a deck gives in *CONSTRAINED_NODAL_RIGID_BODY_INERTIA, not read yet; "
+          "fix: let the body's nodes give them, or make it of a rigid part",
+          rb.name));
   std::vector<char> in_body(m_.parts.size(), 0);
-  for (const auto& rb : m_.rigid_bodies) in_body[static_cast<std::size_t>(rb.parts[0])] = 1;
+  for (const auto& rb : m_.rigid_bodies)
+    for (int p : rb.parts) in_body[static_cast<std::size_t>(p)] = 1;
   for (std::size_t p = 0; p < m_.parts.size(); ++p) {
     const auto& mat = m_.materials[static_cast<std::size_t>(m_.parts[p].material)];
     if ((mat.kind == materials::MaterialKind::Rigid) != (in_body[p] != 0))
@@ -96,7 +98,13 @@ void Composer::materials() {
         const auto& h = mat.hardening;
         std::vector<double> sigma(h.sigma_y_Pa.size());
         for (std::size_t k = 0; k < sigma.size(); ++k) sigma[k] = stress(h.sigma_y_Pa[k]);
-        const std::int64_t lcss = curve(h.eps_p, sigma, mat.name + " yield curve");
+        // LS-DYNA wants two points at least: a constant curve gets a second at strain 1
+        std::vector<double> eps = h.eps_p;
+        if (eps.size() == 1) {
+          eps.push_back(eps[0] + 1.0);
+          sigma.push_back(sigma[0]);
+        }
+        const std::int64_t lcss = curve(eps, sigma, mat.name + " yield curve");
         KeywordBlock b("*MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE");
         b.line(mat.name);
         b.card(L::kMat024a, {mid, rho, E, nu, sigma.front(), 0.0});
@@ -129,8 +137,11 @@ void Composer::parts() {
   if (!m_.rigid_bodies.empty()) {
     solver = std::make_unique<integration::Solver>(m_);
     solver->initialize();
+    // the lead part (the first) carries the whole body's *PART_INERTIA; the others join it by
+    // *CONSTRAINED_RIGID_BODIES, its extra nodes by *CONSTRAINED_EXTRA_NODES_SET (conditions)
     for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b)
-      body_of[static_cast<std::size_t>(m_.rigid_bodies[b].parts[0])] = &solver->rigid_bodies()[b];
+      if (!m_.rigid_bodies[b].parts.empty())
+        body_of[static_cast<std::size_t>(m_.rigid_bodies[b].parts[0])] = &solver->rigid_bodies()[b];
   }
   for (std::size_t p = 0; p < m_.parts.size(); ++p) {
     const auto& part = m_.parts[p];
@@ -154,9 +165,10 @@ void Composer::parts() {
     b.line(part.name);
     b.card(L::kPart, {pid, secid, static_cast<long long>(part.material + 1), 0, secid});
     if (body) {
-      const auto& rb = *std::find_if(
-          m_.rigid_bodies.begin(), m_.rigid_bodies.end(),
-          [&](const model::RigidBody& r) { return r.parts[0] == static_cast<int>(p); });
+      const auto& rb = *std::find_if(m_.rigid_bodies.begin(), m_.rigid_bodies.end(),
+                                     [&](const model::RigidBody& r) {
+                                       return !r.parts.empty() && r.parts[0] == static_cast<int>(p);
+                                     });
       const double s = u_.mass_kg * u_.length_m * u_.length_m;
       const auto& J = body->inertia_body;
       b.card(L::kPartInertia3, {length(body->centre0[0]), length(body->centre0[1]),

@@ -43,6 +43,7 @@ ExportText Composer::compose(const std::string& deck_name, const std::string& so
   parts();
   nodes();
   elements();
+  rigid_constraints();
   constraints();
   initial_velocities();
   curve_dofs();

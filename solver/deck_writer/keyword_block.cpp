@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
 
 #include "solver/core/errors.h"
 #include "solver/deck_writer/number_field.h"
@@ -19,6 +20,23 @@ bool fits_long(const Value& v) {
   return v.kind != Value::Kind::Text || static_cast<int>(v.t.size()) <= kLongWidth;
 }
 
+/// A name the deck can hold: not read as a comment ('$') or keyword ('*') line, printable, and
+/// (in a field of a card) without the comma that would make the card free format.
+void check_text(const std::string& keyword, std::string_view what, const std::string& t,
+                bool in_field) {
+  const bool lead = !t.empty() && (t.front() == '$' || t.front() == '*');
+  const bool comma = in_field && t.find(',') != std::string::npos;
+  bool printable = true;
+  for (unsigned char c : t) printable = printable && c >= 32 && c != 127;
+  if (lead || comma || !printable)
+    throw ModelError(
+        fmt::format("export: '{}' ({} under {}) {}; a deck would read it otherwise; fix: rename it",
+                    t, what, keyword,
+                    lead    ? "starts with '$' or '*' (a comment or a keyword line)"
+                    : comma ? "holds a ',' (the card would be read as free format)"
+                            : "holds a control character"));
+}
+
 }  // namespace
 
 void KeywordBlock::card(deck::Layout layout, std::initializer_list<Value> values) {
@@ -29,10 +47,14 @@ void KeywordBlock::card(deck::Layout layout, std::vector<Value> values) {
   if (values.size() > layout.size())
     throw ModelError(fmt::format("internal: {} values for a card of {} fields under {}",
                                  values.size(), layout.size(), keyword_));
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (values[i].kind == Value::Kind::Text)
+      check_text(keyword_, layout[i].name, values[i].t, true);
   cards_.push_back({layout, std::move(values), {}});
 }
 
 void KeywordBlock::line(std::string text) {
+  check_text(keyword_, "title", text, false);
   cards_.push_back({{}, {}, std::move(text)});
 }
 

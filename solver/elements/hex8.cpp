@@ -168,9 +168,10 @@ void hex8_lumped_mass(const model::Part& part, const materials::Material& mat, c
 
 namespace {
 
-/// The kernel (hex8.h); kDamped adds the stiffness-proportional damping stress. The undamped
-/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
-template <bool kDamped>
+/// The kernel (hex8.h); kDamped adds the stiffness-proportional damping stress, kScaled reads the
+/// elements' density factors (mass scaling). The undamped, unscaled instance is the kernel without
+/// that code, so a part without them pays nothing for it.
+template <bool kDamped, bool kScaled>
 KernelResult hex8_forces(const model::Part& part, const materials::Material& mat, Hex8State& st,
                          const NodalView& nv, const StepInfo& step) {
   const std::size_t ne = part.element_count();
@@ -202,10 +203,9 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
   const vd dt_v(dt), zero(0.0), one(1.0), half(0.5), eighth(0.125);
   const vd lambda_v(lambda), two_mu(2.0 * mu), lambda_pos(std::max(lambda, 0.0));
   const vd rho0_v(rho), c0_v(c), inv_c0(1.0 / c), bulk_v(step.bulk_viscosity ? 1.0 : 0.0);
-  // Mass scaling (model::Part::element_density_scale): each element's density rho s, its wave
-  // speed c / sqrt(s), in the stable step and the bulk viscosity.
-  const double* const density_scale =
-      part.element_density_scale.empty() ? nullptr : part.element_density_scale.data();
+  // Mass scaling (model::Part::element_density_scale; kScaled): each element's density rho s, its
+  // wave speed c / sqrt(s), in the stable step and the bulk viscosity.
+  [[maybe_unused]] const double* const density_scale = part.element_density_scale.data();
   const vd q1_v(step.q_linear), q2_v(step.q_quadratic);
   const bool linear_both = step.linear_in_expansion;  // Q1 term in expansion too (hex8.h)
   const vd k_hg_coef(kappa * m_mod / 8.0);            // k = kappa (lambda + 2 mu) b.b / (8 V)
@@ -264,13 +264,14 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       else
         for (int l = 0; l < nl; ++l) p[eid[l]] = x[l];
     };
-    vd rho_v = rho0_v, c_v = c0_v, inv_c = inv_c0;
-    if (density_scale) {
-      const vd s = load(density_scale), rs = sqrt(s);
-      rho_v = rho0_v * s;
-      c_v = c0_v / rs;
-      inv_c = inv_c0 * rs;
+    [[maybe_unused]] vd scale, root_scale;
+    if constexpr (kScaled) {
+      scale = load(density_scale);
+      root_scale = sqrt(scale);
     }
+    const vd rho_v = kScaled ? rho0_v * scale : rho0_v;
+    const vd c_v = kScaled ? c0_v / root_scale : c0_v;
+    const vd inv_c = kScaled ? inv_c0 * root_scale : inv_c0;
 
     // ---- gather x^{n+1} and v^{n+1/2}; their modes X_k, V_k (M1)
     vd X[7][3], Vw[7][3];
@@ -634,8 +635,12 @@ KernelResult hex8_internal_forces(const model::Part& part, const materials::Mate
         "the state with make_hex8_state(part) after setting the damping ratio",
         part.name, damped ? "" : "not ", damped ? "without" : "with"));
   if (ne == 0) return {};
-  return damped ? hex8_forces<true>(part, mat, st, nv, step)
-                : hex8_forces<false>(part, mat, st, nv, step);
+  const bool scaled = !part.element_density_scale.empty();
+  if (damped)
+    return scaled ? hex8_forces<true, true>(part, mat, st, nv, step)
+                  : hex8_forces<true, false>(part, mat, st, nv, step);
+  return scaled ? hex8_forces<false, true>(part, mat, st, nv, step)
+                : hex8_forces<false, false>(part, mat, st, nv, step);
 }
 
 void hex8_element_output(const model::Part& part, const Hex8State& st, const ElementOutput& out) {

@@ -25,8 +25,14 @@ struct MassScalingReport {
 };
 
 /// Sets Part::element_density_scale on every part with an element below
-/// m.controls.mass_scaling_dt_s (nothing if it is 0). The steps are those of the model's
-/// initial force computation (a throwaway Solver). Idempotent: a scaled model is left as it is.
+/// m.controls.mass_scaling_dt_s (nothing if it is 0), from factors 1: a factor the part had is
+/// replaced. The steps are those of the model's initial force computation (a throwaway Solver).
+/// Throws ModelError for a target at or above the end time (a unit slip) or an element without
+/// a finite positive step.
 MassScalingReport apply_mass_scaling(model::Model& m);
+
+/// What the model's density factors add (the lumped masses with and without them): for the
+/// run's report of a scaled model.
+MassScalingReport describe_mass_scaling(const model::Model& m);
 
 }  // namespace crashlink::integration

@@ -3,7 +3,7 @@
 namespace crashlink::integration {
 
 void gather_rigid_load(RigidBodyState& b, const double* f_ext, const double* f_int, const double* x,
-                       const Vec3& gravity) {
+                       const Vec3& gravity, const double* m_ext, const double* m_int) {
   Vec3 f = b.mass_kg * gravity;
   Vec3 t{};
   for (std::int32_t i : b.nodes) {
@@ -13,6 +13,9 @@ void gather_rigid_load(RigidBodyState& b, const double* f_ext, const double* f_i
     f = f + fi;
     t = t + cross(r, fi);
   }
+  for (std::int32_t i : b.turning)
+    t = t + Vec3{m_ext[3 * i] - m_int[3 * i], m_ext[3 * i + 1] - m_int[3 * i + 1],
+                 m_ext[3 * i + 2] - m_int[3 * i + 2]};
   b.force = f;
   b.torque = t;
 }

@@ -15,6 +15,10 @@ namespace crashlink::integration {
 struct RigidBodyState {
   std::vector<std::int32_t> nodes;  ///< node indices that follow the body
   std::vector<double> offsets;      ///< [3k] X_i = x0_i - c0, body frame [m]
+  /// Extra nodes of deformable shells (model::RigidBody::nodes with a rotational inertia): their
+  /// rotations follow the body (omega_i = omega), their moments enter its torque and their
+  /// rotational inertias its inertia.
+  std::vector<std::int32_t> turning;
   double mass_kg = 0.0;
   Mat3 inertia_body{};  ///< J about the centre, body frame (= spatial at t0) [kg m^2]
   Mat3 inertia_body_inv{};
@@ -28,12 +32,15 @@ struct RigidBodyState {
   Mat3 rotation = identity3();  ///< R^n body -> spatial
   Vec3 force{};                 ///< F^n total force on the body [N]
   Vec3 torque{};                ///< T^n about c^n [N m]
+  bool breakable = false;       ///< a spot weld (model::RigidBody::Failure)
+  std::uint8_t failed = 0;      ///< 1: let go of its nodes (they move on their own)
 };
 
 /// Sums the nodal forces f_ext - f_int ([3n] each) of the body's nodes and the body force
-/// mass*gravity into F^n and T^n (about c^n; x = current node coordinates [3n]).
+/// mass*gravity into F^n and T^n (about c^n; x = current node coordinates [3n]), and the moments
+/// m_ext - m_int ([3n] each) of its turning nodes into T^n.
 void gather_rigid_load(RigidBodyState& b, const double* f_ext, const double* f_int, const double* x,
-                       const Vec3& gravity);
+                       const Vec3& gravity, const double* m_ext, const double* m_int);
 
 /// Momentum update to n+1/2 with dt^{n-1/2}; omega from L with the current orientation.
 void update_rigid_momenta(RigidBodyState& b, double dt_mid);

@@ -141,6 +141,20 @@ void Solver::build_rigid_bodies() {
         s.nodes.push_back(c);
       }
     }
+    // Extra nodes (a nodal rigid body, *CONSTRAINED_EXTRA_NODES): those of deformable shells
+    // turn with the body.
+    for (auto c : rb.nodes) {
+      const auto i = static_cast<std::size_t>(c);
+      if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end()) continue;
+      if (rigid_node_[i] == 1)
+        throw ModelError(fmt::format(
+            "node {} of rigid body '{}' already follows another rigid body; merge the bodies "
+            "into one",
+            model_.nodes.id[i], rb.name));
+      rigid_node_[i] = 1;
+      s.nodes.push_back(c);
+      if (inertia_[i] > 0.0) s.turning.push_back(c);
+    }
     for (std::size_t other = 0; other < b; ++other)
       for (auto c : bodies_[other].nodes)
         if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end())
@@ -178,6 +192,9 @@ void Solver::build_rigid_bodies() {
         for (std::size_t c = 0; c < 3; ++c)
           j[a][c] += mi * ((a == c ? dot(r, r) : 0.0) - r[a] * r[c]);
     }
+    // the turning nodes' own rotational inertias (isotropic) add to the body's
+    for (auto c : s.turning)
+      for (std::size_t a = 0; a < 3; ++a) j[a][a] += scale * inertia_[static_cast<std::size_t>(c)];
     s.inertia_body = rb.inertia_given ? rb.inertia_kg_m2 : j;
     const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] -
                                                s.inertia_body[1][2] * s.inertia_body[2][1]) -
@@ -191,6 +208,7 @@ void Solver::build_rigid_bodies() {
                       "its inertia explicitly",
                       rb.name, det));
     s.inertia_body_inv = inverse(s.inertia_body);
+    s.breakable = rb.failure.any();
     s.velocity = rb.velocity_m_s;
     s.velocity_prev = rb.velocity_m_s;
     s.omega = rb.angular_velocity_rad_s;
@@ -206,6 +224,64 @@ void Solver::build_rigid_bodies() {
                       model_.parts[p].name));
 }
 
+void Solver::check_spot_welds() {
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    auto& b = bodies_[k];
+    if (!b.breakable || b.failed) continue;
+    const auto& f = model_.rigid_bodies[k].failure;
+    // The force the weld applies to node 2: R_2 = m_2 a_2 - (f_load - f_int)_2, a_2 the rigid
+    // motion's acceleration a_c + alpha x r + omega x (omega x r) at t^n (F^n, T^n just
+    // gathered; omega^{n-1/2}, the latest known; Euler's equations for alpha).
+    const auto i1 = static_cast<std::size_t>(b.nodes[0]), i2 = static_cast<std::size_t>(b.nodes[1]);
+    const Vec3 x1{x_[3 * i1], x_[3 * i1 + 1], x_[3 * i1 + 2]};
+    const Vec3 x2{x_[3 * i2], x_[3 * i2 + 1], x_[3 * i2 + 2]};
+    const Mat3 j = spatial_inertia(b);
+    const Mat3 j_inv = mul(mul(b.rotation, b.inertia_body_inv), transpose(b.rotation));
+    const Vec3 w = b.omega;
+    const Vec3 alpha = mul(j_inv, b.torque - cross(w, mul(j, w)));
+    const Vec3 r = x2 - b.centre;
+    const Vec3 a2 = (1.0 / b.mass_kg) * b.force + cross(alpha, r) + cross(w, cross(w, r));
+    const double scale = b.mass_kg > 0.0 ? b.mass_kg / (mass_[i1] + mass_[i2]) : 1.0;
+    Vec3 load{};
+    for (std::size_t d = 0; d < 3; ++d) load[d] = f_load_[3 * i2 + d] - f_int_[3 * i2 + d];
+    const Vec3 reaction = (scale * mass_[i2]) * a2 - load;
+    const Vec3 axis = (1.0 / norm(x2 - x1)) * (x2 - x1);
+    const double fn = dot(reaction, axis);
+    const double fs = norm(reaction - fn * axis);
+    double crit = 0.0;
+    if (f.normal_N > 0.0) crit += std::pow(std::max(fn, 0.0) / f.normal_N, f.exp_n);
+    if (f.shear_N > 0.0) crit += std::pow(fs / f.shear_N, f.exp_m);
+    const bool timed = f.time_s > 0.0 && time_s_ >= f.time_s;
+    if (crit < 1.0 && !timed) continue;
+    release_body(k);
+    weld_failures_.push_back({model_.rigid_bodies[k].name, time_s_, fn, fs});
+  }
+}
+
+void Solver::release_body(std::size_t k, bool accelerate) {
+  auto& b = bodies_[k];
+  b.failed = 1;
+  for (auto c : b.nodes) {
+    const auto i = static_cast<std::size_t>(c);
+    rigid_node_[i] = 0;
+    if (!ghost_[i]) {
+      inv_mass_[i] = mass_[i] > 0.0 ? 1.0 / mass_[i] : 0.0;
+      inv_inertia_[i] = inertia_[i] > 0.0 ? 1.0 / inertia_[i] : 0.0;
+    }
+    // its own acceleration at t^n, the body's no longer
+    for (std::size_t d = 0; accelerate && d < 3; ++d) {
+      a_[3 * i + d] = inv_mass_[i] * (f_load_[3 * i + d] - f_int_[3 * i + d]);
+      alpha_[3 * i + d] = inv_inertia_[i] * (m_coup_[3 * i + d] - m_int_[3 * i + d]);
+    }
+  }
+}
+
+void Solver::turn_rigid_nodes() {
+  for (const auto& b : bodies_)
+    for (auto c : b.failed ? std::vector<std::int32_t>{} : b.turning)
+      for (std::size_t d = 0; d < 3; ++d) omega_[3 * static_cast<std::size_t>(c) + d] = b.omega[d];
+}
+
 void Solver::apply_initial_velocities() {
   for (const auto& iv : model_.initial_velocities)
     for (auto c : iv.nodes)
@@ -218,6 +294,7 @@ void Solver::apply_initial_velocities() {
       const Vec3 vi = b.velocity + cross(b.omega, r);
       for (std::size_t d = 0; d < 3; ++d) v_[3 * i + d] = vi[d];
     }
+  turn_rigid_nodes();
   prescribed_node_.assign(n_, 0);
   for (const auto& pv : model_.prescribed_velocities) {
     const bool rot = pv.dof >= 3;
@@ -562,7 +639,10 @@ void Solver::compute_accelerations() {
   coupling_pass(arrays, coupled_nodes_);
   const double* f_drive = f_load_.data();
   for (auto& b : bodies_)
-    gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2);
+    if (!b.failed)
+      gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2,
+                        m_coup_.data(), m_int_.data());
+  check_spot_welds();
   zero_held(model_.fixed, a_.data(), alpha_.data(), 0, n_);
 }
 
@@ -588,7 +668,8 @@ double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {
 
 double Solver::kinetic_energy_from(double node_sum) const {
   double ke = 0.5 * node_sum;
-  for (const auto& b : bodies_) ke += rigid_kinetic_energy(b);
+  for (const auto& b : bodies_)
+    if (!b.failed) ke += rigid_kinetic_energy(b);
   return ke;
 }
 
@@ -630,14 +711,18 @@ void Solver::begin_cycle() {
   const bool one_pass = cycle_ > 0 && prescribed_.empty() && walls_.empty();
   if (one_pass) {
     const double ke_nodes = velocity_pass(dt_mid);
-    for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+    for (auto& b : bodies_)
+      if (!b.failed) update_rigid_momenta(b, dt_mid);
+    turn_rigid_nodes();
     energy_.kinetic_J = kinetic_energy_from(ke_nodes);
   } else {
     // v^{n-1/2} kept for the kinetic energy's product form, then v^{n+1/2} = v^{n-1/2} +
     // dt^{n-1/2} a^n ([2]), in one pass per field.
     advance_velocity(v_.data(), v_prev_.data(), a_.data(), dt_mid, v_.size());
     advance_velocity(omega_.data(), omega_prev_.data(), alpha_.data(), dt_mid, omega_.size());
-    for (auto& b : bodies_) update_rigid_momenta(b, dt_mid);
+    for (auto& b : bodies_)
+      if (!b.failed) update_rigid_momenta(b, dt_mid);
+    turn_rigid_nodes();
   }
   if (cycle_ == 0) {
     // The start v^{1/2} = v^0 + dt^0/2 a^0 is a half step; the kinetic energy's product form
@@ -715,6 +800,7 @@ void Solver::end_cycle_positions() {
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
   for (auto& b : bodies_) {
+    if (b.failed) continue;
     move_rigid_body(b, dt, model_.nodes.x0.data(), u_.data(), v_.data());
     for (auto c : b.nodes)
       for (std::size_t d = 0; d < 3; ++d) {

@@ -38,6 +38,13 @@ struct PartRuntime {
   std::vector<double> element_dt_s;
 };
 
+/// A spot weld that let go: its name, when, and the normal and shear forces it then carried.
+struct WeldFailure {
+  std::string name;
+  double time_s = 0.0;
+  double normal_N = 0.0, shear_N = 0.0;
+};
+
 /// A kinematic sample of one probe at t^n.
 struct ProbeValue {
   Vec3 displacement_m{};
@@ -180,6 +187,8 @@ class Solver {
   Vec3 node_velocity(std::size_t i) const;
   ProbeValue probe(const model::Probe& p) const;
   const std::vector<RigidBodyState>& rigid_bodies() const { return bodies_; }
+  /// The spot welds that have failed so far (name, time, forces at failure).
+  const std::vector<WeldFailure>& weld_failures() const { return weld_failures_; }
   const std::vector<PartRuntime>& parts() const { return parts_; }
   /// Keep every element's stable step in PartRuntime::element_dt_s (from the next force
   /// computation: call before initialize() for the initial steps). For analysis (`advise`).
@@ -204,6 +213,14 @@ class Solver {
  private:
   void assemble_masses();
   void build_rigid_bodies();
+  /// The turning nodes of every rigid body (RigidBodyState::turning) take its angular velocity.
+  void turn_rigid_nodes();
+  /// Spot welds (model::RigidBody::Failure) whose force meets their criterion at t^n let go of
+  /// their nodes (release_body), recorded in weld_failures_.
+  void check_spot_welds();
+  /// Body k's nodes move on their own from now (with `accelerate`, their accelerations at t^n
+  /// from their loads; a restored checkpoint holds them).
+  void release_body(std::size_t k, bool accelerate = true);
   void apply_initial_velocities();
   /// Which elements compute_forces() takes: all of them; the interior ones (f_int, m_int
   /// cleared first); the rest (added).
@@ -278,6 +295,7 @@ class Solver {
   std::vector<std::uint8_t> rigid_node_;  // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
   std::vector<RigidBodyState> bodies_;
+  std::vector<WeldFailure> weld_failures_;  ///< spot welds that let go, in order
   std::vector<contact::ContactInterface> contacts_;
   std::vector<contact::ContactStep> contact_steps_;
 

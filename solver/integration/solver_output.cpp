@@ -43,7 +43,8 @@ double Solver::total_mass_kg() const {
   double m = 0.0;
   for (std::size_t i = 0; i < n_; ++i)
     if (!rigid_node_[i] && !ghost_[i]) m += mass_[i];
-  for (const auto& b : bodies_) m += b.mass_kg;
+  for (const auto& b : bodies_)
+    if (!b.failed) m += b.mass_kg;
   return m;
 }
 

@@ -52,6 +52,7 @@ void visit_body(V& v, const std::string& p, B& s) {
   v.pod(p + "rotation", s.rotation);
   v.pod(p + "force", s.force);
   v.pod(p + "torque", s.torque);
+  if (s.breakable) v.pod(p + "failed", s.failed);  // a spot weld (older files hold none)
 }
 
 }  // namespace
@@ -145,6 +146,12 @@ void Solver::restore_state(const core::StateReader& r) {
   }
   core::StateLoad v{r};
   visit_state(v, *this);
+  // a spot weld that had let go: its nodes move on their own again
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    if (bodies_[b].failed) {
+      bodies_[b].failed = 0;
+      release_body(b, /*accelerate=*/false);
+    }
 }
 
 }  // namespace crashlink::integration

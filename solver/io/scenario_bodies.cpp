@@ -1,6 +1,7 @@
 // Rigid bodies and probes (docs/scenario-format.md).
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "solver/core/errors.h"
 #include "solver/io/scenario_sections.h"
@@ -45,26 +46,33 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
   std::vector<std::string> owner(m.parts.size());  // body owning each part
   if (section) {
     for (const auto& [name, body] : section->entries("rigid bodies (name: {parts, ...})")) {
-      body.expect_keys({"parts", "velocity", "angular_velocity", "mass", "inertia", "centre"});
+      body.expect_keys(
+          {"parts", "nodes", "velocity", "angular_velocity", "mass", "inertia", "centre"});
       model::RigidBody rb;
       rb.name = name;
-      const auto parts = body.required("parts", "names of rigid parts, e.g. [headform]");
-      for (const auto& pn : parts.items("part names")) {
-        const int p = read_part_reference(pn, b);
-        if (!is_rigid_part(m, p))
-          pn.fail(
-              "part '" + pn.text() + "' has material '" +
-              m.materials[static_cast<std::size_t>(m.parts[static_cast<std::size_t>(p)].material)]
-                  .name +
-              "', which is not rigid; give it a material of type rigid");
-        auto& o = owner[static_cast<std::size_t>(p)];
-        if (!o.empty())
-          pn.fail("part '" + pn.text() + "' already belongs to rigid body '" + o +
-                  "'; a part belongs to one body");
-        o = name;
-        rb.parts.push_back(p);
-      }
-      if (rb.parts.empty()) parts.fail("lists no part; give at least one rigid part");
+      // `nodes`: extra nodes that follow the body (a nodal rigid body without `parts`), a node
+      // set name or a selection such as {part: plate, box: ...}
+      if (auto nodes = body.optional("nodes")) rb.nodes = read_node_reference(*nodes, b);
+      const auto parts = body.optional("parts");
+      if (!parts && rb.nodes.empty())
+        body.fail("give its rigid `parts`, or the `nodes` that follow it (a nodal rigid body)");
+      if (parts)
+        for (const auto& pn : parts->items("part names")) {
+          const int p = read_part_reference(pn, b);
+          if (!is_rigid_part(m, p))
+            pn.fail(
+                "part '" + pn.text() + "' has material '" +
+                m.materials[static_cast<std::size_t>(m.parts[static_cast<std::size_t>(p)].material)]
+                    .name +
+                "', which is not rigid; give it a material of type rigid");
+          auto& o = owner[static_cast<std::size_t>(p)];
+          if (!o.empty())
+            pn.fail("part '" + pn.text() + "' already belongs to rigid body '" + o +
+                    "'; a part belongs to one body");
+          o = name;
+          rb.parts.push_back(p);
+        }
+      if (parts && rb.parts.empty()) parts->fail("lists no part; give at least one rigid part");
       rb.velocity_m_s = body.vec3_or("velocity", {0.0, 0.0, 0.0});
       rb.angular_velocity_rad_s = body.vec3_or("angular_velocity", {0.0, 0.0, 0.0});
       if (auto mass = body.optional("mass")) rb.mass_kg = mass->positive();
@@ -90,10 +98,22 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
 
 void read_probes(const YamlNode& section, ScenarioBuild& b) {
   const auto& m = b.model;
+  std::set<std::string> deck_probes;  // those a named deck defined (none for a YAML scene)
+  for (const auto& p : m.probes) deck_probes.insert(p.name);
   for (const auto& [name, pr] : section.entries("probes (name: {node | node_near | rigid_body})")) {
     pr.expect_keys({"node", "node_near", "part", "rigid_body"});
     model::Probe probe;
     probe.name = name;
+    // A deck's *DATABASE_RBDOUT probes every rigid body under its name; a scenario probe of a
+    // body replaces that one (whatever its name).
+    if (const auto body = pr.optional("rigid_body")) {
+      const auto it = b.rigid_body_index.find(body->text());
+      if (it != b.rigid_body_index.end())
+        std::erase_if(b.model.probes, [&](const model::Probe& p) {
+          return p.kind == model::Probe::Kind::RigidBody && p.index == it->second &&
+                 deck_probes.count(p.name) > 0;
+        });
+    }
     for (const auto& other : m.probes)
       if (other.name == name)
         pr.fail(

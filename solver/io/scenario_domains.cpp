@@ -68,6 +68,7 @@ void read_domains(const YamlNode& section, ScenarioBuild& b) {
         "part must be in one)",
         orphans.size() > 1 ? "s" : "", quoted_list(orphans), orphans.size() > 1 ? "are" : "is"));
   for (const auto& rb : m.rigid_bodies) {
+    if (rb.parts.empty()) continue;  // a body of nodes: checked by the decomposition
     const auto& first = placed.at(rb.parts.front());
     for (int p : rb.parts) {
       const auto& w = placed.at(p);

@@ -136,6 +136,7 @@ model::Model read_deck_model(const YamlNode& spec, const std::string& scenario_f
     units_key.fail(fmt::format("'{}' is not a unit system; fix: one of {} (docs/decks.md, Units)",
                                units, deck::unit_system_names()));
   deck::DeckOptions options;
+  options.mass_scaling = false;  // applied by the scenario once its controls are read
   options.units = units;
   if (auto ig = spec.optional("ignore")) {
     const std::vector<YamlNode> items =
@@ -146,6 +147,18 @@ model::Model read_deck_model(const YamlNode& spec, const std::string& scenario_f
   part_ids = std::move(read.part_ids);
   deck_files.insert(deck_files.end(), read.files.begin(), read.files.end());
   return std::move(read.model);
+}
+
+/// controls.mass_scaling_dt (or the deck's DT2MS): the density factors set once, at the line
+/// of `controls` for a refusal.
+void apply_mass_scaling(const YamlNode& root, model::Model& m, const std::string& file) {
+  if (!(m.controls.mass_scaling_dt_s > 0.0)) return;
+  try {
+    (void)integration::apply_mass_scaling(m);
+  } catch (const ModelError& e) {
+    const auto c = root.optional("controls");
+    throw InputError(file, c ? c->line() : 1, "controls.mass_scaling_dt", e.what());
+  }
 }
 
 /// A scenario naming a deck: the deck gives the model, the scenario adds `controls` (overrides),
@@ -180,7 +193,7 @@ model::Model build_deck_scenario(const YamlNode& root, const std::string& name_f
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);
   if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
-  if (b.model.controls.mass_scaling_dt_s > 0.0) (void)integration::apply_mass_scaling(b.model);
+  apply_mass_scaling(root, b.model, name_for_messages);
   try {
     model::validate(b.model);
   } catch (const ModelError& e) {
@@ -221,7 +234,7 @@ model::Model build_model(YamlTree tree, const std::string& name_for_messages,
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);
   if (auto s = root.optional("coupling")) detail::read_coupling(*s, b);
-  if (b.model.controls.mass_scaling_dt_s > 0.0) (void)integration::apply_mass_scaling(b.model);
+  apply_mass_scaling(root, b.model, name_for_messages);
 
   try {
     model::validate(b.model);

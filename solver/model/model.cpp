@@ -113,6 +113,28 @@ void validate(const Model& m) {
           fmt::format("part '{}': damping ratio on rigid material '{}' has no effect; remove it",
                       p.name, m.materials[static_cast<std::size_t>(p.material)].name));
   }
+  for (const auto& rb : m.rigid_bodies) {
+    if (rb.parts.empty() && rb.nodes.empty())
+      throw ModelError(
+          fmt::format("rigid body '{}' has neither parts nor nodes; give it rigid "
+                      "parts or the nodes that follow it",
+                      rb.name));
+    for (auto i : rb.nodes)
+      if (i < 0 || static_cast<std::size_t>(i) >= m.nodes.count())
+        throw ModelError(fmt::format("rigid body '{}': node index {} out of range", rb.name, i));
+    if (rb.failure.any() && (!rb.parts.empty() || rb.nodes.size() != 2))
+      throw ModelError(
+          fmt::format("rigid body '{}': a failure criterion belongs to a spot weld "
+                      "of two nodes and no part (it has {} nodes, {} parts)",
+                      rb.name, rb.nodes.size(), rb.parts.size()));
+    if (!(rb.failure.normal_N >= 0.0 && rb.failure.shear_N >= 0.0 && rb.failure.exp_n > 0.0 &&
+          rb.failure.exp_m > 0.0 && rb.failure.time_s >= 0.0))
+      throw ModelError(
+          fmt::format("spot weld '{}': strengths {} N, {} N and time {} s must be "
+                      ">= 0, the exponents {}, {} > 0",
+                      rb.name, rb.failure.normal_N, rb.failure.shear_N, rb.failure.time_s,
+                      rb.failure.exp_n, rb.failure.exp_m));
+  }
   for (const auto& rb : m.rigid_bodies)
     for (int pi : rb.parts) {
       if (pi < 0 || pi >= static_cast<int>(m.parts.size()))

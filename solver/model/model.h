@@ -103,18 +103,33 @@ struct InitialVelocity {
   Vec3 velocity_m_s{};
 };
 
-/// A rigid body made of the elements of one or more rigid parts; its nodes follow its motion.
-/// Mass and inertia come from the elements unless given (then they override).
+/// A rigid body made of the elements of rigid parts and of extra nodes; its nodes follow its
+/// motion. Mass and inertia come from the nodes' lumped masses unless given (then they
+/// override). A body of nodes only is LS-DYNA's nodal rigid body (*CONSTRAINED_NODAL_RIGID_BODY);
+/// nodes added to a rigid part's body, *CONSTRAINED_EXTRA_NODES. An extra node of deformable
+/// shells also turns with the body (its rotational inertia in the body's, its moments in the
+/// body's torque).
 struct RigidBody {
   std::string name;
-  std::vector<int> parts;         ///< indices of rigid parts forming the body
-  Vec3 velocity_m_s{};            ///< initial velocity of the centre of mass
-  Vec3 angular_velocity_rad_s{};  ///< initial angular velocity (spatial)
-  double mass_kg = 0.0;           ///< > 0: overrides the elements' mass
+  std::vector<int> parts;           ///< indices of rigid parts forming the body (may be empty)
+  std::vector<std::int32_t> nodes;  ///< extra node indices that follow the body (may be empty)
+  Vec3 velocity_m_s{};              ///< initial velocity of the centre of mass
+  Vec3 angular_velocity_rad_s{};    ///< initial angular velocity (spatial)
+  double mass_kg = 0.0;             ///< > 0: overrides the elements' mass
   bool inertia_given = false;
   Mat3 inertia_kg_m2{};  ///< about the centre of mass, spatial frame at t = 0
   bool centre_given = false;
   Vec3 centre_m{};  ///< centre of mass if given
+  /// A spot weld (LS-DYNA *CONSTRAINED_SPOTWELD): a body of two nodes (no parts) that lets go
+  /// of them when (max(f_n, 0) / S_n)^n + (|f_s| / S_s)^m >= 1, f_n the force it carries along
+  /// node 1 -> node 2 and f_s across, or at time_s. A strength of 0 leaves its term out.
+  struct Failure {
+    double normal_N = 0.0;  ///< S_n [N] (0: no normal term)
+    double shear_N = 0.0;   ///< S_s [N] (0: no shear term)
+    double exp_n = 2.0, exp_m = 2.0;
+    double time_s = 0.0;  ///< > 0: fails then whatever the forces [s]
+    bool any() const { return normal_N > 0.0 || shear_N > 0.0 || time_s > 0.0; }
+  } failure;
 };
 
 /// A fixed, infinite, frictionless plane that its nodes cannot cross (LS-DYNA

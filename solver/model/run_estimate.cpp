@@ -50,8 +50,9 @@ double estimated_stable_step_s(const Model& m) {
     // The kernels' length on a cube or a square: the one-point hex's V sqrt(3 / (2 B:B)) = h /
     // sqrt(3), the shell's A / (its longest diagonal) = h / sqrt(2).
     const double shape = p.kind == ElementKind::Hex8 ? 1.0 / std::sqrt(3.0) : 1.0 / std::sqrt(2.0);
+    // mass scaling: the element's wave speed c / sqrt(s)
     for (std::size_t e = 0; e < p.element_count(); ++e)
-      dt = std::min(dt, shape * shortest_edge_m(m, p, e) / c);
+      dt = std::min(dt, shape * shortest_edge_m(m, p, e) / c * std::sqrt(p.density_scale_of(e)));
   }
   dt *= m.controls.dt_scale;
   if (m.controls.dt_max_s > 0.0) dt = std::min(dt, m.controls.dt_max_s);

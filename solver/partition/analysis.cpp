@@ -120,6 +120,24 @@ Analysis analyse(const model::Model& g) {
   for (std::size_t b = 0; b < g.rigid_bodies.size(); ++b)
     for (int p : g.rigid_bodies[b].parts)
       a.body_of_part[static_cast<std::size_t>(p)] = static_cast<int>(b);
+  // A body's extra nodes (a nodal rigid body) and the elements around them: in one domain, the
+  // body's (one set of dofs; the elements are not moved for it).
+  for (const auto& rb : g.rigid_bodies) {
+    int dom = rb.parts.empty() ? -1 : a.part_domain[static_cast<std::size_t>(rb.parts.front())];
+    for (auto i : rb.nodes)
+      for (std::size_t k = a.node_start[static_cast<std::size_t>(i)];
+           k < a.node_start[static_cast<std::size_t>(i) + 1]; ++k) {
+        const int d = a.orig_domain[static_cast<std::size_t>(a.node_elems[k])];
+        if (dom < 0) dom = d;
+        if (d != dom)
+          throw ModelError(fmt::format(
+              "rigid body '{}' holds node {}, which elements of domains '{}' and '{}' use; a "
+              "rigid body is one set of dofs: put the parts around its nodes in one domain",
+              rb.name, g.nodes.id[static_cast<std::size_t>(i)],
+              a.domain_name[static_cast<std::size_t>(dom)],
+              a.domain_name[static_cast<std::size_t>(d)]));
+      }
+  }
   // Per-part stable steps and natural lumped masses from the single-domain solver (the stable
   // step comes from one function, DESIGN §7 rule 10).
   integration::Solver solver(g, "global");

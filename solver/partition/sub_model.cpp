@@ -173,20 +173,23 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     m.initial_velocities.push_back({std::move(nodes), iv.velocity_m_s});
   }
 
-  // Rigid bodies: whole, or not at all (one set of dofs).
+  // Rigid bodies: whole, or not at all (one set of dofs): its parts and its extra nodes, which
+  // this domain integrates (owned) or none of them.
   std::vector<int> g2l_body(g.rigid_bodies.size(), -1);
   for (std::size_t b = 0; b < g.rigid_bodies.size(); ++b) {
     const auto& rb = g.rigid_bodies[b];
-    std::size_t here = 0;
+    std::size_t here = 0, nodes_here = 0;
     for (int p : rb.parts) here += whole_part(p) ? 1 : 0;
-    if (here == 0) continue;
-    if (here != rb.parts.size())
+    for (auto i : rb.nodes) nodes_here += role[static_cast<std::size_t>(i)] == kOwned ? 1 : 0;
+    if (here == 0 && nodes_here == 0) continue;
+    if (here != rb.parts.size() || nodes_here != rb.nodes.size())
       throw ModelError(
-          fmt::format("domain '{}' holds only part of rigid body '{}' (internal error "
-                      "of the decomposition)",
-                      out.name, rb.name));
+          fmt::format("domain '{}' holds only part of rigid body '{}' ({} of {} parts, {} of {} "
+                      "extra nodes; internal error of the decomposition)",
+                      out.name, rb.name, here, rb.parts.size(), nodes_here, rb.nodes.size()));
     model::RigidBody lb = rb;
     for (int& p : lb.parts) p = g2l_part[static_cast<std::size_t>(p)];
+    for (auto& i : lb.nodes) i = local(i);
     g2l_body[b] = static_cast<int>(m.rigid_bodies.size());
     m.rigid_bodies.push_back(std::move(lb));
   }

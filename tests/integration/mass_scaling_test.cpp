@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
 #include "tests/integration/run_helpers.h"
+#include "tests/integration/shell_command.h"
 
 namespace crashlink {
 namespace {
@@ -135,7 +137,8 @@ TEST(MassScaling, PositiveDt2msIsRefusedAtItsField) {
   std::filesystem::remove_all(dir);
 }
 
-// A YAML scene: `controls: {mass_scaling_dt: ...}` scales the part whose shells are below it.
+// A YAML scene: `controls: {mass_scaling_dt: ...}` scales the part whose shells are below it; a
+// target at or above the end time is refused.
 TEST(MassScaling, YamlKeyScalesTheFinePlate) {
   const std::string yaml = R"(name: two plates
 controls: {end_time: 1.0e-5, mass_scaling_dt: 1.2e-6}
@@ -155,6 +158,106 @@ parts:
   integration::Solver s(m);
   s.initialize();
   EXPECT_NEAR(s.dt_s(), 0.9 * 1.2e-6, 1e-9 * s.dt_s());
+  const auto r = integration::describe_mass_scaling(m);
+  EXPECT_EQ(r.scaled_elements, 400u);
+  EXPECT_EQ(r.deformable_elements, 500u);
+  // the fine plate's 7850 x 0.1 x 0.1 x 0.001 = 0.0785 kg, x (3.39 - 1)
+  EXPECT_NEAR(r.added_mass_kg, 0.0785 * 2.39, 0.0785 * 0.02);
+  std::string msg;
+  try {
+    std::string slip = yaml;
+    slip.replace(slip.find("mass_scaling_dt: 1.2e-6"), 23, "mass_scaling_dt: 1.2e-3");
+    (void)io::parse_scenario(slip, "slip.yaml");
+  } catch (const InputError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("slip.yaml:2: controls.mass_scaling_dt: mass scaling to a stable step of "
+                     "0.0012 s, at or above the end time 1e-05 s"),
+            std::string::npos)
+      << msg;
+}
+
+// A contact's nodal masses are the scaled ones: a plate of equal 5 mm shells, all scaled alike,
+// over a rigid one: the run takes the scaled step, which the contact's springs would bound with
+// the unscaled masses.
+TEST(MassScaling, ContactStepBoundTakesTheScaledMasses) {
+  const auto scene = [](double dt_ms, bool contact) {
+    std::string y = fmt::format(R"(name: stacked
+controls: {{end_time: 1.0e-5, mass_scaling_dt: {}}}
+materials:
+  steel: {{type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}}
+  block: {{type: rigid, density: 7850.0}}
+parts:
+  lower: {{material: block, element: shell4, thickness: 1.0e-3, mesh: {{generator: plate, origin: [0, 0, 0], size: [0.1, 0.1], normal: z, divisions: [20, 20]}}}}
+  upper: {{material: steel, element: shell4, thickness: 1.0e-3, mesh: {{generator: plate, origin: [0, 0, 0.002], size: [0.1, 0.1], normal: z, divisions: [20, 20]}}}}
+rigid_bodies:
+  anvil: {{parts: [lower], mass: 10.0, inertia: [1.0, 1.0, 1.0]}}
+)",
+                                dt_ms);
+    if (contact) y += "contacts:\n  plates: {slave: {part: upper}, master: lower}\n";
+    const model::Model m = io::parse_scenario(y, "stacked.yaml");
+    integration::Solver s(m);
+    s.initialize();
+    return s.dt_s();
+  };
+  const double free0 = scene(0.0, false), dt0 = scene(0.0, true), dt1 = scene(1.2e-6, true);
+  std::printf(
+      "[measured] stacked plates: element step %.4e s, with the contact %.4e s, scaled "
+      "%.4e s\n",
+      free0, dt0, dt1);
+  // every element at the same step: all scaled to 1.2e-6 s, and the contact, whose springs
+  // between the plate and the rigid one bound the step by their nodal masses, lets the run take
+  // it (with the unscaled masses it held the run near the unscaled step)
+  EXPECT_NEAR(dt1, 0.9 * 1.2e-6, 1e-9 * dt1);
+  EXPECT_GT(dt1, 1.5 * dt0);
+}
+
+// `crashlink run` says what the scaling added before a YAML scene runs.
+TEST(MassScaling, RunReportsTheAddedMass) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_mass_scaling_cli_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "p.yaml") << R"(name: plate
+controls: {end_time: 2.0e-6, mass_scaling_dt: 1.0e-6}
+materials:
+  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
+parts:
+  plate: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0], size: [0.05, 0.05], normal: z, divisions: [10, 10]}}
+)";
+  int status = 0;
+  const std::string out = testing::run_command(
+      std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " + (dir / "p.yaml").string() +
+          " --out " + (dir / "out").string() + " 2>&1",
+      status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  // 5 mm shells step 0.652e-6 s: (1 / 0.652)^2 = 2.35, the plate's 19.6 g x 1.35 added
+  EXPECT_NE(out.find("crashlink run: mass scaling to a stable step of 1e-06 s (safety factor not "
+                     "included): 100 of 100 deformable elements scaled, 0.02"),
+            std::string::npos)
+      << out;
+  std::filesystem::remove_all(dir);
+}
+
+// A scenario naming a deck with DT2MS sets the mass scaling once, its own controls first: 0
+// turns it off, another step replaces the deck's.
+TEST(MassScaling, ScenarioOverridesTheDecksDt2ms) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_mass_scaling_over_" + std::to_string(::getpid()));
+  (void)deck_with_dt2ms(-1.0e-6, dir);
+  const auto with = [&](const std::string& controls) {
+    std::ofstream(dir / "s.yaml") << "model: {deck: two_rates.k, units: mm-t-s}\n" + controls;
+    return io::read_scenario((dir / "s.yaml").string());
+  };
+  const model::Model deck_only = with("");
+  EXPECT_DOUBLE_EQ(deck_only.controls.mass_scaling_dt_s, 1.0e-6);
+  EXPECT_FALSE(deck_only.parts[1].element_density_scale.empty());
+  const model::Model off = with("controls: {mass_scaling_dt: 0.0}\n");
+  for (const auto& p : off.parts) EXPECT_TRUE(p.element_density_scale.empty()) << p.name;
+  const model::Model more = with("controls: {mass_scaling_dt: 2.0e-6}\n");
+  integration::Solver s(more);
+  s.initialize();
+  EXPECT_NEAR(s.dt_s(), 0.9 * 2.0e-6, 1e-9 * s.dt_s()) << "both halves scaled to 2 us";
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
