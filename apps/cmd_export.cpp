@@ -72,7 +72,8 @@ int run_export(const ExportOptions& o, std::FILE* out) {
   yaml.replace_extension(".yaml");
   std::error_code ec;
   for (const auto& out_path : {deck_path, yaml})
-    if (std::filesystem::exists(out_path) && std::filesystem::equivalent(out_path, o.scenario, ec))
+    if ((out_path == deck_path || !text.scenario.empty()) && std::filesystem::exists(out_path) &&
+        std::filesystem::equivalent(out_path, o.scenario, ec))
       throw InputError(fmt::format(
           "export: writing {} would overwrite the scenario being exported; fix: name the deck "
           "otherwise (--deck {}_deck.k)",

@@ -397,10 +397,12 @@ void Builder::contacts() {
 
 void Builder::rigid_walls() {
   std::vector<char> on_body(m_.nodes.count(), 0);
-  for (const auto& rb : m_.rigid_bodies)
+  for (const auto& rb : m_.rigid_bodies) {
     for (int p : rb.parts)
       for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
         on_body[static_cast<std::size_t>(c)] = 1;
+    for (auto c : rb.nodes) on_body[static_cast<std::size_t>(c)] = 1;  // welds, nodal bodies
+  }
   for (std::size_t i = 0; i < d_.rigid_walls.size(); ++i) {
     const RigidWallCard& k = d_.rigid_walls[i];
     model::RigidWall w;

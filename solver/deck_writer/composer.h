@@ -41,6 +41,8 @@ class Composer {
   /// Rigid bodies beyond one part: *CONSTRAINED_RIGID_BODIES, *CONSTRAINED_EXTRA_NODES_SET,
   /// *CONSTRAINED_NODAL_RIGID_BODY_TITLE (and its velocity as *INITIAL_VELOCITY on its nodes).
   void rigid_constraints();
+  /// The velocities of bodies of nodes, as *INITIAL_VELOCITY on their nodes after every other.
+  void rigid_body_velocities();
   void constraints();
   void initial_velocities();
   void curve_dofs();

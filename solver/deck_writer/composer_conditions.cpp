@@ -94,14 +94,6 @@ void Composer::rigid_constraints() {
               static_cast<long long>(node_id(rb.nodes[1])), force(f.normal_N), force(f.shear_N),
               f.exp_n, f.exp_m, f.time_s > 0.0 ? Value(time(f.time_s)) : Value()});
       emit(b);
-      if (norm(rb.velocity_m_s) > 0.0) {
-        const std::int64_t sid = node_set(rb.nodes, rb.name + " nodes");
-        KeywordBlock v("*INITIAL_VELOCITY");
-        v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
-        v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
-                                      velocity(rb.velocity_m_s[2])});
-        emit(v);
-      }
       continue;
     }
     if (rb.parts.empty()) {
@@ -111,13 +103,6 @@ void Composer::rigid_constraints() {
       b.card(L::kNodalRigidBody,
              {static_cast<long long>(++next_pid), 0, static_cast<long long>(sid)});
       emit(b);
-      if (norm(rb.velocity_m_s) > 0.0) {  // its velocity through its nodes (the reader's rule)
-        KeywordBlock v("*INITIAL_VELOCITY");
-        v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
-        v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
-                                      velocity(rb.velocity_m_s[2])});
-        emit(v);
-      }
       continue;
     }
     const long long lead = part_id_[static_cast<std::size_t>(rb.parts[0])];
@@ -133,6 +118,20 @@ void Composer::rigid_constraints() {
       b.card(L::kExtraNodes, {lead, static_cast<long long>(sid)});
       emit(b);
     }
+  }
+}
+
+void Composer::rigid_body_velocities() {
+  // A body of nodes takes the velocity of the last card on its nodes (the reader's rule): its
+  // own, written after every other initial velocity, even 0 (a weld at rest in a moving part).
+  for (const auto& rb : m_.rigid_bodies) {
+    if (!rb.parts.empty()) continue;  // *PART_INERTIA holds it
+    const std::int64_t sid = node_set(rb.nodes, rb.name + " velocity");
+    KeywordBlock v("*INITIAL_VELOCITY");
+    v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
+    v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
+                                  velocity(rb.velocity_m_s[2])});
+    emit(v);
   }
 }
 

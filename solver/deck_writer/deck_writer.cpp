@@ -46,6 +46,7 @@ ExportText Composer::compose(const std::string& deck_name, const std::string& so
   rigid_constraints();
   constraints();
   initial_velocities();
+  rigid_body_velocities();
   curve_dofs();
   contacts();
   rigid_walls();

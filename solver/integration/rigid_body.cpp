@@ -51,6 +51,15 @@ void move_rigid_body(RigidBodyState& b, double dt, const double* x0, double* u, 
   }
 }
 
+Vec3 rigid_point_acceleration(const RigidBodyState& b, const Vec3& x) {
+  const Mat3 j = spatial_inertia(b);
+  const Mat3 j_inv = mul(mul(b.rotation, b.inertia_body_inv), transpose(b.rotation));
+  const Vec3 w = b.omega;
+  const Vec3 alpha = mul(j_inv, b.torque - cross(w, mul(j, w)));
+  const Vec3 r = x - b.centre;
+  return (1.0 / b.mass_kg) * b.force + cross(alpha, r) + cross(w, cross(w, r));
+}
+
 double rigid_kinetic_energy(const RigidBodyState& b) {
   const Mat3 j = spatial_inertia(b);
   return 0.5 * (b.mass_kg * dot(b.velocity_prev, b.velocity) + dot(b.omega_prev, mul(j, b.omega)));

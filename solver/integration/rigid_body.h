@@ -49,6 +49,11 @@ void update_rigid_momenta(RigidBodyState& b, double dt_mid);
 /// v = (x^{n+1} - x^n)/dt^n (so that u and v stay consistent for attached elements).
 void move_rigid_body(RigidBodyState& b, double dt, const double* x0, double* u, double* v);
 
+/// The acceleration of the body's material point at x (spatial) at t^n: F/M + alpha x r +
+/// omega x (omega x r), r = x - c, alpha from Euler's equations J alpha = T - omega x J omega
+/// (F^n, T^n gathered; omega^{n-1/2}, the latest known).
+Vec3 rigid_point_acceleration(const RigidBodyState& b, const Vec3& x);
+
 /// Kinetic energy 1/2 (M v^{n-1/2}.v^{n+1/2} + omega^{n-1/2}.J omega^{n+1/2}) in the
 /// spatial frame (the same product form as the nodes' kinetic energy, see energy.h).
 double rigid_kinetic_energy(const RigidBodyState& b);

@@ -129,39 +129,42 @@ void Solver::assemble_masses() {
 
 void Solver::build_rigid_bodies() {
   rigid_node_.assign(n_, 0);
+  body_of_node_.assign(n_, -1);
   std::vector<int> part_body(model_.parts.size(), -1);
   for (std::size_t b = 0; b < model_.rigid_bodies.size(); ++b) {
     const auto& rb = model_.rigid_bodies[b];
     RigidBodyState s;
+    // each node follows one body: body_of_node_ names the owner
+    const auto take = [&](std::int32_t c) {
+      const auto i = static_cast<std::size_t>(c);
+      if (rigid_node_[i] == 1) {
+        if (body_of_node_[i] != static_cast<int>(b))
+          throw ModelError(fmt::format(
+              "node {} belongs to rigid bodies '{}' and '{}'; merge them into one body",
+              model_.nodes.id[i],
+              model_.rigid_bodies[static_cast<std::size_t>(body_of_node_[i])].name, rb.name));
+        return false;
+      }
+      rigid_node_[i] = 1;
+      body_of_node_[i] = static_cast<int>(b);
+      s.nodes.push_back(c);
+      return true;
+    };
     for (int pi : rb.parts) {
       part_body[static_cast<std::size_t>(pi)] = static_cast<int>(b);
-      for (auto c : model_.parts[static_cast<std::size_t>(pi)].connectivity) {
-        if (rigid_node_[static_cast<std::size_t>(c)] == 1) continue;
-        rigid_node_[static_cast<std::size_t>(c)] = 1;
-        s.nodes.push_back(c);
-      }
+      for (auto c : model_.parts[static_cast<std::size_t>(pi)].connectivity) (void)take(c);
     }
     // Extra nodes (a nodal rigid body, *CONSTRAINED_EXTRA_NODES): those of deformable shells
     // turn with the body.
     for (auto c : rb.nodes) {
       const auto i = static_cast<std::size_t>(c);
-      if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end()) continue;
-      if (rigid_node_[i] == 1)
+      if (!model_.fixed.empty() && model_.fixed[i] != 0)
         throw ModelError(fmt::format(
-            "node {} of rigid body '{}' already follows another rigid body; merge the bodies "
-            "into one",
+            "node {} of rigid body '{}' is held by a boundary condition, which the body's motion "
+            "would override; fix: leave it out of the held nodes (or of the body)",
             model_.nodes.id[i], rb.name));
-      rigid_node_[i] = 1;
-      s.nodes.push_back(c);
-      if (inertia_[i] > 0.0) s.turning.push_back(c);
+      if (take(c) && inertia_[i] > 0.0) s.turning.push_back(c);
     }
-    for (std::size_t other = 0; other < b; ++other)
-      for (auto c : bodies_[other].nodes)
-        if (std::find(s.nodes.begin(), s.nodes.end(), c) != s.nodes.end())
-          throw ModelError(
-              fmt::format("node {} belongs to rigid bodies '{}' and '{}'; merge them into one body",
-                          model_.nodes.id[static_cast<std::size_t>(c)],
-                          model_.rigid_bodies[other].name, rb.name));
     double m_sum = 0.0;
     Vec3 mx{};
     for (auto c : s.nodes) {
@@ -195,6 +198,17 @@ void Solver::build_rigid_bodies() {
     // the turning nodes' own rotational inertias (isotropic) add to the body's
     for (auto c : s.turning)
       for (std::size_t a = 0; a < 3; ++a) j[a][a] += scale * inertia_[static_cast<std::size_t>(c)];
+    if (!rb.inertia_given) {
+      // Nodes on one line without rotational inertia (a spot weld of two solids' nodes): no
+      // inertia about the line. A hundredth of the mean moment about every axis makes the
+      // spin about it finite (it is not defined by such nodes: any finite value serves).
+      const double mean = (j[0][0] + j[1][1] + j[2][2]) / 3.0;
+      const double det_j = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) -
+                           j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0]) +
+                           j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+      if (mean > 0.0 && !(det_j > 1e-9 * mean * mean * mean))
+        for (std::size_t a = 0; a < 3; ++a) j[a][a] += 0.01 * mean;
+    }
     s.inertia_body = rb.inertia_given ? rb.inertia_kg_m2 : j;
     const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] -
                                                s.inertia_body[1][2] * s.inertia_body[2][1]) -
@@ -229,25 +243,21 @@ void Solver::check_spot_welds() {
     auto& b = bodies_[k];
     if (!b.breakable || b.failed) continue;
     const auto& f = model_.rigid_bodies[k].failure;
-    // The force the weld applies to node 2: R_2 = m_2 a_2 - (f_load - f_int)_2, a_2 the rigid
-    // motion's acceleration a_c + alpha x r + omega x (omega x r) at t^n (F^n, T^n just
-    // gathered; omega^{n-1/2}, the latest known; Euler's equations for alpha).
+    // The force the weld applies to node 2: R_2 = m_2 a_2 - (f_load - f_int + m_2 g)_2, a_2 the
+    // rigid motion's acceleration at node 2 (rigid_point_acceleration). The weld pulls node 2
+    // back toward node 1 when the sheets are pulled apart: its tension is f_n = -R_2 . axis,
+    // axis from node 1 to node 2 (LS-DYNA's SN acts in tension only); f_s the rest of R_2.
     const auto i1 = static_cast<std::size_t>(b.nodes[0]), i2 = static_cast<std::size_t>(b.nodes[1]);
     const Vec3 x1{x_[3 * i1], x_[3 * i1 + 1], x_[3 * i1 + 2]};
     const Vec3 x2{x_[3 * i2], x_[3 * i2 + 1], x_[3 * i2 + 2]};
-    const Mat3 j = spatial_inertia(b);
-    const Mat3 j_inv = mul(mul(b.rotation, b.inertia_body_inv), transpose(b.rotation));
-    const Vec3 w = b.omega;
-    const Vec3 alpha = mul(j_inv, b.torque - cross(w, mul(j, w)));
-    const Vec3 r = x2 - b.centre;
-    const Vec3 a2 = (1.0 / b.mass_kg) * b.force + cross(alpha, r) + cross(w, cross(w, r));
-    const double scale = b.mass_kg > 0.0 ? b.mass_kg / (mass_[i1] + mass_[i2]) : 1.0;
-    Vec3 load{};
-    for (std::size_t d = 0; d < 3; ++d) load[d] = f_load_[3 * i2 + d] - f_int_[3 * i2 + d];
-    const Vec3 reaction = (scale * mass_[i2]) * a2 - load;
+    const Vec3 a2 = rigid_point_acceleration(b, x2);
+    const double m2 = (b.mass_kg > 0.0 ? b.mass_kg / (mass_[i1] + mass_[i2]) : 1.0) * mass_[i2];
+    Vec3 load = m2 * model_.controls.gravity_m_s2;  // its weight: in the body's M g
+    for (std::size_t d = 0; d < 3; ++d) load[d] += f_load_[3 * i2 + d] - f_int_[3 * i2 + d];
+    const Vec3 reaction = m2 * a2 - load;
     const Vec3 axis = (1.0 / norm(x2 - x1)) * (x2 - x1);
-    const double fn = dot(reaction, axis);
-    const double fs = norm(reaction - fn * axis);
+    const double fn = -dot(reaction, axis);
+    const double fs = norm(reaction + fn * axis);
     double crit = 0.0;
     if (f.normal_N > 0.0) crit += std::pow(std::max(fn, 0.0) / f.normal_N, f.exp_n);
     if (f.shear_N > 0.0) crit += std::pow(fs / f.shear_N, f.exp_m);

@@ -295,6 +295,7 @@ class Solver {
   std::vector<std::uint8_t> rigid_node_;  // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
   std::vector<RigidBodyState> bodies_;
+  std::vector<int> body_of_node_;           ///< [n] the rigid body a node follows, -1: none
   std::vector<WeldFailure> weld_failures_;  ///< spot welds that let go, in order
   std::vector<contact::ContactInterface> contacts_;
   std::vector<contact::ContactStep> contact_steps_;

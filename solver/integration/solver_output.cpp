@@ -16,6 +16,13 @@ ProbeValue Solver::probe(const model::Probe& p) const {
     r.displacement_m = {u_[3 * i], u_[3 * i + 1], u_[3 * i + 2]};
     r.velocity_m_s = node_velocity(i);
     r.acceleration_m_s2 = {a_[3 * i], a_[3 * i + 1], a_[3 * i + 2]};
+    // a node that follows a body: the body's acceleration there (an accelerometer node tied by a
+    // nodal rigid body)
+    if (rigid_node_[i] && body_of_node_[i] >= 0 &&
+        !bodies_[static_cast<std::size_t>(body_of_node_[i])].failed)
+      r.acceleration_m_s2 =
+          rigid_point_acceleration(bodies_[static_cast<std::size_t>(body_of_node_[i])],
+                                   {x_[3 * i], x_[3 * i + 1], x_[3 * i + 2]});
   } else {
     const auto& b = bodies_[i];
     r.displacement_m = b.centre - b.centre0;

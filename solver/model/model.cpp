@@ -127,6 +127,19 @@ void validate(const Model& m) {
           fmt::format("rigid body '{}': a failure criterion belongs to a spot weld "
                       "of two nodes and no part (it has {} nodes, {} parts)",
                       rb.name, rb.nodes.size(), rb.parts.size()));
+    if (rb.failure.any() && rb.nodes.size() == 2) {
+      double gap = 0.0;
+      for (std::size_t d = 0; d < 3; ++d) {
+        const double x = m.nodes.x0[3 * static_cast<std::size_t>(rb.nodes[0]) + d] -
+                         m.nodes.x0[3 * static_cast<std::size_t>(rb.nodes[1]) + d];
+        gap += x * x;
+      }
+      if (!(gap > 0.0))
+        throw ModelError(
+            fmt::format("spot weld '{}': its two nodes lie at one place; a weld's "
+                        "normal runs from one to the other: weld nodes apart",
+                        rb.name));
+    }
     if (!(rb.failure.normal_N >= 0.0 && rb.failure.shear_N >= 0.0 && rb.failure.exp_n > 0.0 &&
           rb.failure.exp_m > 0.0 && rb.failure.time_s >= 0.0))
       throw ModelError(

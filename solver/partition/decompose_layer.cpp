@@ -97,11 +97,17 @@ Decomposition decompose_layer(const Analysis& a) {
   std::vector<ContactSides> sides;
   for (std::size_t c = 0; c < g.contacts.size(); ++c) sides.push_back(contact_sides(a, c));
   std::vector<std::vector<std::int32_t>> body_elems(g.rigid_bodies.size());
-  for (std::size_t b = 0; b < g.rigid_bodies.size(); ++b)
+  for (std::size_t b = 0; b < g.rigid_bodies.size(); ++b) {
     for (int p : g.rigid_bodies[b].parts)
       for (std::size_t e = a.offset[static_cast<std::size_t>(p)];
            e < a.offset[static_cast<std::size_t>(p) + 1]; ++e)
         body_elems[b].push_back(static_cast<std::int32_t>(e));
+    // and the elements around its extra nodes: one domain integrates them all
+    for (auto i : g.rigid_bodies[b].nodes)
+      for (std::size_t k = a.node_start[static_cast<std::size_t>(i)];
+           k < a.node_start[static_cast<std::size_t>(i) + 1]; ++k)
+        body_elems[b].push_back(a.node_elems[k]);
+  }
   auto gather = [&](const std::vector<std::int32_t>& elems) {
     int f = -1;
     for (auto e : elems) {

@@ -127,6 +127,52 @@ TEST(NodalRigidBody, StripOfAPlateKeepsMomentaAndEnergy) {
   EXPECT_LT(balance, 1e-3 * ke0);
 }
 
+/// A node probe on a body's node reads the body's acceleration there (an accelerometer tied by
+/// a nodal rigid body): g under gravity. A node held by an SPC is refused in a body, and a node
+/// in two bodies (a nodal body listed before a rigid part sharing its nodes) too.
+TEST(NodalRigidBody, ProbeSpcAndSharedNodes) {
+  model::Model m = plate(1.0e-4);
+  m.controls.gravity_m_s2 = {0.0, 0.0, -9.81};
+  model::RigidBody rb;
+  rb.name = "sensor";
+  for (std::size_t i = 0; i < m.nodes.count(); ++i)
+    if (m.nodes.x0[3 * i] < -0.035) rb.nodes.push_back(static_cast<std::int32_t>(i));
+  m.rigid_bodies.push_back(rb);
+  m.probes.push_back({"tied", model::Probe::Kind::Node, rb.nodes[3]});
+  integration::Solver s(m);
+  s.initialize();
+  s.begin_cycle();
+  const auto a = s.probe(m.probes.back()).acceleration_m_s2;
+  EXPECT_NEAR(a[2], -9.81, 1e-9);
+  EXPECT_NEAR(a[0], 0.0, 1e-9);
+
+  model::Model held = m;
+  held.fixed[static_cast<std::size_t>(rb.nodes[0])] = model::kUx;
+  std::string msg;
+  try {
+    integration::Solver h(held);
+    h.initialize();
+  } catch (const ModelError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("is held by a boundary condition"), std::string::npos) << msg;
+
+  model::Model twice = m;
+  model::RigidBody other;
+  other.name = "other";
+  other.nodes = {rb.nodes[0]};
+  other.nodes.push_back(rb.nodes[1]);
+  twice.rigid_bodies.push_back(other);
+  msg.clear();
+  try {
+    integration::Solver t(twice);
+    t.initialize();
+  } catch (const ModelError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("belongs to rigid bodies 'sensor' and 'other'"), std::string::npos) << msg;
+}
+
 /// Across domains: a nodal rigid body inside one domain runs in split as in mono (to
 /// round-off at their common step); one whose nodes' elements lie in two domains is refused
 /// with the fix.

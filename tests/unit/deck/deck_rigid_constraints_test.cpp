@@ -103,6 +103,22 @@ TEST_F(DeckRigidConstraints, SpotWeldsAreBreakableBodiesOfTwoNodes) {
   EXPECT_FALSE(b[1].failure.any()) << "no strength, no time: a link that holds";
 }
 
+// A wall over every node (NSID 0) leaves out the nodes that follow a body, welds' too.
+TEST_F(DeckRigidConstraints, WallLeavesOutWeldNodes) {
+  DeckRead r;
+  ASSERT_EQ(
+      read(testing::two_cubes_with({"*CONSTRAINED_SPOTWELD", "         7        11",
+                                    "*RIGIDWALL_PLANAR", "         0",
+                                    "       0.0       0.0      -1.0       0.0       0.0       "
+                                    "0.0"}),
+           &r),
+      "");
+  ASSERT_EQ(r.model.rigid_walls.size(), 1u);
+  const auto& w = r.model.rigid_walls[0].nodes;
+  EXPECT_EQ(w.size(), 14u) << "16 nodes less the weld's two";
+  for (auto c : r.model.rigid_bodies[0].nodes) EXPECT_EQ(std::count(w.begin(), w.end(), c), 0);
+}
+
 TEST_F(DeckRigidConstraints, MistakesNameTheirField) {
   struct Case {
     std::vector<std::string> lines;
