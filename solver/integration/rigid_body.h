@@ -6,11 +6,19 @@
 // constant to round-off; omega^{n+1/2} = R^n J^{-1} R^nT L^{n+1/2}; c^{n+1} = c^n + dt^n v^{n+1/2};
 // R^{n+1} = exp(dt^n [omega^{n+1/2}]x) R^n (Rodrigues); node positions x_i = c + R X_i.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "solver/core/vec3.h"
 
 namespace crashlink::integration {
+
+/// A spot weld that let go: its name, when, and the tension and shear it then carried.
+struct WeldFailure {
+  std::string name;
+  double time_s = 0.0;
+  double normal_N = 0.0, shear_N = 0.0;
+};
 
 struct RigidBodyState {
   std::vector<std::int32_t> nodes;  ///< node indices that follow the body

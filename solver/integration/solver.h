@@ -38,13 +38,6 @@ struct PartRuntime {
   std::vector<double> element_dt_s;
 };
 
-/// A spot weld that let go: its name, when, and the normal and shear forces it then carried.
-struct WeldFailure {
-  std::string name;
-  double time_s = 0.0;
-  double normal_N = 0.0, shear_N = 0.0;
-};
-
 /// A kinematic sample of one probe at t^n.
 struct ProbeValue {
   Vec3 displacement_m{};

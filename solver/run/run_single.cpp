@@ -82,6 +82,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   sum.energy = solver.energy();
   for (std::size_t k = 0; k < model.contacts.size() && k < solver.contact_steps().size(); ++k)
     sum.contacts.push_back({model.contacts[k].name, solver.contact_steps()[k].energy_J});
+  sum.weld_failures = solver.weld_failures();
   sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
   writer.write_timing(
@@ -107,6 +108,17 @@ void print_summary(std::FILE* out, const RunSummary& s) {
   const double hg_share = e.internal_J != 0.0 ? 100.0 * e.hourglass_J / e.internal_J : 0.0;
   print_energy_summary(out, {e.balance_J(), e.reference_J, s.contacts},
                        fmt::format("; hourglass {:.2f} % of internal", hg_share));
+  if (!s.weld_failures.empty()) {
+    // every weld that let go, the first ten named with when and what it carried
+    std::fprintf(out, "spot welds failed: %zu\n", s.weld_failures.size());
+    for (std::size_t k = 0; k < s.weld_failures.size() && k < 10; ++k) {
+      const auto& w = s.weld_failures[k];
+      std::fprintf(out, "  %s at t = %.6e s: tension %.4g N, shear %.4g N\n", w.name.c_str(),
+                   w.time_s, w.normal_N, w.shear_N);
+    }
+    if (s.weld_failures.size() > 10)
+      std::fprintf(out, "  ... and %zu more\n", s.weld_failures.size() - 10);
+  }
   std::fprintf(out, "result: %s\n        %s\n", s.result_h5.c_str(), s.result_xdmf.c_str());
   if (s.failed) std::fprintf(out, "RUN FAILED: %s\n", s.failure.c_str());
   if (s.stopped)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/integration/energy.h"
+#include "solver/integration/rigid_body.h"
 #include "solver/model/model.h"
 #include "solver/run/energy_summary.h"
 
@@ -43,6 +44,8 @@ struct RunSummary {
   bool failed = false;   ///< the guard stopped the run
   std::string failure;   ///< its message
   bool stopped = false;  ///< RunOptions::stop was set: stopped on request at time end_time_s
+  /// Spot welds that let go (integration::Solver::weld_failures), in order.
+  std::vector<integration::WeldFailure> weld_failures;
 
   /// CPU nanoseconds per element per cycle (0 without elements or cycles).
   double ns_per_element_cycle() const;

@@ -6,6 +6,7 @@
 //    crossed: within a few % of S), at one instant for the two (the joint is symmetric), and
 //    the upper strip then moves on its own, the lower one unloaded; the balance still holds.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/integration/shell_command.h"
 
 namespace crashlink {
 namespace {
@@ -242,6 +244,14 @@ TEST(SpotWeld, ExportedDeckFailsAlike) {
               1e-12 * a.weld_failures()[0].time_s);
   EXPECT_NEAR(b.weld_failures()[0].shear_N, a.weld_failures()[0].shear_N,
               1e-6 * a.weld_failures()[0].shear_N);
+  // `crashlink run` of the deck says which welds let go, when and under what
+  int status = 0;
+  const std::string out = testing::run_command(
+      std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink run " + (dir / "lap.k").string() +
+          " --units mm-t-s --out " + (dir / "out").string() + " 2>&1",
+      status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("spot welds failed: 2\n  spotweld_1 at t = 2.77"), std::string::npos) << out;
   std::filesystem::remove_all(dir);
 }
 
