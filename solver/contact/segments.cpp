@@ -19,10 +19,6 @@ double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return dot(b - a, cross(c - a, d - a)) / 6.0;
 }
 
-bool is_rigid(const model::Model& m, const model::Part& p) {
-  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
-}
-
 }  // namespace
 
 double solid_face_stiffness(double s, double K, double A, double V) {

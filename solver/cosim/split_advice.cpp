@@ -13,10 +13,6 @@ namespace crashlink::cosim {
 
 namespace {
 
-bool is_rigid(const model::Model& m, const model::Part& p) {
-  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
-}
-
 /// Every deformable element's initial stable step (no safety factor), per part, and mono's
 /// initial step (elements and contact springs, x dt_scale).
 std::vector<std::vector<double>> element_steps(const model::Model& g, double& dt_mono_s) {

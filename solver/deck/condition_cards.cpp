@@ -118,6 +118,17 @@ void Parser::rigid_constraint(const Card& c) {
   d_.rigid_constraints.push_back(std::move(r));
 }
 
+namespace {
+
+/// ICID: a *DEFINE_COORDINATE_SYSTEM id, or 0 (global axes).
+std::int64_t frame_id(const Field& f) {
+  const std::int64_t id = f.integer(0);
+  if (id < 0) f.fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+  return id;
+}
+
+}  // namespace
+
 void Parser::velocity_generation(const Card& c) {
   if (b_.card == 0) {
     VelocityCard v;
@@ -133,10 +144,7 @@ void Parser::velocity_generation(const Card& c) {
     for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kVelocityGeneration1, 3 + k).real(0.0);
     must_be_default(c.field(L::kVelocityGeneration1, 6), 0.0,
                     "IVATN 1 is not computed; fix: write IVATN 0");
-    v.icid = c.field(L::kVelocityGeneration1, 7).integer(0);
-    if (v.icid < 0)
-      c.field(L::kVelocityGeneration1, 7)
-          .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+    v.icid = frame_id(c.field(L::kVelocityGeneration1, 7));
     v.ref = c.ref();
     d_.velocities.push_back(std::move(v));
     b_.card = 1;
@@ -170,10 +178,7 @@ void Parser::velocity_plain(const Card& c) {
     must_be_default(c.field(L::kInitialVelocity1, 3), 0.0,
                     "IRIGID is not computed; fix: write 0 and give a rigid part's velocity with "
                     "*INITIAL_VELOCITY_GENERATION on the part");
-    v.icid = c.field(L::kInitialVelocity1, 4).integer(0);
-    if (v.icid < 0)
-      c.field(L::kInitialVelocity1, 4)
-          .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+    v.icid = frame_id(c.field(L::kInitialVelocity1, 4));
     v.ref = c.ref();
     d_.velocities.push_back(std::move(v));
     b_.card = 1;
@@ -196,10 +201,7 @@ void Parser::velocity_node(const Card& c) {
   for (std::size_t k = 4; k < 7; ++k)
     must_be_default(c.field(L::kVelocityNode, k), 0.0,
                     "nodal angular velocities are not read yet; fix: leave VXR, VYR, VZR blank");
-  v.icid = c.field(L::kVelocityNode, 7).integer(0);
-  if (v.icid < 0)
-    c.field(L::kVelocityNode, 7)
-        .fail("must be a *DEFINE_COORDINATE_SYSTEM id or 0 (global axes); fix: write one");
+  v.icid = frame_id(c.field(L::kVelocityNode, 7));
   v.ref = c.ref();
   d_.velocities.push_back(std::move(v));
 }

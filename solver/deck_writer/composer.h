@@ -43,6 +43,8 @@ class Composer {
   void rigid_constraints();
   /// The velocities of bodies of nodes, as *INITIAL_VELOCITY on their nodes after every other.
   void rigid_body_velocities();
+  /// *INITIAL_VELOCITY of node set `sid` at `v_m_s` (SI, converted).
+  void initial_velocity(std::int64_t sid, const Vec3& v_m_s);
   void constraints();
   void initial_velocities();
   void curve_dofs();

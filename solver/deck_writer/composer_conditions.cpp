@@ -127,12 +127,15 @@ void Composer::rigid_body_velocities() {
   for (const auto& rb : m_.rigid_bodies) {
     if (!rb.parts.empty()) continue;  // *PART_INERTIA holds it
     const std::int64_t sid = node_set(rb.nodes, rb.name + " velocity");
-    KeywordBlock v("*INITIAL_VELOCITY");
-    v.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
-    v.card(L::kInitialVelocity2, {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
-                                  velocity(rb.velocity_m_s[2])});
-    emit(v);
+    initial_velocity(sid, rb.velocity_m_s);
   }
+}
+
+void Composer::initial_velocity(std::int64_t sid, const Vec3& v_m_s) {
+  KeywordBlock b("*INITIAL_VELOCITY");
+  b.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
+  b.card(L::kInitialVelocity2, {velocity(v_m_s[0]), velocity(v_m_s[1]), velocity(v_m_s[2])});
+  emit(b);
 }
 
 void Composer::constraints() {
@@ -158,11 +161,7 @@ void Composer::initial_velocities() {
   for (std::size_t k = 0; k < m_.initial_velocities.size(); ++k) {
     const auto& iv = m_.initial_velocities[k];
     const std::int64_t sid = node_set(iv.nodes, fmt::format("initial velocity {}", k + 1));
-    KeywordBlock b("*INITIAL_VELOCITY");
-    b.card(L::kInitialVelocity1, {static_cast<long long>(sid)});
-    b.card(L::kInitialVelocity2, {velocity(iv.velocity_m_s[0]), velocity(iv.velocity_m_s[1]),
-                                  velocity(iv.velocity_m_s[2])});
-    emit(b);
+    initial_velocity(sid, iv.velocity_m_s);
   }
 }
 

@@ -23,10 +23,6 @@ std::string MassScalingReport::summary() const {
 
 namespace {
 
-bool rigid(const model::Model& m, const model::Part& p) {
-  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
-}
-
 /// The part's lumped mass [kg] (the kernels' functions, with its density factors or without).
 double part_mass_kg(const model::Model& m, const model::Part& p) {
   const auto& mat = m.materials[static_cast<std::size_t>(p.material)];
@@ -46,7 +42,7 @@ MassScalingReport describe_mass_scaling(const model::Model& m) {
   MassScalingReport r;
   r.target_dt_s = m.controls.mass_scaling_dt_s;
   for (const auto& p : m.parts) {
-    if (rigid(m, p)) continue;
+    if (is_rigid(m, p)) continue;
     r.deformable_elements += p.element_count();
     if (p.element_density_scale.empty()) {
       r.mass_kg += part_mass_kg(m, p);
@@ -90,7 +86,7 @@ MassScalingReport apply_mass_scaling(model::Model& m) {
   }
   for (std::size_t p = 0; p < m.parts.size(); ++p) {
     auto& part = m.parts[p];
-    if (rigid(m, part)) continue;
+    if (is_rigid(m, part)) continue;
     const auto& dt = steps[p];
     if (dt.size() != part.element_count()) continue;  // (a part the solver did not step)
     std::vector<double> scale(part.element_count(), 1.0);

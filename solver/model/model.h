@@ -261,6 +261,11 @@ struct Model {
   std::size_t element_count() const;
 };
 
+/// True if part p's material is rigid (its elements carry geometry and mass only).
+inline bool is_rigid(const Model& m, const Part& p) {
+  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
+}
+
 /// Structural checks (sizes, index ranges, materials, thickness); throws ModelError with the fix.
 void validate(const Model& m);
 

@@ -13,10 +13,6 @@ namespace crashlink::partition::detail {
 
 namespace {
 
-bool is_rigid(const model::Model& m, const model::Part& p) {
-  return m.materials[static_cast<std::size_t>(p.material)].kind == materials::MaterialKind::Rigid;
-}
-
 void check_domains(const model::Model& g, std::vector<int>& part_domain) {
   part_domain.assign(g.parts.size(), -1);
   for (std::size_t d = 0; d < g.domains.size(); ++d) {

@@ -22,6 +22,21 @@
 namespace crashlink {
 namespace {
 
+/// A weld (no failure yet) of the nodes at a and at b [m].
+model::RigidBody weld(const model::Model& m, const std::string& name, const Vec3& a,
+                      const Vec3& b) {
+  model::RigidBody w;
+  w.name = name;
+  for (const Vec3& x : {a, b})
+    for (std::size_t i = 0; i < m.nodes.count(); ++i)
+      if (std::abs(m.nodes.x0[3 * i] - x[0]) < 1e-9 &&
+          std::abs(m.nodes.x0[3 * i + 1] - x[1]) < 1e-9 &&
+          std::abs(m.nodes.x0[3 * i + 2] - x[2]) < 1e-9)
+        w.nodes.push_back(static_cast<std::int32_t>(i));
+  EXPECT_EQ(w.nodes.size(), 2u) << name;
+  return w;
+}
+
 model::Model lap_joint(double shear_strength_N) {
   model::Model m = io::parse_scenario(R"(name: lap joint
 controls: {end_time: 4.0e-4}
@@ -38,16 +53,7 @@ prescribed_velocity:
                                       "lap.yaml");
   // the welds at x = 0.05, y = 0 and 0.01: the lower strip's node under the upper's
   for (double y : {0.0, 0.01}) {
-    model::RigidBody w;
-    w.name = y == 0.0 ? "weld_a" : "weld_b";
-    for (double z : {0.0, 0.001}) {
-      for (std::size_t i = 0; i < m.nodes.count(); ++i)
-        if (std::abs(m.nodes.x0[3 * i] - 0.05) < 1e-9 &&
-            std::abs(m.nodes.x0[3 * i + 1] - y) < 1e-9 &&
-            std::abs(m.nodes.x0[3 * i + 2] - z) < 1e-9)
-          w.nodes.push_back(static_cast<std::int32_t>(i));
-    }
-    EXPECT_EQ(w.nodes.size(), 2u);
+    model::RigidBody w = weld(m, y == 0.0 ? "weld_a" : "weld_b", {0.05, y, 0.0}, {0.05, y, 0.001});
     w.failure.shear_N = shear_strength_N;
     w.failure.normal_N = 1e9;
     m.rigid_bodies.push_back(w);
@@ -136,14 +142,7 @@ prescribed_velocity:
                                           std::to_string(vz) + R"(}
 )",
                                       "peel.yaml");
-  model::RigidBody w;
-  w.name = "centre";
-  for (double z : {0.0, 0.001})
-    for (std::size_t i = 0; i < m.nodes.count(); ++i)
-      if (std::abs(m.nodes.x0[3 * i] - 0.01) < 1e-9 &&
-          std::abs(m.nodes.x0[3 * i + 1] - 0.01) < 1e-9 &&
-          std::abs(m.nodes.x0[3 * i + 2] - z) < 1e-9)
-        w.nodes.push_back(static_cast<std::int32_t>(i));
+  model::RigidBody w = weld(m, "centre", {0.01, 0.01, 0.0}, {0.01, 0.01, 0.001});
   w.failure.normal_N = normal_N;
   w.failure.exp_n = 2.0;
   m.rigid_bodies.push_back(w);
@@ -183,14 +182,7 @@ initial_velocity:
   - {part: upper, velocity: [1.0, 0.3, 0.0]}
 )",
                                       "cubes.yaml");
-  model::RigidBody w;
-  w.name = "w";
-  for (double z : {0.01, 0.011})
-    for (std::size_t i = 0; i < m.nodes.count(); ++i)
-      if (std::abs(m.nodes.x0[3 * i] - 0.005) < 1e-9 &&
-          std::abs(m.nodes.x0[3 * i + 1] - 0.005) < 1e-9 &&
-          std::abs(m.nodes.x0[3 * i + 2] - z) < 1e-9)
-        w.nodes.push_back(static_cast<std::int32_t>(i));
+  model::RigidBody w = weld(m, "w", {0.005, 0.005, 0.01}, {0.005, 0.005, 0.011});
   ASSERT_EQ(w.nodes.size(), 2u);
   w.failure.shear_N = 1e9;
   w.failure.exp_m = 2.0;
