@@ -346,12 +346,15 @@ void Parser::curve_dof(const Card& c) {
   if (blank(c)) return;
   const bool load = b_.kw == Kw::LoadNode;
   const bool set = b_.keyword.find("_SET") != std::string::npos;
-  const Layout l = load ? (set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
-                        : (set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+  const bool rigid = b_.keyword.find("_MOTION_RIGID") != std::string::npos;
+  const Layout l = load    ? (set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                   : rigid ? Layout(L::kMotionRigid)
+                           : (set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
   CurveDofCard k;
   k.keyword = b_.keyword;
   k.set = set;
   k.load = load;
+  k.rigid = rigid;
   k.target = positive_id(c.field(l, 0));
   const auto dof = c.field(l, 1);
   k.dof = static_cast<int>(dof.integer(0));
@@ -372,11 +375,12 @@ void Parser::curve_dof(const Card& c) {
                       "a follower force (M1-M3) is not computed; fix: leave M1-M3 blank");
   } else {
     const auto vad = c.field(l, 2);
-    if (vad.integer(0) != 0)
+    k.vad = static_cast<int>(vad.integer(0));
+    if (k.vad != 0 && k.vad != 2)
       vad.fail(
-          "crashlink prescribes a velocity (VAD 0); an acceleration (1) or displacement "
-          "(2) curve is not converted; fix: give the velocity curve (VAD 0), the "
-          "displacement's slope on each segment");
+          "crashlink prescribes a velocity (VAD 0) or a displacement (2, as the velocity of "
+          "each segment's slope); an acceleration (1) curve is not converted; fix: give the "
+          "velocity (VAD 0) or displacement (VAD 2) curve");
     k.lcid = positive_id(c.field(l, 3));
     k.sf = c.field(l, 4).real(1.0);
     must_be_default(c.field(l, 5), 0.0,

@@ -70,7 +70,8 @@ struct MaterialCard {
   std::int64_t lcss = 0;                                        ///< *MAT_024 LCSS
   std::vector<double> eps, es;                                  ///< *MAT_024 8-point table
   double rate_c = 0.0, rate_p = 0.0;  ///< Cowper-Symonds SRC/SRP (003), C/P (024), deck units
-  CardRef ref;                        ///< the card with MID
+  std::uint8_t rigid_fixed = 0;  ///< *MAT_RIGID CMO 1: held dofs (model::DofBits) from CON1/CON2
+  CardRef ref;                   ///< the card with MID
 };
 
 struct CurveCard {
@@ -91,7 +92,8 @@ struct GeneralEntry {
 
 struct SetCard {
   std::int64_t id = 0;
-  bool parts = false;                 ///< *SET_PART_*; else *SET_NODE_*
+  bool parts = false;                 ///< *SET_PART_*; else *SET_NODE_* (or shells)
+  bool shells = false;                ///< *SET_SHELL_LIST: shell element ids
   std::vector<GeneralEntry> general;  ///< *SET_NODE_GENERAL
   std::vector<std::int64_t> members;
   std::vector<CardRef> member_ref;                  ///< one per member (the card listing it)
@@ -143,8 +145,10 @@ struct SpcCard {
 struct CurveDofCard {
   std::int64_t target = 0;  ///< node id or node set id
   bool set = false;
-  bool load = false;  ///< *LOAD_NODE_*: a force; else a prescribed velocity
-  int dof = 0;        ///< the deck's DOF: 1-3 translations, 5-7 rotations (motion only)
+  bool load = false;   ///< *LOAD_NODE_*: a force; else a prescribed velocity
+  int dof = 0;         ///< the deck's DOF: 1-3 translations, 5-7 rotations (motion only)
+  bool rigid = false;  ///< *BOUNDARY_PRESCRIBED_MOTION_RIGID: target is a rigid part's id
+  int vad = 0;         ///< motion: 0 the curve is a velocity, 2 a displacement
   std::int64_t lcid = 0;
   double sf = 1.0;
   std::string keyword;
@@ -217,18 +221,26 @@ struct BodyLoadCard {
   CardRef ref;
 };
 
-/// *RIGIDWALL_PLANAR: a fixed infinite plane through the tail point, normal from tail to head
-/// (the nodes' side), stopping the nodes of NSID (0: all).
+/// *RIGIDWALL_PLANAR(_FINITE)(_MOVING) and *RIGIDWALL_GEOMETRIC_FLAT / _CYLINDER: a plane
+/// through the tail point, normal from tail to head (the nodes' side), or a cylinder about the
+/// axis from tail to head, stopping the nodes of NSID (0: all).
 struct RigidWallCard {
+  enum class Kind : std::uint8_t { Planar, Flat, Cylinder } kind = Kind::Planar;
   std::string keyword, heading;
   std::int64_t nsid = 0;
   std::array<double, 3> tail{}, head{};
-  bool moving = false;          ///< _MOVING: card 3 MASS, V0
-  double mass = 0.0, v0 = 0.0;  ///< deck units
+  bool finite = false;                ///< _FINITE (GEOMETRIC_FLAT: always): XHEV.. LENL LENM
+  std::array<double, 3> edge_head{};  ///< XHEV, YHEV, ZHEV: the head of the edge l from the tail
+  double len_l = 0.0, len_m = 0.0;    ///< LENL, LENM (deck units)
+  double radius = 0.0, length = 0.0;  ///< Cylinder: RADCYL, LENCYL (deck units)
+  bool moving = false;                ///< _MOVING: MASS, V0
+  double mass = 0.0, v0 = 0.0;        ///< deck units
   int cards = 0;
-  CardRef ref;   ///< card 1
-  CardRef ref2;  ///< card 2
-  CardRef ref3;  ///< card 3 (_MOVING)
+  CardRef ref;        ///< card 1
+  CardRef ref2;       ///< card 2
+  CardRef ref_shape;  ///< the FINITE / FLAT / CYLINDER card
+  CardRef ref3;       ///< the _MOVING card
+  int needed() const { return 2 + (finite || kind == Kind::Cylinder ? 1 : 0) + (moving ? 1 : 0); }
 };
 
 /// One node (or node set) of *DATABASE_HISTORY_NODE(_ID|_SET): a probe.

@@ -56,6 +56,7 @@ constexpr KeywordName kKeywords[] = {
     {"*SET_PART_LIST", Kw::SetPartList, true, false},
     {"*SET_PART_LIST_GENERATE", Kw::SetPartListGenerate, true, false},
     {"*SET_SEGMENT", Kw::SetSegment, true, false},
+    {"*SET_SHELL_LIST", Kw::SetShellList, true, false},
     {"*CONSTRAINED_NODAL_RIGID_BODY", Kw::RigidConstraint, true, false},
     {"*CONSTRAINED_EXTRA_NODES_NODE", Kw::RigidConstraint, false, false},
     {"*CONSTRAINED_EXTRA_NODES_SET", Kw::RigidConstraint, false, false},
@@ -87,10 +88,15 @@ constexpr KeywordName kKeywords[] = {
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
     {"*BOUNDARY_PRESCRIBED_MOTION_NODE", Kw::Motion, false, true},
     {"*BOUNDARY_PRESCRIBED_MOTION_SET", Kw::Motion, false, true},
+    {"*BOUNDARY_PRESCRIBED_MOTION_RIGID", Kw::Motion, false, true},
     {"*LOAD_NODE_POINT", Kw::LoadNode, false, false},
     {"*LOAD_NODE_SET", Kw::LoadNode, false, false},
     {"*RIGIDWALL_PLANAR", Kw::RigidWall, false, true},
     {"*RIGIDWALL_PLANAR_MOVING", Kw::RigidWall, false, true},
+    {"*RIGIDWALL_PLANAR_FINITE", Kw::RigidWall, false, true},
+    {"*RIGIDWALL_PLANAR_FINITE_MOVING", Kw::RigidWall, false, true},
+    {"*RIGIDWALL_GEOMETRIC_FLAT", Kw::RigidWall, false, true},
+    {"*RIGIDWALL_GEOMETRIC_CYLINDER", Kw::RigidWall, false, true},
 };
 
 constexpr const char* kReaderKeywords[] = {"*KEYWORD",
@@ -111,15 +117,18 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
   title = id = false;
   if (k.rfind("*RIGIDWALL_PLANAR", 0) == 0) {
-    // the options in any order: _ID, _MOVING (_ORTHO, _FINITE and _FORCES are not computed)
+    // the options in any order: _ID, _FINITE, _MOVING (_ORTHO and _FORCES are not computed)
     std::string_view rest = k.substr(std::string_view("*RIGIDWALL_PLANAR").size());
-    bool moving = false;
+    bool moving = false, finite = false;
     while (!rest.empty()) {
       if (!id && rest.rfind("_ID", 0) == 0 && (rest.size() == 3 || rest[3] == '_')) {
         id = true;
         rest.remove_prefix(3);
       } else if (!moving && rest.rfind("_MOVING", 0) == 0) {
         moving = true;
+        rest.remove_prefix(7);
+      } else if (!finite && rest.rfind("_FINITE", 0) == 0) {
+        finite = true;
         rest.remove_prefix(7);
       } else {
         id = false;
@@ -129,6 +138,13 @@ bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
     kw = Kw::RigidWall;
     return true;
   }
+  for (std::string_view g : {"*RIGIDWALL_GEOMETRIC_FLAT", "*RIGIDWALL_GEOMETRIC_CYLINDER"})
+    if (k == g ||
+        (k.size() == g.size() + 3 && k.substr(0, g.size()) == g && k.substr(g.size()) == "_ID")) {
+      id = k.size() > g.size();
+      kw = Kw::RigidWall;
+      return true;
+    }
   if (k.rfind("*DATABASE_", 0) == 0) {
     // The outputs whose intervals crashlink takes, and the node histories (probes); the rest of
     // *DATABASE_* is accepted without effect.
@@ -206,6 +222,12 @@ void Parser::keyword(std::string_view k, const CardRef& ref) {
     RigidWallCard w;
     w.keyword = b_.keyword;
     w.moving = b_.keyword.find("_MOVING") != std::string::npos;
+    w.finite = b_.keyword.find("_FINITE") != std::string::npos ||
+               b_.keyword.rfind("*RIGIDWALL_GEOMETRIC_FLAT", 0) == 0;
+    w.kind = b_.keyword.rfind("*RIGIDWALL_GEOMETRIC_FLAT", 0) == 0 ? RigidWallCard::Kind::Flat
+             : b_.keyword.rfind("*RIGIDWALL_GEOMETRIC_CYLINDER", 0) == 0
+                 ? RigidWallCard::Kind::Cylinder
+                 : RigidWallCard::Kind::Planar;
     w.ref = ref;
     d_.rigid_walls.push_back(std::move(w));
   }
@@ -223,9 +245,10 @@ void Parser::keyword(std::string_view k, const CardRef& ref) {
     d_.contacts.push_back(std::move(c));
   }
   if (b_.kw == Kw::SetNodeList || b_.kw == Kw::SetNodeListGenerate || b_.kw == Kw::SetNodeGeneral ||
-      b_.kw == Kw::SetPartList || b_.kw == Kw::SetPartListGenerate) {
+      b_.kw == Kw::SetPartList || b_.kw == Kw::SetPartListGenerate || b_.kw == Kw::SetShellList) {
     SetCard s;
     s.parts = b_.kw == Kw::SetPartList || b_.kw == Kw::SetPartListGenerate;
+    s.shells = b_.kw == Kw::SetShellList;
     s.keyword = b_.keyword;
     s.ref = ref;
     d_.sets.push_back(std::move(s));
@@ -281,6 +304,7 @@ void Parser::card(const Card& c) {
     case Kw::SetNodeListGenerate:
     case Kw::SetPartList:
     case Kw::SetPartListGenerate:
+    case Kw::SetShellList:
       return set(c);
     case Kw::SetNodeGeneral:
       return set_general(c);
@@ -400,11 +424,10 @@ void Parser::finish_block() {
        b_.card == 0) ||
       (b_.kw == Kw::Contact && d_.contacts.back().cards == 0) ||
       (b_.kw == Kw::VelocityPlain && b_.card == 1) ||
-      (b_.kw == Kw::RigidWall &&
-       d_.rigid_walls.back().cards < (d_.rigid_walls.back().moving ? 3 : 2)) ||
+      (b_.kw == Kw::RigidWall && d_.rigid_walls.back().cards < d_.rigid_walls.back().needed()) ||
       (b_.kw == Kw::DefineCurve && !d_.curves.empty() && records_of(b_.kw) != before &&
        d_.curves.back().a.empty()) ||
-      (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetPartListGenerate &&
+      (d_.sets.size() > 0 && b_.kw >= Kw::SetNodeList && b_.kw <= Kw::SetShellList &&
        d_.sets.back().id == 0) ||
       (b_.kw == Kw::SetSegment && d_.segment_sets.back().id == 0);
   if (empty && !b_.keyword.empty())

@@ -124,23 +124,27 @@ void read_contact_card(const Card& c, int i, ContactCard& k, std::vector<std::st
         c.file(), c.ref().line, k.keyword));
 }
 
-/// Card 1 NSID ..., card 2 the tail and head points, FRIC, WVEL; no other card.
+/// Card 1 NSID ..., card 2 the tail and head points, FRIC (WVEL), then the shape's card
+/// (_FINITE, GEOMETRIC_FLAT: XHEV .. LENM; GEOMETRIC_CYLINDER: RADCYL LENCYL) and _MOVING's.
 void read_rigid_wall_card(const Card& c, int i, RigidWallCard& w) {
+  const bool geometric = w.kind != RigidWallCard::Kind::Planar;
   if (i == 0) {
-    const auto nsid = c.field(L::kRigidWall1, 0);
+    const Layout l1 = geometric ? Layout(L::kRigidWallGeometric1) : Layout(L::kRigidWall1);
+    const auto nsid = c.field(l1, 0);
     w.nsid = nsid.integer(0);
     if (w.nsid < 0) nsid.fail("must be a node set id, or 0 (all nodes); fix: write one");
-    must_be_default(c.field(L::kRigidWall1, 1), 0.0,
+    must_be_default(c.field(l1, 1), 0.0,
                     "a set of nodes exempted from the wall (NSIDEX) is not computed; fix: "
                     "write 0 and leave them out of NSID");
-    must_be_default(c.field(L::kRigidWall1, 2), 0.0,
+    must_be_default(c.field(l1, 2), 0.0,
                     "limiting the wall's nodes to a box (BOXID) is not computed; fix: write 0 "
                     "and give the nodes in NSID (e.g. *SET_NODE_GENERAL BOX)");
-    must_be_default(c.field(L::kRigidWall1, 3), 0.0,
-                    "an offset of the wall (OFFSET) is not computed; fix: move the tail point");
-    must_be_default(c.field(L::kRigidWall1, 4), 0.0,
-                    "a birth time (BIRTH) is not computed; fix: write 0");
-    must_never_die(c.field(L::kRigidWall1, 5),
+    const std::size_t birth = geometric ? 3 : 4;
+    if (!geometric)
+      must_be_default(c.field(l1, 3), 0.0,
+                      "an offset of the wall (OFFSET) is not computed; fix: move the tail point");
+    must_be_default(c.field(l1, birth), 0.0, "a birth time (BIRTH) is not computed; fix: write 0");
+    must_never_die(c.field(l1, birth + 1),
                    "a death time (DEATH) is not computed: the wall acts to the end; fix: write 0");
     // RWKSF scales the penalty wall's stiffness: without effect on the constraint wall.
     w.ref = c.ref();
@@ -154,12 +158,44 @@ void read_rigid_wall_card(const Card& c, int i, RigidWallCard& w) {
     must_be_default(c.field(L::kRigidWall2, 6), 0.0,
                     "friction on the wall (FRIC) is not computed: the wall is frictionless; "
                     "fix: write 0");
-    must_be_default(c.field(L::kRigidWall2, 7), 0.0,
-                    "releasing nodes by their velocity (WVEL) is not computed; fix: write 0");
+    if (!geometric)
+      must_be_default(c.field(L::kRigidWall2, 7), 0.0,
+                      "releasing nodes by their velocity (WVEL) is not computed; fix: write 0");
     w.ref2 = c.ref();
     return;
   }
-  if (i == 2 && w.moving) {
+  const bool shape_card = w.finite || w.kind == RigidWallCard::Kind::Cylinder;
+  if (i == 2 && shape_card && w.kind == RigidWallCard::Kind::Cylinder) {
+    const auto r = c.field(L::kRigidWallCylinder, 0);
+    w.radius = r.real(0.0);
+    if (!(w.radius > 0.0)) r.fail("the cylinder needs its radius (> 0); fix: write it");
+    const auto len = c.field(L::kRigidWallCylinder, 1);
+    w.length = len.real(0.0);
+    if (w.length < 0.0) len.fail("must be >= 0 (0: an infinite cylinder); fix: write it");
+    must_be_default(c.field(L::kRigidWallCylinder, 2), 0.0,
+                    "subsections of the cylinder's force output (NSEGS) are not written; fix: "
+                    "write 0");
+    w.ref_shape = c.ref();
+    return;
+  }
+  if (i == 2 && shape_card) {
+    for (std::size_t k = 0; k < 3; ++k) w.edge_head[k] = c.field(L::kRigidWallFinite, k).real(0.0);
+    const auto l = c.field(L::kRigidWallFinite, 3), m = c.field(L::kRigidWallFinite, 4);
+    w.len_l = l.real(0.0);
+    w.len_m = m.real(0.0);
+    // LS-DYNA reads LENL = LENM = 0 on _FINITE as an infinite plane: so does crashlink
+    if ((w.len_l > 0.0) != (w.len_m > 0.0) || w.len_l < 0.0 || w.len_m < 0.0)
+      (w.len_l > 0.0 ? m : l)
+          .fail(
+              "a finite wall needs both lengths > 0 (or both 0: an infinite plane); fix: "
+              "write both");
+    must_be_default(c.field(L::kRigidWallFinite, 5), 0.0,
+                    "subsections of the wall's force output (NSEGS) are not written; fix: write "
+                    "0");
+    w.ref_shape = c.ref();
+    return;
+  }
+  if (i == 2 + (shape_card ? 1 : 0) && w.moving) {
     const auto mass = c.field(L::kRigidWallMoving, 0);
     w.mass = mass.real(0.0);
     if (!(w.mass > 0.0))
@@ -168,9 +204,10 @@ void read_rigid_wall_card(const Card& c, int i, RigidWallCard& w) {
     w.ref3 = c.ref();
     return;
   }
-  c.fail(w.moving ? "only cards 1 to 3 are read; fix: remove the extra cards"
-                  : "only cards 1 and 2 are read (the options _FINITE, _ORTHO and _FORCES and "
-                    "their cards are not computed); fix: remove the extra cards");
+  c.fail(
+      fmt::format("only {} cards are read for {} (the options _ORTHO, _FORCES, _MOTION and "
+                  "their cards are not computed); fix: remove the extra cards",
+                  i, w.keyword));
 }
 
 }  // namespace crashlink::deck

@@ -104,6 +104,9 @@ inline constexpr FieldSpec kMotionNode[] = {{"NID", 10}, {"DOF", 10}, {"VAD", 10
                                             {"SF", 10},  {"VID", 10}, {"DEATH", 10}, {"BIRTH", 10}};
 inline constexpr FieldSpec kMotionSet[] = {{"NSID", 10}, {"DOF", 10}, {"VAD", 10},   {"LCID", 10},
                                            {"SF", 10},   {"VID", 10}, {"DEATH", 10}, {"BIRTH", 10}};
+inline constexpr FieldSpec kMotionRigid[] = {{"PID", 10},   {"DOF", 10},  {"VAD", 10},
+                                             {"LCID", 10},  {"SF", 10},   {"VID", 10},
+                                             {"DEATH", 10}, {"BIRTH", 10}};
 /// *LOAD_NODE_POINT / _SET.
 inline constexpr FieldSpec kLoadNode[] = {{"NID", 10}, {"DOF", 10}, {"LCID", 10}, {"SF", 10},
                                           {"CID", 10}, {"M1", 10},  {"M2", 10},   {"M3", 10}};
@@ -160,6 +163,15 @@ inline constexpr FieldSpec kRigidWall1[] = {{"NSID", 10},   {"NSIDEX", 10}, {"BO
                                             {"RWKSF", 10}};
 inline constexpr FieldSpec kRigidWall2[] = {{"XT", 10}, {"YT", 10}, {"ZT", 10},   {"XH", 10},
                                             {"YH", 10}, {"ZH", 10}, {"FRIC", 10}, {"WVEL", 10}};
+/// *RIGIDWALL_GEOMETRIC_...'s card 1 (no OFFSET, no RWKSF).
+inline constexpr FieldSpec kRigidWallGeometric1[] = {
+    {"NSID", 10}, {"NSIDEX", 10}, {"BOXID", 10}, {"BIRTH", 10}, {"DEATH", 10}};
+/// *RIGIDWALL_PLANAR_FINITE's and *RIGIDWALL_GEOMETRIC_FLAT's card: the edge l from the tail to
+/// (XHEV, YHEV, ZHEV), the lengths along l and m = n x l.
+inline constexpr FieldSpec kRigidWallFinite[] = {{"XHEV", 10}, {"YHEV", 10}, {"ZHEV", 10},
+                                                 {"LENL", 10}, {"LENM", 10}, {"NSEGS", 10}};
+/// *RIGIDWALL_GEOMETRIC_CYLINDER's card 3.
+inline constexpr FieldSpec kRigidWallCylinder[] = {{"RADCYL", 10}, {"LENCYL", 10}, {"NSEGS", 10}};
 /// *RIGIDWALL_PLANAR_MOVING's card: the wall's mass and initial velocity along its normal.
 inline constexpr FieldSpec kRigidWallMoving[] = {{"MASS", 10}, {"V0", 10}};
 

@@ -31,6 +31,7 @@ enum class Kw : std::uint8_t {
   SetNodeGeneral,
   SetPartList,
   SetPartListGenerate,
+  SetShellList,
   SetSegment,
   SpcNode,
   RigidConstraint,

@@ -283,6 +283,7 @@ void Builder::elements() {
       model::RigidBody rb;
       rb.name = m_.parts.back().name;
       rb.parts.push_back(static_cast<int>(m_.parts.size() - 1));
+      rb.fixed = d_.materials[static_cast<std::size_t>(materials_.at(pc.material))].rigid_fixed;
       if (pc.inertia) {
         part_inertia(pc, rb);
         inertia_bodies_.insert(static_cast<int>(m_.rigid_bodies.size()));
@@ -383,11 +384,25 @@ int Builder::model_node(std::int64_t id, const CardRef& ref, const char* kw, Lay
 }
 
 void Builder::sets() {
-  IdMap node_sets, part_sets;
+  IdMap node_sets, part_sets, shell_sets;
   const IdMap segment_sets = index_ids(d_, d_.segment_sets, L::kSetHeader, "segment set");
   (void)segment_sets;  // looked up by the contacts that name one (segment_faces)
   for (std::size_t i = 0; i < d_.sets.size(); ++i) {
     const SetCard& s = d_.sets[i];
+    if (s.shells) {  // *SET_SHELL_LIST: each id a shell of the model, as (part, element)
+      if (shell_at_.empty())
+        for (std::size_t p = 0; p < m_.parts.size(); ++p)
+          if (m_.parts[p].kind == model::ElementKind::Shell4)
+            for (std::size_t e = 0; e < m_.parts[p].element_id.size(); ++e)
+              shell_at_[m_.parts[p].element_id[e]] = {static_cast<int>(p), static_cast<int>(e)};
+      if (!shell_sets.emplace(s.id, static_cast<std::int32_t>(i)).second)
+        fail_at(d_, s.ref, s.keyword, L::kSetHeader, 0,
+                fmt::format("shell set {} is already defined; fix: give each its own id", s.id));
+      for (std::size_t k = 0; k < s.members.size(); ++k)
+        if (!shell_at_.count(s.members[k])) fail_member(s, k);
+      shell_set_members_[s.id] = s.members;
+      continue;
+    }
     auto& map = s.parts ? part_sets : node_sets;
     const auto [it, inserted] = map.emplace(s.id, static_cast<std::int32_t>(i));
     if (!inserted)
@@ -521,7 +536,13 @@ void Builder::fail_member(const SetCard& s, std::size_t k) {
   for (std::size_t j = k; j > 0 && s.member_ref[j - 1].line == s.member_ref[k].line; --j) ++field;
   fail_at(d_, s.member_ref[k], s.keyword, L::kSetList, field,
           fmt::format("{} {} is not defined; fix: correct the id or define the {}",
-                      s.parts ? "part" : "node", s.members[k], s.parts ? "part" : "node"));
+                      s.parts    ? "part"
+                      : s.shells ? "shell"
+                                 : "node",
+                      s.members[k],
+                      s.parts    ? "part"
+                      : s.shells ? "shell (*ELEMENT_SHELL)"
+                                 : "node"));
 }
 
 const std::vector<std::int64_t>& Builder::node_set(std::int64_t id, const CardRef& ref,

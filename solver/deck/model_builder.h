@@ -156,6 +156,7 @@ class Builder {
   /// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET (VAD 0: velocity) -> model::PrescribedVelocity,
   /// *LOAD_NODE_POINT/_SET -> model::NodalLoad (force per node), one dof each; a set's nodes in
   /// no element are left out.
+  model::Curve displacement_to_velocity(const model::Curve& d, const CurveDofCard& k);
   void curve_dofs();
 
   /// *DATABASE_HISTORY_NODE(_ID|_SET): a probe per node, named by its heading or node_<NID>; a
@@ -176,7 +177,10 @@ class Builder {
   IdMap nodes_, curves_, sections_, materials_, parts_;
   std::unordered_map<std::int64_t, int> part_index_, rigid_body_of_part_;
   std::unordered_map<std::string, int> used_names_;
-  std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_;
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_,
+      shell_set_members_;
+  /// shell element id -> (part index, element index), for *SET_SHELL_LIST
+  std::unordered_map<std::int64_t, std::array<int, 2>> shell_at_;
   IdMap boxes_;
   std::unordered_map<std::string, int> used_contact_names_;
   std::unordered_set<std::string> used_wall_names_;

@@ -204,6 +204,11 @@ void Builder::rigid_constraints() {
             fmt::format("{}: {}: part {}'s *PART_INERTIA is left out: the body of "
                         "lead part {} is the merged body's (LS-DYNA)",
                         at(d_, r.ref), r.keyword, r.target, r.pid));
+      if (from.fixed != 0 && from.fixed != to.fixed)
+        d_notes_.push_back(
+            fmt::format("{}: {}: part {}'s *MAT_RIGID constraints are left out: the lead part "
+                        "{}'s hold the merged body (LS-DYNA)",
+                        at(d_, r.ref), r.keyword, r.target, r.pid));
       to.parts.insert(to.parts.end(), from.parts.begin(), from.parts.end());
       for (auto c : from.nodes)
         if (std::find(to.nodes.begin(), to.nodes.end(), c) == to.nodes.end()) to.nodes.push_back(c);
@@ -263,7 +268,8 @@ std::vector<int> Builder::surface_parts(const ContactCard& k, bool slave) {
                         "parts (3), a part set (2){}{}; fix: name the parts",
                         typ,
                         slave && k.kind != ContactCard::Kind::SingleSurface
-                            ? ", a segment set (0, slave only), a node set (4, slave only)"
+                            ? ", a segment set (0, slave only), a shell set (1, slave only), "
+                              "a node set (4, slave only)"
                             : "",
                         " or all parts (5)"));
   }
@@ -357,6 +363,22 @@ void Builder::contacts() {
         const auto faces = segment_faces(k);
         c.slave_nodes.assign(faces.begin(), faces.end());
         if (k.kind == ContactCard::Kind::SurfaceToSurface) c.slave_faces = faces;
+      } else if (k.sstyp == 1) {
+        // *SET_SHELL_LIST: the shells' faces (a triangle repeats its third corner)
+        const auto it = shell_set_members_.find(k.ssid);
+        if (it == shell_set_members_.end())
+          fail_at(d_, k.ref, k.keyword, L::kContact1, 0,
+                  fmt::format("shell set {} is not defined (SSTYP 1: a shell set); fix: add "
+                              "*SET_SHELL_LIST {}",
+                              k.ssid, k.ssid));
+        std::vector<std::int32_t> faces;
+        for (auto eid : it->second) {
+          const auto [p, e] = shell_at_.at(eid);
+          const auto& q = m_.parts[static_cast<std::size_t>(p)].connectivity;
+          faces.insert(faces.end(), q.begin() + 4 * e, q.begin() + 4 * e + 4);
+        }
+        c.slave_nodes.assign(faces.begin(), faces.end());
+        if (k.kind == ContactCard::Kind::SurfaceToSurface) c.slave_faces = faces;
       } else if (k.sstyp == 4) {
         for (auto id : node_set(k.ssid, k.ref, k.keyword, L::kContact1)) {
           const int n = node(id, k.ref, k.keyword.c_str(), L::kContact1, 0);
@@ -424,6 +446,27 @@ void Builder::rigid_walls() {
               "the head point is the tail point: the wall has no normal; fix: put the head on "
               "the side of the nodes the wall stops");
     w.normal = (1.0 / len) * n;
+    if (k.kind == RigidWallCard::Kind::Cylinder) {  // the axis from tail to head
+      w.shape = model::RigidWall::Shape::Cylinder;
+      w.radius_m = k.radius * u_.length_m;
+      w.length_m = k.length * u_.length_m;
+    } else if (k.finite && k.len_l > 0.0) {
+      // the edge l from the tail to (XHEV, YHEV, ZHEV), in the plane; m = n x l
+      Vec3 l{};
+      for (std::size_t c = 0; c < 3; ++c) l[c] = k.edge_head[c] - k.tail[c];
+      const double ll = norm(l);
+      if (!(ll > 0.0) || std::abs(dot(l, w.normal)) > 1e-6 * ll)
+        fail_at(d_, k.ref_shape, k.keyword, L::kRigidWallFinite, 0,
+                fmt::format("the edge l from the tail ({}, {}, {}) to (XHEV, YHEV, ZHEV) must be "
+                            "a vector in the wall's plane (l.n = {:.4g} of |l| = {:.4g}); fix: "
+                            "put the edge's head in the plane, off the tail",
+                            k.tail[0], k.tail[1], k.tail[2], ll > 0.0 ? dot(l, w.normal) / ll : 0.0,
+                            ll));
+      l = l - dot(l, w.normal) * w.normal;  // the round-off out of the plane
+      w.edge = (1.0 / norm(l)) * l;
+      w.length_m = k.len_l * u_.length_m;
+      w.width_m = k.len_m * u_.length_m;
+    }
     if (k.moving) {  // *RIGIDWALL_PLANAR_MOVING: MASS, V0 along the normal (toward the nodes)
       w.mass_kg = k.mass * u_.mass_kg;
       w.velocity_m_s = k.v0 * u_.velocity_m_s();
@@ -470,8 +513,34 @@ model::Curve Builder::time_curve(std::int64_t lcid, double sf, double unit, cons
 void Builder::curve_dofs() {
   int motions = 0, loads = 0;
   for (const CurveDofCard& k : d_.curve_dofs) {
-    const Layout l = k.load ? (k.set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
-                            : (k.set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+    const Layout l = k.load    ? (k.set ? Layout(L::kLoadSet) : Layout(L::kLoadNode))
+                     : k.rigid ? Layout(L::kMotionRigid)
+                               : (k.set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+    const bool rotation = k.dof >= 5;
+    const int dof = rotation ? k.dof - 2 : k.dof - 1;  // model: 0-2 x, y, z; 3-5 rotations
+    const auto motion_curve = [&] {
+      const double unit = k.vad == 2 ? (rotation ? 1.0 : u_.length_m)
+                                     : (rotation ? 1.0 / u_.time_s : u_.velocity_m_s());
+      model::Curve c = time_curve(k.lcid, k.sf, unit, k.ref, k.keyword, l, 3);
+      if (k.vad == 2) c = displacement_to_velocity(c, k);
+      return c;
+    };
+    if (k.rigid) {  // a rigid part's body
+      const auto it = rigid_body_of_part_.find(k.target);
+      if (it == rigid_body_of_part_.end())
+        fail_at(d_, k.ref, k.keyword, l, 0,
+                fmt::format("part {} is not a rigid part (*MAT_RIGID) with elements; fix: name a "
+                            "rigid part, or drive a deformable part's nodes with "
+                            "*BOUNDARY_PRESCRIBED_MOTION_SET",
+                            k.target));
+      model::PrescribedVelocity pv;
+      pv.name = fmt::format("motion_{}", ++motions);
+      pv.rigid_body = it->second;
+      pv.dof = dof;
+      pv.velocity = motion_curve();
+      m_.prescribed_velocities.push_back(std::move(pv));
+      continue;
+    }
     std::vector<std::int64_t> one{k.target};
     const auto& ids = k.set ? node_set(k.target, k.ref, k.keyword, l) : one;
     std::vector<std::int32_t> nodes;
@@ -487,8 +556,6 @@ void Builder::curve_dofs() {
     if (nodes.empty())
       fail_at(d_, k.ref, k.keyword, l, 0,
               "the set holds no node of an element; fix: correct the set");
-    const bool rotation = k.dof >= 5;
-    const int dof = rotation ? k.dof - 2 : k.dof - 1;  // model: 0-2 x, y, z; 3-5 rotations
     const std::size_t lcid_field = k.load ? 2 : 3;
     if (k.load) {
       model::NodalLoad ld;
@@ -502,11 +569,44 @@ void Builder::curve_dofs() {
       pv.name = fmt::format("motion_{}", ++motions);
       pv.nodes = std::move(nodes);
       pv.dof = dof;
-      pv.velocity = time_curve(k.lcid, k.sf, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(), k.ref,
-                               k.keyword, l, lcid_field);
+      pv.velocity = motion_curve();
       m_.prescribed_velocities.push_back(std::move(pv));
     }
   }
+}
+
+/// VAD 2: the displacement curve d(t) (SI) as the velocity that moves the node along it: on
+/// each segment its slope (d_{i+1} - d_i) / (t_{i+1} - t_i), held from 1e-6 of the shortest
+/// segment after t_i to as much before t_{i+1} (the curve steps between), 0 before the first
+/// point and after the last. The displacement integrated from it meets d(t_i) within 1e-6 of
+/// the largest step in velocity times the shortest segment. d(0) must be 0: the nodes start
+/// where they are.
+model::Curve Builder::displacement_to_velocity(const model::Curve& d, const CurveDofCard& k) {
+  const Layout l =
+      k.rigid ? Layout(L::kMotionRigid) : (k.set ? Layout(L::kMotionSet) : Layout(L::kMotionNode));
+  if (d.t_s.size() < 2 || std::abs(d.at(0.0)) > 1e-12 * (1.0 + std::abs(d.value.back())))
+    fail_at(d_, k.ref, k.keyword, l, 3,
+            fmt::format("a displacement curve (VAD 2) needs 2 points or more and d(0) = 0 (the "
+                        "nodes start where they are); curve {} has {} point(s), d(0) = {:.4g} m; "
+                        "fix: start it at 0",
+                        k.lcid, d.t_s.size(), d.at(0.0)));
+  double shortest = d.t_s.back() - d.t_s.front();
+  for (std::size_t i = 0; i + 1 < d.t_s.size(); ++i)
+    shortest = std::min(shortest, d.t_s[i + 1] - d.t_s[i]);
+  const double eps = 1e-6 * shortest;
+  model::Curve v;
+  v.t_s.push_back(d.t_s.front());
+  v.value.push_back(0.0);
+  for (std::size_t i = 0; i + 1 < d.t_s.size(); ++i) {
+    const double slope = (d.value[i + 1] - d.value[i]) / (d.t_s[i + 1] - d.t_s[i]);
+    v.t_s.push_back(d.t_s[i] + eps);
+    v.value.push_back(slope);
+    v.t_s.push_back(d.t_s[i + 1] - eps);
+    v.value.push_back(slope);
+  }
+  v.t_s.push_back(d.t_s.back());
+  v.value.push_back(0.0);
+  return v;
 }
 
 void Builder::probes() {

@@ -168,6 +168,17 @@ void Composer::initial_velocities() {
 void Composer::curve_dofs() {
   for (const auto& pv : m_.prescribed_velocities) {
     const bool rotation = pv.dof >= 3;
+    if (pv.rigid_body >= 0) {  // a body's: by its lead part (check_exportable: it has one)
+      const auto& body = m_.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)];
+      const std::int64_t lcid = curve(pv.velocity, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(),
+                                      pv.name + (rotation ? " [rad/time]" : " [velocity]"));
+      KeywordBlock b("*BOUNDARY_PRESCRIBED_MOTION_RIGID");
+      b.card(L::kMotionRigid,
+             {static_cast<long long>(part_id_[static_cast<std::size_t>(body.parts[0])]),
+              rotation ? pv.dof + 2 : pv.dof + 1, 0, static_cast<long long>(lcid), 1.0});
+      emit(b);
+      continue;
+    }
     const std::int64_t sid = node_set(pv.nodes, "prescribed " + pv.name);
     const std::int64_t lcid = curve(pv.velocity, rotation ? 1.0 / u_.time_s : u_.velocity_m_s(),
                                     pv.name + (rotation ? " [rad/time]" : " [velocity]"));
@@ -261,13 +272,26 @@ void Composer::rigid_walls() {
   for (std::size_t k = 0; k < m_.rigid_walls.size(); ++k) {
     const auto& w = m_.rigid_walls[k];
     const std::int64_t sid = node_set(w.nodes, w.name + " nodes");
-    KeywordBlock b(w.moving() ? "*RIGIDWALL_PLANAR_MOVING_ID" : "*RIGIDWALL_PLANAR_ID");
+    const bool cylinder = w.shape == model::RigidWall::Shape::Cylinder;
+    KeywordBlock b(cylinder     ? "*RIGIDWALL_GEOMETRIC_CYLINDER_ID"
+                   : w.finite() ? (w.moving() ? "*RIGIDWALL_PLANAR_FINITE_MOVING_ID"
+                                              : "*RIGIDWALL_PLANAR_FINITE_ID")
+                   : w.moving() ? "*RIGIDWALL_PLANAR_MOVING_ID"
+                                : "*RIGIDWALL_PLANAR_ID");
     b.card(L::kIdHeading, {static_cast<long long>(k + 1), w.name});
-    b.card(L::kRigidWall1, {static_cast<long long>(sid)});
-    // Tail on the plane, head one length unit along the normal (the nodes' side).
+    b.card(cylinder ? deck::Layout(L::kRigidWallGeometric1) : deck::Layout(L::kRigidWall1),
+           {static_cast<long long>(sid)});
+    // Tail on the plane (the axis), head one length unit along the normal (the nodes' side; the
+    // axis).
     const Vec3 t = w.point_m;
     b.card(L::kRigidWall2, {length(t[0]), length(t[1]), length(t[2]), length(t[0]) + w.normal[0],
                             length(t[1]) + w.normal[1], length(t[2]) + w.normal[2]});
+    if (cylinder) b.card(L::kRigidWallCylinder, {length(w.radius_m), length(w.length_m)});
+    // the edge l: its head one length unit from the tail along it
+    if (!cylinder && w.finite())
+      b.card(L::kRigidWallFinite,
+             {length(t[0]) + w.edge[0], length(t[1]) + w.edge[1], length(t[2]) + w.edge[2],
+              length(w.length_m), length(w.width_m)});
     if (w.moving()) b.card(L::kRigidWallMoving, {mass(w.mass_kg), velocity(w.velocity_m_s)});
     emit(b);
   }

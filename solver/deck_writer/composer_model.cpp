@@ -18,6 +18,13 @@ namespace {
 /// and computes 5/6).
 constexpr double kShearFactor = 0.833333;
 
+/// *MAT_RIGID's CON1/CON2 code of three held axes (bits x, y, z): 0 none, 1 x, 2 y, 3 z, 4 x
+/// and y, 5 y and z, 6 z and x, 7 all.
+long long con_code(int bits) {
+  static constexpr long long kCode[8] = {0, 1, 2, 4, 3, 6, 5, 7};
+  return kCode[bits & 7];
+}
+
 }  // namespace
 
 void Composer::check_exportable() const {
@@ -42,6 +49,37 @@ void Composer::check_exportable() const {
           "velocity, which a deck gives in *CONSTRAINED_NODAL_RIGID_BODY_INERTIA, not read yet; "
           "fix: let the body's nodes give them, or make it of a rigid part",
           rb.name));
+  for (const auto& pv : m_.prescribed_velocities)
+    if (pv.rigid_body >= 0 &&
+        m_.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)].parts.empty())
+      throw ModelError(fmt::format(
+          "export: prescribed motion '{}' drives rigid body '{}' of nodes only, which a deck's "
+          "*BOUNDARY_PRESCRIBED_MOTION_RIGID names by a rigid part; fix: drive the body's nodes, "
+          "or make it of a rigid part",
+          pv.name, m_.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)].name));
+  // A body's held dofs are its material's CON1/CON2 in a deck: every body of that material
+  // must hold the same.
+  std::vector<int> material_fixed(m_.materials.size(), -1);
+  for (const auto& rb : m_.rigid_bodies) {
+    if (rb.fixed != 0 && rb.parts.empty())
+      throw ModelError(fmt::format(
+          "export: rigid body '{}' of nodes only holds some of its dofs, which a deck writes as "
+          "its rigid material's CON1/CON2; fix: make it of a rigid part",
+          rb.name));
+    for (int p : rb.parts) {
+      int& f =
+          material_fixed[static_cast<std::size_t>(m_.parts[static_cast<std::size_t>(p)].material)];
+      if (f >= 0 && f != rb.fixed)
+        throw ModelError(fmt::format(
+            "export: rigid body '{}' holds other dofs than another body of material '{}', and a "
+            "deck holds them in the material (*MAT_RIGID CON1/CON2); fix: give each a material "
+            "of its own",
+            rb.name,
+            m_.materials[static_cast<std::size_t>(m_.parts[static_cast<std::size_t>(p)].material)]
+                .name));
+      f = rb.fixed;
+    }
+  }
   std::vector<char> in_body(m_.parts.size(), 0);
   for (const auto& rb : m_.rigid_bodies)
     for (int p : rb.parts) in_body[static_cast<std::size_t>(p)] = 1;
@@ -88,7 +126,17 @@ void Composer::materials() {
         KeywordBlock b("*MAT_RIGID_TITLE");
         b.line(mat.name);
         b.card(L::kMatRigid1, {mid, rho, E, nu});
-        b.card(L::kMatRigid2, {0.0});
+        // held dofs (check_exportable: one set per material) as CMO 1, CON1, CON2
+        int fixed = 0;
+        for (const auto& rb : m_.rigid_bodies)
+          for (int p : rb.parts)
+            if (m_.parts[static_cast<std::size_t>(p)].material == static_cast<int>(i))
+              fixed = rb.fixed;
+        if (fixed == 0) {
+          b.card(L::kMatRigid2, {0.0});
+        } else {
+          b.card(L::kMatRigid2, {1.0, con_code(fixed & 7), con_code((fixed >> 3) & 7)});
+        }
         emit(b);
         break;
       }

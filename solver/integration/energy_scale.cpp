@@ -31,6 +31,12 @@ double model_energy_scale_J(const Solver& s) {
   for (const auto& p : m.prescribed_velocities) {
     double peak = 0.0;
     for (double x : p.velocity.value) peak = std::max(peak, std::abs(x));
+    if (p.rigid_body >= 0) {  // a body's: its mass, or its largest moment of inertia
+      const auto& b = s.rigid_bodies()[static_cast<std::size_t>(p.rigid_body)];
+      const double j = std::max({b.inertia_body[0][0], b.inertia_body[1][1], b.inertia_body[2][2]});
+      twice += (p.dof < 3 ? b.mass_kg : j) * peak * peak;
+      continue;
+    }
     const auto& per_node = p.dof < 3 ? s.mass() : s.inertia();
     for (auto i : p.nodes) twice += per_node[static_cast<std::size_t>(i)] * peak * peak;
   }

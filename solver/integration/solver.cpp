@@ -160,7 +160,11 @@ void Solver::apply_initial_velocities() {
             "rigid wall '{}': node {} follows a rigid body; a wall stops deformable nodes only "
             "(fix: leave the body's nodes out of the wall's node set)",
             w.name, model_.nodes.id[static_cast<std::size_t>(c)]));
-    walls_.push_back({&w, std::vector<double>(3 * w.nodes.size(), 0.0)});
+    WallRuntime rw;
+    rw.wall = &w;
+    rw.reaction_prev.assign(3 * w.nodes.size(), 0.0);
+    rw.gap.assign(4 * w.nodes.size(), 0.0);
+    walls_.push_back(std::move(rw));
     walls_.back().velocity_m_s = w.velocity_m_s;
   }
   v_prev_ = v_;
@@ -474,8 +478,7 @@ void Solver::begin_cycle() {
   const bool one_pass = cycle_ > 0 && prescribed_.empty() && walls_.empty();
   if (one_pass) {
     const double ke_nodes = velocity_pass(dt_mid);
-    for (auto& b : bodies_)
-      if (!b.failed) update_rigid_momenta(b, dt_mid);
+    update_rigid_bodies(dt_mid);
     turn_rigid_nodes();
     energy_.kinetic_J = kinetic_energy_from(ke_nodes);
   } else {
@@ -483,8 +486,7 @@ void Solver::begin_cycle() {
     // dt^{n-1/2} a^n ([2]), in one pass per field.
     advance_velocity(v_.data(), v_prev_.data(), a_.data(), dt_mid, v_.size());
     advance_velocity(omega_.data(), omega_prev_.data(), alpha_.data(), dt_mid, omega_.size());
-    for (auto& b : bodies_)
-      if (!b.failed) update_rigid_momenta(b, dt_mid);
+    update_rigid_bodies(dt_mid);
     turn_rigid_nodes();
   }
   if (cycle_ == 0) {

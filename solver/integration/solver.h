@@ -302,16 +302,37 @@ class Solver {
   };
   std::vector<PrescribedDof> prescribed_;
 
+  /// A rigid body's held or prescribed dof (model::RigidBody::fixed,
+  /// model::PrescribedVelocity::rigid_body): its centre's velocity along global axis dof (0..2)
+  /// or its angular velocity about it (3..5); curve null: held at 0. Reaction R^n [N or N m].
+  struct BodyMotion {
+    std::size_t body;
+    int dof;
+    const model::Curve* curve;
+    double reaction_prev = 0.0;
+  };
+  std::vector<BodyMotion> body_motions_;
+  std::vector<std::uint8_t> body_held_;  ///< [bodies] 1: some dof in body_motions_
+  /// The held and prescribed dofs of body k at t^n + dt/2 over its momentum update of dt_mid,
+  /// and the work of their reactions (trapezoid rule, as a node's prescribed velocity).
+  void constrain_rigid_body(std::size_t k, double dt_mid);
+  /// body_motions_ from the model (grouped by body), their values at t = 0 set on the bodies.
+  void build_body_motions();
+  /// update_rigid_momenta, then the held and prescribed dofs, for every body that holds.
+  void update_rigid_bodies(double dt_mid);
+
   /// Rigid walls (model::RigidWall): each wall's reaction R^n at its nodes [3 per node, N], for
   /// the trapezoid rule of its work.
   struct WallRuntime {
-    const model::RigidWall* wall;
+    const model::RigidWall* wall = nullptr;
     std::vector<double> reaction_prev;
     Vec3 force_N{};             ///< sum of the reactions of the last application [N]
     double work_J = 0.0;        ///< its work since t = 0 (trapezoid rule) [J]
     double travel_m = 0.0;      ///< a moving wall's displacement along its normal at t^n [m]
     double velocity_m_s = 0.0;  ///< its velocity over [t^n, t^{n+1}] [m/s]
+    std::vector<double> gap;    ///< [4 per node] scratch: gap d [m] (NaN: free) and normal
   };
+  void wall_gaps(WallRuntime& rw) const;
   std::vector<WallRuntime> walls_;
   void apply_rigid_walls(double dt_pair);
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "solver/core/errors.h"
@@ -113,12 +114,122 @@ void Solver::build_rigid_bodies() {
     s.angular_momentum = mul(s.inertia_body, rb.angular_velocity_rad_s);
     bodies_.push_back(std::move(s));
   }
+  build_body_motions();
   for (std::size_t p = 0; p < model_.parts.size(); ++p)
     if (is_rigid(model_, model_.parts[p]) && part_body[p] < 0)
       throw ModelError(
           fmt::format("part '{}' is rigid but belongs to no rigid body; list it under "
                       "rigid_bodies",
                       model_.parts[p].name));
+}
+
+void Solver::build_body_motions() {
+  body_motions_.clear();
+  std::vector<std::uint8_t> taken(bodies_.size(), 0);
+  const auto add = [&](std::size_t k, int dof, const model::Curve* curve, const std::string& by) {
+    const auto bit = static_cast<std::uint8_t>(1u << dof);
+    if (taken[k] & bit)
+      throw ModelError(fmt::format(
+          "rigid body '{}': its {} {} is held or prescribed twice (again by {}); fix: keep one",
+          model_.rigid_bodies[k].name, dof < 3 ? "velocity along" : "rotation about",
+          "xyz"[dof % 3], by));
+    taken[k] |= bit;
+    body_motions_.push_back({k, dof, curve});
+  };
+  for (std::size_t k = 0; k < bodies_.size(); ++k)
+    for (int dof = 0; dof < 6; ++dof)
+      if (model_.rigid_bodies[k].fixed & (1u << dof)) add(k, dof, nullptr, "its own constraints");
+  for (const auto& pv : model_.prescribed_velocities)
+    if (pv.rigid_body >= 0)
+      add(static_cast<std::size_t>(pv.rigid_body), pv.dof, &pv.velocity,
+          fmt::format("prescribed motion '{}'", pv.name));
+  body_held_.assign(bodies_.size(), 0);
+  // the motions' values at t = 0 replace the body's initial velocity on their dofs
+  for (const auto& bm : body_motions_) {
+    body_held_[bm.body] = 1;
+    auto& b = bodies_[bm.body];
+    const double v0 = bm.curve ? bm.curve->at(0.0) : 0.0;
+    auto& target = bm.dof < 3 ? b.velocity : b.omega;
+    target[static_cast<std::size_t>(bm.dof % 3)] = v0;
+    (bm.dof < 3 ? b.velocity_prev : b.omega_prev) = target;
+    if (bm.dof >= 3) b.angular_momentum = mul(b.inertia_body, b.omega);
+  }
+}
+
+void Solver::update_rigid_bodies(double dt_mid) {
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    if (bodies_[k].failed) continue;
+    update_rigid_momenta(bodies_[k], dt_mid);
+    if (body_held_[k]) constrain_rigid_body(k, dt_mid);
+  }
+}
+
+/// A body's translations are independent: the held or prescribed centre velocity v_d replaces
+/// the free one, the reaction R_d = M (v_d - v_free,d) / dt_mid (the impulse over the momentum
+/// update). Its rotations are coupled through the spatial inertia J = R J_b R^T: the reaction
+/// moment acts about the constrained axes s only, L = L_free + sum_s lambda_s e_s, with lambda
+/// from (J^-1)_SS lambda = omega_target,S - omega_free,S (a 1x1 to 3x3 system), so that the
+/// free axes keep their dynamics. Work: 1/2 (R^{n-1} + R^n) (c^n - c^{n-1})_d, or the rotation
+/// dt^{n-1} omega^{n-1/2}_s, as a node's prescribed velocity (energy.h).
+void Solver::constrain_rigid_body(std::size_t k, double dt_mid) {
+  auto& b = bodies_[k];
+  const double t_mid = time_s_ + 0.5 * dt_;
+  const Mat3 j_inv = mul(mul(b.rotation, b.inertia_body_inv), transpose(b.rotation));
+  const Vec3 omega_free = b.omega;
+  std::array<std::size_t, 3> axis{};
+  std::array<double, 3> rhs{};
+  std::array<BodyMotion*, 3> rot{};
+  std::size_t ns = 0;
+  for (auto& bm : body_motions_) {
+    if (bm.body != k) continue;
+    const double target = bm.curve ? bm.curve->at(t_mid) : 0.0;
+    const auto d = static_cast<std::size_t>(bm.dof % 3);
+    if (bm.dof < 3) {
+      const double reaction = b.mass_kg * (target - b.velocity[d]) / dt_mid;
+      b.velocity[d] = target;
+      if (cycle_ > 0)
+        energy_.external_work_J +=
+            0.5 * (bm.reaction_prev + reaction) * dt_prev_ * b.velocity_prev[d];
+      bm.reaction_prev = reaction;
+    } else {
+      axis[ns] = d;
+      rhs[ns] = target - omega_free[d];
+      rot[ns++] = &bm;
+    }
+  }
+  if (ns == 0) return;
+  // (J^-1)_SS lambda = rhs by Gaussian elimination with partial pivoting (SPD: no pivot needed,
+  // kept for safety)
+  double a[3][4] = {};
+  for (std::size_t r = 0; r < ns; ++r) {
+    for (std::size_t c = 0; c < ns; ++c) a[r][c] = j_inv[axis[r]][axis[c]];
+    a[r][3] = rhs[r];
+  }
+  for (std::size_t c = 0; c < ns; ++c) {
+    std::size_t piv = c;
+    for (std::size_t r = c + 1; r < ns; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
+    for (std::size_t q = 0; q < 4; ++q) std::swap(a[c][q], a[piv][q]);
+    for (std::size_t r = c + 1; r < ns; ++r) {
+      const double f = a[r][c] / a[c][c];
+      for (std::size_t q = c; q < 4; ++q) a[r][q] -= f * a[c][q];
+    }
+  }
+  std::array<double, 3> lambda{};
+  for (std::size_t r = ns; r-- > 0;) {
+    double x = a[r][3];
+    for (std::size_t c = r + 1; c < ns; ++c) x -= a[r][c] * lambda[c];
+    lambda[r] = x / a[r][r];
+  }
+  for (std::size_t r = 0; r < ns; ++r) b.angular_momentum[axis[r]] += lambda[r];
+  b.omega = mul(j_inv, b.angular_momentum);
+  for (std::size_t r = 0; r < ns; ++r) {
+    const double reaction = lambda[r] / dt_mid;
+    if (cycle_ > 0)
+      energy_.external_work_J +=
+          0.5 * (rot[r]->reaction_prev + reaction) * dt_prev_ * b.omega_prev[axis[r]];
+    rot[r]->reaction_prev = reaction;
+  }
 }
 
 void Solver::check_spot_welds() {

@@ -109,6 +109,15 @@ void Solver::visit_state(V& v, Self& s) {
     for (std::size_t i = 0; i < reactions.size(); ++i)
       s.prescribed_[i].reaction_prev = reactions[i];
   }
+  if (!s.body_motions_.empty()) {  // (checkpoints of models without them keep their layout)
+    std::vector<double> body_reactions;
+    for (const auto& d : s.body_motions_) body_reactions.push_back(d.reaction_prev);
+    v.sized("body_motion.reaction_prev", body_reactions);
+    if constexpr (V::loading) {
+      for (std::size_t i = 0; i < body_reactions.size(); ++i)
+        s.body_motions_[i].reaction_prev = body_reactions[i];
+    }
+  }
   for (std::size_t k = 0; k < s.walls_.size(); ++k) {
     v.sized(fmt::format("wall{}.reaction_prev", k), s.walls_[k].reaction_prev);
     v.pod(fmt::format("wall{}.force", k), s.walls_[k].force_N);

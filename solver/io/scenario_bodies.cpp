@@ -47,7 +47,7 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
   if (section) {
     for (const auto& [name, body] : section->entries("rigid bodies (name: {parts, ...})")) {
       body.expect_keys(
-          {"parts", "nodes", "velocity", "angular_velocity", "mass", "inertia", "centre"});
+          {"parts", "nodes", "velocity", "angular_velocity", "mass", "inertia", "centre", "fix"});
       model::RigidBody rb;
       rb.name = name;
       // `nodes`: extra nodes that follow the body (a nodal rigid body without `parts`), a node
@@ -84,6 +84,8 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
         rb.centre_given = true;
         rb.centre_m = c->vec3();
       }
+      // held: its centre's translations and its rotations about the global axes
+      if (auto f = body.optional("fix")) rb.fixed = read_fixed_dofs(*f);
       b.rigid_body_index[name] = static_cast<int>(m.rigid_bodies.size());
       m.rigid_bodies.push_back(std::move(rb));
     }

@@ -167,9 +167,9 @@ model::Model build_deck_scenario(const YamlNode& root, const std::string& name_f
                                  std::vector<std::string>& deck_files) {
   root.expect_keys({"name", "description", "model", "controls", "node_sets", "probes", "domains",
                     "coupling", "materials", "parts", "boundary", "prescribed_velocity", "loads",
-                    "initial_velocity", "rigid_bodies", "contacts"});
+                    "initial_velocity", "rigid_bodies", "rigid_walls", "contacts"});
   for (const char* k : {"materials", "parts", "boundary", "prescribed_velocity", "loads",
-                        "initial_velocity", "rigid_bodies", "contacts"})
+                        "initial_velocity", "rigid_bodies", "rigid_walls", "contacts"})
     if (auto v = root.optional(k))
       v->fail(fmt::format(
           "the deck named in `model` defines the {}; a scenario naming a deck adds only name, "
@@ -210,7 +210,7 @@ model::Model build_model(YamlTree tree, const std::string& name_for_messages,
   if (root.optional("model")) return build_deck_scenario(root, name_for_messages, deck_files);
   root.expect_keys({"name", "description", "model", "controls", "materials", "parts", "node_sets",
                     "boundary", "prescribed_velocity", "loads", "initial_velocity", "rigid_bodies",
-                    "contacts", "probes", "domains", "coupling"});
+                    "rigid_walls", "contacts", "probes", "domains", "coupling"});
 
   detail::ScenarioBuild b;
   b.file = name_for_messages;
@@ -226,10 +226,12 @@ model::Model build_model(YamlTree tree, const std::string& name_for_messages,
   b.model.fixed.assign(b.model.nodes.count(), 0);
   if (auto s = root.optional("node_sets")) detail::read_node_sets(*s, b);
   if (auto s = root.optional("boundary")) detail::read_boundary(*s, b);
-  if (auto s = root.optional("prescribed_velocity")) detail::read_prescribed_velocities(*s, b);
   if (auto s = root.optional("loads")) detail::read_loads(*s, b);
   if (auto s = root.optional("initial_velocity")) detail::read_initial_velocities(*s, b);
   detail::read_rigid_bodies(root.optional("rigid_bodies"), b);
+  // after the bodies: a motion may drive one
+  if (auto s = root.optional("prescribed_velocity")) detail::read_prescribed_velocities(*s, b);
+  if (auto s = root.optional("rigid_walls")) detail::read_rigid_walls(*s, b);
   if (auto s = root.optional("contacts")) detail::read_contacts(*s, b);
   if (auto s = root.optional("probes")) detail::read_probes(*s, b);
   if (auto s = root.optional("domains")) detail::read_domains(*s, b);

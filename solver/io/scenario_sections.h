@@ -45,6 +45,9 @@ void read_loads(const YamlNode& list, ScenarioBuild& b);
 void read_initial_velocities(const YamlNode& list, ScenarioBuild& b);
 /// Also checks that every part of rigid material belongs to a body (so it runs even if absent).
 void read_rigid_bodies(const std::optional<YamlNode>& bodies, ScenarioBuild& b);
+void read_rigid_walls(const YamlNode& walls, ScenarioBuild& b);
+/// `fix`: [x, y, z, rx, ry, rz] (any of them) or all, as DofBits.
+std::uint8_t read_fixed_dofs(const YamlNode& fix);
 void read_contacts(const YamlNode& contacts, ScenarioBuild& b);
 void read_probes(const YamlNode& probes, ScenarioBuild& b);
 void read_domains(const YamlNode& domains, ScenarioBuild& b);

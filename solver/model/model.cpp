@@ -167,12 +167,33 @@ void validate(const Model& m) {
     for (auto i : w.nodes)
       if (i < 0 || static_cast<std::size_t>(i) >= m.nodes.count())
         throw ModelError(fmt::format("rigid wall '{}': node index {} out of range", w.name, i));
+    const bool cylinder = w.shape == RigidWall::Shape::Cylinder;
+    if (cylinder ? !(w.radius_m > 0.0) || w.moving() || !(w.length_m >= 0.0)
+                 : w.finite() && (!(w.width_m > 0.0) || std::abs(norm(w.edge) - 1.0) > 1e-9 ||
+                                  std::abs(dot(w.edge, w.normal)) > 1e-9))
+      throw ModelError(fmt::format(
+          "rigid wall '{}': {} with radius {} m, length {} m, width {} m, edge ({}, {}, {}); a "
+          "cylinder has a radius > 0, a length >= 0 (0: infinite) and does not move; a finite "
+          "plane a length and width > 0 and a unit edge in the plane",
+          w.name, cylinder ? "cylinder" : "plane", w.radius_m, w.length_m, w.width_m, w.edge[0],
+          w.edge[1], w.edge[2]));
     if (!(w.mass_kg >= 0.0) || !std::isfinite(w.velocity_m_s) ||
         (w.mass_kg == 0.0 && w.velocity_m_s != 0.0))
       throw ModelError(fmt::format(
           "rigid wall '{}': mass {} kg, velocity {} m/s; a fixed wall has mass 0 and no "
           "velocity, a moving one a mass > 0 (fix: give the moving wall's mass)",
           w.name, w.mass_kg, w.velocity_m_s));
+  }
+  for (const auto& pv : m.prescribed_velocities) {
+    if (pv.dof < 0 || pv.dof > 5)
+      throw ModelError(
+          fmt::format("prescribed velocity '{}': dof {} outside 0..5", pv.name, pv.dof));
+    if (pv.rigid_body >= static_cast<int>(m.rigid_bodies.size()) ||
+        (pv.rigid_body >= 0 && !pv.nodes.empty()))
+      throw ModelError(fmt::format(
+          "prescribed velocity '{}': rigid body index {} of {} (with {} nodes); a body's motion "
+          "names one of the model's bodies and no node (internal error)",
+          pv.name, pv.rigid_body, m.rigid_bodies.size(), pv.nodes.size()));
   }
   const auto& idamp = m.coupling.interface_damping;
   if (!(idamp.ratio >= 0.0 && idamp.ratio <= 0.5))

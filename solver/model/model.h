@@ -88,6 +88,10 @@ struct PrescribedVelocity {
   std::vector<std::int32_t> nodes;
   int dof = 0;     ///< 0..2 translation x,y,z [m/s]; 3..5 rotation [rad/s]
   Curve velocity;  ///< [m/s] or [rad/s] against time [s]
+  /// >= 0: the motion is the rigid body's (index into Model::rigid_bodies; nodes empty): its
+  /// centre's velocity (dof 0..2) or its angular velocity about a global axis (3..5), LS-DYNA
+  /// *BOUNDARY_PRESCRIBED_MOTION_RIGID.
+  int rigid_body = -1;
 };
 
 /// Force on one translational dof of each node of a set, as a function of time.
@@ -120,6 +124,9 @@ struct RigidBody {
   Mat3 inertia_kg_m2{};  ///< about the centre of mass, spatial frame at t = 0
   bool centre_given = false;
   Vec3 centre_m{};  ///< centre of mass if given
+  /// DofBits of the body held at zero velocity: its centre's translations (bits 0-2) and its
+  /// rotations about the global axes (3-5) (LS-DYNA *MAT_RIGID CMO 1, CON1/CON2).
+  std::uint8_t fixed = 0;
   /// A spot weld (LS-DYNA *CONSTRAINED_SPOTWELD): a body of two nodes (no parts) that lets go
   /// of them when (max(f_n, 0) / S_n)^n + (|f_s| / S_s)^m >= 1, f_n the force it carries along
   /// node 1 -> node 2 and f_s across, or at time_s. A strength of 0 leaves its term out.
@@ -138,14 +145,26 @@ struct RigidBody {
 /// freely. The wall's reaction does work (booked as external work, integration/solver.cpp).
 struct RigidWall {
   std::string name;
-  Vec3 point_m{};                   ///< a point of the plane
+  Vec3 point_m{};                   ///< a point of the plane (Cylinder: of the axis, its tail)
   Vec3 normal{};                    ///< unit normal pointing to the side the nodes stay on
   std::vector<std::int32_t> nodes;  ///< node indices the wall stops
   /// A moving wall (LS-DYNA *RIGIDWALL_PLANAR_MOVING): its mass [kg] (0: fixed) and initial
   /// velocity along `normal` [m/s] (> 0: toward the nodes); it moves along its normal only.
   double mass_kg = 0.0;
   double velocity_m_s = 0.0;
+  /// Plane: an infinite plane, or with length_m > 0 the rectangle point + a edge + b (normal x
+  /// edge), 0 <= a <= length_m, 0 <= b <= width_m (LS-DYNA _FINITE, *RIGIDWALL_GEOMETRIC_FLAT).
+  /// Cylinder (*RIGIDWALL_GEOMETRIC_CYLINDER): the nodes stay outside the cylinder of radius
+  /// radius_m about the axis point + s normal (normal: the unit axis), 0 <= s <= length_m if
+  /// length_m > 0, else of infinite length. A finite wall or a cylinder acts on the nodes over
+  /// it (within its extent, on its side or on it): a node that went round its edge is free.
+  enum class Shape : std::uint8_t { Plane, Cylinder } shape = Shape::Plane;
+  Vec3 edge{};            ///< Plane, finite: unit vector in the plane along the length
+  double length_m = 0.0;  ///< > 0: finite (Plane: along edge; Cylinder: along the axis) [m]
+  double width_m = 0.0;   ///< Plane, finite: along normal x edge [m]
+  double radius_m = 0.0;  ///< Cylinder [m]
   bool moving() const { return mass_kg > 0.0; }
+  bool finite() const { return length_m > 0.0; }
 };
 
 /// How a contact pairs its surfaces (solver/contact/contact_interface.cpp).

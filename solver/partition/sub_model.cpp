@@ -137,6 +137,7 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     return r;
   };
   for (const auto& pv : g.prescribed_velocities) {
+    if (pv.rigid_body >= 0) continue;  // with the bodies, below
     auto nodes = restrict_nodes(pv.nodes, false);
     if (nodes.empty()) continue;
     m.prescribed_velocities.push_back({pv.name, std::move(nodes), pv.dof, pv.velocity});
@@ -151,9 +152,8 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
           "moving wall is computed in one domain (fix: put the parts it meets in one domain, or "
           "give it only the nodes of one domain's parts)",
           w.name, nodes.size(), w.nodes.size(), out.name));
-    model::RigidWall sw{w.name, w.point_m, w.normal, std::move(nodes)};
-    sw.mass_kg = w.mass_kg;
-    sw.velocity_m_s = w.velocity_m_s;
+    model::RigidWall sw = w;
+    sw.nodes = std::move(nodes);
     m.rigid_walls.push_back(std::move(sw));
   }
   for (const auto& ld : g.loads) {
@@ -193,6 +193,12 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     g2l_body[b] = static_cast<int>(m.rigid_bodies.size());
     m.rigid_bodies.push_back(std::move(lb));
   }
+  for (const auto& pv : g.prescribed_velocities)  // a body's motion where the body is
+    if (pv.rigid_body >= 0 && g2l_body[static_cast<std::size_t>(pv.rigid_body)] >= 0) {
+      model::PrescribedVelocity lp = pv;
+      lp.rigid_body = g2l_body[static_cast<std::size_t>(pv.rigid_body)];
+      m.prescribed_velocities.push_back(std::move(lp));
+    }
 
   // Contacts placed here, remapped to local slave nodes and master parts.
   for (std::size_t c = 0; c < g.contacts.size(); ++c) {

@@ -127,6 +127,7 @@ void expect_same_model(const model::Model& a, const model::Model& d,
   for (std::size_t k = 0; k < a.prescribed_velocities.size(); ++k) {
     EXPECT_EQ(d.prescribed_velocities[k].nodes, a.prescribed_velocities[k].nodes);
     EXPECT_EQ(d.prescribed_velocities[k].dof, a.prescribed_velocities[k].dof);
+    EXPECT_EQ(d.prescribed_velocities[k].rigid_body, a.prescribed_velocities[k].rigid_body);
     expect_same_curve(d.prescribed_velocities[k].velocity, a.prescribed_velocities[k].velocity,
                       a.controls.end_time_s);
   }
@@ -149,6 +150,7 @@ void expect_same_model(const model::Model& a, const model::Model& d,
       EXPECT_EQ(y.inertia_kg_m2, x.inertia_kg_m2);
     }
     EXPECT_EQ(y.nodes, x.nodes);
+    EXPECT_EQ(y.fixed, x.fixed);
   }
   ASSERT_EQ(d.contacts.size(), a.contacts.size());
   for (std::size_t k = 0; k < a.contacts.size(); ++k) {
@@ -198,6 +200,28 @@ void expect_same_model(const model::Model& a, const model::Model& d,
   EXPECT_EQ(d.coupling.interface_damping.ratio, a.coupling.interface_damping.ratio);
 }
 
+/// The rigid walls: names, nodes, shapes and sizes (the normal and edge rebuilt from points one
+/// length unit apart: within round-off).
+void expect_same_walls(const model::Model& m, const model::Model& back) {
+  ASSERT_EQ(back.rigid_walls.size(), m.rigid_walls.size());
+  for (std::size_t k = 0; k < m.rigid_walls.size(); ++k) {
+    const auto &a = m.rigid_walls[k], &b = back.rigid_walls[k];
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.nodes, a.nodes);
+    EXPECT_EQ(b.mass_kg, a.mass_kg);
+    EXPECT_EQ(b.velocity_m_s, a.velocity_m_s);
+    EXPECT_EQ(b.shape, a.shape);
+    EXPECT_EQ(b.length_m, a.length_m);
+    EXPECT_EQ(b.width_m, a.width_m);
+    EXPECT_EQ(b.radius_m, a.radius_m);
+    for (std::size_t j = 0; j < 3; ++j) {
+      EXPECT_NEAR(b.point_m[j], a.point_m[j], 1e-15);
+      EXPECT_NEAR(b.normal[j], a.normal[j], 1e-15);
+      EXPECT_NEAR(b.edge[j], a.edge[j], 1e-15);
+    }
+  }
+}
+
 TEST(DeckExport, PlateImpactReadsBackToTheSameModel) {
   const model::Model yaml = io::read_scenario(kScenes + "plate_impact.yaml");
   deck_writer::ExportText text;
@@ -232,18 +256,7 @@ TEST(DeckExport, DecksReadBackToTheSameModel) {
     const auto dir = temp_dir("decks");
     const model::Model back = round_trip(m, dir, &text);
     expect_same_model(m, back, text.rounding.rounded);
-    ASSERT_EQ(back.rigid_walls.size(), m.rigid_walls.size());
-    for (std::size_t k = 0; k < m.rigid_walls.size(); ++k) {
-      const auto &a = m.rigid_walls[k], &b = back.rigid_walls[k];
-      EXPECT_EQ(b.name, a.name);
-      EXPECT_EQ(b.nodes, a.nodes);
-      EXPECT_EQ(b.mass_kg, a.mass_kg);
-      EXPECT_EQ(b.velocity_m_s, a.velocity_m_s);
-      for (std::size_t j = 0; j < 3; ++j) {
-        EXPECT_NEAR(b.point_m[j], a.point_m[j], 1e-15);
-        EXPECT_NEAR(b.normal[j], a.normal[j], 1e-15);
-      }
-    }
+    expect_same_walls(m, back);
     std::printf("[measured] %s: %zu values rounded (largest %.1e relative)\n", deck.c_str(),
                 text.rounding.rounded, text.rounding.max_relative);
     EXPECT_LT(text.rounding.max_relative, 1e-13);
@@ -389,6 +402,71 @@ probes:
       diff, scale, a.energy().internal_J, b.energy().internal_J);
   EXPECT_GT(a.energy().internal_J, 0.0) << "the flap and the sheet flex";
   EXPECT_LE(diff, 1e-12 * scale);
+}
+
+/// Walls of every shape and a rigid body's held and prescribed dofs, from YAML to a deck and back:
+/// the same model, and the same run to the bit.
+TEST(DeckExport, WallsAndBodyMotionsReadBack) {
+  const model::Model yaml = io::parse_scenario(R"(name: walls
+controls: {end_time: 2.0e-3, history_interval: 1.0e-5}
+materials:
+  steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
+  ram: {type: rigid, density: 7850.0}
+  anvil: {type: rigid, density: 7850.0}
+parts:
+  sheet: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0.001], size: [0.1, 0.05], normal: z, divisions: [10, 5]}}
+  ram: {material: ram, mesh: {generator: box, origin: [0.04, 0.0, 0.003], size: [0.02, 0.05, 0.01], divisions: [2, 2, 1]}}
+  anvil: {material: anvil, mesh: {generator: box, origin: [0.0, 0.1, 0.0], size: [0.01, 0.01, 0.01], divisions: [1, 1, 1]}}
+node_sets:
+  sheet_all: {part: sheet, box: {min: [-1, -1, -1], max: [1, 1, 1]}}
+initial_velocity:
+  - {part: sheet, velocity: [0.0, 0.0, -1.0]}
+rigid_bodies:
+  ram: {parts: [ram], fix: [x, y, rx, ry, rz]}
+  anvil: {parts: [anvil], fix: all}
+prescribed_velocity:
+  - {name: press, rigid_body: ram, dof: z, curve: {t: [0.0, 1.0e-3, 2.0e-3], v: [0.0, -1.0, 0.0]}}
+contacts:
+  press_sheet: {slave: sheet_all, master: ram}
+rigid_walls:
+  pad: {nodes: sheet_all, point: [0.0, 0.0, 0.0], normal: [0, 0, 1], edge: [1, 0, 0], length: 0.05, width: 0.05}
+  roller: {nodes: sheet_all, shape: cylinder, point: [0.05, 0.0, -0.02], axis: [0, 1, 0], radius: 0.0205, length: 0.05}
+  floor: {nodes: sheet_all, point: [0.0, 0.0, -0.01], normal: [0, 0, 1], mass: 2.0, velocity: 0.5}
+)",
+                                               "walls.yaml");
+  ASSERT_EQ(yaml.rigid_walls.size(), 3u);
+  EXPECT_EQ(yaml.rigid_bodies[0].fixed,
+            model::kUx | model::kUy | model::kRx | model::kRy | model::kRz);
+  ASSERT_EQ(yaml.prescribed_velocities.size(), 1u);
+  EXPECT_EQ(yaml.prescribed_velocities[0].rigid_body, 0);
+  deck_writer::ExportText text;
+  const auto dir = temp_dir("walls");
+  const model::Model deck = round_trip(yaml, dir, &text);
+  expect_same_model(yaml, deck, text.rounding.rounded);
+  expect_same_walls(yaml, deck);
+  std::filesystem::remove_all(dir);
+  integration::Solver a(yaml), b(deck);
+  a.initialize();
+  b.initialize();
+  for (;;) {
+    a.begin_cycle();
+    b.begin_cycle();
+    ASSERT_EQ(a.time_s(), b.time_s());
+    if (a.finished()) break;
+    a.end_cycle();
+    b.end_cycle();
+  }
+  EXPECT_EQ(a.displacement(), b.displacement());
+  const auto& ram = a.rigid_bodies()[0];
+  std::printf(
+      "[measured] walls and a pressing ram, YAML and deck: ram travel %.6f mm (-1 mm "
+      "prescribed), internal energy %.6e / %.6e J, floor work %.3e J\n",
+      (ram.centre[2] - ram.centre0[2]) * 1e3, a.energy().internal_J, b.energy().internal_J,
+      a.wall_work_J(2));
+  EXPECT_NEAR(ram.centre[2] - ram.centre0[2], -1.0e-3, 1e-8);
+  EXPECT_EQ(ram.centre[0], ram.centre0[0]);
+  EXPECT_EQ(a.rigid_bodies()[1].centre, a.rigid_bodies()[1].centre0) << "the anvil held";
+  EXPECT_GT(a.energy().internal_J, 0.0) << "the sheet bends over the pad and the roller";
 }
 
 /// A deck's *DATABASE_RBDOUT probes each rigid body; a scenario naming the deck that probes a

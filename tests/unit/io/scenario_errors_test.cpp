@@ -217,6 +217,47 @@ rigid_bodies:
                "- bal", "rigid_bodies.head.parts[0]", "unknown part 'bal'; did you mean 'ball'?");
 }
 
+// rigid_walls and a body's motion: each mistake at its line, with the fix.
+TEST(ScenarioErrors, RigidWallsAndBodyMotions) {
+  const std::string scene = kHead + R"(  rig: {type: rigid, density: 7850.0}
+parts:
+  plate:
+    material: steel
+    thickness: 0.001
+    mesh: {generator: plate, size: [1.0, 1.0], divisions: [2, 2]}
+  ram:
+    material: rig
+    thickness: 0.001
+    mesh: {generator: plate, origin: [0, 0, 0.1], size: [1.0, 1.0], divisions: [1, 1]}
+rigid_bodies:
+  ram: {parts: [ram], fix: [x, y]}
+)";
+  expect_error(scene + R"(rigid_walls:
+  floor: {nodes: {part: plate}, point: [0, 0, 0], normal: [0, 0, 1], velocity: 2.0}
+)",
+               "velocity: 2.0", "rigid_walls.floor.velocity", "needs its `mass`");
+  expect_error(scene + R"(rigid_walls:
+  roller: {nodes: {part: plate}, shape: cylinder, point: [0, 0, 0], normal: [0, 0, 1]}
+)",
+               "roller:", "rigid_walls.roller.normal", "does not belong to a cylinder");
+  expect_error(scene + R"(rigid_walls:
+  pad: {nodes: {part: plate}, point: [0, 0, 0], normal: [0, 0, 1], edge: [0, 1, 1], length: 1.0, width: 1.0}
+)",
+               "pad:", "rigid_walls.pad.edge", "is not in the wall's plane");
+  expect_error(scene + R"(rigid_walls:
+  floor: {nodes: {part: plate}, point: [0, 0, 0], normal: [0, 0, 0]}
+)",
+               "floor:", "rigid_walls.floor.normal", "is the zero vector");
+  expect_error(scene + R"(prescribed_velocity:
+  - {rigid_body: rom, dof: z, value: 1.0}
+)",
+               "rigid_body: rom", "prescribed_velocity[0].rigid_body", "no rigid body 'rom'");
+  expect_error(scene + R"(prescribed_velocity:
+  - {rigid_body: ram, nodes: {part: plate}, dof: z, value: 1.0}
+)",
+               "rigid_body: ram", "prescribed_velocity[0].rigid_body", "not both");
+}
+
 TEST(ScenarioErrors, RigidPartWithoutBody) {
   expect_error(R"(name: t
 controls: {end_time: 1.0e-3}
