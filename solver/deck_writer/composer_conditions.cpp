@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "solver/contact/segments.h"
 #include "solver/core/errors.h"
@@ -84,11 +85,41 @@ std::int64_t Composer::curve(const model::Curve& c, double value_unit_SI,
 void Composer::rigid_constraints() {
   std::int64_t next_pid = 0;  // nodal rigid bodies' ids: above every part's
   for (auto pid : part_id_) next_pid = std::max(next_pid, pid);
+  // Spot welds: a deck names one by its WID (the reader: spotweld_<WID>); a weld named so keeps
+  // its WID, another gets the next free one (noted).
+  std::set<long long> wids;
+  const auto wid_of = [](const std::string& name) -> long long {
+    const std::string prefix = "spotweld_";
+    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() ||
+        name.size() > prefix.size() + 9)
+      return 0;
+    long long v = 0;
+    for (std::size_t i = prefix.size(); i < name.size(); ++i) {
+      if (name[i] < '0' || name[i] > '9') return 0;
+      v = 10 * v + (name[i] - '0');
+    }
+    return v;
+  };
+  for (const auto& rb : m_.rigid_bodies)
+    if (rb.failure.any() && wid_of(rb.name) > 0) wids.insert(wid_of(rb.name));
+  long long next_wid = 0;
   for (std::size_t k = 0; k < m_.rigid_bodies.size(); ++k) {
     const auto& rb = m_.rigid_bodies[k];
-    if (rb.failure.any()) {  // a spot weld (its name is not kept: the deck numbers it)
+    if (rb.failure.any()) {
+      long long wid = wid_of(rb.name);
+      if (wid == 0) {
+        while (wids.count(++next_wid)) {
+        }
+        wid = next_wid;
+        wids.insert(wid);
+        notes_.push_back(
+            fmt::format("spot weld '{}' is *CONSTRAINED_SPOTWELD_ID {} in the deck "
+                        "(read back as 'spotweld_{}': a deck names welds by id)",
+                        rb.name, wid, wid));
+      }
       const auto& f = rb.failure;
-      KeywordBlock b("*CONSTRAINED_SPOTWELD");
+      KeywordBlock b("*CONSTRAINED_SPOTWELD_ID");
+      b.card(L::kSpotWeldId, {wid});
       b.card(L::kSpotWeld,
              {static_cast<long long>(node_id(rb.nodes[0])),
               static_cast<long long>(node_id(rb.nodes[1])), force(f.normal_N), force(f.shear_N),

@@ -46,8 +46,8 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
   std::vector<std::string> owner(m.parts.size());  // body owning each part
   if (section) {
     for (const auto& [name, body] : section->entries("rigid bodies (name: {parts, ...})")) {
-      body.expect_keys(
-          {"parts", "nodes", "velocity", "angular_velocity", "mass", "inertia", "centre", "fix"});
+      body.expect_keys({"parts", "nodes", "velocity", "angular_velocity", "mass", "inertia",
+                        "centre", "fix", "failure"});
       model::RigidBody rb;
       rb.name = name;
       // `nodes`: extra nodes that follow the body (a nodal rigid body without `parts`), a node
@@ -86,6 +86,21 @@ void read_rigid_bodies(const std::optional<YamlNode>& section, ScenarioBuild& b)
       }
       // held: its centre's translations and its rotations about the global axes
       if (auto f = body.optional("fix")) rb.fixed = read_fixed_dofs(*f);
+      // a spot weld's failure (LS-DYNA *CONSTRAINED_SPOTWELD SN SS N M TF): a body of two nodes
+      if (auto f = body.optional("failure")) {
+        f->expect_keys({"normal", "shear", "exp_n", "exp_m", "time"});
+        if (parts || rb.nodes.size() != 2)
+          f->fail(
+              fmt::format("belongs to a spot weld: a body of two `nodes` and no `parts` (it "
+                          "has {} nodes{}); fix: select the weld's two nodes",
+                          rb.nodes.size(), parts ? " and parts" : ""));
+        rb.failure.normal_N = f->non_negative_or("normal", 0.0);
+        rb.failure.shear_N = f->non_negative_or("shear", 0.0);
+        rb.failure.exp_n = f->positive_or("exp_n", 2.0);
+        rb.failure.exp_m = f->positive_or("exp_m", 2.0);
+        rb.failure.time_s = f->non_negative_or("time", 0.0);
+        if (!rb.failure.any()) f->fail("gives no strength and no time; fix: give one of them");
+      }
       b.rigid_body_index[name] = static_cast<int>(m.rigid_bodies.size());
       m.rigid_bodies.push_back(std::move(rb));
     }
