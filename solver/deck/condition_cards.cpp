@@ -46,6 +46,59 @@ void Parser::rigid_constraint(const Card& c) {
   r.keyword = b_.keyword;
   r.ref = c.ref();
   const std::string_view k = b_.keyword;
+  if (k.starts_with("*CONSTRAINED_GENERALIZED_WELD_SPOT")) {
+    // (_ID: WID), then card 1 NSID CID FILTER WINDOW NPR NPRT, card 2 TFAIL EPSF SN SS N M
+    const int per = b_.id ? 3 : 2;
+    const int at = b_.card % per - (b_.id ? 1 : 0);
+    ++b_.card;
+    if (at < 0) {
+      b_.pending_eid = positive_id(c.field(L::kSpotWeldId, 0));
+      return;
+    }
+    if (at == 0) {
+      b_.pending_pid = positive_id(c.field(L::kGeneralizedWeld1, 0));
+      b_.pending_ref = c.ref();
+      // CID: the frame of the weld's force output (without effect); NPR, NPRT: output
+      const auto filter = c.field(L::kGeneralizedWeld1, 2);
+      if (filter.integer(0) > 1)
+        filter.fail(
+            "filtering the weld's forces is not computed: the criterion takes each "
+            "step's force; fix: write 0");
+      must_be_default(c.field(L::kGeneralizedWeld1, 3), 0.0,
+                      "a filtering time window (WINDOW) is not computed; fix: write 0");
+      return;
+    }
+    const Layout l = L::kGeneralizedWeldSpot;
+    r.kind = RigidConstraintCard::Kind::SpotWeld;
+    r.set = true;
+    r.pid = b_.id ? b_.pending_eid : 0;
+    r.target = b_.pending_pid;
+    r.ref = b_.pending_ref;  // the NSID's card, for the builder's messages
+    r.tf = c.field(l, 0).real(0.0);
+    if (r.tf < 0.0) c.field(l, 0).fail("must be >= 0 (0 or 1e20: none); fix: the failure time");
+    if (r.tf >= 1e19) r.tf = 0.0;
+    const auto epsf = c.field(l, 1);
+    if (!epsf.blank() && epsf.real(0.0) != 0.0 && epsf.real(0.0) < 1e19)
+      epsf.fail(
+          "failure at a plastic strain (EPSF) is not computed: the weld is a rigid link; "
+          "fix: leave EPSF blank");
+    r.sn = c.field(l, 2).real(0.0);
+    r.ss = c.field(l, 3).real(0.0);
+    if (r.sn < 0.0) c.field(l, 2).fail("must be >= 0 (0: no normal term); fix: the strength");
+    if (r.ss < 0.0) c.field(l, 3).fail("must be >= 0 (0: no shear term); fix: the strength");
+    r.exp_n = c.field(l, 4).real(0.0);
+    r.exp_m = c.field(l, 5).real(0.0);
+    if (r.sn > 0.0 && !(r.exp_n > 0.0))
+      c.field(l, 4).fail(
+          "the normal term's exponent must be > 0 with SN > 0; fix: write it (2: "
+          "a quadratic criterion)");
+    if (r.ss > 0.0 && !(r.exp_m > 0.0))
+      c.field(l, 5).fail(
+          "the shear term's exponent must be > 0 with SS > 0; fix: write it (2: "
+          "a quadratic criterion)");
+    d_.rigid_constraints.push_back(std::move(r));
+    return;
+  }
   if (k.starts_with("*CONSTRAINED_SPOTWELD")) {
     if (b_.id && b_.card % 2 == 0) {  // _ID: a WID card before each weld
       b_.pending_eid = positive_id(c.field(L::kSpotWeldId, 0));

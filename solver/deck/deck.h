@@ -126,8 +126,8 @@ struct RigidConstraintCard {
   double sn = 0.0, ss = 0.0, exp_n = 0.0, exp_m = 0.0, tf = 0.0;  ///< SpotWeld, deck units
   std::int64_t pid = 0;     ///< the body's PID (NodalBody), the rigid part (ExtraNodes), PIDL
   std::int64_t target = 0;  ///< NSID (NodalBody), NID or NSID (ExtraNodes), PIDC (MergeBodies)
-  bool set = false;         ///< ExtraNodes: target is a node set
-  std::string title;        ///< NodalBody _TITLE: the body's name
+  bool set = false;   ///< ExtraNodes: target is a node set; SpotWeld: target is NSID (GENERALIZED)
+  std::string title;  ///< NodalBody _TITLE: the body's name
   std::string keyword;
   CardRef ref;
 };

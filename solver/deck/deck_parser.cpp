@@ -62,6 +62,7 @@ constexpr KeywordName kKeywords[] = {
     {"*CONSTRAINED_EXTRA_NODES_SET", Kw::RigidConstraint, false, false},
     {"*CONSTRAINED_RIGID_BODIES", Kw::RigidConstraint, false, false},
     {"*CONSTRAINED_SPOTWELD", Kw::RigidConstraint, false, true},
+    {"*CONSTRAINED_GENERALIZED_WELD_SPOT", Kw::RigidConstraint, false, true},
     {"*BOUNDARY_SPC_NODE", Kw::SpcNode, false, true},
     {"*BOUNDARY_SPC_SET", Kw::SpcSet, false, true},
     {"*INITIAL_VELOCITY_GENERATION", Kw::VelocityGeneration, false, false},
@@ -107,7 +108,8 @@ constexpr const char* kReaderKeywords[] = {"*KEYWORD",
                                            "*PARAMETER",
                                            "*PARAMETER_EXPRESSION",
                                            "*COMMENT",
-                                           "*DATABASE_*"};
+                                           "*DATABASE_*",
+                                           "*SENSOR_DEFINE_*"};
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() > suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
@@ -166,6 +168,10 @@ bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
     }
     return true;
   }
+  if (k.rfind("*SENSOR_DEFINE_", 0) == 0) {  // a sensor feeds output only: without effect
+    kw = Kw::Database;
+    return true;
+  }
   for (int pass = 0; pass < 3; ++pass) {
     std::string_view base = k;
     if (pass == 1) {
@@ -209,6 +215,14 @@ void Parser::keyword(std::string_view k, const CardRef& ref) {
     d_.skipped_cards[b_.keyword] += 0;
     return;
   }
+  if (k.rfind("*SENSOR_", 0) == 0 && k.rfind("*SENSOR_DEFINE_", 0) != 0)
+    throw InputError(d_.files.name(ref.file), ref.line, std::string(k),
+                     fmt::format("a sensor that switches something (*SENSOR_SWITCH, "
+                                 "*SENSOR_CONTROL, ...) is not computed: the run would not do "
+                                 "what the deck says; fix: remove it and what it switches, or "
+                                 "pass --ignore {} if the switch never acts before the end time. "
+                                 "*SENSOR_DEFINE_* (sensors that feed output) are accepted",
+                                 k.substr(1)));
   if (!lookup(k, b_.kw, title, id))
     throw InputError(d_.files.name(ref.file), ref.line, std::string(k),
                      fmt::format("not supported; fix: remove it, or pass --ignore {} to skip it "

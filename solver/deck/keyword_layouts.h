@@ -72,6 +72,11 @@ inline constexpr FieldSpec kExtraNodes[] = {{"PID", 10}, {"NID/NSID", 10}, {"IFL
 inline constexpr FieldSpec kSpotWeld[] = {{"N1", 10}, {"N2", 10}, {"SN", 10}, {"SS", 10},
                                           {"N", 10},  {"M", 10},  {"TF", 10}, {"EP", 10}};
 inline constexpr FieldSpec kSpotWeldId[] = {{"WID", 10}};
+/// *CONSTRAINED_GENERALIZED_WELD_SPOT: card 1 (the nodes), card 2 (the failure).
+inline constexpr FieldSpec kGeneralizedWeld1[] = {{"NSID", 10},   {"CID", 10}, {"FILTER", 10},
+                                                  {"WINDOW", 10}, {"NPR", 10}, {"NPRT", 10}};
+inline constexpr FieldSpec kGeneralizedWeldSpot[] = {{"TFAIL", 10}, {"EPSF", 10}, {"SN", 10},
+                                                     {"SS", 10},    {"N", 10},    {"M", 10}};
 /// *CONSTRAINED_RIGID_BODIES.
 inline constexpr FieldSpec kRigidBodies[] = {{"PIDL", 10}, {"PIDC", 10}, {"IFLAG", 10}};
 inline constexpr FieldSpec kSpcNode[] = {{"NID", 10},  {"CID", 10},   {"DOFX", 10},  {"DOFY", 10},

@@ -67,7 +67,8 @@ struct Block {
   bool title = false, id = false;
   int card = 0;  ///< index of the next card within the current record
   std::string pending_title;
-  std::int64_t pending_eid = 0, pending_pid = 0;  ///< two-card solids
+  std::int64_t pending_eid = 0, pending_pid = 0;  ///< two-card solids, welds
+  CardRef pending_ref;                            ///< a generalized weld's card 1
   std::int32_t pending_line = 0;
   CardRef ref;             ///< the keyword's line
   std::size_t before = 0;  ///< records of its kind before the block (records_of)

@@ -166,19 +166,31 @@ void Builder::rigid_constraints() {
       m_.rigid_bodies.push_back(std::move(rb));
       merged.push_back(0);
     } else if (r.kind == K::SpotWeld) {
-      const Layout l = L::kSpotWeld;
+      const Layout l = r.set ? Layout(L::kGeneralizedWeld1) : Layout(L::kSpotWeld);
       model::RigidBody w;
       w.name =
           r.pid > 0 ? fmt::format("spotweld_{}", r.pid) : fmt::format("spotweld_{}", ++spot_welds_);
-      add_nodes(r, {r.target}, l, 0, w);
-      add_nodes(r, {r.n2}, l, 1, w);
+      if (r.set) {  // *CONSTRAINED_GENERALIZED_WELD_SPOT: the set's two nodes
+        const auto& ids = node_set(r.target, r.ref, r.keyword, l, 0);
+        if (ids.size() != 2)
+          fail_at(d_, r.ref, r.keyword, l, 0,
+                  fmt::format("node set {} holds {} nodes: crashlink's weld failure is that of "
+                              "a weld of two nodes (its normal from the first to the second); "
+                              "fix: one weld per pair of nodes",
+                              r.target, ids.size()));
+        add_nodes(r, {ids[0]}, l, 0, w);
+        add_nodes(r, {ids[1]}, l, 0, w);
+      } else {
+        add_nodes(r, {r.target}, l, 0, w);
+        add_nodes(r, {r.n2}, l, 1, w);
+      }
       const auto a = static_cast<std::size_t>(w.nodes[0]), b = static_cast<std::size_t>(w.nodes[1]);
       double gap = 0.0;
       for (std::size_t d = 0; d < 3; ++d)
         gap += (m_.nodes.x0[3 * a + d] - m_.nodes.x0[3 * b + d]) *
                (m_.nodes.x0[3 * a + d] - m_.nodes.x0[3 * b + d]);
       if (!(gap > 0.0))
-        fail_at(d_, r.ref, r.keyword, l, 1,
+        fail_at(d_, r.ref, r.keyword, l, r.set ? 0 : 1,
                 "lies where N1 lies: a weld's normal runs from N1 to N2; fix: weld nodes of the "
                 "two sheets, apart by their gap");
       w.failure.normal_N = r.sn * u_.force_N();

@@ -17,19 +17,23 @@ TEST(DeckModel, TwinReadsInSI) {
   const DeckRead r = read_deck(kTwin, {"mm-t-s", {}});
   const model::Model& m = r.model;
   EXPECT_EQ(m.name, "deck_twin");
-  EXPECT_EQ(m.nodes.count(), 12u + 9u + 4u + 8u);
-  ASSERT_EQ(m.parts.size(), 4u);
+  EXPECT_EQ(m.nodes.count(), 12u + 9u + 4u + 8u + 8u);
+  ASSERT_EQ(m.parts.size(), 5u);
   EXPECT_EQ(m.parts[0].name, "bar");
   EXPECT_EQ(m.parts[1].name, "plate");
-  EXPECT_EQ(m.parts[3].name, "block");
+  EXPECT_EQ(m.parts[3].name, "block2");
+  EXPECT_EQ(m.parts[4].name, "block");  // its *PART_INERTIA after the include
   EXPECT_EQ(m.parts[0].kind, model::ElementKind::Hex8);
   EXPECT_EQ(m.parts[1].kind, model::ElementKind::Shell4);
   EXPECT_EQ(m.parts[0].element_count(), 2u);
   EXPECT_EQ(m.parts[1].element_count(), 4u);
   EXPECT_DOUBLE_EQ(m.parts[1].thickness_m, 1.0e-3);   // &tplate = -(-0.5)*2 mm
   EXPECT_DOUBLE_EQ(m.parts[2].thickness_m, 0.5e-3);   // &tstrip = sqrt(0.25) mm
+  EXPECT_DOUBLE_EQ(m.parts[2].thickness_of(0), 0.5e-3);  // *ELEMENT_SHELL_THICKNESS
   EXPECT_EQ(m.parts[1].through_thickness_points, 5);  // &nip
   EXPECT_EQ(m.parts[2].through_thickness_points, 3);
+  EXPECT_DOUBLE_EQ(m.parts[0].hourglass_coefficient, 0.05);  // *HOURGLASS 1
+  EXPECT_DOUBLE_EQ(m.parts[1].hourglass_coefficient, 0.08);  // *CONTROL_HOURGLASS
   // Node 2 of the long-format mesh: (10, 0, 0) mm.
   const int n2 = m.node_index(2);
   ASSERT_GE(n2, 0);
@@ -45,24 +49,35 @@ TEST(DeckModel, TwinReadsInSI) {
   EXPECT_NEAR(al.hardening.sigma_y_Pa[2], 3.0e8, 1e-3);
   const auto& k = m.materials[static_cast<std::size_t>(m.parts[2].material)];
   EXPECT_NEAR(k.hardening.slope(0.0), 2.0e11 * 1.0e9 / (2.0e11 - 1.0e9), 1.0);
-  // The rigid block is a body with the velocity of its *INITIAL_VELOCITY_GENERATION.
-  ASSERT_EQ(m.rigid_bodies.size(), 1u);
+  // The rigid block (with block2 merged into it) has its *PART_INERTIA's mass and velocity; the
+  // nodal body 'cap' and the welds 40 (*CONSTRAINED_SPOTWELD_ID) and 41 (GENERALIZED) follow.
+  ASSERT_EQ(m.rigid_bodies.size(), 4u);
   EXPECT_EQ(m.rigid_bodies[0].name, "block");
+  EXPECT_EQ(m.rigid_bodies[0].parts.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[0].mass_kg, 10.0);
   EXPECT_DOUBLE_EQ(m.rigid_bodies[0].velocity_m_s[2], -5.0);
-  ASSERT_EQ(m.initial_velocities.size(), 1u);
-  EXPECT_EQ(m.initial_velocities[0].nodes.size(), 9u);
-  EXPECT_DOUBLE_EQ(m.initial_velocities[0].velocity_m_s[0], 1.0);
-  // Constraints: the bar's end (4 nodes, all dofs), the strip in z (4 nodes).
+  EXPECT_EQ(m.rigid_bodies[0].fixed, model::kRx | model::kRy | model::kRz);
+  EXPECT_EQ(m.rigid_bodies[1].name, "cap");
+  EXPECT_EQ(m.rigid_bodies[2].name, "spotweld_40");
+  EXPECT_EQ(m.rigid_bodies[3].name, "spotweld_41");
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].failure.normal_N, 1200.0);
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].failure.time_s, 1000.0);
+  ASSERT_EQ(m.initial_velocities.size(), 3u);
+  EXPECT_DOUBLE_EQ(m.initial_velocities[2].velocity_m_s[1], 1.0);  // local x = global y
+  // Constraints: the bar's end (4 nodes, all dofs), the strip in z (4 nodes), node 107 in y.
   EXPECT_EQ(std::count(m.fixed.begin(), m.fixed.end(), 63), 4);
   EXPECT_EQ(std::count(m.fixed.begin(), m.fixed.end(), model::kUz), 4);
+  EXPECT_EQ(std::count(m.fixed.begin(), m.fixed.end(), model::kUy), 1);
   EXPECT_DOUBLE_EQ(m.controls.end_time_s, 1.0e-4);
   EXPECT_DOUBLE_EQ(m.controls.dt_scale, 0.8);
   EXPECT_DOUBLE_EQ(m.controls.history_interval_s, 1.0e-6);  // *DATABASE_GLSTAT DT
-  EXPECT_EQ(m.controls.field_interval_s, 0.0);
+  EXPECT_DOUBLE_EQ(m.controls.field_interval_s, 2.0e-5);    // *DATABASE_BINARY_D3PLOT DT
+  EXPECT_EQ(m.contacts.size(), 6u);
+  EXPECT_EQ(m.rigid_walls.size(), 6u);
   // What the user is told: the blank SHRF.
   std::string all;
   for (const auto& s : r.messages) all += s + "\n";
-  EXPECT_NE(all.find("props_free.k:23: *SECTION_SHELL 3: SHRF blank (LS-DYNA reads 1.0)"),
+  EXPECT_NE(all.find("props_free.k:24: *SECTION_SHELL 3: SHRF blank (LS-DYNA reads 1.0)"),
             std::string::npos)
       << all;
 }
