@@ -27,10 +27,10 @@ TEST(DeckModel, TwinReadsInSI) {
   EXPECT_EQ(m.parts[1].kind, model::ElementKind::Shell4);
   EXPECT_EQ(m.parts[0].element_count(), 2u);
   EXPECT_EQ(m.parts[1].element_count(), 4u);
-  EXPECT_DOUBLE_EQ(m.parts[1].thickness_m, 1.0e-3);   // &tplate = -(-0.5)*2 mm
-  EXPECT_DOUBLE_EQ(m.parts[2].thickness_m, 0.5e-3);   // &tstrip = sqrt(0.25) mm
+  EXPECT_DOUBLE_EQ(m.parts[1].thickness_m, 1.0e-3);      // &tplate = -(-0.5)*2 mm
+  EXPECT_DOUBLE_EQ(m.parts[2].thickness_m, 0.5e-3);      // &tstrip = sqrt(0.25) mm
   EXPECT_DOUBLE_EQ(m.parts[2].thickness_of(0), 0.5e-3);  // *ELEMENT_SHELL_THICKNESS
-  EXPECT_EQ(m.parts[1].through_thickness_points, 5);  // &nip
+  EXPECT_EQ(m.parts[1].through_thickness_points, 5);     // &nip
   EXPECT_EQ(m.parts[2].through_thickness_points, 3);
   EXPECT_DOUBLE_EQ(m.parts[0].hourglass_coefficient, 0.05);  // *HOURGLASS 1
   EXPECT_DOUBLE_EQ(m.parts[1].hourglass_coefficient, 0.08);  // *CONTROL_HOURGLASS
