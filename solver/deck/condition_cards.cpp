@@ -138,6 +138,21 @@ void Parser::rigid_constraint(const Card& c) {
     return;
   }
   if (k.starts_with("*CONSTRAINED_NODAL_RIGID_BODY")) {
+    // a record: (the title), card 1, then _INERTIA's three cards or _SPC's one
+    const bool inertia = k.find("_INERTIA") != std::string_view::npos;
+    const bool spc = k.find("_SPC") != std::string_view::npos;
+    const int extra = b_.card - (b_.title ? 2 : 1);  // 0, 1, ...: the cards after card 1
+    if (extra >= 0 && (inertia || spc) && !d_.rigid_constraints.empty()) {
+      auto& body = d_.rigid_constraints.back();
+      if (inertia) read_inertia_card(c, extra, body.inertia);
+      if (spc) body.fixed = read_rigid_dofs(c);
+      const bool last = spc || extra == 2;
+      b_.card = last ? 0 : b_.card + 1;
+      return;
+    }
+    b_.card = inertia || spc ? b_.card + 1 : 0;  // (the next record's title)
+    r.has_inertia = inertia;
+    r.inertia.keyword = b_.keyword;
     r.kind = RigidConstraintCard::Kind::NodalBody;
     r.title = std::move(b_.pending_title);
     r.pid = positive_id(c.field(L::kNodalRigidBody, 0));

@@ -128,6 +128,12 @@ struct RigidConstraintCard {
   std::int64_t target = 0;  ///< NSID (NodalBody), NID or NSID (ExtraNodes), PIDC (MergeBodies)
   bool set = false;   ///< ExtraNodes: target is a node set; SpotWeld: target is NSID (GENERALIZED)
   std::string title;  ///< NodalBody _TITLE: the body's name
+  /// NodalBody _INERTIA: the body's centre, mass, inertia and velocities (as *PART_INERTIA's
+  /// cards 3-5: inertia.centre ... inertia.angular_velocity, inertia.inertia_ref)
+  bool has_inertia = false;
+  PartCard inertia;
+  /// NodalBody _SPC: held dofs (model::DofBits) from CMO 1, CON1, CON2
+  std::uint8_t fixed = 0;
   std::string keyword;
   CardRef ref;
 };

@@ -58,6 +58,8 @@ constexpr KeywordName kKeywords[] = {
     {"*SET_SEGMENT", Kw::SetSegment, true, false},
     {"*SET_SHELL_LIST", Kw::SetShellList, true, false},
     {"*CONSTRAINED_NODAL_RIGID_BODY", Kw::RigidConstraint, true, false},
+    {"*CONSTRAINED_NODAL_RIGID_BODY_INERTIA", Kw::RigidConstraint, true, false},
+    {"*CONSTRAINED_NODAL_RIGID_BODY_SPC", Kw::RigidConstraint, true, false},
     {"*CONSTRAINED_EXTRA_NODES_NODE", Kw::RigidConstraint, false, false},
     {"*CONSTRAINED_EXTRA_NODES_SET", Kw::RigidConstraint, false, false},
     {"*CONSTRAINED_RIGID_BODIES", Kw::RigidConstraint, false, false},
@@ -599,13 +601,12 @@ void Parser::part(const Card& c) {
   b_.card = d_.parts.back().inertia ? 2 : 0;
 }
 
-void Parser::part_inertia(const Card& c) {
-  PartCard& p = d_.parts.back();
-  if (b_.card == 2) {
+void read_inertia_card(const Card& c, int index, PartCard& p) {
+  if (index == 0) {
     for (std::size_t k = 0; k < 3; ++k) p.centre[k] = c.field(L::kPartInertia3, k).real(0.0);
     const auto tm = c.field(L::kPartInertia3, 3);
     p.mass = tm.real(0.0);
-    if (!(p.mass > 0.0)) tm.fail("the part's mass must be > 0; fix: write it (deck mass unit)");
+    if (!(p.mass > 0.0)) tm.fail("the body's mass must be > 0; fix: write it (deck mass unit)");
     must_be_default(c.field(L::kPartInertia3, 4), 0.0,
                     "an inertia tensor in the principal or a local system (IRCS 1) is not "
                     "read; fix: write IRCS 0 and the tensor in global axes");
@@ -613,13 +614,42 @@ void Parser::part_inertia(const Card& c) {
     if (p.centre_node < 0)
       c.field(L::kPartInertia3, 5).fail("must be a node id or 0; fix: write one");
     p.inertia_ref = c.ref();
-  } else if (b_.card == 3) {
+  } else if (index == 1) {
     for (std::size_t k = 0; k < 6; ++k) p.tensor[k] = c.field(L::kPartInertia4, k).real(0.0);
   } else {
     for (std::size_t k = 0; k < 3; ++k) {
       p.velocity[k] = c.field(L::kPartInertia5, k).real(0.0);
       p.angular_velocity[k] = c.field(L::kPartInertia5, 3 + k).real(0.0);
     }
+  }
+}
+
+std::uint8_t read_rigid_dofs(const Card& c) {
+  // CMO 1: CON1 the held translations, CON2 the held rotations (global axes), each 0 none, 1 x,
+  // 2 y, 3 z, 4 x and y, 5 y and z, 6 z and x, 7 all
+  const auto cmo = c.field(L::kMatRigid2, 0);
+  const double mode = cmo.real(0.0);
+  if (mode != 0.0 && mode != 1.0)
+    cmo.fail(
+        "crashlink reads CMO 0 (no constraint) or 1 (CON1/CON2 in global axes); constraints "
+        "in a local system (CMO -1) are not computed; fix: write 1 with global codes");
+  static constexpr std::uint8_t kCodes[8] = {0, 1, 2, 4, 3, 6, 5, 7};
+  std::uint8_t fixed = 0;
+  for (std::size_t f = 1; f <= 2 && mode == 1.0; ++f) {
+    const auto con = c.field(L::kMatRigid2, f);
+    const auto code = con.integer(0);
+    if (code < 0 || code > 7)
+      con.fail(
+          "must be 0 to 7 (0 none, 1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 all); fix: write "
+          "one of them");
+    fixed |= static_cast<std::uint8_t>(kCodes[static_cast<std::size_t>(code)] << (f == 1 ? 0 : 3));
+  }
+  return fixed;
+}
+
+void Parser::part_inertia(const Card& c) {
+  read_inertia_card(c, b_.card - 2, d_.parts.back());
+  if (b_.card == 4) {
     b_.card = 0;  // the next part's title
     return;
   }

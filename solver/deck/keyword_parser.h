@@ -61,6 +61,11 @@ enum class Kw : std::uint8_t {
 };
 
 /// The state of the keyword block being read.
+/// *PART_INERTIA's card 3 (index 0), 4 (1) or 5 (2) into p (also a nodal body's _INERTIA).
+void read_inertia_card(const Card& c, int index, PartCard& p);
+/// *MAT_RIGID's card 2 (also a nodal body's _SPC card): CMO, CON1, CON2 as model::DofBits.
+std::uint8_t read_rigid_dofs(const Card& c);
+
 struct Block {
   Kw kw = Kw::Skip;
   std::string keyword;

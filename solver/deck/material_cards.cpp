@@ -153,27 +153,7 @@ void Parser::material(const Card& c) {
   MaterialCard& m = d_.materials.back();
   ++b_.card;
   if (b_.kw == Kw::MatRigid) {
-    if (k == 1) {
-      // CMO 1: CON1 the held translations, CON2 the held rotations (global axes), each
-      // 0 none, 1 x, 2 y, 3 z, 4 x and y, 5 y and z, 6 z and x, 7 all
-      const auto cmo = c.field(L::kMatRigid2, 0);
-      const double mode = cmo.real(0.0);
-      if (mode != 0.0 && mode != 1.0)
-        cmo.fail(
-            "crashlink reads CMO 0 (no constraint) or 1 (CON1/CON2 in global axes); constraints "
-            "in a local system (CMO -1) are not computed; fix: write 1 with global codes");
-      static constexpr std::uint8_t kCodes[8] = {0, 1, 2, 4, 3, 6, 5, 7};
-      for (std::size_t f = 1; f <= 2 && mode == 1.0; ++f) {
-        const auto con = c.field(L::kMatRigid2, f);
-        const auto code = con.integer(0);
-        if (code < 0 || code > 7)
-          con.fail(
-              "must be 0 to 7 (0 none, 1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 all); fix: write "
-              "one of them");
-        m.rigid_fixed |=
-            static_cast<std::uint8_t>(kCodes[static_cast<std::size_t>(code)] << (f == 1 ? 0 : 3));
-      }
-    }
+    if (k == 1) m.rigid_fixed = read_rigid_dofs(c);
     return;  // card 3 (LCO/alignment) has no effect without local constraints
   }
   if (b_.kw == Kw::MatPlasticKinematic) {

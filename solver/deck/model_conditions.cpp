@@ -101,8 +101,8 @@ void Builder::velocities() {
           m_.rigid_bodies[static_cast<std::size_t>(b)].velocity_m_s = vel;
         else
           d_notes_.push_back(fmt::format(
-              "{}: {}: rigid body '{}' keeps the velocity of its *PART_INERTIA", at(d_, v.ref),
-              v.keyword, m_.rigid_bodies[static_cast<std::size_t>(b)].name));
+              "{}: {}: rigid body '{}' keeps the velocity of its *PART_INERTIA (_INERTIA)",
+              at(d_, v.ref), v.keyword, m_.rigid_bodies[static_cast<std::size_t>(b)].name));
       }
       std::erase_if(iv.nodes,
                     [&](std::int32_t c) { return body_of[static_cast<std::size_t>(c)] >= 0; });
@@ -163,6 +163,15 @@ void Builder::rigid_constraints() {
       for (const auto& other : m_.rigid_bodies)
         if (other.name == rb.name) rb.name += fmt::format(" (PID {})", r.pid);
       add_nodes(r, node_set(r.target, r.ref, r.keyword, l, 2), l, 2, rb);
+      rb.fixed = r.fixed;   // _SPC
+      if (r.has_inertia) {  // _INERTIA: as *PART_INERTIA's cards
+        if (!(r.inertia.mass > 0.0))
+          fail_at(d_, r.ref, r.keyword, l, 0,
+                  "its _INERTIA cards (XC YC ZC TM, the tensor, the velocities) are missing; "
+                  "fix: add them after card 1");
+        part_inertia(r.inertia, rb);
+        inertia_bodies_.insert(static_cast<int>(m_.rigid_bodies.size()));
+      }
       m_.rigid_bodies.push_back(std::move(rb));
       merged.push_back(0);
     } else if (r.kind == K::SpotWeld) {
@@ -467,7 +476,8 @@ void Builder::rigid_walls() {
       Vec3 l{};
       for (std::size_t c = 0; c < 3; ++c) l[c] = k.edge_head[c] - k.tail[c];
       const double ll = norm(l);
-      if (!(ll > 0.0) || std::abs(dot(l, w.normal)) > 1e-6 * ll)
+      // (within 1e-3: an oblique wall written with 5 digits in 10 columns; projected below)
+      if (!(ll > 0.0) || std::abs(dot(l, w.normal)) > 1e-3 * ll)
         fail_at(d_, k.ref_shape, k.keyword, L::kRigidWallFinite, 0,
                 fmt::format("the edge l from the tail ({}, {}, {}) to (XHEV, YHEV, ZHEV) must be "
                             "a vector in the wall's plane (l.n = {:.4g} of |l| = {:.4g}); fix: "
@@ -545,6 +555,13 @@ void Builder::curve_dofs() {
                             "rigid part, or drive a deformable part's nodes with "
                             "*BOUNDARY_PRESCRIBED_MOTION_SET",
                             k.target));
+      const auto& body = m_.rigid_bodies[static_cast<std::size_t>(it->second)];
+      if (body.fixed & (1u << dof))
+        fail_at(d_, k.ref, k.keyword, l, 1,
+                fmt::format("rigid body '{}' (part {}) already holds this dof (*MAT_RIGID "
+                            "CON1/CON2 or a nodal body's _SPC); fix: free it there or drive "
+                            "another dof",
+                            body.name, k.target));
       model::PrescribedVelocity pv;
       pv.name = fmt::format("motion_{}", ++motions);
       pv.rigid_body = it->second;

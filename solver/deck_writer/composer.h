@@ -12,6 +12,7 @@
 #include "solver/deck/units.h"
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/deck_writer/keyword_block.h"
+#include "solver/integration/rigid_body.h"
 #include "solver/model/model.h"
 
 namespace crashlink::deck_writer::detail {
@@ -82,6 +83,22 @@ class Composer {
   Rounding rounding_;
   std::vector<std::string> notes_;
   std::vector<std::int64_t> part_id_;  ///< the *PART PID of each model part
+  /// The rigid bodies as the solver builds them (centre, mass, inertia), model order; set by
+  /// parts() for *PART_INERTIA and a nodal body's _INERTIA.
+  std::vector<integration::RigidBodyState> body_states_;
+  /// A body of nodes only with a given mass, inertia, centre or angular velocity: written as
+  /// *CONSTRAINED_NODAL_RIGID_BODY_INERTIA.
+  static bool nodal_inertia_given(const model::RigidBody& rb) {
+    return rb.parts.empty() &&
+           (rb.mass_kg > 0.0 || rb.inertia_given || rb.centre_given ||
+            rb.angular_velocity_rad_s[0] != 0.0 || rb.angular_velocity_rad_s[1] != 0.0 ||
+            rb.angular_velocity_rad_s[2] != 0.0);
+  }
+  /// *MAT_RIGID's (and a nodal body's _SPC) CON1/CON2 code of three held axes (bits x, y, z).
+  static long long con_code(int bits) {
+    static constexpr long long kCode[8] = {0, 1, 2, 4, 3, 6, 5, 7};
+    return kCode[bits & 7];
+  }
   std::int64_t next_node_set_ = 1, next_part_set_ = 1, next_segment_set_ = 1, next_curve_ = 1;
 };
 

@@ -128,11 +128,32 @@ void Composer::rigid_constraints() {
       continue;
     }
     if (rb.parts.empty()) {
+      // its given mass and inertia as _INERTIA (the whole body as the solver builds it, and its
+      // velocities), its held dofs as _SPC (check_exportable: not both)
+      const bool inertia = nodal_inertia_given(rb);
       const std::int64_t sid = node_set(rb.nodes, rb.name + " nodes");
-      KeywordBlock b("*CONSTRAINED_NODAL_RIGID_BODY_TITLE");
+      KeywordBlock b(inertia         ? "*CONSTRAINED_NODAL_RIGID_BODY_INERTIA_TITLE"
+                     : rb.fixed != 0 ? "*CONSTRAINED_NODAL_RIGID_BODY_SPC_TITLE"
+                                     : "*CONSTRAINED_NODAL_RIGID_BODY_TITLE");
       b.line(rb.name);
       b.card(L::kNodalRigidBody,
              {static_cast<long long>(++next_pid), 0, static_cast<long long>(sid)});
+      if (inertia) {
+        const auto& body = body_states_[k];
+        const double s = u_.mass_kg * u_.length_m * u_.length_m;
+        const auto& J = body.inertia_body;
+        b.card(L::kPartInertia3, {length(body.centre0[0]), length(body.centre0[1]),
+                                  length(body.centre0[2]), mass(body.mass_kg), 0, 0});
+        b.card(L::kPartInertia4,
+               {J[0][0] / s, J[0][1] / s, J[0][2] / s, J[1][1] / s, J[1][2] / s, J[2][2] / s});
+        b.card(
+            L::kPartInertia5,
+            {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
+             velocity(rb.velocity_m_s[2]), rb.angular_velocity_rad_s[0] * u_.time_s,
+             rb.angular_velocity_rad_s[1] * u_.time_s, rb.angular_velocity_rad_s[2] * u_.time_s});
+      }
+      if (rb.fixed != 0)
+        b.card(L::kMatRigid2, {1.0, con_code(rb.fixed & 7), con_code((rb.fixed >> 3) & 7)});
       emit(b);
       continue;
     }
@@ -156,7 +177,7 @@ void Composer::rigid_body_velocities() {
   // A body of nodes takes the velocity of the last card on its nodes (the reader's rule): its
   // own, written after every other initial velocity, even 0 (a weld at rest in a moving part).
   for (const auto& rb : m_.rigid_bodies) {
-    if (!rb.parts.empty()) continue;  // *PART_INERTIA holds it
+    if (!rb.parts.empty() || nodal_inertia_given(rb)) continue;  // *PART_INERTIA, _INERTIA
     const std::int64_t sid = node_set(rb.nodes, rb.name + " velocity");
     initial_velocity(sid, rb.velocity_m_s);
   }

@@ -18,13 +18,6 @@ namespace {
 /// and computes 5/6).
 constexpr double kShearFactor = 0.833333;
 
-/// *MAT_RIGID's CON1/CON2 code of three held axes (bits x, y, z): 0 none, 1 x, 2 y, 3 z, 4 x
-/// and y, 5 y and z, 6 z and x, 7 all.
-long long con_code(int bits) {
-  static constexpr long long kCode[8] = {0, 1, 2, 4, 3, 6, 5, 7};
-  return kCode[bits & 7];
-}
-
 }  // namespace
 
 void Composer::check_exportable() const {
@@ -42,12 +35,11 @@ void Composer::check_exportable() const {
           "(controls.mass_scaling_dt); a deck writes only DT2MS; fix: the model",
           p.name));
   for (const auto& rb : m_.rigid_bodies)
-    if (rb.parts.empty() && (rb.mass_kg > 0.0 || rb.inertia_given || rb.centre_given ||
-                             norm(rb.angular_velocity_rad_s) > 0.0))
+    if (nodal_inertia_given(rb) && rb.fixed != 0)
       throw ModelError(fmt::format(
-          "export: rigid body '{}' of nodes only has a given mass, inertia, centre or angular "
-          "velocity, which a deck gives in *CONSTRAINED_NODAL_RIGID_BODY_INERTIA, not read yet; "
-          "fix: let the body's nodes give them, or make it of a rigid part",
+          "export: rigid body '{}' of nodes only has both a given mass or inertia "
+          "(*CONSTRAINED_NODAL_RIGID_BODY_INERTIA) and held dofs (_SPC), two forms of the "
+          "keyword; fix: let its nodes give its mass, or hold it by a rigid part",
           rb.name));
   for (const auto& pv : m_.prescribed_velocities)
     if (pv.rigid_body >= 0 &&
@@ -57,28 +49,20 @@ void Composer::check_exportable() const {
           "*BOUNDARY_PRESCRIBED_MOTION_RIGID names by a rigid part; fix: drive the body's nodes, "
           "or make it of a rigid part",
           pv.name, m_.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)].name));
-  // A body's held dofs are its material's CON1/CON2 in a deck: every body of that material
-  // must hold the same.
+  // A body's held dofs are its lead part's material's CON1/CON2 in a deck (the reader keeps the
+  // lead's when it merges parts): every body led by a part of that material must hold the same.
   std::vector<int> material_fixed(m_.materials.size(), -1);
   for (const auto& rb : m_.rigid_bodies) {
-    if (rb.fixed != 0 && rb.parts.empty())
+    if (rb.parts.empty()) continue;  // (held: *CONSTRAINED_NODAL_RIGID_BODY_SPC)
+    const int mat = m_.parts[static_cast<std::size_t>(rb.parts[0])].material;
+    int& f = material_fixed[static_cast<std::size_t>(mat)];
+    if (f >= 0 && f != rb.fixed)
       throw ModelError(fmt::format(
-          "export: rigid body '{}' of nodes only holds some of its dofs, which a deck writes as "
-          "its rigid material's CON1/CON2; fix: make it of a rigid part",
-          rb.name));
-    for (int p : rb.parts) {
-      int& f =
-          material_fixed[static_cast<std::size_t>(m_.parts[static_cast<std::size_t>(p)].material)];
-      if (f >= 0 && f != rb.fixed)
-        throw ModelError(fmt::format(
-            "export: rigid body '{}' holds other dofs than another body of material '{}', and a "
-            "deck holds them in the material (*MAT_RIGID CON1/CON2); fix: give each a material "
-            "of its own",
-            rb.name,
-            m_.materials[static_cast<std::size_t>(m_.parts[static_cast<std::size_t>(p)].material)]
-                .name));
-      f = rb.fixed;
-    }
+          "export: rigid body '{}' holds other dofs than another body led by a part of material "
+          "'{}', and a deck holds them in the material (*MAT_RIGID CON1/CON2); fix: give each a "
+          "material of its own",
+          rb.name, m_.materials[static_cast<std::size_t>(mat)].name));
+    f = rb.fixed;
   }
   std::vector<char> in_body(m_.parts.size(), 0);
   for (const auto& rb : m_.rigid_bodies)
@@ -127,11 +111,11 @@ void Composer::materials() {
         b.line(mat.name);
         b.card(L::kMatRigid1, {mid, rho, E, nu});
         // held dofs (check_exportable: one set per material) as CMO 1, CON1, CON2
-        int fixed = 0;
+        int fixed = 0;  // of the bodies it leads (check_exportable: one set per material)
         for (const auto& rb : m_.rigid_bodies)
-          for (int p : rb.parts)
-            if (m_.parts[static_cast<std::size_t>(p)].material == static_cast<int>(i))
-              fixed = rb.fixed;
+          if (!rb.parts.empty() &&
+              m_.parts[static_cast<std::size_t>(rb.parts[0])].material == static_cast<int>(i))
+            fixed = rb.fixed;
         if (fixed == 0) {
           b.card(L::kMatRigid2, {0.0});
         } else {
@@ -185,6 +169,7 @@ void Composer::parts() {
   if (!m_.rigid_bodies.empty()) {
     solver = std::make_unique<integration::Solver>(m_);
     solver->initialize();
+    body_states_ = solver->rigid_bodies();
     // the lead part (the first) carries the whole body's *PART_INERTIA; the others join it by
     // *CONSTRAINED_RIGID_BODIES, its extra nodes by *CONSTRAINED_EXTRA_NODES_SET (conditions)
     for (std::size_t b = 0; b < m_.rigid_bodies.size(); ++b)

@@ -187,6 +187,7 @@ void Solver::constrain_rigid_body(std::size_t k, double dt_mid) {
     if (bm.dof < 3) {
       const double reaction = b.mass_kg * (target - b.velocity[d]) / dt_mid;
       b.velocity[d] = target;
+      b.force[d] += reaction;  // F^n with the reaction: the probes' acceleration (F/M) at t^n
       if (cycle_ > 0)
         energy_.external_work_J +=
             0.5 * (bm.reaction_prev + reaction) * dt_prev_ * b.velocity_prev[d];
@@ -225,6 +226,7 @@ void Solver::constrain_rigid_body(std::size_t k, double dt_mid) {
   b.omega = mul(j_inv, b.angular_momentum);
   for (std::size_t r = 0; r < ns; ++r) {
     const double reaction = lambda[r] / dt_mid;
+    b.torque[axis[r]] += reaction;  // T^n with the reaction moment (rigid_point_acceleration)
     if (cycle_ > 0)
       energy_.external_work_J +=
           0.5 * (rot[r]->reaction_prev + reaction) * dt_prev_ * b.omega_prev[axis[r]];

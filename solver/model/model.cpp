@@ -122,6 +122,11 @@ void validate(const Model& m) {
     for (auto i : rb.nodes)
       if (i < 0 || static_cast<std::size_t>(i) >= m.nodes.count())
         throw ModelError(fmt::format("rigid body '{}': node index {} out of range", rb.name, i));
+    if (rb.failure.any() && rb.fixed != 0)
+      throw ModelError(
+          fmt::format("spot weld '{}': holds some of its dofs; a weld that lets go cannot be held "
+                      "(fix: hold the sheets' nodes, not the weld)",
+                      rb.name));
     if (rb.failure.any() && (!rb.parts.empty() || rb.nodes.size() != 2))
       throw ModelError(
           fmt::format("rigid body '{}': a failure criterion belongs to a spot weld "
@@ -169,8 +174,10 @@ void validate(const Model& m) {
         throw ModelError(fmt::format("rigid wall '{}': node index {} out of range", w.name, i));
     const bool cylinder = w.shape == RigidWall::Shape::Cylinder;
     if (cylinder ? !(w.radius_m > 0.0) || w.moving() || !(w.length_m >= 0.0)
-                 : w.finite() && (!(w.width_m > 0.0) || std::abs(norm(w.edge) - 1.0) > 1e-9 ||
-                                  std::abs(dot(w.edge, w.normal)) > 1e-9))
+                 : !(w.length_m >= 0.0) || !(w.width_m >= 0.0) ||
+                       (w.length_m > 0.0) != (w.width_m > 0.0) ||
+                       (w.finite() && (std::abs(norm(w.edge) - 1.0) > 1e-9 ||
+                                       std::abs(dot(w.edge, w.normal)) > 1e-9)))
       throw ModelError(fmt::format(
           "rigid wall '{}': {} with radius {} m, length {} m, width {} m, edge ({}, {}, {}); a "
           "cylinder has a radius > 0, a length >= 0 (0: infinite) and does not move; a finite "
@@ -188,6 +195,12 @@ void validate(const Model& m) {
     if (pv.dof < 0 || pv.dof > 5)
       throw ModelError(
           fmt::format("prescribed velocity '{}': dof {} outside 0..5", pv.name, pv.dof));
+    if (pv.rigid_body >= 0 && pv.rigid_body < static_cast<int>(m.rigid_bodies.size()) &&
+        m.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)].failure.any())
+      throw ModelError(fmt::format(
+          "prescribed velocity '{}' drives spot weld '{}'; a weld that lets go cannot be driven "
+          "(fix: drive the sheets' nodes)",
+          pv.name, m.rigid_bodies[static_cast<std::size_t>(pv.rigid_body)].name));
     if (pv.rigid_body >= static_cast<int>(m.rigid_bodies.size()) ||
         (pv.rigid_body >= 0 && !pv.nodes.empty()))
       throw ModelError(fmt::format(

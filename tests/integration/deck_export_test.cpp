@@ -637,22 +637,39 @@ TEST(DeckExport, CommandWritesTheDeckAndTheScenarioOrRefuses) {
   EXPECT_NE(out.find("would overwrite the scenario being exported"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "head_impact.k"));
 
-  // a nodal rigid body with its own mass: a deck would need _INERTIA, not read yet
-  std::ofstream(dir / "nrb.yaml") << R"(name: nrb
+  // a nodal rigid body with its own mass: *CONSTRAINED_NODAL_RIGID_BODY_INERTIA, read back
+  // with it; with held dofs too (_SPC, another form of the keyword): refused
+  const std::string nrb = R"(name: nrb
 controls: {end_time: 1.0e-4}
 materials:
   steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
 parts:
   a: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0], size: [0.1, 0.1], normal: z, divisions: [2, 2]}}
 rigid_bodies:
-  body: {nodes: {part: a, box: {min: [-1, -1, -1], max: [0.01, 1, 1]}}, mass: 1.0}
+  body: {nodes: {part: a, box: {min: [-1, -1, -1], max: [0.01, 1, 1]}}, mass: 1.0, velocity: [0, 0, 2.0]}
 )";
+  std::ofstream(dir / "nrb.yaml") << nrb;
   out = testing::run_command(kCrashlink + " export " + (dir / "nrb.yaml").string() + " --deck " +
                                  (dir / "nrb.k").string() + " 2>&1",
                              status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  {
+    const model::Model back = deck::read_deck((dir / "nrb.k").string(), {"m-kg-s", {}}).model;
+    ASSERT_EQ(back.rigid_bodies.size(), 1u);
+    EXPECT_EQ(back.rigid_bodies[0].name, "body");
+    EXPECT_EQ(back.rigid_bodies[0].mass_kg, 1.0);
+    EXPECT_EQ(back.rigid_bodies[0].velocity_m_s[2], 2.0);
+    EXPECT_TRUE(back.rigid_bodies[0].inertia_given);
+  }
+  std::ofstream(dir / "nrb2.yaml") << nrb.substr(0, nrb.size() - 2) + ", fix: [x]}\n";
+  out = testing::run_command(kCrashlink + " export " + (dir / "nrb2.yaml").string() + " --deck " +
+                                 (dir / "nrb2.k").string() + " 2>&1",
+                             status);
   EXPECT_EQ(WEXITSTATUS(status), 2) << out;
-  EXPECT_NE(out.find("rigid body 'body' of nodes only has a given mass"), std::string::npos) << out;
-  EXPECT_FALSE(std::filesystem::exists(dir / "nrb.k"));
+  EXPECT_NE(out.find("rigid body 'body' of nodes only has both a given mass or inertia"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "nrb2.k"));
   out = testing::run_command(kCrashlink + " export " + kScenes + "plate_impact.yaml --deck " +
                                  (dir / "p.k").string() + " --units furlong 2>&1",
                              status);

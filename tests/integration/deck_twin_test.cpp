@@ -7,6 +7,7 @@
 // spot-weld failure), prescribed motions and loads with their curves, gravity, contacts (slave
 // nodes and faces, masters, penalty, soft, friction), rigid walls of every shape, probes and
 // controls. Both then run to the end with the same answer.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -377,82 +378,96 @@ TEST(DeckTwin, UsesEverySupportedKeyword) {
 // Twenty-four mistakes in the twin, each in one of its three files: `crashlink run` names the file
 // and line, the keyword, the field and its columns, says what is wrong and the fix, exits 2, and
 // runs nothing (no result.h5).
+// Mistakes in the twin (26), each one edit of one of its three files: `crashlink run` names the
+// file and line (found here from the edited text), the keyword, the field and its columns, says
+// what is wrong and the fix, exits 2, and runs nothing (no result.h5).
 TEST(DeckTwin, MistakesExitTwoWithTheirFileAndLineAndNothingRun) {
   struct Mistake {
-    const char* file;
-    const char* find;
-    const char* replace;
-    const char* message;
+    const char* file;     ///< the file edited
+    const char* find;     ///< the text replaced (its first occurrence)
+    const char* replace;  ///< by this
+    const char* at_file;  ///< the file the message names
+    const char* at_text;  ///< in it, after the edit: the message's line is this text's last line
+    const char* message;  ///< what follows "file:line: "
   };
   const Mistake mistakes[] = {
       {"main.k", "      10       2     101     102     105     104",
-       "      10       2     999     102     105     104",
-       "main.k:26: *ELEMENT_SHELL field N1 (columns 17-24) = 999: node 999 is not defined"},
+       "      10       2     999     102     105     104", "main.k", "      10       2     999",
+       "*ELEMENT_SHELL field N1 (columns 17-24) = 999: node 999 is not defined"},
       {"main.k", "      11       2     102     103     106     105",
-       "      10       2     102     103     106     105",
-       "main.k:27: *ELEMENT_SHELL field EID (columns 1-8) = 10: *ELEMENT_SHELL 10 is already "
+       "      10       2     102     103     106     105", "main.k",
+       "      10       2     102     103",
+       "*ELEMENT_SHELL field EID (columns 1-8) = 10: *ELEMENT_SHELL 10 is already defined"},
+      {"main.k", "     &tend", "    &tende", "main.k", "    &tende",
+       "*CONTROL_TERMINATION field ENDTIM (columns 1-10) = &tende: parameter 'tende' is not "
        "defined"},
-      {"main.k", "     &tend", "    &tende",
-       "main.k:91: *CONTROL_TERMINATION field ENDTIM (columns 1-10) = &tende: parameter 'tende' "
-       "is not defined"},
-      {"props/props_free.k", "plate\n2,2,2", "plate\n2,2,9",
-       "props/props_free.k:10: *PART field MID (columns 5-5) = 9: material 9 is not defined"},
-      {"props/props_free.k", "strip\n3,3,3", "strip\n3,8,3",
-       "props/props_free.k:13: *PART field SECID (columns 3-3) = 8: section 8 is not defined"},
-      {"props/props_free.k", "0.1,250.0", "0.6,250.0",
-       "props/props_free.k:37: *DEFINE_CURVE field A (columns 1-3) = 0.5: abscissae must "
-       "increase: 0.5 follows 0.6"},
-      {"props/props_free.k", "3,1,3,3", "3,1,3,77",
-       "props/props_free.k:117: *CONTACT_NODES_TO_SURFACE field MSTYP (columns 7-8) = 77: "
-       "surface type 77 is not read"},
-      {"props/props_free.k", "10.0,0.0,12.0,5.0,6.0", "0.0,0.0,13.0,5.0,6.0",
-       "props/props_free.k:144: *RIGIDWALL_GEOMETRIC_FLAT_ID field XHEV (columns 1-3) = 0.0: the "
-       "edge l from the tail (0, 0, 12) to (XHEV, YHEV, ZHEV) must be a vector in the wall's "
-       "plane"},
-      {"props/props_free.k", "5.0,40.0", "0.0,40.0",
-       "props/props_free.k:149: *RIGIDWALL_GEOMETRIC_CYLINDER_ID field RADCYL (columns 1-3) = "
-       "0.0: the cylinder needs its radius (> 0)"},
+      {"props/props_free.k", "plate\n2,2,2", "plate\n2,2,9", "props/props_free.k", "2,2,9",
+       "*PART field MID (columns 5-5) = 9: material 9 is not defined"},
+      {"props/props_free.k", "strip\n3,3,3", "strip\n3,8,3", "props/props_free.k", "3,8,3",
+       "*PART field SECID (columns 3-3) = 8: section 8 is not defined"},
+      {"props/props_free.k", "0.1,250.0", "0.6,250.0", "props/props_free.k", "0.5,300.0",
+       "*DEFINE_CURVE field A (columns 1-3) = 0.5: abscissae must increase: 0.5 follows 0.6"},
+      {"props/props_free.k", "3,1,3,3", "3,1,3,77", "props/props_free.k", "3,1,3,77",
+       "*CONTACT_NODES_TO_SURFACE field MSTYP (columns 7-8) = 77: surface type 77 is not read"},
+      {"props/props_free.k", "10.0,0.0,12.0,5.0,6.0", "0.0,0.0,13.0,5.0,6.0", "props/props_free.k",
+       "0.0,0.0,13.0,5.0,6.0",
+       "*RIGIDWALL_GEOMETRIC_FLAT_ID field XHEV (columns 1-3) = 0.0: the edge l from the tail (0, "
+       "0, 12) to (XHEV, YHEV, ZHEV) must be a vector in the wall's plane"},
+      {"props/props_free.k", "5.0,40.0", "0.0,40.0", "props/props_free.k", "0.0,40.0",
+       "*RIGIDWALL_GEOMETRIC_CYLINDER_ID field RADCYL (columns 1-3) = 0.0: the cylinder needs its "
+       "radius (> 0)"},
       {"props/props_free.k", "-10.0,10.0,8.0,30.0,10.0,8.0", "-10.0,10.0,8.0,-10.0,10.0,8.0",
-       "props/props_free.k:148: *RIGIDWALL_GEOMETRIC_CYLINDER_ID field XH (columns 16-20) = "
-       "-10.0: the head point is the tail point"},
-      {"props/props_free.k", "8,5,2,10", "8,5,1,10",
-       "props/props_free.k:163: *BOUNDARY_PRESCRIBED_MOTION_SET field VAD (columns 5-5) = 1: "
-       "crashlink prescribes a velocity (VAD 0) or a displacement"},
-      {"props/props_free.k", "4,1,0,11", "2,1,0,11",
-       "props/props_free.k:165: *BOUNDARY_PRESCRIBED_MOTION_RIGID field PID (columns 1-1) = 2: "
-       "part 2 is not a rigid part"},
-      {"props/props_free.k", "1.0,0,7", "1.0,0,9",
-       "props/props_free.k:42: *MAT_RIGID field CON2 (columns 7-7) = 9: must be 0 to 7"},
+       "props/props_free.k", "-10.0,10.0,8.0,-10.0",
+       "*RIGIDWALL_GEOMETRIC_CYLINDER_ID field XH (columns 16-20) = -10.0: the head point is the "
+       "tail point"},
+      {"props/props_free.k", "8,5,2,10", "8,5,1,10", "props/props_free.k", "8,5,1,10",
+       "*BOUNDARY_PRESCRIBED_MOTION_SET field VAD (columns 5-5) = 1: crashlink prescribes a "
+       "velocity (VAD 0) or a displacement"},
+      {"props/props_free.k", "4,1,0,11", "2,1,0,11", "props/props_free.k", "2,1,0,11",
+       "*BOUNDARY_PRESCRIBED_MOTION_RIGID field PID (columns 1-1) = 2: part 2 is not a rigid part"},
+      {"props/props_free.k", "4,&rhost,&estee,0.3\n1.0,0,7", "4,&rhost,&estee,0.3\n1.0,0,9",
+       "props/props_free.k", "1.0,0,9", "*MAT_RIGID field CON2 (columns 7-7) = 9: must be 0 to 7"},
       {"props/props_free.k", "*SET_SHELL_LIST\n11\n11", "*SET_SHELL_LIST\n11\n99",
-       "props/props_free.k:93: *SET_SHELL_LIST field ID1 (columns 1-10) = 99: shell 99 is not "
-       "defined"},
-      {"props/props_free.k", "101,102,105,104", "101,102,106,104",
-       "props/props_free.k:90: *SET_SEGMENT field N1 (columns 1-3) = 101: is not a face of an "
-       "element"},
-      {"main.k", "*CONTROL_SHELL", "*CONTROL_SOLID",
-       "main.k:86: *CONTROL_SOLID: not supported; fix: remove it, or pass --ignore CONTROL_SOLID"},
-      {"main.k", "         4         1         4\n", "         4         1         1\n",
-       "main.k:46: *PART_INERTIA field TM (columns 31-40) = 0.01: crashlink reads *PART_INERTIA "
-       "on rigid parts (*MAT_RIGID) only"},
-      {"mesh_long.k", "                 312", "                 311",
-       "mesh_long.k:39: *NODE field NID (columns 1-20) = 311: node 311 is already defined at "
-       "mesh_long.k:38"},
-      {"main.k", "         2         5    1500.0", "         2         2    1500.0",
-       "main.k:60: *CONSTRAINED_SPOTWELD_ID field N2 (columns 11-20) = 2: is N1"},
-      {"props/props_free.k", "0.3,0.2,0.01", "0.3,0.2x,0.01",
-       "props/props_free.k:108: *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID field FD (columns 5-8) "
-       "= 0.2x: not a number"},
-      {"props/props_free.k", "14\n105,106", "14\n105,106,107",
-       "main.k:63: *CONSTRAINED_GENERALIZED_WELD_SPOT_ID field NSID (columns 1-10) = 14: node set "
-       "14 holds 3 nodes"},
-      {"main.k", "*SENSOR_DEFINE_NODE", "*SENSOR_SWITCH",
-       "main.k:100: *SENSOR_SWITCH: a sensor that switches something"},
-      {"main.k", "*INCLUDE\nprops_free.k", "*INCLUDE\nprops_fre.k",
-       "main.k:41: *INCLUDE field FILENAME (columns 1-80) = props_fre.k: no such file (looked for "
+       "props/props_free.k", "*SET_SHELL_LIST\n11\n99",
+       "*SET_SHELL_LIST field ID1 (columns 1-10) = 99: shell 99 is not defined"},
+      {"props/props_free.k", "101,102,105,104", "101,102,106,104", "props/props_free.k",
+       "101,102,106,104", "*SET_SEGMENT field N1 (columns 1-3) = 101: is not a face of an element"},
+      {"main.k", "*CONTROL_SHELL", "*CONTROL_SOLID", "main.k", "*CONTROL_SOLID",
+       "*CONTROL_SOLID: not supported; fix: remove it, or pass --ignore CONTROL_SOLID"},
+      {"main.k", "         4         1         4\n", "         4         1         1\n", "main.k",
+       "      55.0       5.0       5.0      0.01",
+       "*PART_INERTIA field TM (columns 31-40) = 0.01: crashlink reads *PART_INERTIA on rigid "
+       "parts (*MAT_RIGID) only"},
+      {"mesh_long.k", "                 312", "                 311", "mesh_long.k",
+       "                 311           72.0",
+       "*NODE field NID (columns 1-20) = 311: node 311 is already defined at mesh_long.k:"},
+      {"main.k", "         2         5    1500.0", "         2         2    1500.0", "main.k",
+       "         2         2    1500.0",
+       "*CONSTRAINED_SPOTWELD_ID field N2 (columns 11-20) = 2: is N1"},
+      {"props/props_free.k", "0.3,0.2,0.01", "0.3,0.2x,0.01", "props/props_free.k", "0.3,0.2x,0.01",
+       "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID field FD (columns 5-8) = 0.2x: not a number"},
+      {"props/props_free.k", "14\n105,106", "14\n105,106,107", "main.k",
+       "        14         0         0",
+       "*CONSTRAINED_GENERALIZED_WELD_SPOT_ID field NSID (columns 1-10) = 14: node set 14 holds 3 "
+       "nodes"},
+      {"main.k", "*SENSOR_DEFINE_NODE", "*SENSOR_SWITCH", "main.k", "*SENSOR_SWITCH",
+       "*SENSOR_SWITCH: a sensor that switches something"},
+      {"main.k", "*INCLUDE\nprops_free.k", "*INCLUDE\nprops_fre.k", "main.k",
+       "*INCLUDE\nprops_fre.k",
+       "*INCLUDE field FILENAME (columns 1-80) = props_fre.k: no such file (looked for "
        "props_fre.k, props/props_fre.k, ./props_fre.k)"},
-      {"main.k", "R estee   210.0*1000.0", "R estee   210.0*1.0e9",
-       "props/props_free.k:28: *MAT_ELASTIC_TITLE field E (columns 10-15) = &estee: with RO = "
-       "7.85e-09 and --units mm-t-s, the wave speed sqrt(E/RO) is 5.172e+06 m/s"},
+      {"main.k", "R estee   210.0*1000.0", "R estee   210.0*1.0e9", "props/props_free.k",
+       "1,&rhost,&estee,0.3",
+       "*MAT_ELASTIC_TITLE field E (columns 10-15) = &estee: with RO = 7.85e-09 and --units "
+       "mm-t-s, the wave speed sqrt(E/RO) is 5.172e+06 m/s"},
+      {"main.k", "      35.0       5.0      60.0     0.002",
+       "      35.0       5.0      60.0    -0.002", "main.k",
+       "      35.0       5.0      60.0    -0.002",
+       "*CONSTRAINED_NODAL_RIGID_BODY_INERTIA field TM (columns 31-40) = -0.002: the body's mass "
+       "must be > 0"},
+      {"props/props_free.k", "4,1,0,11", "4,6,0,11", "props/props_free.k", "4,6,0,11",
+       "*BOUNDARY_PRESCRIBED_MOTION_RIGID field DOF (columns 3-3) = 6: rigid body 'block' (part 4) "
+       "already holds this dof"},
   };
   const std::string crashlink = std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink";
   const auto root = std::filesystem::temp_directory_path() /
@@ -479,12 +494,22 @@ TEST(DeckTwin, MistakesExitTwoWithTheirFileAndLineAndNothingRun) {
     for (auto p = out.find(dir.string() + "/"); p != std::string::npos;
          p = out.find(dir.string() + "/"))
       out.erase(p, dir.string().size() + 1);
+    // the line of at_text's last line in the edited at_file
+    std::stringstream edited;
+    edited << std::ifstream(dir / m.at_file).rdbuf();
+    const std::string t = edited.str(), marker = m.at_text;
+    const auto pos = t.find(marker);
+    ASSERT_NE(pos, std::string::npos) << m.at_text;
+    const auto line = 1 +
+                      std::count(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(pos), '\n') +
+                      std::count(marker.begin(), marker.end(), '\n');
+    const std::string expected =
+        fmt::format("crashlink: input error: {}:{}: {}", m.at_file, line, m.message);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << out;
-    EXPECT_NE(out.find(std::string("crashlink: input error: ") + m.message), std::string::npos)
-        << out;
+    EXPECT_NE(out.find(expected), std::string::npos) << expected << "\n" << out;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "result.h5")) << "nothing runs";
   }
-  EXPECT_GE(k, 20);
+  EXPECT_GE(k, 26);
   std::filesystem::remove_all(root);
 }
 

@@ -5,11 +5,14 @@
 // translation under gravity carries the weight without moving; a prescribed velocity ramp moves
 // the centre by the ramp's integral, its reaction's work being the kinetic energy it gave.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "solver/core/errors.h"
+#include "solver/core/state_archive.h"
 #include "tests/integration/run_helpers.h"
 #include "tests/integration/test_models.h"
 
@@ -107,8 +110,100 @@ TEST(RigidBodyMotion, PrescribedVelocityRampMovesByItsIntegral) {
       b.centre[0] - b.centre0[0], s.energy().external_work_J, ke, worst_balance / ke);
   EXPECT_NEAR(b.centre[0] - b.centre0[0], 0.15, 1e-6);
   EXPECT_EQ(b.velocity[0], 2.0);
-  EXPECT_NEAR(s.energy().external_work_J, ke, 1e-3 * ke);
-  EXPECT_LT(worst_balance, 1e-3 * ke);
+  // the discrete kinetic energy is 1/2 M v^{n-1/2} . v^{n+1/2}: within (a dt / v)^2 of 1/2 M v^2
+  EXPECT_NEAR(s.energy().external_work_J, ke, 1e-7 * ke);
+  EXPECT_LT(worst_balance, 1e-9 * ke);
+}
+
+// A ramp that starts moving at once (v(0) = 1 m/s, v(dt/2) another): the first cycle's reaction
+// and work (the half step from t = 0) balance as the others: travel 0.05 (1 + 3) / 2 + 3 x 0.05 =
+// 0.25 m, work 1/2 M (3^2 - 1^2) from the body's initial 1 m/s (its own 5 m/s replaced).
+TEST(RigidBodyMotion, PrescribedVelocityFromTheFirstStep) {
+  model::Model m = box();
+  m.rigid_bodies[0].velocity_m_s = {5.0, 0.0, 0.0};
+  m.rigid_bodies[0].angular_velocity_rad_s = {};
+  model::PrescribedVelocity pv;
+  pv.name = "push";
+  pv.rigid_body = 0;
+  pv.dof = 0;
+  pv.velocity = model::Curve{{0.0, 0.05}, {1.0, 3.0}};
+  m.prescribed_velocities.push_back(pv);
+  integration::Solver s(m);
+  double worst_balance = 0.0, e0 = -1.0;
+  run(s, [&](const integration::Solver& sv) {
+    if (e0 < 0.0) e0 = sv.energy().kinetic_J;
+    worst_balance = std::max(worst_balance, std::abs(sv.energy().balance_J()));
+  });
+  const auto& b = s.rigid_bodies()[0];
+  const double work = 0.5 * b.mass_kg * (9.0 - 1.0);
+  std::printf(
+      "[measured] ramp from 1 m/s: travel %.9f m (0.25), kinetic at t = 0 %.6f J "
+      "(1/2 M 1^2 = %.6f), work %.6f J (%.6f), |balance| %.2e of it\n",
+      b.centre[0] - b.centre0[0], e0, 0.5 * b.mass_kg, s.energy().external_work_J, work,
+      worst_balance / work);
+  // (the discrete kinetic energy's product form: within (a dt / v)^2 = 2e-7 of 1/2 M v^2)
+  EXPECT_NEAR(e0, 0.5 * b.mass_kg, 1e-7 * b.mass_kg);
+  EXPECT_NEAR(b.centre[0] - b.centre0[0], 0.25, 1e-6);
+  EXPECT_NEAR(s.energy().external_work_J, work, 1e-7 * work);
+  EXPECT_LT(worst_balance, 1e-9 * work);
+}
+
+// A held body's probe reads the acceleration it has (the reactions in its force): 0 under gravity
+// where it is held, g along the free axes.
+TEST(RigidBodyMotion, HeldBodyProbeReadsItsTrueAcceleration) {
+  model::Model m = box();
+  m.rigid_bodies[0].velocity_m_s = {};
+  m.rigid_bodies[0].angular_velocity_rad_s = {};
+  m.rigid_bodies[0].fixed = model::kUz;
+  m.controls.gravity_m_s2 = {3.0, 0.0, -9.81};
+  m.controls.end_time_s = 1e-3;
+  m.probes.push_back({"box", model::Probe::Kind::RigidBody, 0});
+  integration::Solver s(m);
+  double worst_z = 0.0, worst_x = 0.0;
+  run(s, [&](const integration::Solver& sv) {
+    const auto p = sv.probe(sv.model().probes[0]);
+    worst_z = std::max(worst_z, std::abs(p.acceleration_m_s2[2]));
+    worst_x = std::max(worst_x, std::abs(p.acceleration_m_s2[0] - 3.0));
+  });
+  EXPECT_LT(worst_z, 1e-9);
+  EXPECT_LT(worst_x, 1e-9);
+}
+
+// A checkpoint taken while a body is driven and held (the reactions' last values in it): the
+// restored solver ends as the one that went on, to the bit.
+TEST(RigidBodyMotion, CheckpointKeepsTheReactions) {
+  model::Model m = box();
+  m.rigid_bodies[0].fixed = model::kRx | model::kRy;
+  model::PrescribedVelocity pv;
+  pv.name = "push";
+  pv.rigid_body = 0;
+  pv.dof = 0;
+  pv.velocity = model::Curve{{0.0, 0.05}, {0.0, 2.0}};
+  m.prescribed_velocities.push_back(pv);
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("crashlink_body_motion_" + std::to_string(::getpid()) + ".state.bin");
+  integration::Solver a(m);
+  a.initialize();
+  for (int k = 0; k < 3000; ++k) {
+    a.begin_cycle();
+    a.end_cycle();
+  }
+  core::StateWriter w;
+  a.save_state(w);
+  w.save(path.string());
+  integration::Solver b(m);
+  b.initialize();
+  b.restore_state(core::StateReader(path.string()));
+  std::filesystem::remove(path);
+  for (auto* sv : {&a, &b})
+    for (;;) {
+      sv->begin_cycle();
+      if (sv->finished()) break;
+      sv->end_cycle();
+    }
+  EXPECT_EQ(a.displacement(), b.displacement());
+  EXPECT_EQ(a.energy().external_work_J, b.energy().external_work_J);
+  EXPECT_EQ(a.energy().total_J(), b.energy().total_J());
 }
 
 // The spin about z prescribed (10 rad/s) on the tumbling box: omega_z follows it at every step,
@@ -136,7 +231,7 @@ TEST(RigidBodyMotion, PrescribedSpinHoldsTheBalance) {
       worst_spin, free_max, worst_balance / ke_max);
   EXPECT_LT(worst_spin, 1e-9);
   EXPECT_GT(free_max, 1.0) << "the free axes still turn";
-  EXPECT_LT(worst_balance, 1e-3 * ke_max);
+  EXPECT_LT(worst_balance, 1e-4 * ke_max);  // measured 8e-6: the rotation's trapezoid rule
 }
 
 // A dof held and prescribed at once is refused, naming the body.

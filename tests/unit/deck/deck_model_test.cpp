@@ -17,12 +17,13 @@ TEST(DeckModel, TwinReadsInSI) {
   const DeckRead r = read_deck(kTwin, {"mm-t-s", {}});
   const model::Model& m = r.model;
   EXPECT_EQ(m.name, "deck_twin");
-  EXPECT_EQ(m.nodes.count(), 12u + 9u + 4u + 8u + 8u);
-  ASSERT_EQ(m.parts.size(), 5u);
+  EXPECT_EQ(m.nodes.count(), 12u + 9u + 4u + 8u + 8u + 6u);
+  ASSERT_EQ(m.parts.size(), 6u);
   EXPECT_EQ(m.parts[0].name, "bar");
   EXPECT_EQ(m.parts[1].name, "plate");
   EXPECT_EQ(m.parts[3].name, "block2");
-  EXPECT_EQ(m.parts[4].name, "block");  // its *PART_INERTIA after the include
+  EXPECT_EQ(m.parts[4].name, "tab");
+  EXPECT_EQ(m.parts[5].name, "block");  // its *PART_INERTIA after the include
   EXPECT_EQ(m.parts[0].kind, model::ElementKind::Hex8);
   EXPECT_EQ(m.parts[1].kind, model::ElementKind::Shell4);
   EXPECT_EQ(m.parts[0].element_count(), 2u);
@@ -51,17 +52,23 @@ TEST(DeckModel, TwinReadsInSI) {
   EXPECT_NEAR(k.hardening.slope(0.0), 2.0e11 * 1.0e9 / (2.0e11 - 1.0e9), 1.0);
   // The rigid block (with block2 merged into it) has its *PART_INERTIA's mass and velocity; the
   // nodal body 'cap' and the welds 40 (*CONSTRAINED_SPOTWELD_ID) and 41 (GENERALIZED) follow.
-  ASSERT_EQ(m.rigid_bodies.size(), 4u);
+  ASSERT_EQ(m.rigid_bodies.size(), 6u);
   EXPECT_EQ(m.rigid_bodies[0].name, "block");
   EXPECT_EQ(m.rigid_bodies[0].parts.size(), 2u);
   EXPECT_DOUBLE_EQ(m.rigid_bodies[0].mass_kg, 10.0);
   EXPECT_DOUBLE_EQ(m.rigid_bodies[0].velocity_m_s[2], -5.0);
   EXPECT_EQ(m.rigid_bodies[0].fixed, model::kRx | model::kRy | model::kRz);
-  EXPECT_EQ(m.rigid_bodies[1].name, "cap");
-  EXPECT_EQ(m.rigid_bodies[2].name, "spotweld_40");
-  EXPECT_EQ(m.rigid_bodies[3].name, "spotweld_41");
-  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].failure.normal_N, 1200.0);
-  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].failure.time_s, 1000.0);
+  EXPECT_EQ(m.rigid_bodies[1].name, "cap");  // _SPC: rotations held
+  EXPECT_EQ(m.rigid_bodies[1].fixed, model::kRx | model::kRy | model::kRz);
+  EXPECT_EQ(m.rigid_bodies[2].name, "nodal_rigid_body_300");
+  EXPECT_EQ(m.rigid_bodies[3].name, "nodal_rigid_body_200");  // _INERTIA
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].mass_kg, 2.0);
+  EXPECT_NEAR(m.rigid_bodies[3].inertia_kg_m2[2][2], 1.0e-4, 1e-18);
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[3].angular_velocity_rad_s[2], 2.0);
+  EXPECT_EQ(m.rigid_bodies[4].name, "spotweld_40");
+  EXPECT_EQ(m.rigid_bodies[5].name, "spotweld_41");
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[5].failure.normal_N, 1200.0);
+  EXPECT_DOUBLE_EQ(m.rigid_bodies[5].failure.time_s, 1000.0);
   ASSERT_EQ(m.initial_velocities.size(), 3u);
   EXPECT_DOUBLE_EQ(m.initial_velocities[2].velocity_m_s[1], 1.0);  // local x = global y
   // Constraints: the bar's end (4 nodes, all dofs), the strip in z (4 nodes), node 107 in y.
@@ -77,8 +84,7 @@ TEST(DeckModel, TwinReadsInSI) {
   // What the user is told: the blank SHRF.
   std::string all;
   for (const auto& s : r.messages) all += s + "\n";
-  EXPECT_NE(all.find("props_free.k:24: *SECTION_SHELL 3: SHRF blank (LS-DYNA reads 1.0)"),
-            std::string::npos)
+  EXPECT_NE(all.find(": *SECTION_SHELL 3: SHRF blank (LS-DYNA reads 1.0)"), std::string::npos)
       << all;
 }
 

@@ -99,6 +99,23 @@ TEST_F(DeckWallsMotions, RigidPartMotionAndConstraints) {
   EXPECT_NEAR(pv[1].velocity.at(1e-3), 0.5, 1e-12) << "SF 0.5 x 1000 mm/s";
 }
 
+// CON1/CON2 codes 4-6 (two axes each) and a body's rotation driven by a displacement (VAD 2).
+TEST_F(DeckWallsMotions, RigidCodesOfTwoAxesAndARotationDriven) {
+  DeckRead r;
+  ASSERT_EQ(read(rigid_upper({"*DEFINE_CURVE", "         7", "0.0,0.0", "1.0e-3,0.5",
+                              "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
+                              "         2         6         2         7"},
+                             "       1.0         5         6"),
+                 &r),
+            "");
+  EXPECT_EQ(r.model.rigid_bodies[0].fixed, model::kUy | model::kUz | model::kRz | model::kRx)
+      << "CON1 5: y and z; CON2 6: z and x";
+  ASSERT_EQ(r.model.prescribed_velocities.size(), 1u);
+  EXPECT_EQ(r.model.prescribed_velocities[0].dof, 4) << "DOF 6: about y";
+  EXPECT_NEAR(r.model.prescribed_velocities[0].velocity.at(0.5e-3), 500.0, 1e-9)
+      << "0.5 rad over 1 ms";
+}
+
 TEST_F(DeckWallsMotions, ShellSetIsASlaveSurface) {
   DeckRead r;
   ASSERT_EQ(
