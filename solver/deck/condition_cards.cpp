@@ -206,19 +206,35 @@ void Parser::velocity_generation(const Card& c) {
     v.styp = static_cast<int>(styp.integer(0));
     if (v.styp < 1 || v.styp > 3)
       styp.fail("must be 1 (part set), 2 (part) or 3 (node set); fix: write one of them");
-    must_be_default(c.field(L::kVelocityGeneration1, 2), 0.0,
-                    "rotational initial velocity (OMEGA) is not read yet; fix: write OMEGA 0 "
-                    "(translation only)");
+    v.omega = c.field(L::kVelocityGeneration1, 2).real(0.0);
     for (std::size_t k = 0; k < 3; ++k) v.v[k] = c.field(L::kVelocityGeneration1, 3 + k).real(0.0);
     must_be_default(c.field(L::kVelocityGeneration1, 6), 0.0,
                     "IVATN 1 is not computed; fix: write IVATN 0");
     v.icid = frame_id(c.field(L::kVelocityGeneration1, 7));
+    if (v.omega != 0.0 && v.icid != 0)
+      c.field(L::kVelocityGeneration1, 7)
+          .fail(
+              "a spin (OMEGA) with a local system is not computed: card 2's axis would be "
+              "read in global axes; fix: write ICID 0 and the velocity and axis in global "
+              "axes");
     v.ref = c.ref();
     d_.velocities.push_back(std::move(v));
     b_.card = 1;
     return;
   }
-  // card 2: the rotation's centre and axis, without effect at OMEGA = 0; IRIGID
+  // card 2: the spin's axis (a point, a direction; without effect at OMEGA = 0), PHASE, IRIGID
+  auto& v = d_.velocities.back();
+  for (std::size_t k = 0; k < 3; ++k) {
+    v.centre[k] = c.field(L::kVelocityGeneration2, k).real(0.0);
+    v.axis[k] = c.field(L::kVelocityGeneration2, 3 + k).real(0.0);
+  }
+  v.ref2 = c.ref();
+  const auto phase = c.field(L::kVelocityGeneration2, 6).integer(0);
+  if (phase != 0 && phase != 1)
+    c.field(L::kVelocityGeneration2, 6)
+        .fail(
+            "must be 0 or 1 (after dynamic relaxation: crashlink has none, so at t = 0 "
+            "either way); fix: write 0");
   const auto irigid = c.field(L::kVelocityGeneration2, 7);
   d_.velocities.back().irigid = static_cast<int>(irigid.integer(0));
   if (d_.velocities.back().irigid < 0 || d_.velocities.back().irigid > 1)

@@ -170,6 +170,11 @@ struct VelocityCard {
   /// *INITIAL_VELOCITY_GENERATION card 2 IRIGID: 1 overrides a *PART_INERTIA body's velocity
   /// (0, the default, keeps it).
   int irigid = 0;
+  /// *INITIAL_VELOCITY_GENERATION OMEGA (rad per deck time unit) about the axis through card 2's
+  /// XC YC ZC along NX NY NZ (global axes, deck length units)
+  double omega = 0.0;
+  std::array<double, 3> centre{}, axis{};
+  CardRef ref2;  ///< card 2
   std::string keyword;
   CardRef ref;
 };

@@ -55,11 +55,28 @@ void Builder::velocities() {
     }
     model::InitialVelocity iv;
     iv.velocity_m_s = vel;
+    if (v.omega != 0.0) {  // a spin about the axis through card 2's point
+      const Vec3 n{v.axis[0], v.axis[1], v.axis[2]};
+      if (!(norm(n) > 0.0))
+        fail_at(d_, v.ref2, v.keyword, L::kVelocityGeneration2, 3,
+                "the spin's axis (NX, NY, NZ) is the zero vector; fix: give its direction");
+      iv.angular_velocity_rad_s = (v.omega / u_.time_s / norm(n)) * n;
+      for (std::size_t k = 0; k < 3; ++k) iv.centre_m[k] = v.centre[k] * u_.length_m;
+    }
+    // a body's velocity: that of the spin's axis point, the body turning with it
+    const auto set_body = [&](model::RigidBody& body) {
+      body.velocity_m_s = vel;
+      body.velocity_at_point = false;
+      if (v.omega == 0.0) return;  // (a translation leaves the body's spin as it was)
+      body.angular_velocity_rad_s = iv.angular_velocity_rad_s;
+      body.velocity_at_point = true;
+      body.velocity_point_m = iv.centre_m;
+    };
     for (auto pid : part_ids) {
       if (const auto rb = rigid_body_of_part_.find(pid); rb != rigid_body_of_part_.end()) {
         // LS-DYNA's IRIGID 0 (default) keeps a *PART_INERTIA body's velocity; 1 overrides it
         if (inertia_bodies_.count(rb->second) == 0 || v.irigid == 1)
-          m_.rigid_bodies[static_cast<std::size_t>(rb->second)].velocity_m_s = vel;
+          set_body(m_.rigid_bodies[static_cast<std::size_t>(rb->second)]);
         else
           d_notes_.push_back(
               fmt::format("{}: {}: part {} keeps the velocity of its *PART_INERTIA (IRIGID 0; 1 "
@@ -98,7 +115,7 @@ void Builder::velocities() {
         if (b < 0 || moved[static_cast<std::size_t>(b)]) continue;
         moved[static_cast<std::size_t>(b)] = 1;
         if (inertia_bodies_.count(b) == 0)
-          m_.rigid_bodies[static_cast<std::size_t>(b)].velocity_m_s = vel;
+          set_body(m_.rigid_bodies[static_cast<std::size_t>(b)]);
         else
           d_notes_.push_back(fmt::format(
               "{}: {}: rigid body '{}' keeps the velocity of its *PART_INERTIA (_INERTIA)",
@@ -110,7 +127,8 @@ void Builder::velocities() {
     if (iv.nodes.empty()) continue;
     // Consecutive *INITIAL_VELOCITY_NODE cards with one velocity make one entry.
     if (!generation && !m_.initial_velocities.empty() && last_was_node_ &&
-        m_.initial_velocities.back().velocity_m_s == vel) {
+        m_.initial_velocities.back().velocity_m_s == vel &&
+        m_.initial_velocities.back().angular_velocity_rad_s == Vec3{}) {
       auto& back = m_.initial_velocities.back().nodes;
       back.insert(back.end(), iv.nodes.begin(), iv.nodes.end());
     } else {

@@ -146,11 +146,12 @@ void Composer::rigid_constraints() {
                                   length(body.centre0[2]), mass(body.mass_kg), 0, 0});
         b.card(L::kPartInertia4,
                {J[0][0] / s, J[0][1] / s, J[0][2] / s, J[1][1] / s, J[1][2] / s, J[2][2] / s});
-        b.card(
-            L::kPartInertia5,
-            {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
-             velocity(rb.velocity_m_s[2]), rb.angular_velocity_rad_s[0] * u_.time_s,
-             rb.angular_velocity_rad_s[1] * u_.time_s, rb.angular_velocity_rad_s[2] * u_.time_s});
+        // the centre's velocity (the body's own, or from its spin about a point)
+        const Vec3 vc = rb.velocity_at_point ? body.velocity : rb.velocity_m_s;
+        b.card(L::kPartInertia5,
+               {velocity(vc[0]), velocity(vc[1]), velocity(vc[2]),
+                rb.angular_velocity_rad_s[0] * u_.time_s, rb.angular_velocity_rad_s[1] * u_.time_s,
+                rb.angular_velocity_rad_s[2] * u_.time_s});
       }
       if (rb.fixed != 0)
         b.card(L::kMatRigid2, {1.0, con_code(rb.fixed & 7), con_code((rb.fixed >> 3) & 7)});
@@ -210,10 +211,38 @@ void Composer::constraints() {
 }
 
 void Composer::initial_velocities() {
+  std::vector<char> body_node(m_.nodes.count(), 0);
+  for (const auto& rb : m_.rigid_bodies) {
+    for (int p : rb.parts)
+      for (auto c : m_.parts[static_cast<std::size_t>(p)].connectivity)
+        body_node[static_cast<std::size_t>(c)] = 1;
+    for (auto c : rb.nodes) body_node[static_cast<std::size_t>(c)] = 1;
+  }
   for (std::size_t k = 0; k < m_.initial_velocities.size(); ++k) {
     const auto& iv = m_.initial_velocities[k];
-    const std::int64_t sid = node_set(iv.nodes, fmt::format("initial velocity {}", k + 1));
-    initial_velocity(sid, iv.velocity_m_s);
+    const Vec3& w = iv.angular_velocity_rad_s;
+    const double omega = norm(w);
+    if (omega == 0.0) {
+      const std::int64_t sid = node_set(iv.nodes, fmt::format("initial velocity {}", k + 1));
+      initial_velocity(sid, iv.velocity_m_s);
+      continue;
+    }
+    // A spin: *INITIAL_VELOCITY_GENERATION on the node set (STYP 3), OMEGA about the axis
+    // through the centre. The bodies' nodes are left out (a body keeps its own velocity, which
+    // the reader would otherwise take from the spin).
+    std::vector<std::int32_t> nodes;
+    for (auto c : iv.nodes)
+      if (!body_node[static_cast<std::size_t>(c)]) nodes.push_back(c);
+    if (nodes.empty()) continue;
+    const std::int64_t sid = node_set(nodes, fmt::format("initial velocity {}", k + 1));
+    KeywordBlock b("*INITIAL_VELOCITY_GENERATION");
+    b.card(L::kVelocityGeneration1,
+           {static_cast<long long>(sid), 3, omega * u_.time_s, velocity(iv.velocity_m_s[0]),
+            velocity(iv.velocity_m_s[1]), velocity(iv.velocity_m_s[2]), 0, 0});
+    b.card(L::kVelocityGeneration2,
+           {length(iv.centre_m[0]), length(iv.centre_m[1]), length(iv.centre_m[2]), w[0] / omega,
+            w[1] / omega, w[2] / omega, 0, 0});
+    emit(b);
   }
 }
 

@@ -208,10 +208,12 @@ void Composer::parts() {
                                 length(body->centre0[2]), mass(body->mass_kg), 0, 0});
       b.card(L::kPartInertia4,
              {J[0][0] / s, J[0][1] / s, J[0][2] / s, J[1][1] / s, J[1][2] / s, J[2][2] / s});
+      // the centre's velocity (the body's own, or from its spin about a point)
+      const Vec3 vc = rb.velocity_at_point ? body->velocity : rb.velocity_m_s;
       b.card(L::kPartInertia5,
-             {velocity(rb.velocity_m_s[0]), velocity(rb.velocity_m_s[1]),
-              velocity(rb.velocity_m_s[2]), rb.angular_velocity_rad_s[0] * u_.time_s,
-              rb.angular_velocity_rad_s[1] * u_.time_s, rb.angular_velocity_rad_s[2] * u_.time_s});
+             {velocity(vc[0]), velocity(vc[1]), velocity(vc[2]),
+              rb.angular_velocity_rad_s[0] * u_.time_s, rb.angular_velocity_rad_s[1] * u_.time_s,
+              rb.angular_velocity_rad_s[2] * u_.time_s});
       if (rb.name != part.name)
         notes_.push_back(fmt::format("rigid body '{}' is named after its part '{}' in the deck",
                                      rb.name, part.name));

@@ -124,10 +124,20 @@ void Solver::assemble_masses() {
 }
 
 void Solver::apply_initial_velocities() {
-  for (const auto& iv : model_.initial_velocities)
-    for (auto c : iv.nodes)
-      for (std::size_t d = 0; d < 3; ++d)
-        v_[3 * static_cast<std::size_t>(c) + d] = iv.velocity_m_s[d];
+  for (const auto& iv : model_.initial_velocities) {
+    const bool spin = iv.angular_velocity_rad_s[0] != 0.0 || iv.angular_velocity_rad_s[1] != 0.0 ||
+                      iv.angular_velocity_rad_s[2] != 0.0;
+    for (auto c : iv.nodes) {
+      const auto i = static_cast<std::size_t>(c);
+      const Vec3 v = spin ? iv.at({model_.nodes.x0[3 * i], model_.nodes.x0[3 * i + 1],
+                                   model_.nodes.x0[3 * i + 2]})
+                          : iv.velocity_m_s;
+      for (std::size_t d = 0; d < 3; ++d) v_[3 * i + d] = v[d];
+      // a node with rotations turns with the spin
+      if (spin && inertia_[i] > 0.0)
+        for (std::size_t d = 0; d < 3; ++d) omega_[3 * i + d] = iv.angular_velocity_rad_s[d];
+    }
+  }
   for (auto& b : bodies_)
     for (std::size_t k = 0; k < b.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(b.nodes[k]);

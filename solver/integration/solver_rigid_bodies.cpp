@@ -107,8 +107,11 @@ void Solver::build_rigid_bodies() {
                       rb.name, det));
     s.inertia_body_inv = inverse(s.inertia_body);
     s.breakable = rb.failure.any();
+    // the centre's velocity (rb.velocity_m_s is its point p's with velocity_at_point)
     s.velocity = rb.velocity_m_s;
-    s.velocity_prev = rb.velocity_m_s;
+    if (rb.velocity_at_point)
+      s.velocity = s.velocity + cross(rb.angular_velocity_rad_s, s.centre0 - rb.velocity_point_m);
+    s.velocity_prev = s.velocity;
     s.omega = rb.angular_velocity_rad_s;
     s.omega_prev = rb.angular_velocity_rad_s;
     s.angular_momentum = mul(s.inertia_body, rb.angular_velocity_rad_s);

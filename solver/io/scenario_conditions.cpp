@@ -157,7 +157,7 @@ void read_loads(const YamlNode& section, ScenarioBuild& b) {
 
 void read_initial_velocities(const YamlNode& section, ScenarioBuild& b) {
   for (const auto& e : entries_of(section)) {
-    e.expect_keys({"nodes", "part", "velocity"});
+    e.expect_keys({"nodes", "part", "velocity", "angular_velocity", "centre"});
     const auto nodes = e.optional("nodes");
     const auto part = e.optional("part");
     if (nodes && part) part->fail("give either 'nodes' or 'part', not both");
@@ -165,6 +165,13 @@ void read_initial_velocities(const YamlNode& section, ScenarioBuild& b) {
     model::InitialVelocity iv;
     iv.nodes = nodes ? read_node_reference(*nodes, b) : b.part_nodes(read_part_reference(*part, b));
     iv.velocity_m_s = e.required("velocity", "[vx, vy, vz] in m/s").vec3();
+    // a spin: v_i = velocity + omega x (x_i - centre)
+    iv.angular_velocity_rad_s = e.vec3_or("angular_velocity", {0.0, 0.0, 0.0});
+    if (const auto c = e.optional("centre")) {
+      if (!e.has("angular_velocity"))
+        c->fail("is the point of a spin's axis: give `angular_velocity` too, or remove it");
+      iv.centre_m = c->vec3();
+    }
     b.model.initial_velocities.push_back(std::move(iv));
   }
 }

@@ -102,9 +102,18 @@ struct NodalLoad {
   Curve force;  ///< [N] per node against time [s]
 };
 
+/// v_i = velocity + omega x (x_i - centre) at each node (LS-DYNA *INITIAL_VELOCITY_GENERATION
+/// with OMEGA: a spin about the axis through centre); the nodes with rotations also turn at
+/// omega.
 struct InitialVelocity {
   std::vector<std::int32_t> nodes;
   Vec3 velocity_m_s{};
+  Vec3 angular_velocity_rad_s{};  ///< omega (0: a translation)
+  Vec3 centre_m{};                ///< a point of the spin's axis
+  /// The velocity of node position x.
+  Vec3 at(const Vec3& x) const {
+    return velocity_m_s + cross(angular_velocity_rad_s, x - centre_m);
+  }
 };
 
 /// A rigid body made of the elements of rigid parts and of extra nodes; its nodes follow its
@@ -117,9 +126,13 @@ struct RigidBody {
   std::string name;
   std::vector<int> parts;           ///< indices of rigid parts forming the body (may be empty)
   std::vector<std::int32_t> nodes;  ///< extra node indices that follow the body (may be empty)
-  Vec3 velocity_m_s{};              ///< initial velocity of the centre of mass
+  Vec3 velocity_m_s{};              ///< initial velocity of the centre of mass (or see below)
   Vec3 angular_velocity_rad_s{};    ///< initial angular velocity (spatial)
-  double mass_kg = 0.0;             ///< > 0: overrides the elements' mass
+  /// velocity_m_s is that of the body's point at velocity_point_m (a spin about an axis through
+  /// it: LS-DYNA *INITIAL_VELOCITY_GENERATION OMEGA); the centre's is velocity + omega x (c - p).
+  bool velocity_at_point = false;
+  Vec3 velocity_point_m{};
+  double mass_kg = 0.0;  ///< > 0: overrides the elements' mass
   bool inertia_given = false;
   Mat3 inertia_kg_m2{};  ///< about the centre of mass, spatial frame at t = 0
   bool centre_given = false;

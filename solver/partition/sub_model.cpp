@@ -170,7 +170,9 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
       if (kinematic_here(role[u]) || role[u] == kGhost) nodes.push_back(g2l[u]);
     }
     if (nodes.empty()) continue;
-    m.initial_velocities.push_back({std::move(nodes), iv.velocity_m_s});
+    model::InitialVelocity liv = iv;
+    liv.nodes = std::move(nodes);
+    m.initial_velocities.push_back(std::move(liv));
   }
 
   // Rigid bodies: whole, or not at all (one set of dofs): its parts and its extra nodes, which

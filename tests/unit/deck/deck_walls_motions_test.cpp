@@ -116,6 +116,51 @@ TEST_F(DeckWallsMotions, RigidCodesOfTwoAxesAndARotationDriven) {
       << "0.5 rad over 1 ms";
 }
 
+// *INITIAL_VELOCITY_GENERATION with OMEGA: a spin about the axis through card 2's point, on the
+// deformable cube's nodes (v = v0 + omega x (x - c)) and on the rigid cube's body (its velocity
+// that of the axis point, its angular velocity omega).
+TEST_F(DeckWallsMotions, VelocityGenerationWithASpin) {
+  DeckRead r;
+  ASSERT_EQ(read(rigid_upper({"*INITIAL_VELOCITY_GENERATION",
+                              "         1         2     100.0    1000.0       0.0       0.0",
+                              "       0.5       0.5       0.0       0.0       0.0       2.0",
+                              "*INITIAL_VELOCITY_GENERATION",
+                              "         2         2      50.0       0.0       0.0       0.0",
+                              "       0.0       0.0       0.0       1.0       0.0       0.0"}),
+                 &r),
+            "");
+  ASSERT_EQ(r.model.initial_velocities.size(), 1u);
+  const auto& iv = r.model.initial_velocities[0];
+  EXPECT_DOUBLE_EQ(iv.angular_velocity_rad_s[2], 100.0) << "about +z, 100 rad/s";
+  EXPECT_DOUBLE_EQ(iv.centre_m[0], 0.5e-3);
+  // node 1 at (0, 0, 0): 1 m/s + 100 z x (-0.5, -0.5, 0) mm = (1 + 0.05, -0.05, 0) m/s
+  const Vec3 v1 = iv.at({0.0, 0.0, 0.0});
+  EXPECT_NEAR(v1[0], 1.05, 1e-12);
+  EXPECT_NEAR(v1[1], -0.05, 1e-12);
+  const auto& b = r.model.rigid_bodies[0];
+  EXPECT_TRUE(b.velocity_at_point);
+  EXPECT_DOUBLE_EQ(b.angular_velocity_rad_s[0], 50.0);
+  EXPECT_EQ(b.velocity_point_m, (Vec3{0.0, 0.0, 0.0}));
+  // mistakes: a spin in a local system, an axis of no direction
+  EXPECT_NE(
+      read(testing::two_cubes_with(
+               {"*DEFINE_COORDINATE_SYSTEM", "         1       0.0       0.0       0.0       1.0",
+                "       0.0       1.0       0.0", "*INITIAL_VELOCITY_GENERATION",
+                "         1         2     100.0       0.0       0.0"
+                "       0.0         0         1",
+                "       0.0       0.0       0.0       0.0       0.0"
+                "       1.0"}))
+          .find("field ICID (columns 71-80) = 1: a spin (OMEGA) with a local system"),
+      std::string::npos);
+  EXPECT_NE(read(testing::two_cubes_with(
+                     {"*INITIAL_VELOCITY_GENERATION",
+                      "         1         2     100.0       0.0       0.0       0.0",
+                      "       0.0       0.0       0.0       0.0       0.0       0.0"}))
+                .find("field NX (columns 31-40) = 0.0: the spin's axis (NX, NY, NZ) is the zero "
+                      "vector"),
+            std::string::npos);
+}
+
 TEST_F(DeckWallsMotions, ShellSetIsASlaveSurface) {
   DeckRead r;
   ASSERT_EQ(
