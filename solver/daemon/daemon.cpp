@@ -785,11 +785,17 @@ class Daemon {
     link_->send(bye);
   }
 
+  /// The domain's timing and the spot welds that let go in it (gathered into result.h5).
   void write_timing() {
     const auto* s = solver();
     writer_->write_timing(seconds_since(wall0_), 0.0,
                           {{o_.domain, run_cpu_seconds(), s != nullptr ? s->cycle() : 0,
                             s != nullptr ? s->dt_min_s() : 0.0, elements_}});
+    if (s == nullptr) return;
+    std::vector<io::SpotWeldFailure> welds;
+    for (const auto& w : s->weld_failures())
+      welds.push_back({w.name, w.time_s, w.normal_N, w.shear_N});
+    writer_->write_spot_weld_failures(welds);
   }
 
   /// Reports the failure to the coordinator, best effort (it may be the one that is gone). Before

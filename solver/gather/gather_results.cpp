@@ -251,6 +251,17 @@ std::vector<io::DomainTiming> domain_timings(const std::vector<DomainFile>& file
   return out;
 }
 
+/// Every domain's spot weld failures, in time order (a weld is in one domain).
+std::vector<io::SpotWeldFailure> spot_weld_failures(const std::vector<DomainFile>& files) {
+  std::vector<io::SpotWeldFailure> out;
+  for (const auto& f : files)
+    if (f.reader)
+      for (auto& w : f.reader->spot_weld_failures()) out.push_back(std::move(w));
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+  return out;
+}
+
 }  // namespace
 
 GatherReport gather_results(const model::Model& global, const partition::Decomposition& dec,
@@ -267,6 +278,7 @@ GatherReport gather_results(const model::Model& global, const partition::Decompo
   report.states = write_states(global, files, writer, report);
   writer.write_timing(coordinator.wall_seconds, coordinator.coordinator_cpu_seconds,
                       domain_timings(files, report));
+  writer.write_spot_weld_failures(spot_weld_failures(files));
   const std::string h5 = writer.h5_path();
   writer.close();
 

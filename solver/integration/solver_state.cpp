@@ -143,6 +143,19 @@ void Solver::save_state(core::StateWriter& w) const {
   w.put_int("solver.nodes", static_cast<std::int64_t>(n_));
   core::StateSave v{w};
   visit_state(v, *this);
+  // the spot welds that let go so far (for the run's summary and result.h5): written only when
+  // some did, so that older checkpoints and runs without failures keep their layout
+  if (!weld_failures_.empty()) {
+    w.put_int("weld_failures.count", static_cast<std::int64_t>(weld_failures_.size()));
+    for (std::size_t k = 0; k < weld_failures_.size(); ++k) {
+      const auto& f = weld_failures_[k];
+      const std::string pre = fmt::format("weld_failures.{}.", k);
+      w.put_string(pre + "name", f.name);
+      w.put_double(pre + "time", f.time_s);
+      w.put_double(pre + "normal", f.normal_N);
+      w.put_double(pre + "shear", f.shear_N);
+    }
+  }
 }
 
 void Solver::restore_state(const core::StateReader& r) {
@@ -155,6 +168,13 @@ void Solver::restore_state(const core::StateReader& r) {
   }
   core::StateLoad v{r};
   visit_state(v, *this);
+  weld_failures_.clear();
+  if (r.has("weld_failures.count"))
+    for (std::int64_t k = 0; k < r.get_int("weld_failures.count"); ++k) {
+      const std::string pre = fmt::format("weld_failures.{}.", k);
+      weld_failures_.push_back({r.get_string(pre + "name"), r.get_double(pre + "time"),
+                                r.get_double(pre + "normal"), r.get_double(pre + "shear")});
+    }
   // a spot weld that had let go: its nodes move on their own again
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     if (bodies_[b].failed) {

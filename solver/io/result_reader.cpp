@@ -351,6 +351,30 @@ std::vector<MeshPartInfo> ResultReader::mesh_parts() const {
   return out;
 }
 
+std::vector<SpotWeldFailure> ResultReader::spot_weld_failures() const {
+  std::vector<SpotWeldFailure> out;
+  const Location root = impl_->root();
+  if (!link_exists(root, "events")) return out;
+  GroupHandle e = open_group(root, "events");
+  const Location eat{e.get(), impl_->h5_path, "/events"};
+  if (!link_exists(eat, "spot_weld_failures")) return out;
+  GroupHandle g = open_group(eat, "spot_weld_failures");
+  const Location at{g.get(), impl_->h5_path, "/events/spot_weld_failures"};
+  const auto count = read_number_attribute<std::int64_t>(at, "count", H5T_NATIVE_INT64).value_or(0);
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::string link = std::to_string(k);
+    GroupHandle fg = open_group(at, link);
+    const Location fat{fg.get(), impl_->h5_path, at.child(link)};
+    SpotWeldFailure f;
+    f.name = read_string_attribute(fat, "name").value_or(link);
+    f.time_s = read_number_attribute<double>(fat, "time", H5T_NATIVE_DOUBLE).value_or(0.0);
+    f.tension_N = read_number_attribute<double>(fat, "tension", H5T_NATIVE_DOUBLE).value_or(0.0);
+    f.shear_N = read_number_attribute<double>(fat, "shear", H5T_NATIVE_DOUBLE).value_or(0.0);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 std::size_t ResultReader::state_count() const {
   const Location root = impl_->root();
   if (!link_exists(root, "states")) return 0;

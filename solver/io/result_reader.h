@@ -137,6 +137,8 @@ class ResultReader {
 
   /// /timing and its /timing/<domain> groups.
   TimingData timing() const;
+  /// /events/spot_weld_failures in the order written (empty if the file has none).
+  std::vector<SpotWeldFailure> spot_weld_failures() const;
 
  private:
   ContactHistory item_history(bool wall, const std::string& name) const;

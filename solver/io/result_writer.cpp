@@ -616,6 +616,34 @@ void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seco
   w.flush_file();
 }
 
+void ResultWriter::write_spot_weld_failures(const std::vector<SpotWeldFailure>& failures) {
+  if (!impl_) closed(h5_path_, "write_spot_weld_failures");
+  if (failures.empty()) return;
+  Impl& w = *impl_;
+  const Location root = w.root();
+  GroupHandle events =
+      link_exists(root, "events") ? open_group(root, "events") : create_group(root, "events");
+  const Location eat{events.get(), h5_path_, "/events"};
+  // written once, at the end: a file that has them already (a run's file resumed after its end)
+  // gets them anew
+  if (link_exists(eat, "spot_weld_failures") &&
+      H5Ldelete(events.get(), "spot_weld_failures", H5P_DEFAULT) < 0)
+    throw ResultFileError(h5_path_, "/events/spot_weld_failures", "H5Ldelete (replace the list)");
+  GroupHandle g = create_group(eat, "spot_weld_failures");
+  const Location at{g.get(), h5_path_, "/events/spot_weld_failures"};
+  write_attribute(at, "count", static_cast<std::int64_t>(failures.size()));
+  for (std::size_t k = 0; k < failures.size(); ++k) {
+    const std::string link = std::to_string(k);
+    GroupHandle fg = create_group(at, link);
+    const Location fat{fg.get(), h5_path_, at.child(link)};
+    write_attribute(fat, "name", failures[k].name);
+    write_attribute(fat, "time", failures[k].time_s);
+    write_attribute(fat, "tension", failures[k].tension_N);
+    write_attribute(fat, "shear", failures[k].shear_N);
+  }
+  w.flush_file();
+}
+
 void ResultWriter::close() {
   if (!impl_) return;
   std::unique_ptr<Impl> w = std::move(impl_);  // closed from here on, whatever happens below

@@ -82,6 +82,14 @@ struct DomainTiming {
   std::int64_t elements = 0;
 };
 
+/// A spot weld that let go (integration::WeldFailure): /events/spot_weld_failures/<k> with the
+/// attributes name, time [s], tension [N], shear [N], in the order they failed.
+struct SpotWeldFailure {
+  std::string name;
+  double time_s = 0.0;
+  double tension_N = 0.0, shear_N = 0.0;
+};
+
 struct ResultWriterOptions {
   std::size_t history_flush_samples = 1000;  ///< flush history after this many buffered samples
   double history_flush_wall_s = 5.0;         ///< ... or when this much wall time has passed
@@ -141,6 +149,8 @@ class ResultWriter {
                     const std::vector<DomainTiming>& domains);
   /// flush_history() (buffers written, H5Fflush).
   void flush();
+  /// /events/spot_weld_failures (nothing without failures: older files keep their layout).
+  void write_spot_weld_failures(const std::vector<SpotWeldFailure>& failures);
   /// Flushes, writes result.xdmf and closes result.h5. Idempotent; after it every other call
   /// throws ResultFileError. If a step fails the file is still closed and the first error thrown.
   void close();

@@ -83,6 +83,12 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   for (std::size_t k = 0; k < model.contacts.size() && k < solver.contact_steps().size(); ++k)
     sum.contacts.push_back({model.contacts[k].name, solver.contact_steps()[k].energy_J});
   sum.weld_failures = solver.weld_failures();
+  {
+    std::vector<io::SpotWeldFailure> welds;
+    for (const auto& w : sum.weld_failures)
+      welds.push_back({w.name, w.time_s, w.normal_N, w.shear_N});
+    writer.write_spot_weld_failures(welds);
+  }
   sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
   writer.write_timing(

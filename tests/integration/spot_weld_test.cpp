@@ -13,9 +13,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "solver/core/state_archive.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/integration/solver.h"
+#include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "tests/integration/shell_command.h"
 
@@ -244,7 +246,55 @@ TEST(SpotWeld, ExportedDeckFailsAlike) {
       status);
   EXPECT_EQ(WEXITSTATUS(status), 0) << out;
   EXPECT_NE(out.find("spot welds failed: 2\n  spotweld_1 at t = 2.77"), std::string::npos) << out;
+  // and result.h5 keeps them (/events/spot_weld_failures), as the solver found them
+  const auto welds = io::ResultReader((dir / "out" / "result.h5").string()).spot_weld_failures();
+  ASSERT_EQ(welds.size(), 2u);
+  EXPECT_EQ(welds[0].name, "spotweld_1");
+  EXPECT_EQ(welds[1].name, "spotweld_2");
+  EXPECT_EQ(welds[0].time_s, b.weld_failures()[0].time_s);
+  EXPECT_EQ(welds[0].shear_N, b.weld_failures()[0].shear_N);
+  EXPECT_EQ(welds[0].tension_N, b.weld_failures()[0].normal_N);
   std::filesystem::remove_all(dir);
+}
+
+// A checkpoint taken after the welds let go keeps them: the restored solver lists the same
+// failures (the run's summary and result.h5 after a restart), and its welds stay released.
+TEST(SpotWeld, FailuresSurviveARestart) {
+  const model::Model m = lap_joint(2000.0);
+  integration::Solver a(m);
+  a.initialize();
+  while (a.weld_failures().empty()) {
+    a.begin_cycle();
+    ASSERT_FALSE(a.finished()) << "the welds should let go before the end";
+    a.end_cycle();
+  }
+  for (int k = 0; k < 10; ++k) {
+    a.begin_cycle();
+    a.end_cycle();
+  }
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("crashlink_weld_restart_" + std::to_string(::getpid()) + ".state.bin");
+  core::StateWriter w;
+  a.save_state(w);
+  w.save(path.string());
+  integration::Solver b(m);
+  b.initialize();
+  b.restore_state(core::StateReader(path.string()));
+  std::filesystem::remove(path);
+  ASSERT_EQ(b.weld_failures().size(), a.weld_failures().size());
+  for (std::size_t k = 0; k < a.weld_failures().size(); ++k) {
+    EXPECT_EQ(b.weld_failures()[k].name, a.weld_failures()[k].name);
+    EXPECT_EQ(b.weld_failures()[k].time_s, a.weld_failures()[k].time_s);
+    EXPECT_EQ(b.weld_failures()[k].shear_N, a.weld_failures()[k].shear_N);
+  }
+  for (auto* s : {&a, &b})
+    for (;;) {
+      s->begin_cycle();
+      if (s->finished()) break;
+      s->end_cycle();
+    }
+  EXPECT_EQ(a.displacement(), b.displacement());
+  EXPECT_EQ(b.weld_failures().size(), a.weld_failures().size()) << "no weld fails twice";
 }
 
 }  // namespace
