@@ -75,12 +75,27 @@ ContactInterface::ContactInterface(const model::Model& m, const model::Contact& 
   s.rule.soft = c.soft;
   s.rule.soft_scale = c.soft_scale;
   const NodeProperties np = node_properties(m, c, mass);
+  // A contact thickness (SST, MST) in place of the shells' own: half of it as the offset of
+  // the side's shell faces (solid faces keep 0) and of its shell nodes.
+  if (!(c.slave_thickness_m >= 0.0 && c.master_thickness_m >= 0.0))
+    throw ModelError(
+        fmt::format("{}: contact thicknesses {} m and {} m must be >= 0 (0: the "
+                    "shells' own)",
+                    who, c.slave_thickness_m, c.master_thickness_m));
+  const auto thicken = [](SegmentSet& seg, double t) {
+    if (t > 0.0)
+      for (std::size_t i = 0; i < seg.size(); ++i)
+        if (seg.two_sided[i]) seg.offset_m[i] = 0.5 * t;  // a shell face
+  };
   SegmentSet master = build_segments(m, c.master_parts, c.penalty_scale);
   if (self) {
+    thicken(master, c.slave_thickness_m);
     auto nodes = segment_nodes(master);
-    s.passes.emplace_back(m, std::move(nodes), std::move(master), np, true);
+    s.passes.emplace_back(m, std::move(nodes), std::move(master), np, true,
+                          0.5 * c.slave_thickness_m);
     return;
   }
+  thicken(master, c.master_thickness_m);
   std::vector<std::int32_t> slave = c.slave_nodes;
   std::sort(slave.begin(), slave.end());
   slave.erase(std::unique(slave.begin(), slave.end()), slave.end());
@@ -94,12 +109,15 @@ ContactInterface::ContactInterface(const model::Model& m, const model::Contact& 
         throw ModelError(fmt::format(
             "{}: slave face node index {} out of range (model has {} nodes)", who, i, n));
     slave_segments = build_faces(m, faces, c.penalty_scale);
+    thicken(slave_segments, c.slave_thickness_m);
     if (slave_segments.size() > 0) master_nodes = segment_nodes(master);
   }
-  s.passes.emplace_back(m, std::move(slave), std::move(master), np, false);
+  s.passes.emplace_back(m, std::move(slave), std::move(master), np, false,
+                        0.5 * c.slave_thickness_m);
   // Without slave faces (isolated slave nodes) the second pass has nothing to hit.
   if (slave_segments.size() > 0)
-    s.passes.emplace_back(m, std::move(master_nodes), std::move(slave_segments), np, false);
+    s.passes.emplace_back(m, std::move(master_nodes), std::move(slave_segments), np, false,
+                          0.5 * c.master_thickness_m);
 }
 
 ContactInterface::~ContactInterface() = default;

@@ -132,7 +132,7 @@ double AppliedForces::sum_power(const double* v, std::size_t e0, double w) const
 }
 
 ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
-                         const NodeProperties& np, bool self)
+                         const NodeProperties& np, bool self, double node_half_thickness_m)
     : seg_(std::move(seg)), nodes_(std::move(nodes)), self_(self) {
   const std::size_t n = m.nodes.count();
   const double* x0 = m.nodes.x0.data();
@@ -143,10 +143,12 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
   double max_offset = 0.0;
   for (std::size_t k = 0; k < ns; ++k) {
     const auto i = static_cast<std::size_t>(nodes_[k]);
-    node_offset_m_[k] = np.half_thickness_m[i];
+    node_offset_m_[k] = node_half_thickness_m > 0.0 && np.half_thickness_m[i] > 0.0
+                            ? node_half_thickness_m
+                            : np.half_thickness_m[i];
     node_k_N_m_[k] = np.stiffness_N_m[i];
     node_mass_kg_[k] = np.mass_kg[i];
-    max_offset = std::max(max_offset, np.half_thickness_m[i]);
+    max_offset = std::max(max_offset, node_offset_m_[k]);
   }
   const std::size_t nseg = seg_.size();
   seg_mass_kg_.resize(nseg);

@@ -82,8 +82,10 @@ class ContactPass {
  public:
   /// `nodes` the pass's (slave) nodes, `seg` its segments; `self`: single-surface, the
   /// segments of each node's own elements and their neighbours are skipped.
+  /// `node_half_thickness_m` > 0: the offset of every node of a shell (half_thickness_m > 0)
+  /// in place of its own (a contact thickness, LS-DYNA SST/MST).
   ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
-              const NodeProperties& np, bool self);
+              const NodeProperties& np, bool self, double node_half_thickness_m = 0.0);
 
   void compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
                const StiffnessRule& rule, double* f, AppliedForces& applied, PassResult& out);

@@ -54,6 +54,8 @@ struct SectionCard {
   bool shell = true;
   int nip = 0;
   double thickness = 0.0;  ///< T1, deck length units
+  /// T1-T4 (blank or 0: T1), deck length units; unequal: each shell takes their mean
+  std::array<double, 4> corner{};
   bool shrf_blank = true;
   std::string keyword;
   CardRef ref;
@@ -207,6 +209,7 @@ struct ContactCard {
   int sstyp = 0, mstyp = 0;
   double fs = 0.0, fd = 0.0, dc = 0.0;  ///< friction; DC in deck time / length
   double sfs = 1.0, sfm = 1.0;          ///< penalty scale factors
+  double sst = 0.0, mst = 0.0;          ///< contact thicknesses (0: the shells'), deck length
   int soft = 0;
   double sofscl = 0.1;
   int cards = 0;  ///< data cards read (the ID card not counted)

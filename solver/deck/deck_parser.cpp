@@ -86,6 +86,8 @@ constexpr KeywordName kKeywords[] = {
     {"*CONTROL_CONTACT", Kw::ControlContact, false, false},
     {"*CONTROL_SHELL", Kw::ControlShell, false, false},
     {"*CONTROL_ENERGY", Kw::Database, false, false},
+    {"*CONTROL_OUTPUT", Kw::Database, false, false},
+    {"*CONTROL_PARALLEL", Kw::Database, false, false},
     {"*LOAD_BODY_X", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Y", Kw::LoadBody, false, false},
     {"*LOAD_BODY_Z", Kw::LoadBody, false, false},
@@ -111,7 +113,8 @@ constexpr const char* kReaderKeywords[] = {"*KEYWORD",
                                            "*PARAMETER_EXPRESSION",
                                            "*COMMENT",
                                            "*DATABASE_*",
-                                           "*SENSOR_DEFINE_*"};
+                                           "*SENSOR_DEFINE_*",
+                                           "*CONTROL_MPP_*"};
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() > suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
@@ -170,7 +173,9 @@ bool lookup(std::string_view k, Kw& kw, bool& title, bool& id) {
     }
     return true;
   }
-  if (k.rfind("*SENSOR_DEFINE_", 0) == 0) {  // a sensor feeds output only: without effect
+  // a sensor feeds output only, the MPP options split the work of LS-DYNA's processes: without
+  // effect on the answer
+  if (k.rfind("*SENSOR_DEFINE_", 0) == 0 || k.rfind("*CONTROL_MPP_", 0) == 0) {
     kw = Kw::Database;
     return true;
   }

@@ -67,12 +67,18 @@ void read_contact_card(const Card& c, int i, ContactCard& k, std::vector<std::st
     if (k.sfm == 0.0) k.sfm = 1.0;
     if (k.sfs < 0.0) sfs.fail("must be > 0; fix: write 1.0");
     if (k.sfm < 0.0) sfm.fail("must be > 0; fix: write 1.0");
-    must_be_default(c.field(L::kContact3, 2), 0.0,
-                    "a contact thickness other than the shells' own (SST) is not computed; "
-                    "fix: write 0");
-    must_be_default(c.field(L::kContact3, 3), 0.0,
-                    "a contact thickness other than the shells' own (MST) is not computed; "
-                    "fix: write 0");
+    // SST, MST: the sides' shells' contact thickness in place of their own (0: their own)
+    const auto sst = c.field(L::kContact3, 2), mst = c.field(L::kContact3, 3);
+    k.sst = sst.real(0.0);
+    k.mst = mst.real(0.0);
+    if (k.sst < 0.0)
+      sst.fail(
+          "a negative SST (LS-DYNA: a scale of the shells' thickness) is not computed; fix: "
+          "write the thickness, or 0 for the shells' own");
+    if (k.mst < 0.0)
+      mst.fail(
+          "a negative MST (LS-DYNA: a scale of the shells' thickness) is not computed; fix: "
+          "write the thickness, or 0 for the shells' own");
     for (std::size_t f = 4; f < 8; ++f) {
       const auto x = c.field(L::kContact3, f);
       if (!x.blank() && x.real(1.0) != 1.0 && x.real(1.0) != 0.0)

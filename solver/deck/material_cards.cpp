@@ -52,14 +52,19 @@ void Parser::section_shell(const Card& c) {
   SectionCard& s = d_.sections.back();
   const auto t1 = c.field(L::kSectionShell2, 0);
   s.thickness = positive(t1, "1.0 (mm) for a 1 mm sheet");
+  s.corner = {s.thickness, s.thickness, s.thickness, s.thickness};
   for (std::size_t k = 1; k < 4; ++k) {
     const auto tk = c.field(L::kSectionShell2, k);
-    if (!tk.blank() && tk.real(0.0) != 0.0 && tk.real(0.0) != s.thickness)
-      tk.fail(
-          fmt::format("crashlink's shells have one thickness per part; fix: write T2-T4 "
-                      "equal to T1 = {} or blank",
-                      s.thickness));
+    const double t = tk.real(0.0);
+    if (t < 0.0) tk.fail("must be >= 0 (blank or 0: T1); fix: write the corner's thickness");
+    if (t > 0.0) s.corner[k] = t;
   }
+  if (s.corner[1] != s.thickness || s.corner[2] != s.thickness || s.corner[3] != s.thickness)
+    d_.notes.push_back(fmt::format(
+        "{}:{}: {} {}: T1-T4 unequal ({}, {}, {}, {}): each shell takes their mean (the "
+        "Belytschko-Tsay element's one point; a triangle T1-T3's)",
+        d_.files.name(s.ref.file), s.ref.line, s.keyword, s.id, s.corner[0], s.corner[1],
+        s.corner[2], s.corner[3]));
   if (s.shrf_blank)
     d_.notes.push_back(
         fmt::format("{}:{}: {} {}: SHRF blank (LS-DYNA reads 1.0): crashlink's shells use 5/6",

@@ -249,7 +249,10 @@ void Builder::elements() {
     if (s.shell) {
       part.thickness_m = s.thickness * u_.length_m;
       part.through_thickness_points = s.nip;
-      if (any_thickness[p]) {
+      // unequal T1-T4: as *ELEMENT_SHELL_THICKNESS with the section's corners (their mean)
+      const bool unequal =
+          s.corner[1] != s.thickness || s.corner[2] != s.thickness || s.corner[3] != s.thickness;
+      if (unequal || any_thickness[p]) {
         // *ELEMENT_SHELL_THICKNESS: the mean of the corners' thicknesses (the
         // Belytschko-Tsay element's one point), a zero corner taking the section's
         for (std::size_t e = 0; e < shell_thickness[p].size(); ++e) {
@@ -260,7 +263,7 @@ void Builder::elements() {
           bool equal = true;  // equal corners: that value, bit for bit (no rounding of a mean)
           const auto corner = [&](int k) {
             return t[static_cast<std::size_t>(k)] > 0.0 ? t[static_cast<std::size_t>(k)]
-                                                        : s.thickness;
+                                                        : s.corner[static_cast<std::size_t>(k)];
           };
           for (int k = 0; k < corners; ++k) {
             sum += corner(k);

@@ -442,6 +442,8 @@ void Builder::contacts() {
                           "write SFM = SFS",
                           k.sfs));
     c.penalty_scale = d_.slsfac * k.sfs;  // *CONTROL_CONTACT SLSFAC (default 0.1)
+    c.slave_thickness_m = k.sst * u_.length_m;
+    c.master_thickness_m = k.mst * u_.length_m;
     c.soft = k.soft == 1;
     c.soft_scale = k.sofscl;
     c.static_friction = k.fs;

@@ -343,7 +343,8 @@ void Composer::contacts() {
     // crashlink's friction decays from FS to FD with DC [time/length]; with DC = 0 it is FS.
     const double fd = c.friction_decay_s_m > 0.0 ? c.dynamic_friction : c.static_friction;
     b.card(L::kContact2, {c.static_friction, fd, c.friction_decay_s_m * u_.length_m / u_.time_s});
-    b.card(L::kContact3, {c.penalty_scale, c.penalty_scale});
+    b.card(L::kContact3, {c.penalty_scale, c.penalty_scale, length(c.slave_thickness_m),
+                          length(c.master_thickness_m)});
     b.card(L::kContactA, {c.soft ? 1 : 0, c.soft_scale});
     emit(b);
   }

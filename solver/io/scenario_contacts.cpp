@@ -10,7 +10,8 @@ void read_contacts(const YamlNode& section, ScenarioBuild& b) {
   auto& m = b.model;
   for (const auto& [name, entry] :
        section.entries("contacts (name: {type, slave, master, penalty_scale, soft, friction})")) {
-    entry.expect_keys({"type", "slave", "master", "penalty_scale", "soft", "friction"});
+    entry.expect_keys({"type", "slave", "master", "penalty_scale", "soft", "friction",
+                       "slave_thickness", "master_thickness"});
     model::Contact c;
     c.name = name;
     if (auto t = entry.optional("type")) {
@@ -50,6 +51,12 @@ void read_contacts(const YamlNode& section, ScenarioBuild& b) {
       c.master_parts.push_back(read_part_reference(master, b));
     }
     if (auto s = entry.optional("penalty_scale")) c.penalty_scale = s->positive();
+    // the sides' shells' contact thickness in place of their own (LS-DYNA SST, MST)
+    c.slave_thickness_m = entry.non_negative_or("slave_thickness", 0.0);
+    c.master_thickness_m = entry.non_negative_or("master_thickness", 0.0);
+    if (self && c.master_thickness_m > 0.0)
+      entry.required("master_thickness")
+          .fail("a single_surface contact has one side: give its `slave_thickness`");
     if (auto soft = entry.optional("soft")) {
       if (soft->is_scalar()) {
         c.soft = soft->boolean();

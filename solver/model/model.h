@@ -206,9 +206,13 @@ struct Contact {
   /// empty: derived from the model (contact::slave_faces), as the partition does on the whole
   /// model before cutting it, so that a sub-model's cut faces never count as surface.
   std::vector<std::int32_t> slave_faces;
-  double penalty_scale = 0.1;       ///< scale factor on the segment stiffness [-]
-  bool soft = true;                 ///< also a stiffness from nodal mass and step
-  double soft_scale = 0.1;          ///< scale on k_soft = m / dt^2 [-]
+  double penalty_scale = 0.1;  ///< scale factor on the segment stiffness [-]
+  bool soft = true;            ///< also a stiffness from nodal mass and step
+  double soft_scale = 0.1;     ///< scale on k_soft = m / dt^2 [-]
+  /// Contact thickness of the slave side's shells and of the master side's (LS-DYNA SST, MST),
+  /// in place of their own: the thickness offsets of their nodes and faces are half of it [m];
+  /// 0: the shells' own. Solid faces keep offset 0. Single surface: slave_thickness_m for all.
+  double slave_thickness_m = 0.0, master_thickness_m = 0.0;
   double static_friction = 0.0;     ///< mu_s [-]
   double dynamic_friction = 0.0;    ///< mu_d [-]
   double friction_decay_s_m = 0.0;  ///< decay coefficient [s/m]

@@ -184,6 +184,8 @@ void expect_same_model(const model::Model& a, const model::Model& d,
       EXPECT_EQ(y.dynamic_friction, x.dynamic_friction);
     }
     EXPECT_EQ(y.friction_decay_s_m, x.friction_decay_s_m);
+    EXPECT_EQ(y.slave_thickness_m, x.slave_thickness_m);
+    EXPECT_EQ(y.master_thickness_m, x.master_thickness_m);
   }
   std::map<std::string, std::pair<model::Probe::Kind, int>> pa, pd;
   for (const auto& p : a.probes) pa[p.name] = {p.kind, p.index};

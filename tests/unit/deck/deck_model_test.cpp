@@ -88,6 +88,44 @@ TEST(DeckModel, TwinReadsInSI) {
       << all;
 }
 
+// *SECTION_SHELL T1-T4 unequal: each shell takes their mean (a triangle T1-T3's), as
+// *ELEMENT_SHELL_THICKNESS would give it, and the reader says so.
+TEST(DeckModel, SectionCornerThicknessesGiveTheirMean) {
+  testing::DeckFolder dir;
+  const std::string text = R"(*KEYWORD
+*NODE
+       1             0.0             0.0             0.0
+       2             1.0             0.0             0.0
+       3             1.0             1.0             0.0
+       4             0.0             1.0             0.0
+       5             2.0             0.0             0.0
+*ELEMENT_SHELL
+       1       1       1       2       3       4
+       2       1       2       5       3       3
+*PART
+sheet
+         1         1         1
+*SECTION_SHELL
+         1         2  0.833333         3
+       1.0       2.0       3.0       6.0
+*MAT_ELASTIC
+         1   7.85e-9  210000.0       0.3
+*CONTROL_TERMINATION
+    1.0e-5
+*END
+)";
+  const DeckRead r = read_deck(dir.write("s.k", text), {"mm-t-s", {}});
+  const auto& p = r.model.parts[0];
+  ASSERT_EQ(p.element_thickness_m.size(), 2u);
+  EXPECT_DOUBLE_EQ(p.thickness_of(0), 3.0e-3);  // (1 + 2 + 3 + 6) / 4 mm
+  EXPECT_DOUBLE_EQ(p.thickness_of(1), 2.0e-3);  // the triangle: (1 + 2 + 3) / 3 mm
+  std::string all;
+  for (const auto& m : r.messages) all += m + "\n";
+  EXPECT_NE(all.find("*SECTION_SHELL 1: T1-T4 unequal (1, 2, 3, 6): each shell takes their mean"),
+            std::string::npos)
+      << all;
+}
+
 TEST(DeckModel, UnitSystemsConvertToSI) {
   const auto* u = find_unit_system("in-lbf-s");
   ASSERT_NE(u, nullptr);
