@@ -41,7 +41,9 @@ void Parser::spc(const Card& c) {
 
 void Parser::rigid_constraint(const Card& c) {
   if (title_card(c)) return;
-  if (blank(c)) return;
+  // Within a record of several cards a blank card is a card of defaults (LS-DYNA); between
+  // records it is skipped.
+  if (blank(c) && !mid_record()) return;
   RigidConstraintCard r;
   r.keyword = b_.keyword;
   r.ref = c.ref();

@@ -436,6 +436,16 @@ std::size_t Parser::records_of(Kw kw) const {
   }
 }
 
+bool Parser::mid_record() const {
+  if (b_.kw != Kw::RigidConstraint) return false;
+  const std::string_view k = b_.keyword;
+  if (k.starts_with("*CONSTRAINED_GENERALIZED_WELD_SPOT")) return b_.card % (b_.id ? 3 : 2) != 0;
+  if (k.starts_with("*CONSTRAINED_NODAL_RIGID_BODY") &&
+      (k.find("_INERTIA") != std::string_view::npos || k.find("_SPC") != std::string_view::npos))
+    return b_.card > (b_.title ? 1 : 0);
+  return false;
+}
+
 void Parser::finish_block() {
   // A keyword whose cards are missing would define nothing without a word.
   const std::size_t before = b_.before;
@@ -457,6 +467,11 @@ void Parser::finish_block() {
                          ? "the curve has no point; fix: add its points (A, O) after LCID"
                          : "its cards are missing (the next keyword or the end of the file "
                            "follows); fix: add them or remove the keyword");
+  if (mid_record() || (b_.kw == Kw::RigidConstraint && b_.title && b_.card == 1))
+    throw InputError(d_.files.name(last_.file), last_.line, b_.keyword,
+                     "its last record is cut short (the next keyword or the end of the file "
+                     "follows): a generalized weld takes (WID,) NSID ... and TFAIL ... cards, a "
+                     "nodal body's _INERTIA three more cards and _SPC one; fix: add them");
   if (b_.kw == Kw::Part && b_.keyword == "*PART_INERTIA" && b_.card >= 2)
     throw InputError(d_.files.name(d_.parts.back().ref.file), d_.parts.back().ref.line, b_.keyword,
                      fmt::format("card {} of the part's inertia is missing (3: XC YC ZC TM "

@@ -140,6 +140,9 @@ class Parser {
   /// *CONSTRAINED_NODAL_RIGID_BODY (PID CID NSID PNODE IPRT DRFLAG RRFLAG; _TITLE: its name),
   /// *CONSTRAINED_EXTRA_NODES_NODE/_SET (PID NID/NSID IFLAG), *CONSTRAINED_RIGID_BODIES (PIDL
   /// PIDC IFLAG): one record per card.
+  /// In a *CONSTRAINED_GENERALIZED_WELD_SPOT or a nodal body's _INERTIA / _SPC record, after
+  /// its first card (a blank card there is a card of defaults; the block must not end there).
+  bool mid_record() const;
   void rigid_constraint(const Card& c);
 
   void velocity_generation(const Card& c);

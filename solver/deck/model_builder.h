@@ -177,6 +177,8 @@ class Builder {
   IdMap nodes_, curves_, sections_, materials_, parts_;
   std::unordered_map<std::int64_t, int> part_index_, rigid_body_of_part_;
   std::unordered_map<std::string, int> used_names_;
+  std::int64_t max_weld_id_ = 0;               ///< the largest WID of the deck's spot welds
+  std::unordered_set<std::int64_t> weld_ids_;  ///< the WIDs met so far
   std::unordered_map<std::int64_t, std::vector<std::int64_t>> node_set_members_, part_set_members_,
       shell_set_members_;
   /// shell element id -> (part index, element index), for *SET_SHELL_LIST

@@ -56,6 +56,10 @@ void Builder::velocities() {
     model::InitialVelocity iv;
     iv.velocity_m_s = vel;
     if (v.omega != 0.0) {  // a spin about the axis through card 2's point
+      if (v.axis[0] == -999.0)
+        fail_at(d_, v.ref2, v.keyword, L::kVelocityGeneration2, 3,
+                "an axis by two nodes (NX = -999, NY and NZ node ids) is not read; fix: write "
+                "the axis point XC YC ZC and its direction NX NY NZ");
       const Vec3 n{v.axis[0], v.axis[1], v.axis[2]};
       if (!(norm(n) > 0.0))
         fail_at(d_, v.ref2, v.keyword, L::kVelocityGeneration2, 3,
@@ -67,7 +71,8 @@ void Builder::velocities() {
     const auto set_body = [&](model::RigidBody& body) {
       body.velocity_m_s = vel;
       body.velocity_at_point = false;
-      if (v.omega == 0.0) return;  // (a translation leaves the body's spin as it was)
+      body.angular_velocity_rad_s = Vec3{};  // the card's motion replaces the body's
+      if (v.omega == 0.0) return;
       body.angular_velocity_rad_s = iv.angular_velocity_rad_s;
       body.velocity_at_point = true;
       body.velocity_point_m = iv.centre_m;
@@ -114,7 +119,7 @@ void Builder::velocities() {
         const int b = body_of[static_cast<std::size_t>(c)];
         if (b < 0 || moved[static_cast<std::size_t>(b)]) continue;
         moved[static_cast<std::size_t>(b)] = 1;
-        if (inertia_bodies_.count(b) == 0)
+        if (inertia_bodies_.count(b) == 0 || (generation && v.irigid == 1))
           set_body(m_.rigid_bodies[static_cast<std::size_t>(b)]);
         else
           d_notes_.push_back(fmt::format(
@@ -139,6 +144,8 @@ void Builder::velocities() {
 }
 
 void Builder::rigid_constraints() {
+  for (const auto& r : d_.rigid_constraints)
+    if (r.kind == RigidConstraintCard::Kind::SpotWeld) max_weld_id_ = std::max(max_weld_id_, r.pid);
   std::vector<char> merged(m_.rigid_bodies.size(), 0);
   std::unordered_map<std::int64_t, int> nodal_ids;  // *CONSTRAINED_NODAL_RIGID_BODY PID -> body
   const auto body_of_part = [&](const RigidConstraintCard& r, std::int64_t pid, Layout l,
@@ -195,8 +202,13 @@ void Builder::rigid_constraints() {
     } else if (r.kind == K::SpotWeld) {
       const Layout l = r.set ? Layout(L::kGeneralizedWeld1) : Layout(L::kSpotWeld);
       model::RigidBody w;
-      w.name =
-          r.pid > 0 ? fmt::format("spotweld_{}", r.pid) : fmt::format("spotweld_{}", ++spot_welds_);
+      if (r.pid > 0 && !weld_ids_.insert(r.pid).second)
+        fail_at(
+            d_, r.ref, r.keyword, l, 0,
+            fmt::format("spot weld {} is already defined; fix: give each weld its own WID", r.pid));
+      // an unnumbered weld: the next id above every WID of the deck (names stay unique)
+      w.name = r.pid > 0 ? fmt::format("spotweld_{}", r.pid)
+                         : fmt::format("spotweld_{}", max_weld_id_ + ++spot_welds_);
       if (r.set) {  // *CONSTRAINED_GENERALIZED_WELD_SPOT: the set's two nodes
         const auto& ids = node_set(r.target, r.ref, r.keyword, l, 0);
         if (ids.size() != 2)
@@ -211,6 +223,9 @@ void Builder::rigid_constraints() {
         add_nodes(r, {r.target}, l, 0, w);
         add_nodes(r, {r.n2}, l, 1, w);
       }
+      if (w.nodes.size() != 2)  // a set naming one node twice
+        fail_at(d_, r.ref, r.keyword, l, 0,
+                "the weld's two nodes are one node; fix: weld two distinct nodes");
       const auto a = static_cast<std::size_t>(w.nodes[0]), b = static_cast<std::size_t>(w.nodes[1]);
       double gap = 0.0;
       for (std::size_t d = 0; d < 3; ++d)
@@ -444,6 +459,37 @@ void Builder::contacts() {
     c.penalty_scale = d_.slsfac * k.sfs;  // *CONTROL_CONTACT SLSFAC (default 0.1)
     c.slave_thickness_m = k.sst * u_.length_m;
     c.master_thickness_m = k.mst * u_.length_m;
+    {
+      // SST/MST set the shells' thickness offsets; solid faces keep theirs (0): said so
+      const auto has_solids = [&](const std::vector<int>& parts) {
+        for (int p : parts)
+          if (m_.parts[static_cast<std::size_t>(p)].kind == model::ElementKind::Hex8) return true;
+        return false;
+      };
+      std::vector<int> slave_parts;
+      if (c.kind != model::ContactKind::SingleSurface) {
+        std::vector<char> on(m_.nodes.count(), 0);
+        for (auto n : c.slave_nodes) on[static_cast<std::size_t>(n)] = 1;
+        for (std::size_t p = 0; p < m_.parts.size(); ++p)
+          for (auto n : m_.parts[p].connectivity)
+            if (on[static_cast<std::size_t>(n)]) {
+              slave_parts.push_back(static_cast<int>(p));
+              break;
+            }
+      }
+      const bool self = c.kind == model::ContactKind::SingleSurface;
+      if ((k.sst > 0.0 && has_solids(self ? c.master_parts : slave_parts)) ||
+          (k.mst > 0.0 && !self && has_solids(c.master_parts)))
+        d_notes_.push_back(fmt::format(
+            "{}: {}: SST/MST set the contact thickness of the side's shells; its solid faces "
+            "keep their offset 0",
+            at(d_, k.ref3), k.keyword));
+      if (self && k.mst > 0.0)
+        d_notes_.push_back(
+            fmt::format("{}: {}: a single surface has one side: MST without "
+                        "effect (SST is its thickness)",
+                        at(d_, k.ref3), k.keyword));
+    }
     c.soft = k.soft == 1;
     c.soft_scale = k.sofscl;
     c.static_friction = k.fs;

@@ -133,8 +133,8 @@ void Solver::apply_initial_velocities() {
                                    model_.nodes.x0[3 * i + 2]})
                           : iv.velocity_m_s;
       for (std::size_t d = 0; d < 3; ++d) v_[3 * i + d] = v[d];
-      // a node with rotations turns with the spin
-      if (spin && inertia_[i] > 0.0)
+      // a node with rotations turns with the spin (a later translation stops it)
+      if (inertia_[i] > 0.0)
         for (std::size_t d = 0; d < 3; ++d) omega_[3 * i + d] = iv.angular_velocity_rad_s[d];
     }
   }

@@ -15,16 +15,28 @@
 namespace crashlink {
 namespace {
 
-/// The least distance between the two sheets' mid-surfaces over the run [m].
-double closest(const std::string& contact) {
-  const model::Model m = io::parse_scenario(R"(name: sheets
+constexpr const char* kSheets =
+    "  lower: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, "
+    "origin: [0, 0, 0], size: [0.02, 0.02], normal: z, divisions: [4, 4]}}\n"
+    "  upper: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, "
+    "origin: [0.0025, 0.0025, 0.005], size: [0.015, 0.015], normal: z, divisions: [3, 3]}}\n";
+/// A small lower sheet under one big upper face: no upper node above the lower sheet, so only
+/// the second pass (the master nodes against the slave faces) meets.
+constexpr const char* kPassTwoOnly =
+    "  lower: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, "
+    "origin: [0.015, 0.015, 0], size: [0.01, 0.01], normal: z, divisions: [1, 1]}}\n"
+    "  upper: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, "
+    "origin: [0.0, 0.0, 0.005], size: [0.04, 0.04], normal: z, divisions: [1, 1]}}\n";
+
+/// The least height of the upper sheet above the held lower one over the run [m] (the upper
+/// sheet stays flat: its lowest node).
+double closest(const std::string& contact, const char* sheets = kSheets) {
+  const model::Model m = io::parse_scenario(std::string(R"(name: sheets
 controls: {end_time: 4.0e-3, bulk_viscosity: {enabled: false}}
 materials:
   steel: {type: elastic, density: 7850.0, youngs_modulus: 2.1e+11, poisson_ratio: 0.3}
 parts:
-  lower: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0, 0, 0], size: [0.02, 0.02], normal: z, divisions: [4, 4]}}
-  upper: {material: steel, element: shell4, thickness: 1.0e-3, mesh: {generator: plate, origin: [0.0025, 0.0025, 0.005], size: [0.015, 0.015], normal: z, divisions: [3, 3]}}
-boundary:
+)") + sheets + R"(boundary:
   - {nodes: {part: lower}, fix: all}
 initial_velocity:
   - {part: upper, velocity: [0, 0, -1.0]}
@@ -52,10 +64,27 @@ TEST(ContactThickness, SheetsStopAtHalfTheirContactThicknesses) {
   const double one_pass = closest(
       "  c: {type: node_to_surface, slave: {part: upper}, master: lower, slave_thickness: "
       "4.0e-3, master_thickness: 2.0e-3}\n");
+  // only the second pass meets (the lower nodes against the upper face): MST's nodes, SST's face
+  const double pass_two = closest(
+      "  c: {slave: {part: upper}, master: lower, slave_thickness: 4.0e-3, "
+      "master_thickness: 2.0e-3}\n",
+      kPassTwoOnly);
+  const double pass_two_own = closest("  c: {slave: {part: upper}, master: lower}\n", kPassTwoOnly);
+  // single surface: SST on both sheets
+  const double self =
+      closest("  c: {type: single_surface, master: [lower, upper], slave_thickness: 4.0e-3}\n");
   std::printf(
       "[measured] closest mid-surfaces: own thicknesses %.4f mm (1), SST 4 MST 2 %.4f mm "
-      "(3), sides swapped %.4f mm, one pass %.4f mm\n",
-      own * 1e3, thick * 1e3, swapped * 1e3, one_pass * 1e3);
+      "(3), sides swapped %.4f mm, one pass %.4f mm, second pass only %.4f mm (own %.4f), "
+      "single surface SST 4 %.4f mm (4)\n",
+      own * 1e3, thick * 1e3, swapped * 1e3, one_pass * 1e3, pass_two * 1e3, pass_two_own * 1e3,
+      self * 1e3);
+  EXPECT_GT(pass_two_own, 0.99e-3);
+  EXPECT_LT(pass_two_own, 1.0e-3);
+  EXPECT_GT(pass_two, 2.99e-3);
+  EXPECT_LT(pass_two, 3.0e-3);
+  EXPECT_GT(self, 3.99e-3);
+  EXPECT_LT(self, 4.0e-3);
   // (the penalty lets the sheets 1-2 um closer: measured 0.13 um and 1.3 um)
   EXPECT_LT(own, 1.0e-3);
   EXPECT_GT(own, 0.99e-3);

@@ -101,8 +101,12 @@ std::map<Key, std::pair<int, Vec3>> node_conditions(const model::Model& m) {
   for (std::size_t i = 0; i < m.nodes.count(); ++i)
     out[key(m, static_cast<std::int32_t>(i))] = {m.fixed[i], Vec3{}};
   for (const auto& iv : m.initial_velocities)
-    for (auto i : iv.nodes)
-      if (!body.count(key(m, i))) out[key(m, i)].second = iv.velocity_m_s;
+    for (auto i : iv.nodes) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!body.count(key(m, i)))  // (a spin's velocity at the node's own position)
+        out[key(m, i)].second =
+            iv.at({m.nodes.x0[3 * k], m.nodes.x0[3 * k + 1], m.nodes.x0[3 * k + 2]});
+    }
   return out;
 }
 
@@ -180,6 +184,8 @@ TEST(DeckTwin, DeckGivesTheModelOfItsYamlTwin) {
     EXPECT_EQ(keys(deck, a.nodes), keys(yaml, b.nodes));
     expect_same_vec(a.velocity_m_s, b.velocity_m_s);
     expect_same_vec(a.angular_velocity_rad_s, b.angular_velocity_rad_s);
+    EXPECT_EQ(a.velocity_at_point, b.velocity_at_point);
+    expect_same_vec(a.velocity_point_m, b.velocity_point_m);
     EXPECT_TRUE(near(a.mass_kg, b.mass_kg));
     EXPECT_EQ(a.inertia_given, b.inertia_given);
     for (std::size_t r = 0; r < 3; ++r) expect_same_vec(a.inertia_kg_m2[r], b.inertia_kg_m2[r]);

@@ -161,6 +161,84 @@ TEST_F(DeckWallsMotions, VelocityGenerationWithASpin) {
             std::string::npos);
 }
 
+// Records of several cards: a blank card within one is a card of defaults (a weld that never
+// fails, a body at rest, a body held by nothing), several records follow each other, a record cut
+// short is refused; IRIGID 1 sets a nodal _INERTIA body's velocity; one node twice in a weld's set
+// and a WID twice are refused; an unnumbered weld is named above every WID.
+TEST_F(DeckWallsMotions, MultiCardRecordsAndTheirMistakes) {
+  DeckRead r;
+  const std::vector<std::string> sets = {"*SET_NODE_LIST", "         7", "         1         9",
+                                         "*SET_NODE_LIST", "         8", "         2        10",
+                                         "*SET_NODE_LIST", "         5", "         3         4",
+                                         "*SET_NODE_LIST", "         6", "        11        12"};
+  auto d = testing::two_cubes_with(sets);
+  d.insert(d.end(),
+           {"*CONSTRAINED_GENERALIZED_WELD_SPOT",
+            "         7",
+            "",
+            "         8",
+            "    1.0e-3       0.0     500.0       0.0       2.0",
+            "*CONSTRAINED_NODAL_RIGID_BODY_INERTIA_TITLE",
+            "first",
+            "       100         0         5",
+            "       0.5       0.5       0.5     0.001         0         0",
+            "       0.1       0.0       0.0       0.1       0.0       0.1",
+            "",
+            "second",
+            "       101         0         6",
+            "       0.5       0.5       1.5     0.001         0         0",
+            "       0.1       0.0       0.0       0.1       0.0       0.1",
+            "    1000.0       0.0       0.0       0.0       0.0       0.0",
+            "*CONSTRAINED_SPOTWELD_ID",
+            "         5",
+            "        13        14",
+            "*CONSTRAINED_SPOTWELD",
+            "        15        16",
+            "*SET_NODE_LIST",
+            "        20",
+            "        11",
+            "*INITIAL_VELOCITY_GENERATION",
+            "        20         3       0.0     200.0       0.0       0.0",
+            "       0.0       0.0       0.0       0.0       0.0       0.0         0         1"});
+  ASSERT_EQ(read(d, &r), "");
+  const auto& b = r.model.rigid_bodies;
+  ASSERT_EQ(b.size(), 6u);
+  EXPECT_EQ(b[0].name, "spotweld_6") << "unnumbered: above WID 5";
+  EXPECT_FALSE(b[0].failure.any()) << "a blank failure card: never fails";
+  EXPECT_EQ(b[1].name, "spotweld_7");
+  EXPECT_DOUBLE_EQ(b[1].failure.shear_N, 0.0);
+  EXPECT_DOUBLE_EQ(b[1].failure.normal_N, 500.0);
+  EXPECT_EQ(b[2].name, "first");
+  EXPECT_DOUBLE_EQ(b[2].velocity_m_s[0], 0.0) << "a blank velocity card: at rest";
+  EXPECT_EQ(b[3].name, "second");
+  EXPECT_DOUBLE_EQ(b[3].mass_kg, 1.0);
+  EXPECT_DOUBLE_EQ(b[3].velocity_m_s[0], 0.2) << "IRIGID 1 sets an _INERTIA body's velocity";
+  EXPECT_EQ(b[4].name, "spotweld_5");
+  EXPECT_EQ(b[5].name, "spotweld_8");
+  // mistakes
+  EXPECT_NE(read(testing::two_cubes_with({"*CONSTRAINED_NODAL_RIGID_BODY_SPC",
+                                          "       100         0"
+                                          "         7"}))
+                .find("its last record is cut short"),
+            std::string::npos);
+  EXPECT_NE(read(testing::two_cubes_with({"*SET_NODE_LIST", "         7", "         1         1",
+                                          "*CONSTRAINED_GENERALIZED_WELD_SPOT", "         7",
+                                          "    1.0e-3"}))
+                .find("the weld's two nodes are one node"),
+            std::string::npos);
+  EXPECT_NE(
+      read(testing::two_cubes_with({"*CONSTRAINED_SPOTWELD_ID", "         5",
+                                    "         1         2", "         5", "         3         4"}))
+          .find("spot weld 5 is already defined"),
+      std::string::npos);
+  EXPECT_NE(read(testing::two_cubes_with(
+                     {"*INITIAL_VELOCITY_GENERATION",
+                      "         1         2     100.0       0.0       0.0       0.0",
+                      "       0.0       0.0       0.0    -999.0         1         2"}))
+                .find("an axis by two nodes (NX = -999"),
+            std::string::npos);
+}
+
 TEST_F(DeckWallsMotions, ShellSetIsASlaveSurface) {
   DeckRead r;
   ASSERT_EQ(
