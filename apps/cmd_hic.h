@@ -1,7 +1,7 @@
 #pragma once
 // `crashlink hic FILE [--probe NAME] [--cfc 1000|600|180|60|none] [--window 15|36]
 //  [--csv-out F]`
-// (DESIGN.md §4): HIC15 and HIC36 (solver/signal/hic.h) of a head acceleration history.
+// (docs/design.md §4): HIC15 and HIC36 (solver/signal/hic.h) of a head acceleration history.
 //
 // FILE is a CSV `time_s,accel_g` (solver/signal/signal_csv.h; the 1-D value is used as given) or
 // a result.h5 with --probe NAME (/history/probes/NAME/{time, acceleration}: each of the three

@@ -2,7 +2,7 @@
 // `crashlink run SCENARIO [--out DIR] [--mode mono|split|multi] [--coupling layer|paper]
 // [--transport ipc|tcp|inproc] [--quiet] [--heartbeat-ms N] [--timeout-ms N]
 // [--join-timeout-ms N] [--step-safety F] [--reference mono] [--checkpoint-interval S]
-// [--restart DIR]` (DESIGN.md §4): runs the scenario,
+// [--restart DIR]` (docs/design.md §4): runs the scenario,
 // shows progress, prints the summary and, for every probe on a rigid body (a headform), HIC15 and
 // HIC36 after CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
 //   mono: the whole model in this process (run/run_single.h).
@@ -46,7 +46,7 @@ struct RunCommandOptions {
   std::string restart;
   bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
   bool no_drift = false;        ///< `paper`: drift correction [11] off
-  bool variable_steps = false;  ///< each domain follows its own step (DESIGN.md §2.6)
+  bool variable_steps = false;  ///< each domain follows its own step (docs/design.md §2.6)
   /// A keyword deck's unit system (deck/units.h); required for a deck, refused for YAML.
   std::string units;
   /// A deck's keywords to skip (--ignore K1,K2), each printed with its card count.

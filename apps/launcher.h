@@ -1,5 +1,5 @@
 #pragma once
-// `crashlink run --mode split|multi` on one machine (DESIGN.md §1, §4; docs/processes.md): the
+// `crashlink run --mode split|multi` on one machine (docs/design.md §1, §4; docs/processes.md): the
 // coordinator and one daemon per non-empty domain, as processes (ipc or tcp) or as threads of
 // this process (inproc).
 //

@@ -1,6 +1,6 @@
 #pragma once
-// Reads /timing back from a result file (docs/result-format.md, DESIGN.md §4): the summary of a
-// coupled run is printed from the gathered result.h5 (or, if gathering failed, from the domains'
+// Reads /timing back from a result file (docs/result-format.md, docs/design.md §4): the summary of
+// a coupled run is printed from the gathered result.h5 (or, if gathering failed, from the domains'
 // own files), whichever processes wrote them.
 #include <optional>
 #include <string>

@@ -1,4 +1,4 @@
-// Wire round trip (DESIGN.md §2.6, §3): a daemon sends a FreeState with N interface nodes
+// Wire round trip (docs/design.md §2.6, §3): a daemon sends a FreeState with N interface nodes
 // (accelerations, displacements and half-step velocities, 3N doubles each: what a `paper` daemon
 // sends, solver/daemon/paper_port.h), the coordinator answers a Correction of the
 // same N (3N accelerations), over the full stack (DaemonLink / CoordinatorLink: protobuf

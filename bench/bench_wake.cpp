@@ -1,5 +1,5 @@
 // What a daemon pays, in CPU time, each time it sleeps on its lane and is woken
-// (docs/head-impact.md "Where the rest goes"). Two processes hand a turn back and forth, as two
+// (docs/head-impact.md "Where the CPU goes"). Two processes hand a turn back and forth, as two
 // coupled daemons do once per coarse step: each does W us of busy work, passes the turn
 // (transport::ShmDoorbell::ring, the lane's futex wake-up) and waits for it to come back, polling
 // for --spin-us and then sleeping on its doorbell (ShmDoorbell::sleep, the lane's futex wait). Each

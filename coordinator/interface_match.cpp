@@ -125,7 +125,7 @@ InterfaceTable match_interfaces(std::span<const DomainInterface> domains,
                 p[1], p[2], d.domain, dist, position_tolerance_m));
       }
       const double m = d.masses_kg[static_cast<std::size_t>(entries[e].local)];
-      node.summed_mass_kg += m;  // M = sum_k m^k, DESIGN.md §2.2
+      node.summed_mass_kg += m;  // M = sum_k m^k, docs/design.md §2.2
       node.copies.push_back({entries[e].domain, entries[e].local, m});
     }
     if (!(node.summed_mass_kg > 0.0)) {

@@ -1,9 +1,9 @@
 #pragma once
-// Matching of interface nodes across domains (DESIGN.md §2.2). Each domain registers its
+// Matching of interface nodes across domains (docs/design.md §2.2). Each domain registers its
 // interface nodes by global node id with its own lumped mass m^k and position; the coordinator
 // pairs the copies of a node by id, sums the mass, M = sum_k m^k ([2.2]; the free accelerations
 // of [5] are over M, the link correction [8] adds them), and sends M back in Setup.
-// Always-on checks (DESIGN.md §7 rule 6): a node registered by one domain only, copies whose
+// Always-on checks (docs/design.md §7 rule 6): a node registered by one domain only, copies whose
 // positions differ by more than the tolerance, duplicate ids, bad masses or sizes.
 #include <array>
 #include <cstdint>

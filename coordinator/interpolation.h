@@ -1,5 +1,5 @@
 #pragma once
-// Linear interpolation in time of a partner's interface vector, [10] of Bourel 2005 (DESIGN.md
+// Linear interpolation in time of a partner's interface vector, [10] of Bourel 2005 (docs/design.md
 // §2.3; also u_ref(t) of the drift correction [11], §2.4):
 //   x(t) = x(t_l^j) (t_l^{j+1} - t) / (t_l^{j+1} - t_l^j) + x(t_l^{j+1}) (t - t_l^j) / (...)
 // with the exact weight of a Bracket (schedule.h). Coinciding instants return the state bit for

@@ -1,6 +1,6 @@
 #pragma once
-// The coordinator's part of the `layer` scheme when it routes the layer vectors (DESIGN.md §2.7
-// "How to distribute layer", §3; without lanes, docs/processes.md "Lanes"): per interface, the
+// The coordinator's part of the `layer` scheme when it routes the layer vectors (docs/design.md
+// §2.7 "How to distribute layer", §3; without lanes, docs/processes.md "Lanes"): per interface, the
 // coarse side (owner of J) sends u_J(T + H) and the fine side (holder of the moved layer) sends
 // the layer's force g_A(T) on J; the coordinator forwards each to the other side in arrival
 // order and checks that every interface's messages come in time order from the right side with

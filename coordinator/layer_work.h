@@ -1,7 +1,7 @@
 #pragma once
-// The history of one `layer` interface (DESIGN.md §2.7 "How to distribute layer"), computed where
-// both vectors of an owner instant T are known, on the fine side: the layer's force g_A(T) on J
-// (and its moment m_A(T) on shell J nodes), which it computes, and u_J(T) (and omega_J(T - H/2)),
+// The history of one `layer` interface (docs/design.md §2.7 "How to distribute layer"), computed
+// where both vectors of an owner instant T are known, on the fine side: the layer's force g_A(T) on
+// J (and its moment m_A(T) on shell J nodes), which it computes, and u_J(T) (and omega_J(T - H/2)),
 // which it received from the owner. Rows:
 //   velocity jump and displacement gap on J: 0 by construction (the ghosts follow the owner);
 //   the resultant layer force sum_J g_A(T) [N];

@@ -1,10 +1,10 @@
 #pragma once
-// The fixed steps of a coupled run (DESIGN.md §2.6, §2.7): every domain steps at base / n_k ticks
-// with a whole n_k, and at every interface the fine side's n is a multiple of the coarse side's,
-// so the fine side lands on every coarse instant (the `layer` scheme needs its force on J there;
-// DESIGN §2.7: "do not shorten the last fine substep to land on T"). A non-integer ratio of stable
-// steps r = H/h therefore runs as ceil(r) equal fine substeps per coarse step (the study's
-// 'uniform' mode, coupling-study/layer-check/layer.py), the fine step H/ceil(r) <= h.
+// The fixed steps of a coupled run (docs/design.md §2.6, §2.7): every domain steps at base / n_k
+// ticks with a whole n_k, and at every interface the fine side's n is a multiple of the coarse
+// side's, so the fine side lands on every coarse instant (the `layer` scheme needs its force on J
+// there; docs/design.md §2.7: "do not shorten the last fine substep to land on T"). A non-integer
+// ratio of stable steps r = H/h therefore runs as ceil(r) equal fine substeps per coarse step (the
+// study's 'uniform' mode, coupling-study/layer-check/layer.py), the fine step H/ceil(r) <= h.
 //
 //   split: every domain at the global minimum proposal (n_k = 1).
 //   multi: base = the largest proposal; domains in decreasing order of proposal (each interface's

@@ -62,7 +62,7 @@ Weight interpolation_weight(Tick t, Tick t0, Tick t1) {
     throw ModelError(fmt::format(
         "paper coupling [10]: instant {} ticks is not inside the partner's states [{}, {}]; the "
         "partner must have free states on both sides of t (answer the earliest state first, "
-        "DESIGN.md §2.6)",
+        "docs/design.md §2.6)",
         t, t0, t1));
   if (t0 == t1) return {0, 1};
   return {t - t0, t1 - t0};

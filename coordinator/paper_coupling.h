@@ -1,7 +1,7 @@
 #pragma once
-// The coordinator's side of the `paper` coupling scheme (DESIGN.md §2.2-§2.4; Bourel, Combescure,
-// Di Valentin 2005, equations [5]-[11]; the study's scheme S1 in coupling-study/mts.py), as pure
-// functions: no transport, no solver, no state.
+// The coordinator's side of the `paper` coupling scheme (docs/design.md §2.2-§2.4; Bourel,
+// Combescure, Di Valentin 2005, equations [5]-[11]; the study's scheme S1 in
+// coupling-study/mts.py), as pure functions: no transport, no solver, no state.
 //
 //   [5] / §2.2  summed_mass:            M = sum_k m^k of every interface node; each domain then
 //                                       computes its free acceleration a^k = f^k / M ([5]).
@@ -33,7 +33,7 @@
 
 namespace crashlink::coordinator::paper {
 
-/// [5], §2.2 of DESIGN.md: M[i] = sum_k partial[k][i], summed in domain order (k = 0, 1, ...),
+/// [5], §2.2 of docs/design.md: M[i] = sum_k partial[k][i], summed in domain order (k = 0, 1, ...),
 /// so every domain receives the same bits. partial: [domains][n] kg (a copy of another domain's
 /// slave node contributes 0: it has no own mass). Throws ModelError for no domain, unequal
 /// lengths, a negative or non-finite mass, or a node whose sum is not positive.
@@ -58,7 +58,7 @@ void multiscale_acceleration(std::span<const double> a_own, std::span<const doub
                              std::span<const double> a_partner_upper, Weight w,
                              std::span<double> out);
 
-/// [11] on or off (the stability study switches it off; DESIGN.md §2.4).
+/// [11] on or off (the stability study switches it off; docs/design.md §2.4).
 enum class Drift : bool { off = false, on = true };
 
 /// dt^n dt^{n-1/2} of [11] for the step dt^n about to be taken after the step dt^{n-1}
@@ -70,7 +70,7 @@ double drift_step_product(double dt_n, double dt_prev);
 /// [11]: the drift correction of the non-reference side,
 ///   da[i] = (u_ref[i] - u[i]) / (dt^n dt^{n-1/2})   (Drift::on),   da[i] = 0   (Drift::off).
 /// u_ref is the reference side's displacement at the same instant (interpolated by [10] when the
-/// instants differ, DESIGN.md §2.4); step_product = drift_step_product(...). It moves the node
+/// instants differ, docs/design.md §2.4); step_product = drift_step_product(...). It moves the node
 /// onto u_ref(t) in one step if nothing else acts. All [3n].
 void drift_correction(std::span<const double> u_ref, std::span<const double> u, double step_product,
                       Drift drift, std::span<double> da);

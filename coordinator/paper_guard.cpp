@@ -27,7 +27,7 @@ std::string unstable_message(const std::string& when, const std::string& what, D
   return fmt::format(
       "paper coupling: the coupling went unstable {}: {}. Scheme `paper` (Bourel 2005 [8]-[11], "
       "drift correction [11] {}), step ratio {}; it is stable only up to a ratio of about 2.3, "
-      "and only with bulk viscosity (DESIGN.md §2.7; measured in crashlink: r = 2 too can go "
+      "and only with bulk viscosity (docs/design.md §2.7; measured in crashlink: r = 2 too can go "
       "unstable, docs/paper-scheme.md). Fix: use the `layer` scheme (the default), or a ratio "
       "below about 2.3 with bulk viscosity on (controls.bulk_viscosity; with its "
       "linear_in_expansion a run at r = 2 lasts far longer)",

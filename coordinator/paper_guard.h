@@ -1,5 +1,5 @@
 #pragma once
-// The `paper` scheme's energy guard (DESIGN.md §7 rule 10, §2.7): at every instant where all
+// The `paper` scheme's energy guard (docs/design.md §7 rule 10, §2.7): at every instant where all
 // coupled domains stand together, the coupled energy not explained by the loads,
 //   E = sum_k (KE + IE + HG + contact)_k - KE of the coupled nodes counted twice - external work
 //     (= initial energy + net work of the link and drift corrections),

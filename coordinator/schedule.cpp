@@ -67,7 +67,7 @@ int Schedule::submit(int k, Tick time, Tick stable_step) {
   if (d.waiting) {
     throw ProtocolError(fmt::format(
         "schedule: domain {} sent a free state at tick {} while its state at tick {} is still "
-        "unanswered; a daemon advances only after its correction (DESIGN.md §2.6)",
+        "unanswered; a daemon advances only after its correction (docs/design.md §2.6)",
         k, time, d.time[d.latest_slot()]));
   }
   if (time != d.expected) {
@@ -107,7 +107,7 @@ Bracket Schedule::bracket(int l, Tick t) const {
   Bracket b;
   b.partner = l;
   const int latest = d.latest_slot();
-  if (d.time[latest] == t) {  // coinciding instants: no interpolation (DESIGN.md §2.3)
+  if (d.time[latest] == t) {  // coinciding instants: no interpolation (docs/design.md §2.3)
     b.lower_slot = b.upper_slot = latest;
     b.t0 = b.t1 = t;
     return b;

@@ -1,5 +1,5 @@
 #pragma once
-// The multi-rate scheduling rule of DESIGN.md §2.6 as pure logic (no sockets, no payloads).
+// The multi-rate scheduling rule of docs/design.md §2.6 as pure logic (no sockets, no payloads).
 //
 // Daemon loop: send the free state at t^{n+1} -> wait for its answer -> apply it -> next step.
 // Coordinator, here:
@@ -22,9 +22,9 @@
 // - Step policy: `common` (modes mono and split) imposes the minimum stable step over all domains
 //   and gates every state on all domains; `own` (mode multi) lets each domain keep its own step.
 //   Both clip the last step so every domain lands on the end time exactly (a single shorter final
-//   step; DESIGN.md §2.7's warning is about shortening every coarse step, not this one), unless
-//   `common` is built unclipped: then every domain stops at the first common instant at or after
-//   the end time, as a single-domain run does.
+//   step; docs/design.md §2.7's warning is about shortening every coarse step, not this one),
+//   unless `common` is built unclipped: then every domain stops at the first common instant at or
+//   after the end time, as a single-domain run does.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -69,7 +69,7 @@ struct Answer {
 };
 
 enum class StepPolicy {
-  common,  // modes mono, split: everyone takes the global minimum stable step (DESIGN.md §2.6)
+  common,  // modes mono, split: everyone takes the global minimum stable step (docs/design.md §2.6)
   own,     // mode multi: each domain keeps its own stable step
 };
 

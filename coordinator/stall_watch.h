@@ -1,10 +1,10 @@
 #pragma once
-// A run that no longer moves although every process is alive (DESIGN.md: "a dead or silent peer is
-// detected and named"; this is the third case, a schedule that deadlocked). Heartbeats keep flowing
-// between processes that all wait for each other, so the peer timeouts never fire; the coordinator
-// watches the domains' instants instead (LayerReport every quarter heartbeat from every daemon
-// between cycles, FreeState in `paper` runs, Bye at the end). When none of them has changed for
-// `limit`, the run is stuck: the coordinator stops it with the domains' last instants.
+// A run that no longer moves although every process is alive (docs/design.md: "a dead or silent
+// peer is detected and named"; this is the third case, a schedule that deadlocked). Heartbeats keep
+// flowing between processes that all wait for each other, so the peer timeouts never fire; the
+// coordinator watches the domains' instants instead (LayerReport every quarter heartbeat from every
+// daemon between cycles, FreeState in `paper` runs, Bye at the end). When none of them has changed
+// for `limit`, the run is stuck: the coordinator stops it with the domains' last instants.
 //
 // A domain that is computing cannot be silent that long: it reports between cycles, and a cycle
 // longer than the peer timeout already ends the run by that timeout. So the limit is set from the

@@ -1,6 +1,6 @@
 #pragma once
-// Time as an integer count of ticks (DESIGN.md §2.6: "never compare doubles for equality to decide
-// who waits"). Every time and step on the wire and in the scheduler is a Tick.
+// Time as an integer count of ticks (docs/design.md §2.6: "never compare doubles for equality to
+// decide who waits"). Every time and step on the wire and in the scheduler is a Tick.
 //
 // Tick length rule
 // - One tick is 1 / ticks_per_second seconds, ticks_per_second an integer; the default is 10^15

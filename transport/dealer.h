@@ -1,7 +1,7 @@
 #pragma once
-// Daemon side of the wire (DESIGN.md §3): a ZeroMQ DEALER connected to the coordinator's ROUTER,
-// routing id = the session's name ("<domain>#<random>", DaemonLink; a lane's: the domain), one
-// Envelope per ZeroMQ message. Connecting never blocks (ZeroMQ connects and reconnects in the
+// Daemon side of the wire (docs/design.md §3): a ZeroMQ DEALER connected to the coordinator's
+// ROUTER, routing id = the session's name ("<domain>#<random>", DaemonLink; a lane's: the domain),
+// one Envelope per ZeroMQ message. Connecting never blocks (ZeroMQ connects and reconnects in the
 // background); receive() always has a timeout; bytes that are not an Envelope come back as a
 // Received with error() set. CURVE (curve_policy.h): on any non-loopback tcp endpoint, or when
 // SocketOptions::curve.force, the Dealer is a CURVE client; over tcp and ipc a socket monitor

@@ -1,5 +1,5 @@
 #pragma once
-// ZeroMQ endpoint strings (DESIGN.md §3): the three transports crashlink runs on.
+// ZeroMQ endpoint strings (docs/design.md §3): the three transports crashlink runs on.
 //   tcp://host:port     host a name, an IPv4 address, [IPv6] or * (bind: every interface);
 //                       port 1-65535, or * / 0 to bind an ephemeral port (read back with
 //                       Router::endpoint(); tests always bind tcp://127.0.0.1:*, no fixed ports)

@@ -1,6 +1,6 @@
 #pragma once
-// Typed errors of the transport and protocol layers (DESIGN.md §7 rule 6): each message names the
-// endpoint or the peer, the values and, where there is one, the fix.
+// Typed errors of the transport and protocol layers (docs/design.md §7 rule 6): each message names
+// the endpoint or the peer, the values and, where there is one, the fix.
 #include <chrono>
 #include <string>
 
@@ -23,7 +23,7 @@ class TransportError : public crashlink::Error {
 };
 
 /// A peer that has been silent (no message at all, not even a Heartbeat) for longer than the peer
-/// timeout (DESIGN.md §3). peer() is the domain name (coordinator side) or "coordinator"
+/// timeout (docs/design.md §3). peer() is the domain name (coordinator side) or "coordinator"
 /// (daemon side); endpoint() is where the link is bound or connected. `description` is how the
 /// message names the culprit(s), e.g. "domain 'wiper'" or "the coordinator".
 class PeerTimeoutError : public TransportError {
@@ -49,9 +49,10 @@ class ProtocolError : public crashlink::Error {
   std::string peer_;
 };
 
-/// The peer sent an Error message (DESIGN.md §3): a refused Hello (version or scenario mismatch,
-/// unknown domain) or a failure during the run. what() is the peer's text, which gives the values
-/// and the fix, escaped (core::log_escape); code() and domain() (escaped) are the message's fields.
+/// The peer sent an Error message (docs/design.md §3): a refused Hello (version or scenario
+/// mismatch, unknown domain) or a failure during the run. what() is the peer's text, which gives
+/// the values and the fix, escaped (core::log_escape); code() and domain() (escaped) are the
+/// message's fields.
 class RemoteError : public crashlink::Error {
  public:
   explicit RemoteError(const wire::Error& error);

@@ -1,5 +1,5 @@
 #pragma once
-// Coordinator side of the wire (DESIGN.md §3): a ZeroMQ ROUTER bound to one endpoint, one
+// Coordinator side of the wire (docs/design.md §3): a ZeroMQ ROUTER bound to one endpoint, one
 // Envelope per ZeroMQ message, addressed by the peer's routing id (a daemon's domain name).
 // - ROUTER_MANDATORY: a send to a peer that is not connected throws TransportError instead of
 //   being dropped silently.

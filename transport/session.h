@@ -1,5 +1,6 @@
 #pragma once
-// Protocol layer over the sockets (DESIGN.md §3, §7 rule 2): the session rules both links share.
+// Protocol layer over the sockets (docs/design.md §3, §7 rule 2): the session rules both links
+// share.
 //   daemon Hello(protocol_version, scenario_hash, domain, role) -> coordinator Hello, or Error
 //   with the reason, both values and the fix; then application messages both ways; a Heartbeat
 //   from either side when it has sent nothing for heartbeat_interval; a peer that has sent

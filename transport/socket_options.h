@@ -1,5 +1,6 @@
 #pragma once
-// Socket settings shared by Router and Dealer (DESIGN.md §3: "set linger, poll with timeouts").
+// Socket settings shared by Router and Dealer (docs/design.md §3: "set linger, poll with
+// timeouts").
 #include <cstdint>
 
 #include "transport/curve_options.h"

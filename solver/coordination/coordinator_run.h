@@ -1,11 +1,11 @@
 #pragma once
-// crashlink-coordinator (DESIGN.md §1, §2.6, §2.7, §3). `paper` (CoordinatorOptions::paper): the
-// same start-up on its `paper` cut (paper_cut.h), then every FreeState goes to a PaperExchange and
-// the Corrections it allows go back (the schedule of §2.6), its interface rows to coordinator.h5;
-// a guard stop ends the run with exit 3 and "the coupling went unstable". `layer`: binds a
-// CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario, checks
-// their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends the
-// Setups, then, until every daemon has said Bye: records the interface history rows the fine
+// crashlink-coordinator (docs/design.md §1, §2.6, §2.7, §3). `paper` (CoordinatorOptions::paper):
+// the same start-up on its `paper` cut (paper_cut.h), then every FreeState goes to a PaperExchange
+// and the Corrections it allows go back (the schedule of §2.6), its interface rows to
+// coordinator.h5; a guard stop ends the run with exit 3 and "the coupling went unstable". `layer`:
+// binds a CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario,
+// checks their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends
+// the Setups, then, until every daemon has said Bye: records the interface history rows the fine
 // sides report (LayerReport: link work and resultant force, coordinator/layer_work.h) and the
 // progress of each domain; the layer vectors go daemon to daemon over lanes when every daemon
 // offered one (docs/processes.md "Lanes"), else the coordinator routes LayerDisplacement
@@ -44,7 +44,7 @@ struct CoordinatorOptions {
   bool paper = false;
   bool drift = true;         ///< `paper`: drift correction [11] on
   double guard_rise = 0.05;  ///< `paper`: energy guard (coordinator/paper_guard.h)
-  /// `paper`: each free state's own step proposal instead of the fixed plan (DESIGN.md §2.6:
+  /// `paper`: each free state's own step proposal instead of the fixed plan (docs/design.md §2.6:
   /// split imposes the smallest of all at every instant, multi each its own). `layer`:
   /// Setup.variable_steps (multi: every domain follows its own proposal; split: all the least
   /// proposal of all), checkpoints at the leader's instants (coordinator_checkpoints.h).
@@ -62,7 +62,7 @@ struct CoordinatorOptions {
   const std::atomic<bool>* stop = nullptr;
   /// > 0: every domain writes a checkpoint at every multiple of this interval [s], rounded to a
   /// whole multiple of every domain's step (variable steps: at the leader's first instant at or
-  /// after each multiple) (DESIGN.md §2.6 "Checkpoints"), into
+  /// after each multiple) (docs/design.md §2.6 "Checkpoints"), into
   /// OUT/checkpoints/<T>/<domain>; the coordinator its own into OUT/checkpoints/<T>/coordinator.
   double checkpoint_interval_s = 0.0;
   /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons

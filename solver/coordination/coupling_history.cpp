@@ -29,7 +29,8 @@ void CouplingHistory::append(std::uint32_t interface,
   for (const auto& r : rows) {
     io::CouplingSample s;
     s.time_s = static_cast<double>(r.time) / static_cast<double>(ticks_per_second);
-    s.velocity_jump_m_s = 0.0;  // the ghosts follow the owner: no jump, no gap (DESIGN §2.7)
+    s.velocity_jump_m_s =
+        0.0;  // the ghosts follow the owner: no jump, no gap (docs/design.md §2.7)
     s.displacement_gap_m = 0.0;
     s.link_work_J = r.link_work_J;
     s.drift_work_J = 0.0;

@@ -1,6 +1,6 @@
 #pragma once
 // What crashlink-coordinator knows of a `layer` run from its own cut of the scenario
-// (partition::decompose, Layer; DESIGN.md §2.7 "How to distribute layer"), and the checks and
+// (partition::decompose, Layer; docs/design.md §2.7 "How to distribute layer"), and the checks and
 // answers of its start-up:
 //   - every daemon's Register must describe the interfaces this cut gives its domain: same
 //     interface indices and sides, the same J node ids in the same order (a daemon that read

@@ -1,6 +1,6 @@
 #pragma once
 // What crashlink-coordinator knows of a `paper` run from its own cut of the scenario
-// (partition::decompose, Paper; DESIGN.md §2.2, §2.5; cosim::paper_nodes), and the checks and
+// (partition::decompose, Paper; docs/design.md §2.2, §2.5; cosim::paper_nodes), and the checks and
 // answers of its start-up:
 //   - every daemon's Register must list exactly the coupled nodes this cut gives its domain, in
 //     cosim::paper_nodes order (a daemon that read another file, or cut for `layer`, is refused,

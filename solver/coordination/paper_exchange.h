@@ -1,15 +1,15 @@
 #pragma once
-// The coordinator's run loop core for the `paper` scheme over processes (DESIGN.md §2.2-§2.6;
+// The coordinator's run loop core for the `paper` scheme over processes (docs/design.md §2.2-§2.6;
 // Bourel 2005 [5]-[11]): every daemon sends its free state (FreeState: free accelerations [5],
 // displacements, half-step velocities, its energies at its previous instant); the schedule of
-// DESIGN.md §2.6 (coordinator::Schedule, fixed steps of the plan) decides which state is answered
-// next; the answer (Correction) is
+// docs/design.md §2.6 (coordinator::Schedule, fixed steps of the plan) decides which state is
+// answered next; the answer (Correction) is
 //   a* = a_own + [10](a_partner(t_l^j), a_partner(t_l^{j+1}); theta)      ([8], [9] with [10])
 //        + (u_ref - u) / (dt^n dt^{n-1/2})   on the non-reference side    ([11], switchable)
 // with u_ref the reference side's displacement interpolated by [10] - the same functions, in the
 // same order, as cosim::PaperRunner, so a run over processes reproduces it bit for bit.
 //
-// Steps: the plan's, fixed (default), or variable (DESIGN.md §2.6: each free state carries its
+// Steps: the plan's, fixed (default), or variable (docs/design.md §2.6: each free state carries its
 // domain's proposal; split imposes the smallest of all at every instant and, like a single-domain
 // run, stops at the first instant at or after the end time; multi each its own, the last step
 // clipped to the end time).
@@ -64,7 +64,8 @@ class PaperExchange {
   /// How the steps are chosen.
   enum class Steps {
     fixed,            ///< the plan's `steps` for the whole run (cosim::PaperRunner's way)
-    variable_common,  ///< split: at every instant the smallest proposal of all (DESIGN.md §2.6)
+    variable_common,  ///< split: at every instant the smallest proposal of all (docs/design.md
+                      ///< §2.6)
     variable_own,     ///< multi: each state's own proposal (FreeState.stable_step_ticks)
   };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Typed errors (DESIGN.md §7 rule 6). Always-on checks throw one of these; the message carries
+// Typed errors (docs/design.md §7 rule 6). Always-on checks throw one of these; the message carries
 // the offending values and the fix. Internal invariants use CRASHLINK_ASSERT (debug only).
 #include <fmt/format.h>
 

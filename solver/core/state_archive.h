@@ -1,5 +1,5 @@
 #pragma once
-// A checkpoint file (DESIGN.md §2.6 "Checkpoints", issue #6 item 5): named binary records, so
+// A checkpoint file (docs/design.md §2.6 "Checkpoints", issue #6 item 5): named binary records, so
 // that a restarted run continues from exactly the bits an uninterrupted run had.
 //
 // File layout (little-endian, the machine's own double format: a checkpoint is read back by the

@@ -1,5 +1,5 @@
 #pragma once
-// The stability map's contact case (issue #5: "penalty scale factors"; DESIGN.md §2.7 "Contact
+// The stability map's contact case (issue #5: "penalty scale factors"; docs/design.md §2.7 "Contact
 // across subdomains"): a fine elastic steel hex block, 4 x 4 x 4 elements of dx = 10 mm (domain
 // "fine"), dropped at 2 m/s from 1 mm onto a coarse steel slab of 8 x 8 x 2 hexes r dx on a side
 // (domain "coarse": parts "coarse" and "coarse_top", one element layer each), its bottom fixed;

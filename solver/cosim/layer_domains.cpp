@@ -1,4 +1,4 @@
-// Shared pieces of the in-process `layer` runners (layer_domains.h; DESIGN.md §2.7).
+// Shared pieces of the in-process `layer` runners (layer_domains.h; docs/design.md §2.7).
 #include "solver/cosim/layer_domains.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// The pieces every in-process runner of the `layer` scheme (DESIGN.md §2.7, "How to distribute
+// The pieces every in-process runner of the `layer` scheme (docs/design.md §2.7, "How to distribute
 // layer") shares: one integration::Solver per non-empty domain of partition::decompose(global,
 // Layer), its ghost nodes J with their owners, J's natural summed mass and rotary inertia, the
 // t = 0 exchange on J and the summed energy account. Used by SplitRunner and LayerNetwork.

@@ -115,7 +115,7 @@ void LayerNetwork::route(std::size_t from) {
 bool LayerNetwork::run(const std::function<void(std::size_t)>& on_sample, Tick until) {
   using Wait = LayerStepper::Wait;
   for (;;) {
-    // The earliest domain that can move goes first (DESIGN.md §2.6).
+    // The earliest domain that can move goes first (docs/design.md §2.6).
     bool progressed = false, all_done = true, all_paused = true;
     std::vector<std::size_t> order(steppers_.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;

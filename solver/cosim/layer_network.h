@@ -1,7 +1,7 @@
 #pragma once
 // Every domain of a `layer` cut in one process and one thread: one LayerStepper per non-empty
 // domain (layer_stepper.h), fixed nested steps (coordinator/nested_steps.h), messages routed in
-// memory, the earliest domain first (DESIGN.md §2.6: the earliest pending state is always
+// memory, the earliest domain first (docs/design.md §2.6: the earliest pending state is always
 // answerable, so this never deadlocks). It is the reference the daemons must reproduce to
 // round-off (they run the same steppers, only the messages travel over ZeroMQ), and the way
 // tests and sweeps run `split` and `multi` without processes.
@@ -48,7 +48,7 @@ class LayerNetwork {
 
   /// Solvers initialised, steps planned, steppers initialised, the t = 0 forces exchanged.
   void initialize();
-  /// Checkpoints (DESIGN.md §2.6), once run(..., until) has returned false with every domain
+  /// Checkpoints (docs/design.md §2.6), once run(..., until) has returned false with every domain
   /// paused at one instant (none finished: check stepper(k).time() and at_cycle_boundary()):
   /// domain k's solver and stepper (Solver / LayerStepper::save_state).
   void save_state(std::size_t k, core::StateWriter& w) const;

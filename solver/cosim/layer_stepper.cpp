@@ -1,4 +1,4 @@
-// LayerStepper: one domain's side of the `layer` scheme (layer_stepper.h; DESIGN.md §2.7).
+// LayerStepper: one domain's side of the `layer` scheme (layer_stepper.h; docs/design.md §2.7).
 #include "solver/cosim/layer_stepper.h"
 
 #include <fmt/format.h>
@@ -510,7 +510,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         solver_.end_cycle_positions();  // the ghosts' (J of the fine ports) left provisional
         send_displacements();
         flush_outbox();  // u_J(t + h) leaves before this domain's forces
-        // Overlap (DESIGN.md §2.6): the elements that touch no ghost need nothing from the
+        // Overlap (docs/design.md §2.6): the elements that touch no ghost need nothing from the
         // owners, so a fine domain computes them before it waits for u_J(t + h).
         solver_.end_cycle_interior_forces();
         phase_ = Phase::Rim;

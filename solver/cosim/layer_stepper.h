@@ -1,5 +1,5 @@
 #pragma once
-// One domain's side of the `layer` scheme (DESIGN.md §2.7 "How to distribute layer"), for any
+// One domain's side of the `layer` scheme (docs/design.md §2.7 "How to distribute layer"), for any
 // number of interfaces and any nested steps, written as a state machine that never blocks: it
 // runs until it needs a message from a partner and says which. The same object drives a domain
 // in the in-process LayerNetwork (layer_network.h) and in a crashlink-solver daemon (the daemon
@@ -41,8 +41,8 @@
 // The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
 //
 // Steps (LayerSteps). Fixed: every domain at the step the coordinator planned for the whole run
-// (coordinator/nested_steps.h). Variable (DESIGN.md §2.1, [2] with variable steps; every domain
-// follows its stable step as the mesh deforms, as a mono run does):
+// (coordinator/nested_steps.h). Variable (docs/design.md §2.1, [2] with variable steps; every
+// domain follows its stable step as the mesh deforms, as a mono run does):
 //   - every domain has at most one coarser partner (its fine ports all name one domain);
 //   - a domain without one (a leader) chooses its next step at each of its instants t, once the
 //     holders' g_A(t) are in: each g_A carries its sender's step proposal p_k at t. Of H = p_own
@@ -55,9 +55,9 @@
 //     The later substeps may not exceed the stable step itself (Solver::impose_committed_step).
 //   - a follower's own holders see its substeps as its steps.
 // Variable common (`split`, LayerSteps::VariableCommon): one step for all, as a mono run takes it
-// (DESIGN.md §2.1: the smallest proposal of all at every instant). Every g_A(t) carries the least
-// proposal of its sender's whole subtree (a domain that holds ghosts and has holders of its own
-// sends its g_A(t) only once its holders' g_A(t) are in); the leader takes H = the least of its
+// (docs/design.md §2.1: the smallest proposal of all at every instant). Every g_A(t) carries the
+// least proposal of its sender's whole subtree (a domain that holds ghosts and has holders of its
+// own sends its g_A(t) only once its holders' g_A(t) are in); the leader takes H = the least of its
 // own and its holders' (no step safety, no hysteresis, no limit on the rise), and every follower
 // then takes its owner step in one substep.
 //
@@ -173,7 +173,7 @@ class LayerStepper {
   /// at t + h, see the header comment), before this domain's nodal passes and forces, and
   /// g_A(t + h) right after those forces. A daemon takes the outbox there and sends it, so that
   /// the partner computes while this domain computes its forces instead of taking turns
-  /// (DESIGN.md §2.6 "Overlap"). Unset (LayerNetwork), the messages wait in the outbox until
+  /// (docs/design.md §2.6 "Overlap"). Unset (LayerNetwork), the messages wait in the outbox until
   /// advance() returns. Only when messages leave changes: the messages and the numbers do not.
   void set_on_outbox(std::function<void()> on_outbox) { on_outbox_ = std::move(on_outbox); }
   bool has_outbox() const { return !outbox_.empty(); }
@@ -186,7 +186,7 @@ class LayerStepper {
   std::vector<LayerRows> take_history();
   const std::deque<LayerMessage>& outbox() const { return outbox_; }  ///< not taken yet
 
-  /// Checkpoints (layer_stepper_state.cpp, DESIGN.md §2.6 "Checkpoints"). At a cycle boundary
+  /// Checkpoints (layer_stepper_state.cpp, docs/design.md §2.6 "Checkpoints"). At a cycle boundary
   /// (advance() returned Wait::None: it paused, outbox empty): the phase, the time and every
   /// port's owner step in use, with the ghost targets; variable steps: the step chosen (leader) or
   /// the owner step just ended and the proposal sent with g_A(t) (follower, which pauses only at

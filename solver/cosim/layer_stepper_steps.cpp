@@ -1,4 +1,4 @@
-// LayerStepper's steps, ends and pauses (layer_stepper.h "Steps"; DESIGN.md §2.6): a variable
+// LayerStepper's steps, ends and pauses (layer_stepper.h "Steps"; docs/design.md §2.6): a variable
 // leader's choice of H, a follower's owner steps and substeps, the instants at which a domain
 // ends and pauses (advance()'s `until`, checkpoints).
 #include <fmt/format.h>
@@ -170,7 +170,7 @@ bool LayerStepper::at_owner_end() const {
 
 Tick LayerStepper::next_substep() const {
   // Substep j of n of the owner step H: H / n whole ticks, the last H mod n of them one tick
-  // longer (no substep shorter than the others by more than a tick: DESIGN.md §2.7).
+  // longer (no substep shorter than the others by more than a tick: docs/design.md §2.7).
   const Tick q = owner_H_ / substeps_, r = owner_H_ % substeps_;
   return q + (substep_ >= substeps_ - r ? 1 : 0);
 }

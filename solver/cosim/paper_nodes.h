@@ -1,9 +1,9 @@
 #pragma once
-// What one domain of a `paper` cut (partition::Scheme::Paper; DESIGN.md §2.2, §2.5) couples: its
-// interface nodes in a fixed order, with their role for the drift correction [11], and the pieces
-// of [5] every party computes the same way. Shared by cosim::PaperRunner (both domains in one
-// process), the solver daemon (one domain) and the coordinator (every domain's expected Register),
-// so that all three list the same nodes in the same order.
+// What one domain of a `paper` cut (partition::Scheme::Paper; docs/design.md §2.2, §2.5) couples:
+// its interface nodes in a fixed order, with their role for the drift correction [11], and the
+// pieces of [5] every party computes the same way. Shared by cosim::PaperRunner (both domains in
+// one process), the solver daemon (one domain) and the coordinator (every domain's expected
+// Register), so that all three list the same nodes in the same order.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,5 @@
 // PaperRunner: the `paper` scheme ([5]-[11] of Bourel 2005) for two domains in one process
-// (paper_runner.h; DESIGN.md §2.2-§2.5, §2.7; scheme S1 of coupling-study/mts.py).
+// (paper_runner.h; docs/design.md §2.2-§2.5, §2.7; scheme S1 of coupling-study/mts.py).
 #include "solver/cosim/paper_runner.h"
 
 #include <algorithm>

@@ -1,12 +1,12 @@
 #pragma once
 // The `paper` coupling scheme exactly as Bourel, Combescure & Di Valentin (2005) write it
-// ([5]-[11]; DESIGN.md §2.2-§2.5; scheme S1 of coupling-study/mts.py), for two domains in one
+// ([5]-[11]; docs/design.md §2.2-§2.5; scheme S1 of coupling-study/mts.py), for two domains in one
 // process, each at its own fixed step, the coarse step H a whole multiple r of the fine step h.
-// Kept for comparison with `layer` (the default): the study and DESIGN.md §2.7 say where it fails
-// (stable only up to a ratio of about 2.3, and only with bulk viscosity, in 1-D; measured here with
-// crashlink's compression-only bulk viscosity: r = 2 goes unstable too, later); the guard below
-// stops a run that goes unstable with a NumericalError saying so. docs/paper-scheme.md has the
-// measured numbers.
+// Kept for comparison with `layer` (the default): the study and docs/design.md §2.7 say where it
+// fails (stable only up to a ratio of about 2.3, and only with bulk viscosity, in 1-D; measured
+// here with crashlink's compression-only bulk viscosity: r = 2 goes unstable too, later); the guard
+// below stops a run that goes unstable with a NumericalError saying so. docs/paper-scheme.md has
+// the measured numbers.
 //
 // Cut: partition::decompose(global, Paper): no element moves; a node used by both domains (a
 // link) is present in both; for a contact across domains the master's domain holds copies of the
@@ -24,12 +24,12 @@
 //   F's fine steps t = T + k h, k = 1..r-1: a* = a_F(t) + [10](a_C(T), a_C(T+H); k/r) ([9])
 //           (+ [11] with u_ref = [10](u_C(T), u_C(T+H); k/r) where F is non-reference);
 //   F's last fine step lands on T+H with its free state: the next advance() starts there.
-// This is the earliest-pending-state order of DESIGN.md §2.6 (ties: both at T answered together).
-// The corrections reach the solvers through Solver::set_acceleration: the implied force
+// This is the earliest-pending-state order of docs/design.md §2.6 (ties: both at T answered
+// together). The corrections reach the solvers through Solver::set_acceleration: the implied force
 // M (a* - a_free) - link [8]-[10] and drift [11] together - is counted in each domain's
 // coupling_work_J (trapezoid rule, like every work term of energy.h).
 //
-// Guard (DESIGN.md §7 rule 10): at every coarse instant, the coupled energy
+// Guard (docs/design.md §7 rule 10): at every coarse instant, the coupled energy
 //   E = sum_k (KE + IE + HG + contact)_k - the reference side's KE of the coupled nodes (counted
 //       twice otherwise) - external work
 // (= initial energy + net work of the coupling) is compared with its running minimum; a rise above

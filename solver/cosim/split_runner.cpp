@@ -1,5 +1,5 @@
 // SplitRunner: the `layer` scheme's cycle at a common step, all domains in one process
-// (split_runner.h; DESIGN.md §2.6, §2.7; [1], [2], [8] of Bourel 2005).
+// (split_runner.h; docs/design.md §2.6, §2.7; [1], [2], [8] of Bourel 2005).
 #include "solver/cosim/split_runner.h"
 
 #include <algorithm>
@@ -18,7 +18,7 @@ SplitRunner::SplitRunner(const model::Model& global) : d_(build_layer_domains(gl
 
 void SplitRunner::build_order() {
   // Kahn's sort of the graph owner -> ghost holder; among the ready solvers the one with the
-  // larger step goes first ("coarse first", DESIGN.md §2.6), ties by domain order.
+  // larger step goes first ("coarse first", docs/design.md §2.6), ties by domain order.
   const std::size_t ns = d_.solvers.size();
   std::vector<std::vector<std::size_t>> next(ns);
   std::vector<int> indegree(ns, 0);

@@ -1,9 +1,9 @@
 #pragma once
-// The `split` mode of the `layer` scheme (DESIGN.md §2.7, "How to distribute layer") in one
+// The `split` mode of the `layer` scheme (docs/design.md §2.7, "How to distribute layer") in one
 // process, at a common step: the global model is cut by partition::decompose(global, Layer)
 // (docs/decomposition.md) and every non-empty domain runs its own integration::Solver on its
 // sub-model, coupled through the Solver's hooks (solver.h). Every cycle, all domains at the same
-// step (the smallest proposal, imposed on all, the mono-scale rule of DESIGN.md §2.6):
+// step (the smallest proposal, imposed on all, the mono-scale rule of docs/design.md §2.6):
 //
 //   begin_cycle() of every domain                      (v^{n+1/2}, energies at t^n; [2])
 //   in coarse-to-fine order (every ghost's owner before the ghost's domain):

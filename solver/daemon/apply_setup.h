@@ -1,5 +1,5 @@
 #pragma once
-// A daemon's check of the coordinator's Setup (DESIGN.md §2.7 "How to distribute layer", §3):
+// A daemon's check of the coordinator's Setup (docs/design.md §2.7 "How to distribute layer", §3):
 // the tick must be the Hello's, the step >= 1, and every interface of this domain's own cut must
 // be in it with the same side and partner; the fine side then takes its owner's step from it
 // (as cosim::LayerNetwork plans it). Separate from daemon.cpp so that the fuzz target

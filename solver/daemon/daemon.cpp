@@ -174,7 +174,7 @@ class Daemon {
 
   static constexpr cosim::Tick max_tick() { return std::numeric_limits<cosim::Tick>::max(); }
 
-  /// DESIGN.md §2.6 "Checkpoints": between two cycles at a multiple of the coordinator's
+  /// docs/design.md §2.6 "Checkpoints": between two cycles at a multiple of the coordinator's
   /// interval, with every message up to this instant sent and consumed (LayerStepper::save_state).
   /// The result file's rows so far go along as a copy, so a restart rebuilds its file from it.
   void write_checkpoint() {
@@ -326,7 +326,8 @@ class Daemon {
                            ? (stepper_->time() / checkpoint_every_ + 1) * checkpoint_every_
                            : std::numeric_limits<cosim::Tick>::max();
     // u_J(T + H) leaves before the coarse side's nodal passes, g_A right after the fine side's: the
-    // domains compute at the same time (LayerStepper::set_on_outbox, DESIGN.md §2.6 "Overlap").
+    // domains compute at the same time (LayerStepper::set_on_outbox, docs/design.md §2.6
+    // "Overlap").
     stepper_->set_on_outbox([this] { send_outbox(); });
     run_wall0_ = Clock::now();
   }
@@ -461,7 +462,7 @@ class Daemon {
     run_wall0_ = Clock::now();
   }
 
-  /// `paper` (DESIGN.md §2.6): send the free state at t, wait for its Correction, apply it,
+  /// `paper` (docs/design.md §2.6): send the free state at t, wait for its Correction, apply it,
   /// begin the cycle (energies at t, guard, output), take the imposed step; the next free state
   /// carries the energies at t. Every wait is bounded by the peer timeout.
   void paper_loop() {

@@ -1,8 +1,8 @@
 #pragma once
-// crashlink-solver: one domain of a `layer` run (DESIGN.md §1, §2.7 "How to distribute layer",
+// crashlink-solver: one domain of a `layer` run (docs/design.md §1, §2.7 "How to distribute layer",
 // §3) as a daemon talking to the coordinator over a DaemonLink (transport/daemon_link.h); with
 // DaemonOptions::paper, one domain of a `paper` run instead (paper_port.h: Register of the coupled
-// nodes, then per cycle FreeState -> Correction, DESIGN.md §2.6; no lanes, no checkpoints).
+// nodes, then per cycle FreeState -> Correction, docs/design.md §2.6; no lanes, no checkpoints).
 //
 //   read the scenario, hash it (io::scenario_hash: the coordinator refuses another file),
 //   cut it (partition::decompose, Layer), build this domain (cosim::build_layer_domain),

@@ -1,5 +1,5 @@
 #pragma once
-// cosim::LayerMessage <-> wire Envelope (proto/crashlink.proto, DESIGN.md §3 and §2.7):
+// cosim::LayerMessage <-> wire Envelope (proto/crashlink.proto, docs/design.md §3 and §2.7):
 //   Displacement -> LayerDisplacement {interface_index, time_ticks = T + H,
 //                                      displacements_m = u_J(T + H),
 //                                      angular_velocities_rad_s = omega_J(T + H/2)}

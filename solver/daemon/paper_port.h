@@ -1,8 +1,8 @@
 #pragma once
-// One domain of a `paper` run as its daemon sees it (DESIGN.md §2.2-§2.5; Bourel 2005 [5]-[11]):
-// its coupled nodes (cosim::paper_nodes order, the order of its Register and of every FreeState
-// and Correction), their own partial masses m^k, its Solver integrating them with the summed mass
-// M ([5]), and the conversions between the Solver and the wire:
+// One domain of a `paper` run as its daemon sees it (docs/design.md §2.2-§2.5; Bourel 2005
+// [5]-[11]): its coupled nodes (cosim::paper_nodes order, the order of its Register and of every
+// FreeState and Correction), their own partial masses m^k, its Solver integrating them with the
+// summed mass M ([5]), and the conversions between the Solver and the wire:
 //   FreeState: the free accelerations a = f / M of the coupled nodes ([5]), u, v^{n-1/2}, and the
 //              energies at the previous instant (with the kinetic energy of the reference
 //              presences, which the coordinator's guard counts once);

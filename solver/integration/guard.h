@@ -1,7 +1,7 @@
 #pragma once
-// The run guard (DESIGN.md §7 rule 10): a step that blows up ends the run with an error that says
-// what happened, where and when — never with NaN output. Checks run every cycle on quantities the
-// integrator computes anyway (kinetic energy, balance), so they cost one comparison each.
+// The run guard (docs/design.md §7 rule 10): a step that blows up ends the run with an error that
+// says what happened, where and when — never with NaN output. Checks run every cycle on quantities
+// the integrator computes anyway (kinetic energy, balance), so they cost one comparison each.
 #include <cstdint>
 #include <string>
 

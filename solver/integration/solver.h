@@ -54,12 +54,12 @@ class Solver {
   void initialize();
   void begin_cycle();
   /// end_cycle() = end_cycle_forces() + end_cycle_accelerations(). A coupled daemon calls the two
-  /// halves itself and exchanges interface forces between them (docs/coupling-hooks.md).
+  /// halves itself and exchanges interface forces between them (docs/multirate.md "One domain").
   void end_cycle();
   /// u^{n+1} = u^n + dt^n v^{n+1/2} (ghost nodes: their prescribed displacement), t^{n+1}, and
   /// the forces at t^{n+1}: element, contact, external. = end_cycle_positions() +
   /// end_cycle_compute(); a daemon sends its interface displacements between the two halves so
-  /// that its force computation overlaps its partners' work (DESIGN.md §2.6 "Overlap").
+  /// that its force computation overlaps its partners' work (docs/design.md §2.6 "Overlap").
   void end_cycle_forces();
   /// First half of end_cycle_forces(): u^{n+1} ([2]), rigid bodies, t^{n+1}, the F^n halves of
   /// the trapezoid work terms. Ghost nodes are left unknown, their positions and velocities NaN
@@ -68,7 +68,7 @@ class Solver {
   void end_cycle_positions();
   /// Optional, between the two halves: the forces of the elements that touch no ghost node
   /// ([0, interior_elements(p)) of every part), which need nothing a partner sends. A `layer`
-  /// fine domain computes them while it waits for the ghosts' motion u_J (DESIGN.md §2.6
+  /// fine domain computes them while it waits for the ghosts' motion u_J (docs/design.md §2.6
   /// "Overlap"); end_cycle_compute() does it otherwise. The forces are the same either way.
   void end_cycle_interior_forces();
   /// Second half: the ghosts' motion (set_ghost_displacement and set_ghost_angular_velocity
@@ -84,7 +84,8 @@ class Solver {
 
   // ---- coupling hooks (solver daemons; single-domain runs use none of them) ----
   /// Before initialize(): [n] summed interface masses in kg (0 keeps the local lumped mass):
-  /// the link nodes' M = sum_k m^k of DESIGN.md §2.2, or the natural mass of the layer's J nodes.
+  /// the link nodes' M = sum_k m^k of docs/design.md §2.2, or the natural mass of the layer's J
+  /// nodes.
   void set_mass_override(std::vector<double> mass_kg);
   /// Before initialize(): read-only ghost nodes whose motion the coupling prescribes (the `layer`
   /// scheme's J nodes on the fine side). Their mass and kinetic energy belong to another domain.
@@ -143,7 +144,7 @@ class Solver {
   /// True when t^n has reached the end time (checked after begin_cycle()).
   bool finished() const { return time_s_ >= model_.controls.end_time_s * (1.0 - 1e-12); }
 
-  // ---- checkpoints (solver_state.cpp, DESIGN.md §2.6 "Checkpoints") ----
+  // ---- checkpoints (solver_state.cpp, docs/design.md §2.6 "Checkpoints") ----
   /// Writes everything that evolves (nodal vectors, element histories, rigid bodies, contact
   /// history and candidates, prescribed-motion reactions, energies, time, cycle, steps) at a cycle
   /// boundary: after end_cycle_accelerations() / impose_step(), before the next begin_cycle().

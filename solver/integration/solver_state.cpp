@@ -1,8 +1,8 @@
-// Solver checkpoints (solver.h save_state / restore_state; DESIGN.md §2.6 "Checkpoints"): every
-// member that evolves during the run, by name, in ONE list (visit_state) that saving and loading
-// both walk. What initialize() rebuilds identically from the model (masses, inertias, rigid-body
-// offsets and inertia, prescribed-dof lists, contact segments) is not saved; a restarted daemon
-// calls initialize() first, then restore_state().
+// Solver checkpoints (solver.h save_state / restore_state; docs/design.md §2.6 "Checkpoints"):
+// every member that evolves during the run, by name, in ONE list (visit_state) that saving and
+// loading both walk. What initialize() rebuilds identically from the model (masses, inertias,
+// rigid-body offsets and inertia, prescribed-dof lists, contact segments) is not saved; a restarted
+// daemon calls initialize() first, then restore_state().
 #include <fmt/format.h>
 
 #include "solver/integration/solver.h"

@@ -110,7 +110,7 @@ std::vector<std::string> child_names(const Location& at) {
   return names;
 }
 
-/// The /history/glstat columns in GlstatSample order; `required` per DESIGN.md §4.
+/// The /history/glstat columns in GlstatSample order; `required` per docs/design.md §4.
 struct GlstatColumn {
   const char* name;
   double GlstatSample::*value;

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a result.h5 back (layout: docs/result-format.md, contract: DESIGN.md §4): probe and
+// Reads a result.h5 back (layout: docs/result-format.md, contract: docs/design.md §4): probe and
 // contact histories, glstat, the mesh's ids, field states and timing. Used by `crashlink hic`, the
 // plot tools and the gather of a coupled run's per-domain files (solver/gather).
 //

@@ -1,8 +1,9 @@
 #pragma once
-// Restart of a run from a checkpoint (DESIGN.md §2.6 "Checkpoints"): the result file a restarted
-// domain writes starts with what the interrupted run had written before the checkpoint. The
-// checkpoint keeps a copy of the domain's result file taken at the checkpoint instant; this copies
-// its rows and field states into the new file, so the new file ends up holding the whole run.
+// Restart of a run from a checkpoint (docs/design.md §2.6 "Checkpoints"): the result file a
+// restarted domain writes starts with what the interrupted run had written before the checkpoint.
+// The checkpoint keeps a copy of the domain's result file taken at the checkpoint instant; this
+// copies its rows and field states into the new file, so the new file ends up holding the whole
+// run.
 #include <cstddef>
 #include <string>
 

@@ -28,7 +28,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The /history/glstat columns (DESIGN.md §4) in GlstatSample order, with their units.
+/// The /history/glstat columns (docs/design.md §4) in GlstatSample order, with their units.
 struct GlstatColumn {
   const char* name;
   const char* units;

@@ -1,5 +1,5 @@
 #pragma once
-// The result writer: DIR/result.h5 (layout: docs/result-format.md, contract: DESIGN.md §4) and
+// The result writer: DIR/result.h5 (layout: docs/result-format.md, contract: docs/design.md §4) and
 // DIR/result.xdmf for ParaView. Plain data in, no solver internals. SI units; every dataset
 // carries a "units" attribute.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// A stable fingerprint of a scenario, exchanged in the protocol's hello (DESIGN.md §3) so that a
-// coordinator and its daemons refuse to run different scenarios together.
+// A stable fingerprint of a scenario, exchanged in the protocol's hello (docs/design.md §3) so that
+// a coordinator and its daemons refuse to run different scenarios together.
 #include <cstdint>
 #include <string>
 #include <vector>

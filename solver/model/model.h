@@ -251,14 +251,14 @@ struct Controls {
   double mass_scaling_dt_s = 0.0;
 };
 
-/// A subdomain of the decomposition (docs/decomposition.md, DESIGN.md §2.7): the parts it holds
-/// (indices into Model::parts; every part in exactly one domain).
+/// A subdomain of the decomposition (docs/decomposition.md, docs/design.md §2.7): the parts it
+/// holds (indices into Model::parts; every part in exactly one domain).
 struct Domain {
   std::string name;
   std::vector<int> parts;
 };
 
-/// Damping confined to the element layers around every `layer` interface (DESIGN.md §2.7: the
+/// Damping confined to the element layers around every `layer` interface (docs/design.md §2.7: the
 /// coupling study's stabiliser for 2-D/3-D; docs/multirate.md "Long-run stability"). The layer
 /// decomposition (solver/partition) sets element_damping_ratio = max(own, ratio) on every element
 /// within `layers` element layers of an interface's far nodes J, on both sides (the moved layer is

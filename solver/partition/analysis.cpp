@@ -135,7 +135,7 @@ Analysis analyse(const model::Model& g) {
       }
   }
   // Per-part stable steps and natural lumped masses from the single-domain solver (the stable
-  // step comes from one function, DESIGN §7 rule 10).
+  // step comes from one function, docs/design.md §7 rule 10).
   integration::Solver solver(g, "global");
   solver.initialize();
   a.mass_kg = solver.mass();
@@ -240,7 +240,7 @@ ContactSides contact_sides(const Analysis& a, std::size_t ci) {
 
 double initial_step_s(const model::Model& m) {
   // The deformable parts alone: rigid bodies, contacts and conditions do not bound the element
-  // step (contact springs are sized at the fine step, DESIGN §2.7).
+  // step (contact springs are sized at the fine step, docs/design.md §2.7).
   model::Model probe;
   probe.name = m.name;
   probe.nodes = m.nodes;

@@ -1,4 +1,5 @@
-// The `layer` decomposition (DESIGN.md §2.7, "How to distribute layer"; docs/decomposition.md).
+// The `layer` decomposition (docs/design.md §2.7, "How to distribute layer";
+// docs/decomposition.md).
 //
 // 1. Link claims: every node used by elements of several domains is a permanent-link node; every
 //    element touching it is claimed by the finest of those domains (the coarse side's first

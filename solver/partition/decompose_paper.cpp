@@ -1,4 +1,4 @@
-// The `paper` decomposition (DESIGN.md §2.2, §2.5; §2.3 and §3.1 of Bourel 2005).
+// The `paper` decomposition (docs/design.md §2.2, §2.5; §2.3 and §3.1 of Bourel 2005).
 //
 // No element moves. A node used by elements of several domains (the link interface Gamma of
 // [3]-[4]) is present in each of them with its partial lumped mass m^k; interface_mass_kg gives

@@ -1,14 +1,16 @@
 #pragma once
-// Cutting a global model into per-domain sub-models for the two coupling schemes of DESIGN.md §2.
-// Pure functions over model::Model; no networking, no solution state. Rules and figure:
+// Cutting a global model into per-domain sub-models for the two coupling schemes of docs/design.md
+// §2. Pure functions over model::Model; no networking, no solution state. Rules and figure:
 // docs/decomposition.md.
 //
-//   layer (DESIGN §2.7, the default): at every interface the domain with the smaller stable step
+//   layer (docs/design.md §2.7, the default): at every interface the domain with the smaller stable
+//   step
 //     (fine, F) takes the coarse side's (C) first element layer; F owns its elements, the moved
 //     layer and all their nodes except the layer's far nodes J; J are read-only ghosts in F, owned
 //     by C with their natural summed lumped mass (no added mass). Every contact ends up inside one
 //     domain.
-//   paper (DESIGN §2.2 and §2.5, Bourel 2005 §2.3-§3 and [3]-[11]): no element moves; a link node
+//   paper (docs/design.md §2.2 and §2.5, Bourel 2005 §2.3-§3 and [3]-[11]): no element moves; a
+//   link node
 //     is present in every domain whose elements use it, each with its partial lumped mass (the
 //     coordinator sums them, [5]); for a contact across domains, the master's domain A gets copies
 //     of the other domain's slave nodes (no elements, no own mass) and computes the contact on them

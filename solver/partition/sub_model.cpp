@@ -63,7 +63,7 @@ DomainModel build_domain(const Analysis& a, const Placement& pl, int d) {
     if (elems.empty()) continue;
     // The elements on a ghost node (the moved layer's outer row, next to J) last, each group in
     // global order: the solver computes the others while it waits for the ghosts' motion
-    // (Solver::interior_elements, DESIGN.md §2.6 "Overlap").
+    // (Solver::interior_elements, docs/design.md §2.6 "Overlap").
     const auto k = static_cast<std::size_t>(model::nodes_per_element(gp.kind));
     std::stable_partition(elems.begin(), elems.end(), [&](Index le) {
       const auto* c = gp.connectivity.data() + k * static_cast<std::size_t>(le);

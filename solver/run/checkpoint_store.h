@@ -1,5 +1,5 @@
 #pragma once
-// Where a coupled run keeps its checkpoints (docs/checkpoints.md "Where and how"):
+// Where a coupled run keeps its checkpoints (docs/checkpoints.md "When"):
 //   OUT/checkpoints/<T>/<who>/   T the instant in ticks (20 digits, so names sort by time),
 //                                who = a domain name or "coordinator" (a "piece")
 // Each process writes only its own folder: it fills OUT/checkpoints/<T>/.<who>.tmp, writes a

@@ -1,5 +1,5 @@
 #pragma once
-// A 1-D acceleration history in CSV, the input of `crashlink hic FILE.csv` (DESIGN.md §4):
+// A 1-D acceleration history in CSV, the input of `crashlink hic FILE.csv` (docs/design.md §4):
 //
 //   time_s,accel_g          <- header, exactly these two names (spaces around them allowed)
 //   0.0000,0.0

@@ -1,4 +1,4 @@
-// Checkpoint and restart of a coupled run over processes (issue #6 item 5, DESIGN.md §2.6
+// Checkpoint and restart of a coupled run over processes (issue #6 item 5, docs/design.md §2.6
 // "Checkpoints"): the CI head-impact scene (wiper and body domains, links and contacts across
 // them, shells, hexes, a rigid headform) run in `multi` with checkpoints every 2 ms; the same run
 // SIGKILLed (the launcher, hence every process: PR_SET_PDEATHSIG) between its second and third

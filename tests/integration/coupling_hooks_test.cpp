@@ -1,6 +1,7 @@
 // The Solver's coupling hooks, driven by hand in one process: a bar of 20 hexes cut between
-// elements 9 and 10 and coupled with the `layer` scheme of DESIGN.md §2.7 at a common step must
-// reproduce the single-domain run to round-off (issue 4: split vs mono <= 1e-10 after 10^4 steps).
+// elements 9 and 10 and coupled with the `layer` scheme of docs/design.md §2.7 at a common step
+// must reproduce the single-domain run to round-off (issue 4: split vs mono <= 1e-10 after 10^4
+// steps).
 //
 //   A (fine side)  : elements 0..9 plus the coarse side's first layer, element 10; node plane 11
 //                    (J) is a ghost whose displacement comes from C.

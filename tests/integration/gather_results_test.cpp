@@ -5,7 +5,7 @@
 // the same model (run::run_single_domain): split reproduces mono to round-off
 // (split_mono_test.cpp), so glstat, probes and states agree to 1e-9 relative, the mesh is
 // identical, and element fields of the part split across domains (the coarse part's first layer
-// moved into the fine domain, DESIGN.md §2.7) come back complete and in global order.
+// moved into the fine domain, docs/design.md §2.7) come back complete and in global order.
 // Also: a domain file cut short (a daemon that stopped early), a missing one, domains sampled at
 // different instants (interpolation), and coordinator.h5 copied in.
 #include "solver/gather/gather_results.h"

@@ -1,5 +1,5 @@
-// Overlap (DESIGN.md §2.6): a `layer` fine domain computes the forces of its elements that touch
-// no ghost node (J, whose motion the owner sends) before it waits for u_J, the rest after
+// Overlap (docs/design.md §2.6): a `layer` fine domain computes the forces of its elements that
+// touch no ghost node (J, whose motion the owner sends) before it waits for u_J, the rest after
 // (Solver::end_cycle_interior_forces, cosim::LayerStepper Phase::Rim).
 //   * The layer cut puts a fine domain's elements on J last in each part, so that the interior
 //     span [0, interior_elements(p)) is the rest of the part up to whole batches (plate, block).

@@ -1,4 +1,4 @@
-// Contact across domains with the `layer` scheme (DESIGN.md §2.7 "Contact across subdomains"):
+// Contact across domains with the `layer` scheme (docs/design.md §2.7 "Contact across subdomains"):
 // the coarse side's contact-surface element layer moves into the fine domain, the contact is
 // computed there at the fine step, J couples as for a permanent link. Both ways round:
 //   (a) master surface on the coarse side: a fine hex block dropped on a coarse shell floor

@@ -2,8 +2,8 @@
 // crashlink-coordinator + crashlink-solver started by hand) and over inproc threads: the daemons
 // run the same LayerStepper as the in-process cosim::LayerNetwork, only the messages travel over
 // ZeroMQ (packed doubles, bit for bit), so the nodal displacements must be identical to it; split
-// must also reproduce mono at the same step to round-off (DESIGN.md §4: <= 1e-10 relative). Every
-// suite runs over tcp (ephemeral port read back), ipc and inproc.
+// must also reproduce mono at the same step to round-off (docs/design.md §4: <= 1e-10 relative).
+// Every suite runs over tcp (ephemeral port read back), ipc and inproc.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -427,7 +427,7 @@ INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,
                          ::testing::Values(Scheme::tcp, Scheme::ipc, Scheme::inproc),
                          scheme_test_name);
 
-// Overlap (DESIGN.md §2.6): LayerStepper::set_on_outbox offers u_J(t + h) while the stepper is
+// Overlap (docs/design.md §2.6): LayerStepper::set_on_outbox offers u_J(t + h) while the stepper is
 // still at t at the latest (predicted right after g_A(t) is applied; after the positions at t + h
 // at the first step), before the forces there (the stepper moves to t + h only after
 // Solver::end_cycle_compute), and g_A(t + h) right after those forces. A daemon

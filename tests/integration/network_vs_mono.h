@@ -1,6 +1,6 @@
 #pragma once
 // The `layer` network at a fixed common step against one Solver at that step (split = mono to
-// round-off, DESIGN.md §2.7): used by the split tests of YAML scenes and of keyword decks.
+// round-off, docs/design.md §2.7): used by the split tests of YAML scenes and of keyword decks.
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -433,13 +433,14 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
 
 /// Three domains (two interfaces, the middle domain in both): split at one common step sums the
 /// free accelerations of [8] into the single-domain acceleration, so it reproduces mono at that
-/// step to round-off (DESIGN.md §4: <= 1e-10 relative).
+/// step to round-off (docs/design.md §4: <= 1e-10 relative).
 TEST(PaperProcessesThreeDomains, SplitReproducesMono) {
   EXPECT_LE(three_domain_split_vs_mono(false, "paper-3"), 1e-10);
 }
 
-/// The same with variable steps (DESIGN.md §2.6: the smallest proposal of all at every instant,
-/// the run ending at the first instant at or after the end time): mono stepping by the same rule.
+/// The same with variable steps (docs/design.md §2.6: the smallest proposal of all at every
+/// instant, the run ending at the first instant at or after the end time): mono stepping by the
+/// same rule.
 TEST(PaperProcessesThreeDomains, VariableSplitReproducesMonoAtItsOwnSteps) {
   EXPECT_LE(three_domain_split_vs_mono(true, "paper-3v"), 1e-10);
 }

@@ -1,6 +1,6 @@
-// The `paper` coupling scheme ([5]-[11] of Bourel 2005; DESIGN.md §2.2-§2.5, §2.7; scheme S1 of
-// coupling-study/mts.py) run by cosim::PaperRunner: two domains of decompose(global, Paper), each
-// with the summed masses on its coupled nodes, H/h = r whole.
+// The `paper` coupling scheme ([5]-[11] of Bourel 2005; docs/design.md §2.2-§2.5, §2.7; scheme S1
+// of coupling-study/mts.py) run by cosim::PaperRunner: two domains of decompose(global, Paper),
+// each with the summed masses on its coupled nodes, H/h = r whole.
 //   (a) r = 1 reproduces the mono run to round-off (<= 1e-10 after 10^4 steps);
 //   (b) r = 2 with bulk viscosity on the study's bar (Hann pulse through the interface): stable,
 //       interface displacement / velocity errors and spurious reflection vs mono at the fine step;

@@ -1,9 +1,9 @@
-// Failure handling of a `layer` or `paper` run over real processes (DESIGN.md §3, issue 4 "Failure
-// handling"): a daemon killed (SIGKILL) or frozen (SIGSTOP) mid-run, or the coordinator killed.
-// Everyone else must exit non-zero within 5 s with a message naming the culprit, and the output
-// written so far must open (each daemon's DIR/domains/<domain>.h5 and the gathered result.h5).
-// Heartbeat 100 ms, peer timeout 1 s. Runs over tcp (ephemeral port read back) and ipc; inproc
-// has no process to kill.
+// Failure handling of a `layer` or `paper` run over real processes (docs/design.md §3, issue 4
+// "Failure handling"): a daemon killed (SIGKILL) or frozen (SIGSTOP) mid-run, or the coordinator
+// killed. Everyone else must exit non-zero within 5 s with a message naming the culprit, and the
+// output written so far must open (each daemon's DIR/domains/<domain>.h5 and the gathered
+// result.h5). Heartbeat 100 ms, peer timeout 1 s. Runs over tcp (ephemeral port read back) and ipc;
+// inproc has no process to kill.
 #include <gtest/gtest.h>
 
 #include <cstdio>

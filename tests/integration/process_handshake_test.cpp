@@ -1,6 +1,6 @@
-// Refusals at the door of a `layer` run (DESIGN.md §3): a daemon of another protocol version and
-// a daemon given another scenario file are refused with a message giving both values; bytes that
-// are not protocol messages (a ZeroMQ peer sending junk, a plain TCP socket writing junk) are
+// Refusals at the door of a `layer` run (docs/design.md §3): a daemon of another protocol version
+// and a daemon given another scenario file are refused with a message giving both values; bytes
+// that are not protocol messages (a ZeroMQ peer sending junk, a plain TCP socket writing junk) are
 // rejected without a crash. In every case the coordinator goes on and the real daemons then
 // complete the run. Runs over tcp (ephemeral port read back), ipc and inproc (threads).
 #include <arpa/inet.h>

@@ -1,6 +1,6 @@
-// `split` vs `mono` for the `layer` scheme (DESIGN.md §2.7, "How to distribute layer"): the global
-// model cut by partition::decompose(global, Layer) and run by cosim::SplitRunner (one Solver per
-// domain, coupled through J at a common step, [8] of Bourel 2005) must reproduce the same model
+// `split` vs `mono` for the `layer` scheme (docs/design.md §2.7, "How to distribute layer"): the
+// global model cut by partition::decompose(global, Layer) and run by cosim::SplitRunner (one Solver
+// per domain, coupled through J at a common step, [8] of Bourel 2005) must reproduce the same model
 // run by one Solver at the same step (mono) to round-off: max |u_split - u_mono| / max |u_mono|
 // <= 1e-10 after 10^4 steps. At a common step the layer cycle is the central-difference cycle
 // ([1], [2]) with its element loop cut in pieces, so only summation order differs.

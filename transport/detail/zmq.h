@@ -1,5 +1,5 @@
 #pragma once
-// PRIVATE to the transport library (DESIGN.md §5: only the transport layer includes ZeroMQ
+// PRIVATE to the transport library (docs/design.md §5: only the transport layer includes ZeroMQ
 // headers): included by transport/*.cpp and the transport unit tests, never by a public header.
 //
 // Debian installs cppzmq in /usr/include, a system directory, so its warnings are not shown. If

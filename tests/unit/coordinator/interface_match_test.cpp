@@ -1,4 +1,5 @@
-// Interface matching (DESIGN.md §2.2): copies paired by global id, M = sum_k m^k, typed errors.
+// Interface matching (docs/design.md §2.2): copies paired by global id, M = sum_k m^k, typed
+// errors.
 #include "coordinator/interface_match.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// Round trip of every wire message (DESIGN.md §3): serialize an Envelope, parse it back, compare
-// field by field; doubles are compared bit for bit (signed zero, subnormals, infinities, NaN
-// payloads), and numeric arrays are checked to be packed on the wire.
+// Round trip of every wire message (docs/design.md §3): serialize an Envelope, parse it back,
+// compare field by field; doubles are compared bit for bit (signed zero, subnormals, infinities,
+// NaN payloads), and numeric arrays are checked to be packed on the wire.
 #include <gtest/gtest.h>
 
 #include <bit>

@@ -1,4 +1,4 @@
-// The scheduling rule of DESIGN.md §2.6 and the interpolation data of [10] of Bourel 2005.
+// The scheduling rule of docs/design.md §2.6 and the interpolation data of [10] of Bourel 2005.
 // A simulated run drives the Schedule like daemons would: a domain submits its next free state
 // only after its answer, at the instant the answer imposed; arrivals are in a deterministic or a
 // seeded random order. Checked on every run: no deadlock (when every unfinished domain waits, an
@@ -153,8 +153,8 @@ std::vector<Tick> steps(std::initializer_list<double> dt_s) {
 
 }  // namespace
 
-// Mono-scale (DESIGN.md §2.3): equal steps, every state is answered as soon as the last domain's
-// state at that instant arrives, and no bracket interpolates.
+// Mono-scale (docs/design.md §2.3): equal steps, every state is answered as soon as the last
+// domain's state at that instant arrives, and no bracket interpolates.
 TEST(Schedule, EqualStepsAnswerEveryoneAtOnceWithoutInterpolation) {
   const Tick h = kClock.step_to_ticks(1e-6);
   for (StepPolicy policy : {StepPolicy::own, StepPolicy::common}) {

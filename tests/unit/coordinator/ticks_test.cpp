@@ -1,4 +1,5 @@
-// Integer ticks (DESIGN.md §2.6, coordinator/ticks.h): exact conversion, rounding down, snapping.
+// Integer ticks (docs/design.md §2.6, coordinator/ticks.h): exact conversion, rounding down,
+// snapping.
 #include "coordinator/ticks.h"
 
 #include <gtest/gtest.h>

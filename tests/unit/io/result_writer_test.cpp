@@ -1,5 +1,5 @@
-// The result writer: layout of DESIGN.md §4 / docs/result-format.md read back with the HDF5 C API
-// and compared exactly (doubles are stored as IEEE binary64, so round trips are bitwise).
+// The result writer: layout of docs/design.md §4 / docs/result-format.md read back with the HDF5 C
+// API and compared exactly (doubles are stored as IEEE binary64, so round trips are bitwise).
 #include "solver/io/result_writer.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The `layer` decomposition (DESIGN.md §2.7, docs/decomposition.md): the coarse side's first
+// The `layer` decomposition (docs/design.md §2.7, docs/decomposition.md): the coarse side's first
 // element layer moves into the fine domain, J = the layer's far nodes (ghosts in fine, owned by
 // coarse with their natural summed mass), every contact inside one domain.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The `paper` decomposition (DESIGN.md §2.2, §2.5; Bourel 2005 §2.3 [3]-[8], §3.1): no element
+// The `paper` decomposition (docs/design.md §2.2, §2.5; Bourel 2005 §2.3 [3]-[8], §3.1): no element
 // moves, link nodes are present in every domain using them with partial masses, and a contact
 // across domains is computed in the master's domain on copies of the slave nodes.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// `crashlink hic` end to end on CSV files (DESIGN.md §4): runs the built binary
+// `crashlink hic` end to end on CSV files (docs/design.md §4): runs the built binary
 // CRASHLINK_BINARY_DIR/apps/crashlink and reads its output and exit code.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

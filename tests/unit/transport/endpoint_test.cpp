@@ -1,4 +1,4 @@
-// Endpoint strings (DESIGN.md §3): the three transports, ephemeral ports, clear errors.
+// Endpoint strings (docs/design.md §3): the three transports, ephemeral ports, clear errors.
 #include "transport/endpoint.h"
 
 #include <gtest/gtest.h>

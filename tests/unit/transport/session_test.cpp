@@ -1,6 +1,6 @@
-// Session layer (DESIGN.md §3): handshake, refusals with both values, several daemons in threads,
-// garbage, silent peers on both sides, Bye and Error. Every suite runs on every transport; every
-// wait is bounded.
+// Session layer (docs/design.md §3): handshake, refusals with both values, several daemons in
+// threads, garbage, silent peers on both sides, Bye and Error. Every suite runs on every transport;
+// every wait is bounded.
 #include "transport/session.h"
 
 #include <arpa/inet.h>

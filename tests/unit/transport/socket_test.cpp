@@ -1,5 +1,5 @@
-// Router / Dealer (DESIGN.md §3): one Envelope per ZeroMQ message, bit-exact arrays, loud sends
-// to unknown peers, bounded receives, garbage reported and never a crash. Every transport.
+// Router / Dealer (docs/design.md §3): one Envelope per ZeroMQ message, bit-exact arrays, loud
+// sends to unknown peers, bounded receives, garbage reported and never a crash. Every transport.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the transport suites: every suite runs on every transport (tcp on an ephemeral
-// loopback port, ipc in the temp dir, inproc), HELICS-style (DESIGN.md §7 rule 8). Every wait is
-// bounded; nothing sleeps to wait for readiness.
+// loopback port, ipc in the temp dir, inproc), HELICS-style (docs/design.md §7 rule 8). Every wait
+// is bounded; nothing sleeps to wait for readiness.
 #include <gtest/gtest.h>
 
 #include <bit>

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# tools/check_citations.py fails on each kind of broken citation and passes on sound ones: a
+# throw-away repository with docs/design.md and a source citing a missing file, a missing heading,
+# a missing design section and the design card's old name; then the same source fixed.
+set -euo pipefail
+check="$1/tools/check_citations.py"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+git init -q .
+mkdir docs src
+printf '# design\n## 1. Processes\n## 2. The method\n### 2.7 Layer\n' > docs/design.md
+printf '# Checkpoints\n## When\n' > docs/checkpoints.md
+cat > src/a.cpp <<'SRC'
+// docs/missing.md
+// docs/checkpoints.md "Where and how"
+// docs/design.md §2.9
+// DESIGN.md §2.7
+SRC
+git add -A
+set +e
+out=$(/usr/bin/python3 "$check" "$tmp" 2>&1)
+status=$?
+set -e
+echo "$out"
+[ "$status" -eq 1 ] || { echo "FAIL: exit $status, want 1"; exit 1; }
+for want in "src/a.cpp:1: docs/missing.md does not exist" \
+            "src/a.cpp:2: docs/checkpoints.md has no heading \"Where and how\"" \
+            "src/a.cpp:3: docs/design.md has no section 2.9" \
+            "src/a.cpp:4: cites the design card by its old name"; do
+  grep -qF "$want" <<<"$out" || { echo "FAIL: missing '$want'"; exit 1; }
+done
+cat > src/a.cpp <<'SRC'
+// docs/checkpoints.md "When", docs/design.md §2.7 and §1 (docs/design.md §1)
+SRC
+/usr/bin/python3 "$check" "$tmp" || { echo "FAIL: sound citations refused"; exit 1; }
+echo "PASS"
