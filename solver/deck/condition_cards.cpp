@@ -39,6 +39,30 @@ void Parser::spc(const Card& c) {
   d_.spcs.push_back(std::move(s));
 }
 
+namespace {
+
+/// A spot weld's SN, SS, N, M (fields 2-5 of *CONSTRAINED_SPOTWELD's card and of
+/// *CONSTRAINED_GENERALIZED_WELD_SPOT's failure card): the strengths >= 0 (0: no term), each
+/// term's exponent > 0 where its strength is given.
+void read_weld_strengths(const Card& c, Layout l, RigidConstraintCard& r) {
+  r.sn = c.field(l, 2).real(0.0);
+  r.ss = c.field(l, 3).real(0.0);
+  if (r.sn < 0.0) c.field(l, 2).fail("must be >= 0 (0: no normal term); fix: the strength");
+  if (r.ss < 0.0) c.field(l, 3).fail("must be >= 0 (0: no shear term); fix: the strength");
+  r.exp_n = c.field(l, 4).real(0.0);
+  r.exp_m = c.field(l, 5).real(0.0);
+  if (r.sn > 0.0 && !(r.exp_n > 0.0))
+    c.field(l, 4).fail(
+        "the normal term's exponent must be > 0 with SN > 0; fix: write it (2: a quadratic "
+        "criterion)");
+  if (r.ss > 0.0 && !(r.exp_m > 0.0))
+    c.field(l, 5).fail(
+        "the shear term's exponent must be > 0 with SS > 0; fix: write it (2: a quadratic "
+        "criterion)");
+}
+
+}  // namespace
+
 void Parser::rigid_constraint(const Card& c) {
   if (title_card(c)) return;
   // Within a record of several cards a blank card is a card of defaults (LS-DYNA); between
@@ -84,20 +108,7 @@ void Parser::rigid_constraint(const Card& c) {
       epsf.fail(
           "failure at a plastic strain (EPSF) is not computed: the weld is a rigid link; "
           "fix: leave EPSF blank");
-    r.sn = c.field(l, 2).real(0.0);
-    r.ss = c.field(l, 3).real(0.0);
-    if (r.sn < 0.0) c.field(l, 2).fail("must be >= 0 (0: no normal term); fix: the strength");
-    if (r.ss < 0.0) c.field(l, 3).fail("must be >= 0 (0: no shear term); fix: the strength");
-    r.exp_n = c.field(l, 4).real(0.0);
-    r.exp_m = c.field(l, 5).real(0.0);
-    if (r.sn > 0.0 && !(r.exp_n > 0.0))
-      c.field(l, 4).fail(
-          "the normal term's exponent must be > 0 with SN > 0; fix: write it (2: "
-          "a quadratic criterion)");
-    if (r.ss > 0.0 && !(r.exp_m > 0.0))
-      c.field(l, 5).fail(
-          "the shear term's exponent must be > 0 with SS > 0; fix: write it (2: "
-          "a quadratic criterion)");
+    read_weld_strengths(c, l, r);
     d_.rigid_constraints.push_back(std::move(r));
     return;
   }
@@ -114,20 +125,7 @@ void Parser::rigid_constraint(const Card& c) {
     r.target = positive_id(c.field(l, 0));
     r.n2 = positive_id(c.field(l, 1));
     if (r.n2 == r.target) c.field(l, 1).fail("is N1; fix: weld two distinct nodes");
-    r.sn = c.field(l, 2).real(0.0);
-    r.ss = c.field(l, 3).real(0.0);
-    if (r.sn < 0.0) c.field(l, 2).fail("must be >= 0 (0: no normal term); fix: the strength");
-    if (r.ss < 0.0) c.field(l, 3).fail("must be >= 0 (0: no shear term); fix: the strength");
-    r.exp_n = c.field(l, 4).real(0.0);
-    r.exp_m = c.field(l, 5).real(0.0);
-    if (r.sn > 0.0 && !(r.exp_n > 0.0))
-      c.field(l, 4).fail(
-          "the normal term's exponent must be > 0 with SN > 0; fix: write it (2: a "
-          "quadratic criterion)");
-    if (r.ss > 0.0 && !(r.exp_m > 0.0))
-      c.field(l, 5).fail(
-          "the shear term's exponent must be > 0 with SS > 0; fix: write it (2: a "
-          "quadratic criterion)");
+    read_weld_strengths(c, l, r);
     r.tf = c.field(l, 6).real(0.0);
     if (r.tf < 0.0) c.field(l, 6).fail("must be >= 0 (0 or 1e20: none); fix: the failure time");
     if (r.tf >= 1e19) r.tf = 0.0;  // LS-DYNA's default 1e20: never
