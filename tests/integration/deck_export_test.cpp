@@ -21,6 +21,7 @@
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/integration/run_helpers.h"
 #include "tests/integration/shell_command.h"
 
 namespace crashlink {
@@ -459,14 +460,7 @@ rigid_walls:
   integration::Solver a(yaml), b(deck);
   a.initialize();
   b.initialize();
-  for (;;) {
-    a.begin_cycle();
-    b.begin_cycle();
-    ASSERT_EQ(a.time_s(), b.time_s());
-    if (a.finished()) break;
-    a.end_cycle();
-    b.end_cycle();
-  }
+  testing::run_side_by_side(a, b, [&] { EXPECT_EQ(a.time_s(), b.time_s()); });
   EXPECT_EQ(a.displacement(), b.displacement());
   const auto& ram = a.rigid_bodies()[0];
   std::printf(
@@ -532,13 +526,7 @@ upper
     EXPECT_EQ(b.rigid_bodies()[0].omega[d], a.rigid_bodies()[0].omega[d]);
   }
   EXPECT_NE(a.rigid_bodies()[0].velocity[2], 0.0) << "the spin about x moves the centre in z";
-  for (;;) {
-    a.begin_cycle();
-    b.begin_cycle();
-    if (a.finished()) break;
-    a.end_cycle();
-    b.end_cycle();
-  }
+  testing::run_side_by_side(a, b);
   double scale = 0.0, diff = 0.0;
   for (std::size_t i = 0; i < a.displacement().size(); ++i) {
     scale = std::max(scale, std::abs(a.displacement()[i]));

@@ -27,6 +27,7 @@
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/integration/run_helpers.h"
 #include "tests/integration/shell_command.h"
 
 namespace crashlink {
@@ -294,14 +295,8 @@ TEST(DeckTwin, DeckAndTwinRunTheSame) {
   integration::Solver a(deck), b(yaml);
   a.initialize();
   b.initialize();
-  for (;;) {
-    a.begin_cycle();
-    b.begin_cycle();
-    ASSERT_NEAR(a.time_s(), b.time_s(), 1e-12 * b.time_s() + 1e-300);
-    if (a.finished() || b.finished()) break;
-    a.end_cycle();
-    b.end_cycle();
-  }
+  testing::run_side_by_side(
+      a, b, [&] { EXPECT_NEAR(a.time_s(), b.time_s(), 1e-12 * b.time_s() + 1e-300); });
   EXPECT_EQ(a.finished(), b.finished());
   std::map<Key, std::size_t> at;
   for (std::size_t i = 0; i < yaml.nodes.count(); ++i)

@@ -27,17 +27,26 @@ constexpr int kLayers = 25;             // 2 mm elements
 constexpr double kV = 5000.0;           // mm/s toward the wall
 constexpr double kGap = 0.05;           // mm
 
+/// Three free-format fields (17 digits, then a comma): the point (x, y, z) mm of the bar's frame
+/// turned by `r`.
+std::string pt(const Mat3& r, double x, double y, double z) {
+  const Vec3 q = mul(r, Vec3{x, y, z});
+  char s[80];
+  std::snprintf(s, sizeof s, "%.17g,%.17g,%.17g,", q[0], q[1], q[2]);
+  return s;
+}
+
 /// The bar along z in [gap, gap + L] mm (x, y in [0, 10]), moving at -v, then `wall` (the
-/// keyword and its cards, NSID 0: every node).
-std::string bar_deck(const std::string& wall) {
+/// keyword and its cards, NSID 0: every node); everything turned by `r`.
+std::string bar_deck(const std::string& wall, const Mat3& r = identity3()) {
   std::string s = "*KEYWORD\n*NODE\n";
   int id = 1;
   for (int k = 0; k <= kLayers; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
         char line[80];
-        std::snprintf(line, sizeof line, "%8d%16.9e%16.9e%16.9e\n", id++, kA * i, kA * j,
-                      kGap + kL * k / kLayers);
+        const Vec3 x = mul(r, Vec3{kA * i, kA * j, kGap + kL * k / kLayers});
+        std::snprintf(line, sizeof line, "%8d%16.9e%16.9e%16.9e\n", id++, x[0], x[1], x[2]);
         s += line;
       }
   s += "*ELEMENT_SOLID\n";
@@ -50,8 +59,12 @@ std::string bar_deck(const std::string& wall) {
   }
   s += "*PART\nbar\n         1         1         1\n*SECTION_SOLID\n         1         1\n"
        "*MAT_ELASTIC\n         1   7.85e-9  210000.0       0.0\n"
-       "*INITIAL_VELOCITY_GENERATION\n         1         2       0.0       0.0       0.0   -5000.0"
-       "\n\n*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n";
+       "*INITIAL_VELOCITY_GENERATION\n         1         2       0.0";
+  const Vec3 v = mul(r, Vec3{0.0, 0.0, -kV});
+  char line[80];
+  std::snprintf(line, sizeof line, "%10.3f%10.3f%10.3f\n\n", v[0], v[1], v[2]);
+  s += line;
+  s += "*CONTROL_BULK_VISCOSITY\n       0.0       0.0\n";
   s += wall;
   s += "*CONTROL_TERMINATION\n   4.0E-05\n*END\n";
   return s;
@@ -66,13 +79,15 @@ struct BarRun {
   std::vector<double> v;  ///< velocities at the end
 };
 
-/// Runs the bar on `wall`; `axis_y_z_r`: a cylinder's axis (along x) at (y, z), radius, in m.
-BarRun run_on(const std::string& wall, const double* axis_y_z_r = nullptr) {
+/// Runs the bar on `wall`, everything turned by `rot`; measures in the bar's frame;
+/// `axis_y_z_r`: a cylinder's axis (along the frame's x) at (y, z), radius, in m.
+BarRun run_on(const std::string& wall, const double* axis_y_z_r = nullptr,
+              const Mat3& rot = identity3()) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("crashlink_wall_shapes_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto path = (dir / "bar.k").string();
-  std::ofstream(path) << bar_deck(wall);
+  std::ofstream(path) << bar_deck(wall, rot);
   const model::Model m = deck::read_deck(path, {"mm-t-s", {}}).model;
   std::filesystem::remove_all(dir);
   integration::Solver s(m);
@@ -82,8 +97,10 @@ BarRun run_on(const std::string& wall, const double* axis_y_z_r = nullptr) {
     r.worst = std::max(r.worst, std::abs(sv.energy().balance_J()));
     const auto& u = sv.displacement();
     for (std::size_t i = 0; i < m.nodes.count(); ++i) {
-      const double y = m.nodes.x0[3 * i + 1] + u[3 * i + 1];
-      const double z = m.nodes.x0[3 * i + 2] + u[3 * i + 2];
+      const Vec3 x = mul(transpose(rot),
+                         Vec3{m.nodes.x0[3 * i] + u[3 * i], m.nodes.x0[3 * i + 1] + u[3 * i + 1],
+                              m.nodes.x0[3 * i + 2] + u[3 * i + 2]});
+      const double y = x[1], z = x[2];
       r.z_min = std::min(r.z_min, z);
       if (axis_y_z_r)
         r.inside =
@@ -92,7 +109,7 @@ BarRun run_on(const std::string& wall, const double* axis_y_z_r = nullptr) {
   });
   double p = 0.0, mass = 0.0;
   for (std::size_t i = 0; i < m.nodes.count(); ++i) {
-    p += s.mass()[i] * s.velocity_mid()[3 * i + 2];
+    for (std::size_t d = 0; d < 3; ++d) p += s.mass()[i] * rot[d][2] * s.velocity_mid()[3 * i + d];
     mass += s.mass()[i];
   }
   r.vz_end = p / mass;
@@ -154,6 +171,44 @@ TEST(RigidWallShapes, CylinderStopsTheBarOnItsSurface) {
       axis);
   EXPECT_NEAR(c.vz_end, -kV * 1e-3, 1e-9);
   EXPECT_LT(c.inside, -0.1e-3) << "into the infinite cylinder's place";
+}
+
+// The same walls turned about a skew axis (no wall along a coordinate axis, the rectangle's
+// edge and the cylinder's axis oblique; the points in free format to 17 digits): the finite
+// plane still gives the infinite plane's answer, the cylinder still stops the bar on its surface.
+TEST(RigidWallShapes, TurnedWallsGiveTheSameAnswers) {
+  const Vec3 axis = (1.0 / std::sqrt(14.0)) * Vec3{1.0, 2.0, 3.0};
+  const double th = 0.7, c = std::cos(th), sn = std::sin(th);
+  Mat3 r{};
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j)
+      r[i][j] = (1.0 - c) * axis[i] * axis[j] + (i == j ? c : 0.0);
+  r[0][1] -= sn * axis[2];
+  r[1][0] += sn * axis[2];
+  r[0][2] += sn * axis[1];
+  r[2][0] -= sn * axis[1];
+  r[1][2] -= sn * axis[0];
+  r[2][1] += sn * axis[0];
+  const BarRun plane = run_on(
+      "*RIGIDWALL_PLANAR\n         0\n" + pt(r, 0, 0, 0) + pt(r, 0, 0, 1) + "\n", nullptr, r);
+  const BarRun finite = run_on("*RIGIDWALL_PLANAR_FINITE\n         0\n" + pt(r, -5, -5, 0) +
+                                   pt(r, -5, -5, 1) + "\n" + pt(r, 15, -5, 0) + "20.0,20.0\n",
+                               nullptr, r);
+  const double axis_m[3] = {5e-3, -1.0, 1.0};
+  const BarRun cylinder = run_on("*RIGIDWALL_GEOMETRIC_CYLINDER\n         0\n" +
+                                     pt(r, -100, 5, -1000) + pt(r, 100, 5, -1000) + "\n1000.0\n",
+                                 axis_m, r);
+  std::printf(
+      "[measured] turned walls: rebound plane %.6f v, finite %.6f v, cylinder %.6f v; "
+      "lowest node %.2e m, deepest in the cylinder %.2e m\n",
+      plane.vz_end / (kV * 1e-3), finite.vz_end / (kV * 1e-3), cylinder.vz_end / (kV * 1e-3),
+      plane.z_min, -cylinder.inside);
+  EXPECT_GT(plane.vz_end, 0.9 * kV * 1e-3);
+  EXPECT_NEAR(finite.vz_end, plane.vz_end, 1e-9 * kV * 1e-3);  // the same nodes stopped
+  EXPECT_GE(plane.z_min, -1e-12);      // nothing through (the turned coordinates' round-off)
+  EXPECT_GE(cylinder.inside, -1e-12);  // no node inside the cylinder
+  EXPECT_NEAR(cylinder.vz_end, plane.vz_end, 0.01 * kV * 1e-3);
+  EXPECT_LT(cylinder.worst, 0.01 * cylinder.e0);
 }
 
 }  // namespace

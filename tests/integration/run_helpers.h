@@ -29,6 +29,29 @@ inline void run(integration::Solver& s,
   }
 }
 
+/// Runs an initialized (or restored) solver on to its end time.
+inline void run_to_end(integration::Solver& s) {
+  for (;;) {
+    s.begin_cycle();
+    if (s.finished()) break;
+    s.end_cycle();
+  }
+}
+
+/// Runs two initialized solvers of the same model (a scenario and its deck, say) cycle by cycle
+/// to the end of `a`, calling `at_each` after both have begun a cycle (to compare them there).
+inline void run_side_by_side(integration::Solver& a, integration::Solver& b,
+                             const std::function<void()>& at_each = {}) {
+  for (;;) {
+    a.begin_cycle();
+    b.begin_cycle();
+    if (at_each) at_each();
+    if (a.finished()) break;
+    a.end_cycle();
+    b.end_cycle();
+  }
+}
+
 /// Probe history of probe `k` plus energies at every cycle.
 inline std::vector<Sample> run_and_sample(integration::Solver& s, std::size_t k) {
   std::vector<Sample> out;

@@ -19,6 +19,7 @@
 #include "solver/integration/solver.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
+#include "tests/integration/run_helpers.h"
 #include "tests/integration/shell_command.h"
 
 namespace crashlink {
@@ -287,12 +288,8 @@ TEST(SpotWeld, FailuresSurviveARestart) {
     EXPECT_EQ(b.weld_failures()[k].time_s, a.weld_failures()[k].time_s);
     EXPECT_EQ(b.weld_failures()[k].shear_N, a.weld_failures()[k].shear_N);
   }
-  for (auto* s : {&a, &b})
-    for (;;) {
-      s->begin_cycle();
-      if (s->finished()) break;
-      s->end_cycle();
-    }
+  testing::run_to_end(a);
+  testing::run_to_end(b);
   EXPECT_EQ(a.displacement(), b.displacement());
   EXPECT_EQ(b.weld_failures().size(), a.weld_failures().size()) << "no weld fails twice";
 }
