@@ -5,10 +5,10 @@
 
 #include <cstdio>
 
+#include "solver/core/exit_codes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
-#include "solver/run/exit_codes.h"
 
 namespace crashlink::apps {
 
@@ -37,9 +37,9 @@ int run_gather(const GatherOptions& o) {
   if (!r.missing.empty()) {
     std::fprintf(stderr, "crashlink gather: missing or unusable: domain(s) '%s'\n",
                  fmt::format("{}", fmt::join(r.missing, "', '")).c_str());
-    return run::kExitPeer;
+    return kExitPeer;
   }
-  return run::kExitOk;
+  return kExitOk;
 }
 
 }  // namespace crashlink::apps

@@ -9,11 +9,11 @@
 #include "apps/cmd_hic.h"
 #include "apps/stop_signal.h"
 #include "solver/core/errors.h"
+#include "solver/core/exit_codes.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/mass_scaling.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
-#include "solver/run/exit_codes.h"
 #include "solver/run/mono_checkpoints.h"
 #include "solver/run/run_single.h"
 
@@ -183,7 +183,7 @@ int run_run(const RunCommandOptions& o) {
                  "crashlink: stopped on request (SIGINT/SIGTERM) at t = %.6e s; %s holds "
                  "the run up to there\n",
                  summary.end_time_s, summary.result_h5.c_str());
-    return run::kExitStopped;
+    return kExitStopped;
   }
   if (summary.failed) {
     std::fprintf(stderr, "crashlink: error: %s\n", summary.failure.c_str());

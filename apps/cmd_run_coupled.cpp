@@ -18,6 +18,7 @@
 #include "solver/contact/contact_advice.h"
 #include "solver/coordination/coordinator_run.h"
 #include "solver/core/errors.h"
+#include "solver/core/exit_codes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/gather/history_merge.h"
 #include "solver/integration/mass_scaling.h"
@@ -26,7 +27,6 @@
 #include "solver/model/run_estimate.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/energy_summary.h"
-#include "solver/run/exit_codes.h"
 
 namespace crashlink::apps {
 
@@ -242,7 +242,7 @@ int run_coupled(const RunCommandOptions& o) {
                  "crashlink: stopped on request (SIGINT/SIGTERM): every piece stopped and flushed "
                  "its file; the results so far are in %s%s\n",
                  o.out.c_str(), gathered.written ? "/result.h5" : "/domains/*.h5");
-    return run::kExitStopped;
+    return kExitStopped;
   }
   if (lr.ok() && gathered.written && gathered.problem.empty()) {
     for (const auto& p : model.probes) {
@@ -254,21 +254,20 @@ int run_coupled(const RunCommandOptions& o) {
       h.cfc = "1000";
       run_hic(h);
     }
-    return run::kExitOk;
+    return kExitOk;
   }
   std::fflush(stdout);
   if (lr.ok()) {
     std::fprintf(stderr, "crashlink: error: the run finished but gathering failed: %s\n",
                  gathered.problem.c_str());
-    return gathered.io_failure ? run::kExitIo : run::kExitInternal;
+    return gathered.io_failure ? kExitIo : kExitInternal;
   }
   // The code of the culprit: a piece that failed on its own, not one stopped because of another
   // (exit 5) or by the launcher after another failed; by priority the guard, a file, bad input, a
   // bug, a stop request (SIGTERM to one piece stops the others with exit 7 too).
-  constexpr int kOwn[] = {run::kExitNumerical, run::kExitIo, run::kExitInput, run::kExitInternal,
-                          run::kExitStopped};
+  constexpr int kOwn[] = {kExitNumerical, kExitIo, kExitInput, kExitInternal, kExitStopped};
   std::vector<std::string> what;
-  int code = run::kExitPeer;
+  int code = kExitPeer;
   std::size_t rank = std::size(kOwn);
   for (const auto& p : lr.pieces) {
     if (p.ok()) continue;

@@ -2,7 +2,7 @@
 // docs/processes.md). Started by `crashlink run` or by hand:
 //   crashlink-coordinator --bind tcp://0.0.0.0:5555 --scenario FILE --out DIR [--mode multi]
 // It prints the bound endpoint (and writes it to --endpoint-file), waits for one daemon per
-// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/run/exit_codes.h. Defaults:
+// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/core/exit_codes.h. Defaults:
 // apps/shared_defaults.h.
 #include <fmt/format.h>
 
@@ -15,7 +15,7 @@
 #include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
 #include "solver/coordination/coordinator_run.h"
-#include "solver/run/exit_codes.h"
+#include "solver/core/exit_codes.h"
 #include "solver/run/progress.h"
 
 int main(int argc, char** argv) {
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   }
   o.common_step = mode == "split";
   o.lanes = !no_lanes;
-  o.paper = coupling == "paper";
+  o.coupling = coupling;
   o.drift = !no_drift;
   o.session = session.options();
   o.join_timeout = std::chrono::milliseconds{join_timeout_ms};

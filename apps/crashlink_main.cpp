@@ -25,7 +25,7 @@
 #include "apps/cmd_sweep.h"
 #include "apps/program_cli.h"
 #include "solver/core/errors.h"
-#include "solver/run/exit_codes.h"
+#include "solver/core/exit_codes.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crashlink: multi-domain, multi-time-scale explicit dynamics for crash simulation"};
@@ -88,23 +88,23 @@ int main(int argc, char** argv) {
       if (*command) return run_command();
   } catch (const crashlink::InputError& e) {
     std::fprintf(stderr, "crashlink: input error: %s\n", e.what());
-    return crashlink::run::kExitInput;
+    return crashlink::kExitInput;
   } catch (const crashlink::ModelError& e) {
     // a model the run cannot take (e.g. its decomposition): bad input, as the daemons report it
     std::fprintf(stderr, "crashlink: model error: %s\n", e.what());
-    return crashlink::run::kExitInput;
+    return crashlink::kExitInput;
   } catch (const crashlink::IoError& e) {
     std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
-    return crashlink::run::kExitIo;
+    return crashlink::kExitIo;
   } catch (const std::filesystem::filesystem_error& e) {
     std::fprintf(stderr, "crashlink: I/O error: %s\n", e.what());
-    return crashlink::run::kExitIo;
+    return crashlink::kExitIo;
   } catch (const crashlink::Error& e) {
     std::fprintf(stderr, "crashlink: error: %s\n", e.what());
-    return crashlink::run::kExitNumerical;
+    return crashlink::kExitNumerical;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crashlink: internal error: %s\n", e.what());
-    return crashlink::run::kExitInternal;
+    return crashlink::kExitInternal;
   }
   return 0;
 }

@@ -302,7 +302,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.checkpoint_interval_s = o.checkpoint_interval_s;
   co.restart = o.restart;
   co.lanes = o.lanes;
-  co.paper = o.paper;
+  co.coupling = o.paper ? "paper" : "layer";
   co.drift = o.drift;
   co.variable_steps = o.variable_steps;
   std::promise<std::string> bound;
@@ -336,7 +336,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
         d.session = o.session.options();
         d.in_process = true;
         d.step_safety = o.step_safety;
-        d.paper = o.paper;
+        d.coupling = o.paper ? "paper" : "layer";
         d.stop = &stop_flag();
         dr[k] = daemon::run_daemon(d);
       });

@@ -56,7 +56,7 @@ struct LaunchResult {
   std::string endpoint;
   double wall_seconds = 0.0;
   /// SIGINT or SIGTERM came while a piece was still running: every piece was told to stop at
-  /// once; the run counts as stopped whatever the pieces' exit codes (run::kExitStopped).
+  /// once; the run counts as stopped whatever the pieces' exit codes (kExitStopped).
   bool stopped_on_request = false;
   bool ok() const;
 };

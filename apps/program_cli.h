@@ -1,6 +1,6 @@
 #pragma once
 // What the command lines of `crashlink`, crashlink-solver and crashlink-coordinator share
-// (docs/processes.md, "Exit codes"): `--version`, and a usage error as exit 2 (run::kExitInput)
+// (docs/processes.md, "Exit codes"): `--version`, and a usage error as exit 2 (kExitInput)
 // with CLI11's message and where to find the options, instead of CLI11's own codes (105, 106,
 // 109, ...). `--help` and `--version` print on stdout and exit 0.
 #include <CLI/CLI.hpp>
@@ -9,7 +9,7 @@
 
 #include "crashlink_version.h"
 #include "proto/protocol_version.h"
-#include "solver/run/exit_codes.h"
+#include "solver/core/exit_codes.h"
 
 namespace crashlink::apps {
 
@@ -40,7 +40,7 @@ inline int parse_error_exit(CLI::App& app, const CLI::ParseError& e, const std::
   }
   std::fprintf(stderr, "%s: usage error: %s\nRun `%s --help` for the options.\n", command.c_str(),
                what.empty() ? e.what() : what.c_str(), command.c_str());
-  return run::kExitInput;
+  return kExitInput;
 }
 
 }  // namespace crashlink::apps

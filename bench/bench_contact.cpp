@@ -21,17 +21,11 @@
 
 #include "solver/contact/contact_interface.h"
 #include "solver/model/mesh_generators.h"
+#include "solver/run/cpu_clock.h"
 
 using namespace crashlink;
 
 namespace {
-
-/// CPU time of the calling thread [s].
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 constexpr double kH = 0.005;  // element size [m]
 constexpr double kT = 0.001;  // shell thickness [m]
@@ -86,9 +80,9 @@ void BM_ContactPerSlaveNode(benchmark::State& state) {
         v[3 * i + 2] = -v[3 * i + 2];
     }
     std::fill(f.begin(), f.end(), 0.0);
-    const double t0 = thread_cpu_s();
+    const double t0 = run::thread_cpu_seconds();
     const auto step = ci.compute(x.data(), v.data(), kDt, f.data());
-    const double t1 = thread_cpu_s();
+    const double t1 = run::thread_cpu_seconds();
     benchmark::DoNotOptimize(step);
     state.SetIterationTime(t1 - t0);
     active += step.active_pairs;

@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
 
 namespace crashlink::coordinator {

@@ -45,7 +45,7 @@ class LayerRouter {
     int to = -1;
   };
 
-  /// A LayerForce from domain `from`. Throws ProtocolError (coordinator/protocol_error.h) naming
+  /// A LayerForce from domain `from`. Throws ProtocolError (solver/core/errors.h) naming
   /// the domain and the values: unknown interface, `from` not its fine side, a time other than
   /// the next expected one, wrong vector sizes.
   Routed force(int from, std::uint32_t interface, Tick time, std::span<const double> force_N,

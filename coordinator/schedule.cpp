@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
 
 namespace crashlink::coordinator {

@@ -18,7 +18,8 @@ namespace crashlink::wire {
 // Setup.variable_steps, LayerForce.step_proposal_ticks, LayerDisplacement.last (a version-5
 // daemon would run fixed steps against partners that do not); 7 checkpoints of variable `layer`
 // steps: LayerDisplacement.pause, LayerReport.checkpoint (a version-6 holder would not pause with
-// its owner, and the checkpoint instants would differ).
-inline constexpr std::uint32_t kProtocolVersion = 7;
+// its owner, and the checkpoint instants would differ); 8 the scheme by name: Setup.scheme instead
+// of the Coupling enum (a version-7 daemon would read every Setup as "unspecified").
+inline constexpr std::uint32_t kProtocolVersion = 8;
 
 }  // namespace crashlink::wire

@@ -3,7 +3,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
       libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler libeigen3-dev libhdf5-dev
-      libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
+      libyaml-cpp-dev libcli11-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev clang-format
       python3 python3-numpy python3-matplotlib python3-h5py
       iproute2)

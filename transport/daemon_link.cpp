@@ -7,6 +7,7 @@
 #include <random>
 #include <utility>
 
+#include "proto/envelope_name.h"
 #include "transport/errors.h"
 
 namespace crashlink::transport {
@@ -14,11 +15,6 @@ namespace crashlink::transport {
 namespace {
 
 const std::string kCoordinator = "coordinator";
-
-std::string body_name(const wire::Envelope& e) {
-  const auto* field = wire::Envelope::descriptor()->FindFieldByNumber(e.body_case());
-  return field != nullptr ? field->name() : "empty Envelope";
-}
 
 }  // namespace
 
@@ -66,10 +62,11 @@ DaemonLink::DaemonLink(std::string_view endpoint, const wire::Hello& hello,
     }
     if (r->envelope.has_error()) throw RemoteError(r->envelope.error());
     if (!r->envelope.has_hello() || r->envelope.hello().role() != wire::PEER_ROLE_COORDINATOR) {
-      throw ProtocolError(kCoordinator,
-                          fmt::format("the coordinator at {} answered the Hello of domain '{}' "
-                                      "with a {} instead of a coordinator Hello",
-                                      dealer_.endpoint(), hello.domain(), body_name(r->envelope)));
+      throw ProtocolError(
+          kCoordinator,
+          fmt::format("the coordinator at {} answered the Hello of domain '{}' "
+                      "with a {} instead of a coordinator Hello",
+                      dealer_.endpoint(), hello.domain(), wire::body_name(r->envelope)));
     }
     coordinator_hello_ = r->envelope.hello();
     break;

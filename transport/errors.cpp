@@ -41,9 +41,6 @@ PeerTimeoutError::PeerTimeoutError(std::string endpoint, std::string peer,
       peer_(std::move(peer)),
       silent_for_(silent_for) {}
 
-ProtocolError::ProtocolError(std::string peer, const std::string& what)
-    : Error(what), peer_(std::move(peer)) {}
-
 RemoteError::RemoteError(const wire::Error& error)
     : Error(remote_text(error)), code_(error.code()), domain_(core::log_escape(error.domain())) {}
 

@@ -38,17 +38,6 @@ class PeerTimeoutError : public TransportError {
   std::chrono::milliseconds silent_for_;
 };
 
-/// A peer broke the session rules: bytes that are not an Envelope, a message before the Hello, a
-/// Hello in the middle of a session. peer() names it (routing id / domain, or "coordinator").
-class ProtocolError : public crashlink::Error {
- public:
-  ProtocolError(std::string peer, const std::string& what);
-  const std::string& peer() const { return peer_; }
-
- private:
-  std::string peer_;
-};
-
 /// The peer sent an Error message (docs/design.md §3): a refused Hello (version or scenario
 /// mismatch, unknown domain) or a failure during the run. what() is the peer's text, which gives
 /// the values and the fix, escaped (core::log_escape); code() and domain() (escaped) are the

@@ -1,22 +1,18 @@
 #pragma once
-// crashlink-coordinator (docs/design.md §1, §2.6, §2.7, §3). `paper` (CoordinatorOptions::paper):
-// the same start-up on its `paper` cut (paper_cut.h), then every FreeState goes to a PaperExchange
-// and the Corrections it allows go back (the schedule of §2.6), its interface rows to
-// coordinator.h5; a guard stop ends the run with exit 3 and "the coupling went unstable". `layer`:
-// binds a CoordinatorLink, admits one daemon per non-empty domain of its own cut of the scenario,
-// checks their Registers (layer_cut.h), plans the fixed steps (split: common, multi: nested), sends
-// the Setups, then, until every daemon has said Bye: records the interface history rows the fine
-// sides report (LayerReport: link work and resultant force, coordinator/layer_work.h) and the
-// progress of each domain; the layer vectors go daemon to daemon over lanes when every daemon
-// offered one (docs/processes.md "Lanes"), else the coordinator routes LayerDisplacement
-// (coarse -> fine) and LayerForce (fine -> coarse) in arrival order (coordinator/layer_router.h:
-// per-interface time order checked).
+// crashlink-coordinator (docs/design.md §1, §2.6, §2.7, §3): a message pump around its coupling
+// scheme (coordinator_scheme.h; `layer` or `paper`, coordinator_schemes.h). It binds a
+// CoordinatorLink, admits one daemon per non-empty domain of the scheme's cut of the scenario,
+// has the scheme check each Register, then plan the steps and send the Setups; until every daemon
+// has said Bye it hands each message to the scheme (`layer`: LayerReports with the interface
+// history rows and progress, layer vectors routed when there are no lanes; `paper`: each
+// FreeState answered with the Corrections its schedule allows; a guard stop ends the run with
+// exit 3 and "the coupling went unstable") and watches for silence, stalls and stop requests.
 //
 // Output: DIR/coordinator.h5 (io::CouplingHistoryWriter): /coupling/<interface>/ histories and
 // /timing (wall, the coordinator's CPU, each daemon's time spent waiting, from its Bye).
 //
-// Failures (exit codes: run/exit_codes.h): a daemon that reports an Error, dies or goes silent
-// for the peer timeout (CoordinatorLink::check_alive), breaks the protocol or registers an
+// Failures (exit codes: solver/core/exit_codes.h): a daemon that reports an Error, dies or goes
+// silent for the peer timeout (CoordinatorLink::check_alive), breaks the protocol or registers an
 // interface that does not match; a domain that does not join within the join timeout. The
 // coordinator then sends an Error naming the culprit to every other daemon, writes its file and
 // returns non-zero with a message naming the culprit. Bytes that are not protocol messages and
@@ -39,9 +35,9 @@ struct CoordinatorOptions {
   std::string scenario;  ///< scenario file (daemons must run the same content: hash checked)
   std::string out_dir = "out";
   bool common_step = true;  ///< split (true) or multi (false)
-  /// The `paper` scheme (paper_cut.h, paper_exchange.h): the coordinator answers every free state
-  /// with its correction ([8]-[11]); false: `layer`. No checkpoints, no restart, no lanes.
-  bool paper = false;
+  /// The coupling scheme (coordinator_schemes.h: "layer" or "paper"); the daemons' must be the
+  /// same (Setup.scheme).
+  std::string coupling = "layer";
   bool drift = true;         ///< `paper`: drift correction [11] on
   double guard_rise = 0.05;  ///< `paper`: energy guard (coordinator/paper_guard.h)
   /// `paper`: each free state's own step proposal instead of the fixed plan (docs/design.md §2.6:
@@ -89,7 +85,7 @@ struct DomainOutcome {
 };
 
 struct CoordinatorResult {
-  int exit_code = 0;    ///< run/exit_codes.h
+  int exit_code = 0;    ///< solver/core/exit_codes.h
   std::string message;  ///< empty on success; else what happened, naming the culprit
   std::string culprit;  ///< the domain that failed, if known
   std::string endpoint;
@@ -107,9 +103,5 @@ struct CoordinatorResult {
 
 /// Runs the coordinator to the end of the run (or the first failure). Never throws.
 CoordinatorResult run_coordinator(const CoordinatorOptions& options);
-
-/// Writes `text` to `path` atomically (temporary file in the same folder, then rename). Throws
-/// InputError naming the path on failure.
-void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace crashlink::coordination

@@ -147,12 +147,12 @@ coordinator::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Re
   return coordinator::nested_steps(proposal, links, common, cut.names);
 }
 
-wire::Envelope setup_envelope(bool common, wire::Coupling coupling, const wire::Options& options,
+wire::Envelope setup_envelope(bool common, const std::string& scheme, const wire::Options& options,
                               std::int64_t ticks_per_second, coordinator::Tick end_ticks) {
   wire::Envelope e;
   auto* s = e.mutable_setup();
   s->set_mode(common ? wire::MODE_SPLIT : wire::MODE_MULTI);
-  s->set_coupling(coupling);
+  s->set_scheme(scheme);
   *s->mutable_options() = options;
   s->set_ticks_per_second(ticks_per_second);
   s->set_end_time_ticks(end_ticks);
@@ -164,7 +164,7 @@ wire::Envelope setup_message(const LayerCut& cut, const coordinator::StepPlan& p
                              std::int64_t ticks_per_second) {
   // every domain ends at the same base instant (LayerStepper::set_end_time)
   wire::Envelope e =
-      setup_envelope(common, wire::COUPLING_LAYER, options, ticks_per_second,
+      setup_envelope(common, "layer", options, ticks_per_second,
                      coordinator::aligned_end(plan, cut.end_time_s, ticks_per_second));
   auto* s = e.mutable_setup();
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);

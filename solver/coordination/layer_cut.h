@@ -58,7 +58,7 @@ coordinator::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Re
                                  bool common);
 
 /// A Setup with the fields every scheme's carries: mode, coupling, options, tick, end instant.
-wire::Envelope setup_envelope(bool common, wire::Coupling coupling, const wire::Options& options,
+wire::Envelope setup_envelope(bool common, const std::string& scheme, const wire::Options& options,
                               std::int64_t ticks_per_second, coordinator::Tick end_ticks);
 
 /// Daemon k's Setup.

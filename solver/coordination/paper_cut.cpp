@@ -77,8 +77,7 @@ wire::Envelope paper_setup(const PaperCut& cut, const coordinator::InterfaceTabl
                            const coordinator::StepPlan& plan, int k, bool common,
                            const wire::Options& options, std::int64_t ticks_per_second,
                            coordinator::Tick end_ticks) {
-  wire::Envelope e =
-      setup_envelope(common, wire::COUPLING_PAPER, options, ticks_per_second, end_ticks);
+  wire::Envelope e = setup_envelope(common, "paper", options, ticks_per_second, end_ticks);
   auto* s = e.mutable_setup();
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
   const auto M = table.summed_masses(k);

@@ -12,7 +12,6 @@
 #include <string>
 
 #include "coordinator/interpolation.h"
-#include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
 
 namespace crashlink::coordination {
@@ -156,7 +155,7 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
   const auto n3 = static_cast<int>(3 * D.n);
   if (s.accelerations_m_s2_size() != n3 || s.displacements_m_size() != n3 ||
       s.velocities_m_s_size() != n3)
-    throw coordinator::ProtocolError(fmt::format(
+    throw ProtocolError(fmt::format(
         "domain '{}' sent a free state at tick {} with {} accelerations, {} displacements and {} "
         "velocities; its {} coupled nodes need {} of each",
         name, s.time_ticks(), s.accelerations_m_s2_size(), s.displacements_m_size(),
@@ -165,7 +164,7 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
   // the next free state), each state's exactly once: its previous state's instant, -1 first.
   const Tick expected_energy = D.submitted == 0 ? -1 : D.latest;
   if (s.energy_time_ticks() != expected_energy)
-    throw coordinator::ProtocolError(fmt::format(
+    throw ProtocolError(fmt::format(
         "domain '{}' sent, with its free state at tick {}, energies of tick {}; expected those of "
         "its previous state (tick {}; -1 with the first)",
         name, s.time_ticks(), s.energy_time_ticks(), expected_energy));
@@ -197,7 +196,7 @@ void PaperExchange::submit(int k, const wire::FreeState& s) {
 void PaperExchange::final_energy(int k, const wire::EnergyTerms& e, Tick time) {
   auto& D = domains_[static_cast<std::size_t>(k)];
   if (time != D.latest)
-    throw coordinator::ProtocolError(
+    throw ProtocolError(
         fmt::format("domain '{}' ended with the energies of tick {}; its last state is at tick {}",
                     cut_.cut.names[static_cast<std::size_t>(k)], time, D.latest));
   D.energy[time] = e;

@@ -75,7 +75,7 @@ class PaperExchange {
                 std::vector<coordinator::Tick> steps, coordinator::paper::Drift drift,
                 double guard_rise, std::int64_t ticks_per_second, Steps policy = Steps::fixed);
 
-  /// Domain k's free state. Throws coordinator::ProtocolError (wrong time, sizes) and
+  /// Domain k's free state. Throws ProtocolError (wrong time, sizes) and
   /// NumericalError (the coupling went unstable).
   void submit(int k, const wire::FreeState& s);
   /// The next correction the schedule allows, as (daemon, Envelope), or nullopt. Throws

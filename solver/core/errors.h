@@ -6,6 +6,7 @@
 #include <cassert>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace crashlink {
 
@@ -38,10 +39,24 @@ class NumericalError : public Error {
 };
 
 /// A file that cannot be written or read back: disk full, read-only file system, no permission,
-/// a folder where a file is meant (run::kExitIo). Message: the file, the system's reason, the fix.
+/// a folder where a file is meant (kExitIo). Message: the file, the system's reason, the fix.
 class IoError : public Error {
  public:
   using Error::Error;
+};
+
+/// A peer broke the protocol (docs/design.md §3): bytes that are not an Envelope, a message out of
+/// its turn, a free state at another instant than the one imposed, a vector for an interface the
+/// peer does not own. peer() names it (a domain, "coordinator", "lane"; empty when the catcher
+/// knows who sent the message). The message gives the values and the rule broken.
+class ProtocolError : public Error {
+ public:
+  explicit ProtocolError(const std::string& what) : Error(what) {}
+  ProtocolError(std::string peer, const std::string& what) : Error(what), peer_(std::move(peer)) {}
+  const std::string& peer() const { return peer_; }
+
+ private:
+  std::string peer_;
 };
 
 /// A model that cannot be run as built (inconsistent sizes, a node in no element, ...).

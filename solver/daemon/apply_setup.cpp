@@ -9,7 +9,7 @@ namespace crashlink::daemon {
 void apply_setup(const wire::Setup& setup, std::int64_t ticks_per_second, const std::string& domain,
                  std::vector<cosim::LayerPort>& ports) {
   if (setup.ticks_per_second() != ticks_per_second || setup.step_ticks() < 1) {
-    throw transport::ProtocolError(
+    throw ProtocolError(
         "coordinator",
         fmt::format("Setup for domain '{}' with step {} ticks at {} ticks per "
                     "second (Hello: {}); expected a step >= 1 at the Hello's tick",
@@ -22,7 +22,7 @@ void apply_setup(const wire::Setup& setup, std::int64_t ticks_per_second, const 
     }
     if (found == nullptr || found->fine_side() != port.fine_side ||
         found->partner() != port.partner) {
-      throw transport::ProtocolError(
+      throw ProtocolError(
           "coordinator",
           fmt::format("Setup for domain '{}' does not describe interface {} as this domain's cut "
                       "does ({} side, partner '{}'): do both read the same scenario?",

@@ -14,7 +14,7 @@
 namespace crashlink::daemon {
 
 /// Sets LayerPort::partner_step of every fine port of `ports` from `setup`. Throws
-/// transport::ProtocolError (peer "coordinator") naming the domain, the values and the likely
+/// ProtocolError (peer "coordinator") naming the domain, the values and the likely
 /// cause when the Setup does not fit.
 void apply_setup(const wire::Setup& setup, std::int64_t ticks_per_second, const std::string& domain,
                  std::vector<cosim::LayerPort>& ports);

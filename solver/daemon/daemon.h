@@ -1,8 +1,10 @@
 #pragma once
-// crashlink-solver: one domain of a `layer` run (docs/design.md §1, §2.7 "How to distribute layer",
-// §3) as a daemon talking to the coordinator over a DaemonLink (transport/daemon_link.h); with
-// DaemonOptions::paper, one domain of a `paper` run instead (paper_port.h: Register of the coupled
-// nodes, then per cycle FreeState -> Correction, docs/design.md §2.6; no lanes, no checkpoints).
+// crashlink-solver: one domain of a coupled run (docs/design.md §1, §2.7, §3) as a daemon talking
+// to the coordinator over a DaemonLink (transport/daemon_link.h): a message pump between its
+// transport and its coupling scheme (coupling/domain_scheme.h; `layer` or `paper`,
+// domain_schemes.h), which decides what is sent, what is awaited and when a cycle runs. Below,
+// what a `layer` run does (`paper`: Register of the coupled nodes, then per cycle FreeState ->
+// Correction, docs/design.md §2.6; no lanes, no checkpoints, no reports).
 //
 //   read the scenario, hash it (io::scenario_hash: the coordinator refuses another file),
 //   cut it (partition::decompose, Layer), build this domain (cosim::build_layer_domain),
@@ -27,8 +29,8 @@
 // Output: DIR/domains/<domain>.h5 and .xdmf (io::ResultWriter layout, the domain's sub-model,
 // sampled at the instants a mono run samples: run/domain_recorder.h), what solver/gather reads.
 //
-// Failures (exit codes: run/exit_codes.h): a guard failure (NumericalError), a model error, a
-// protocol violation or an internal error is reported to the coordinator as an Error (code, and a
+// Failures (exit codes: solver/core/exit_codes.h): a guard failure (NumericalError), a model error,
+// a protocol violation or an internal error is reported to the coordinator as an Error (code, and a
 // message naming the domain, the time and the cycle); an Error from the coordinator, a silent
 // coordinator (PeerTimeoutError) or a socket failure ends the daemon. In every case the result
 // file is flushed and closed (what was sampled stays readable) and run_daemon returns non-zero.
@@ -50,22 +52,22 @@ struct DaemonOptions {
   /// dt the solver's initial stable step (LayerNetworkOptions' rule, so both plan the same steps).
   double step_safety = 1.0;
   double max_step_s = 0.0;  ///< > 0: caps the proposal (how tests and studies impose a ratio)
+  /// Offer a lane to the partners when the scheme has vectors for them (docs/processes.md
+  /// "Lanes"); false: --no-lane, this domain's vectors (and so every domain's) go through the
+  /// coordinator.
+  bool offer_lane = true;
+  /// The coupling scheme (crashlink-solver --coupling; domain_schemes.h): how the scenario is cut
+  /// and what travels each cycle. The coordinator's Setup must name the same.
+  std::string coupling = "layer";
   /// Run as a thread of a bigger process (crashlink run --transport inproc): CPU time is this
   /// thread's, not the process's.
-  /// Offer a lane to the partners (docs/processes.md "Lanes"); false: --no-lane, this domain's
-  /// layer vectors (and so every domain's) go through the coordinator.
-  bool offer_lane = true;
-  /// The `paper` scheme (crashlink-solver --coupling paper; solver/daemon/paper_port.h): cut the
-  /// scenario with partition::Scheme::Paper, register the coupled nodes, then send a FreeState
-  /// and apply its Correction every cycle. false: `layer`.
-  bool paper = false;
   bool in_process = false;
   /// Set from outside (signal handler) to stop: checked every cycle; the coordinator is told.
   const std::atomic<bool>* stop = nullptr;
 };
 
 struct DaemonResult {
-  int exit_code = 0;    ///< run/exit_codes.h
+  int exit_code = 0;    ///< solver/core/exit_codes.h
   std::string message;  ///< empty on success; else what happened (names the domain)
   std::string result_h5;
   std::int64_t cycles = 0;

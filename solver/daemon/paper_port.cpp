@@ -39,7 +39,7 @@ std::unique_ptr<integration::Solver> use_summed_masses(PaperPort& port, const wi
   const auto n = port.nodes.size();
   if (static_cast<std::size_t>(setup.summed_masses_kg_size()) != n ||
       static_cast<std::size_t>(setup.node_roles_size()) != n)
-    throw transport::ProtocolError(
+    throw ProtocolError(
         "coordinator",
         fmt::format("the `paper` Setup of domain '{}' has {} summed masses and {} "
                     "roles for its {} coupled nodes",
@@ -54,13 +54,13 @@ std::unique_ptr<integration::Solver> use_summed_masses(PaperPort& port, const wi
     const auto id = port.domain->model.nodes.id[node.local];
     if (ref != node.reference ||
         (role != wire::NODE_ROLE_REFERENCE && role != wire::NODE_ROLE_NON_REFERENCE))
-      throw transport::ProtocolError(
-          "coordinator", fmt::format("the `paper` Setup of domain '{}' gives node id {} the role "
-                                     "{}; this domain's cut makes it {}",
-                                     domain, id, wire::NodeRole_Name(role),
-                                     node.reference ? "the reference" : "the non-reference side"));
+      throw ProtocolError("coordinator",
+                          fmt::format("the `paper` Setup of domain '{}' gives node id {} the role "
+                                      "{}; this domain's cut makes it {}",
+                                      domain, id, wire::NodeRole_Name(role),
+                                      node.reference ? "the reference" : "the non-reference side"));
     if (!(std::abs(M - natural) <= 1e-12 * natural))
-      throw transport::ProtocolError(
+      throw ProtocolError(
           "coordinator",
           fmt::format("the `paper` Setup of domain '{}' gives node id {} the summed mass {} kg; "
                       "the cut's natural mass is {} kg (is the node used by a third domain, or "
@@ -123,7 +123,7 @@ wire::EnergyTerms energy_terms(const PaperPort& port) {
 void apply_correction(PaperPort& port, const wire::Correction& c, const std::string& domain) {
   const std::size_t n3 = 3 * port.nodes.size();
   if (static_cast<std::size_t>(c.accelerations_m_s2_size()) != n3)
-    throw transport::ProtocolError(
+    throw ProtocolError(
         "coordinator",
         fmt::format("a Correction for domain '{}' at tick {} has {} accelerations "
                     "for its {} coupled nodes ({} expected)",
@@ -136,10 +136,10 @@ void apply_correction(PaperPort& port, const wire::Correction& c, const std::str
     for (std::size_t d = 0; d < 3; ++d) {
       const double x = c.accelerations_m_s2(static_cast<int>(3 * j + d));
       if (!std::isfinite(x))
-        throw transport::ProtocolError(
-            "coordinator", fmt::format("a Correction for domain '{}' at tick {} gives node id {} "
-                                       "the acceleration {}",
-                                       domain, c.time_ticks(), s.model().nodes.id[l], x));
+        throw ProtocolError("coordinator",
+                            fmt::format("a Correction for domain '{}' at tick {} gives node id {} "
+                                        "the acceleration {}",
+                                        domain, c.time_ticks(), s.model().nodes.id[l], x));
       const bool held = !fixed.empty() && (fixed[l] & (1u << d));
       a[d] = held ? 0.0 : x;
     }

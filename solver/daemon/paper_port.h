@@ -38,7 +38,7 @@ PaperPort build_paper_port(const partition::Decomposition& dec, const std::strin
 /// The Setup's summed masses and roles, checked against this domain's cut (sizes, roles, masses
 /// within 1e-12 of the cut's natural sums), kept in port.summed_mass_kg. When they differ in any
 /// bit from the ones port.solver was built with, returns a new solver built with them (not
-/// initialized) for the caller to swap in; else nullptr. Throws transport::ProtocolError naming
+/// initialized) for the caller to swap in; else nullptr. Throws ProtocolError naming
 /// the domain and the node.
 std::unique_ptr<integration::Solver> use_summed_masses(PaperPort& port, const wire::Setup& setup,
                                                        const std::string& domain);

@@ -14,7 +14,7 @@
 //   Error, anything else a protocol stop.
 // The coupling history file (CouplingHistory, HDF5) is not written: file I/O per input would
 // cost more than it finds; the rows LayerRouter returns are checked instead (finite time order).
-// Expected failures, which end the run as the coordinator ends it: coordinator::ProtocolError,
+// Expected failures, which end the run as the coordinator ends it: ProtocolError,
 // ModelError (check_register, match_sides' InterfaceError, nested_steps). Anything else escapes
 // and is a bug.
 #include <cstdint>
@@ -29,7 +29,6 @@
 #include <zmq.hpp>
 
 #include "coordinator/layer_router.h"
-#include "coordinator/protocol_error.h"
 #include "solver/coordination/layer_cut.h"
 #include "solver/core/errors.h"
 #include "tests/fuzz/fuzz_frames.h"
@@ -147,7 +146,7 @@ class Coordinator {
       } else {
         throw RunOver("an Error, or a protocol stop: another message during the run");
       }
-    } catch (const coordinator::ProtocolError& x) {
+    } catch (const ProtocolError& x) {
       throw RunOver(std::string("protocol stop: ") + x.what());
     }
   }

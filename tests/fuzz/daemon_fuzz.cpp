@@ -12,7 +12,7 @@
 // Work per input is bounded the way the simulated time bounds a run: after kMaxCycles cycles the
 // input is done (a valid Setup may ask for many tiny steps; that is a long run, not a bug). A
 // frame's tag does not matter.
-// Expected failures, which end the daemon as it ends: transport::ProtocolError,
+// Expected failures, which end the daemon as it ends: ProtocolError,
 // transport::RemoteError, ModelError (stepper set-up, step above the stable one), NumericalError
 // (the guard, e.g. after absurd ghost displacements). Anything else escapes and is a bug.
 #include <cstdint>
@@ -46,14 +46,14 @@ std::optional<wire::Envelope> receive(std::span<const std::uint8_t> bytes) {
   zmq::message_t message(bytes.data(), bytes.size());
   wire::Envelope e;
   if (const auto error = transport::detail::parse(message, e); !error.empty())
-    throw transport::ProtocolError("coordinator", error);
+    throw ProtocolError("coordinator", error);
   switch (e.body_case()) {
     case wire::Envelope::kHeartbeat:
       return std::nullopt;
     case wire::Envelope::kError:
       throw transport::RemoteError(e.error());
     case wire::Envelope::kHello:
-      throw transport::ProtocolError("coordinator", "a second Hello");
+      throw ProtocolError("coordinator", "a second Hello");
     default:
       return e;
   }
@@ -68,12 +68,12 @@ void run(const fuzz::Scene& scene, const std::string& domain, fuzz::FrameReader&
   zmq::message_t message(first->bytes.data(), first->bytes.size());
   wire::Envelope hello;
   if (const auto error = transport::detail::parse(message, hello); !error.empty())
-    throw transport::ProtocolError("coordinator", error);
+    throw ProtocolError("coordinator", error);
   if (hello.has_error()) throw transport::RemoteError(hello.error());
   if (!hello.has_hello() || hello.hello().role() != wire::PEER_ROLE_COORDINATOR)
-    throw transport::ProtocolError("coordinator", "not a coordinator Hello");
+    throw ProtocolError("coordinator", "not a coordinator Hello");
   const std::int64_t tps = hello.hello().ticks_per_second();
-  if (tps < 1) throw transport::ProtocolError("coordinator", "ticks per second < 1");
+  if (tps < 1) throw ProtocolError("coordinator", "ticks per second < 1");
   // await_setup(): the next message that is not a Heartbeat must be the Setup.
   std::optional<wire::Envelope> setup;
   while (!setup) {
@@ -81,7 +81,7 @@ void run(const fuzz::Scene& scene, const std::string& domain, fuzz::FrameReader&
     if (!f) return;
     setup = receive(f->bytes);
   }
-  if (!setup->has_setup()) throw transport::ProtocolError("coordinator", "not a Setup");
+  if (!setup->has_setup()) throw ProtocolError("coordinator", "not a Setup");
   daemon::apply_setup(setup->setup(), tps, domain, dom.ports);
   cosim::LayerStepper stepper(*dom.solver, std::move(dom.ports), setup->setup().step_ticks(), tps);
   stepper.initialize();
@@ -95,11 +95,11 @@ void run(const fuzz::Scene& scene, const std::string& domain, fuzz::FrameReader&
     auto e = receive(f->bytes);
     if (!e) continue;
     auto m = daemon::to_layer_message(*e);
-    if (!m) throw transport::ProtocolError("coordinator", "a Bye or another message in the run");
+    if (!m) throw ProtocolError("coordinator", "a Bye or another message in the run");
     try {
       stepper.deliver(*m);
     } catch (const ModelError& x) {
-      throw transport::ProtocolError("coordinator", x.what());
+      throw ProtocolError("coordinator", x.what());
     }
     if (stepper.advance(on_sample) == cosim::LayerStepper::Wait::Finished) return;
     (void)stepper.take_outbox();
@@ -115,7 +115,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     run(scene, domain, in);
   } catch (const Enough&) {
-  } catch (const transport::ProtocolError& e) {
+  } catch (const ProtocolError& e) {
     fuzz::report(e);
   } catch (const transport::RemoteError& e) {
     fuzz::report(e);

@@ -1,6 +1,6 @@
 // The command lines of the three programs (docs/processes.md, "Exit codes"): every usage error of
 // `crashlink` (with each subcommand, and without one), crashlink-solver and crashlink-coordinator
-// exits 2 (run::kExitInput) with CLI11's message and the --help to run, on stderr; `crashlink`
+// exits 2 (kExitInput) with CLI11's message and the --help to run, on stderr; `crashlink`
 // alone prints the usage and exits 2; --help and --version exit 0, --version printing the
 // program, crashlink's version and the wire protocol version. Before, CLI11's own codes came out
 // (105 a value out of range, 106 a missing option or subcommand, 109 an unknown argument).
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "proto/protocol_version.h"
-#include "solver/run/exit_codes.h"
+#include "solver/core/exit_codes.h"
 #include "tests/integration/shell_command.h"
 
 using crashlink::testing::run_command;
@@ -47,7 +47,7 @@ void expect_usage_error(const std::string& program, const std::string& args,
                         const std::string& command, const std::string& cli11_says) {
   const auto o = run(program, args);
   SCOPED_TRACE(program + " " + args);
-  EXPECT_EQ(o.code, crashlink::run::kExitInput) << o.out;
+  EXPECT_EQ(o.code, crashlink::kExitInput) << o.out;
   EXPECT_NE(o.out.find(command + ": usage error: "), std::string::npos) << o.out;
   EXPECT_NE(o.out.find(cli11_says), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("Run `" + command + " --help`"), std::string::npos) << o.out;
@@ -72,7 +72,7 @@ std::vector<std::string> subcommands() {
 
 TEST(CliUsage, CrashlinkWithoutSubcommandPrintsUsageAndExits2) {
   const auto o = run("crashlink", "");
-  EXPECT_EQ(o.code, crashlink::run::kExitInput) << o.out;
+  EXPECT_EQ(o.code, crashlink::kExitInput) << o.out;
   EXPECT_NE(o.out.find("Usage:"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("Subcommands:"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("A subcommand is required"), std::string::npos) << o.out;

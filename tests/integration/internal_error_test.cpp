@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
+#include "solver/core/exit_codes.h"
 #include "solver/io/result_reader.h"
-#include "solver/run/exit_codes.h"
 #include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
@@ -31,7 +31,7 @@ TEST(InternalError, AnUnexpectedExceptionInADaemonEndsTheRunWithExit4) {
                       scenario + " --mode multi --quiet --out " + (dir / "out").string(),
                   status);
   ASSERT_TRUE(WIFEXITED(status)) << out;
-  EXPECT_EQ(WEXITSTATUS(status), crashlink::run::kExitInternal) << out;
+  EXPECT_EQ(WEXITSTATUS(status), crashlink::kExitInternal) << out;
   EXPECT_NE(out.find("domain 'right' exited with code 4"), std::string::npos) << out;
   EXPECT_NE(out.find("internal error: injected at cycle 200"), std::string::npos) << out;
   EXPECT_NE(out.find("domain 'left' exited with code 5"), std::string::npos) << out;

@@ -1,5 +1,5 @@
 // I/O failures (issue 20 item 3): a file that cannot be written ends every process with exit 6
-// (run::kExitIo) and a message naming the file and the system's reason, never a crash, and what
+// (kExitIo) and a message naming the file and the system's reason, never a crash, and what
 // was written before stays readable. Before: mono on a 2 MB file system died of SIGSEGV (exit 139,
 // HDF5's clean-up at exit after a failed close), multi's three processes too, other failures came
 // back as 3, 4 or 5, and a multi run left a 0-byte result.h5.
@@ -15,8 +15,8 @@
 #include <fstream>
 #include <string>
 
+#include "solver/core/exit_codes.h"
 #include "solver/io/result_reader.h"
-#include "solver/run/exit_codes.h"
 #include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"
 
@@ -70,7 +70,7 @@ TEST_P(IoFailure, AFullDiskEndsTheRunWithExit6NamingTheFile) {
   // 3 MB per file: the CI scene's result files grow to 3-8 MB
   const std::string log =
       run_limited(mode, dir / "out", 3072, code, mode == "multi" ? "--no-lanes" : "");
-  EXPECT_EQ(code, crashlink::run::kExitIo) << log;
+  EXPECT_EQ(code, crashlink::kExitIo) << log;
   EXPECT_NE(log.find("I/O error"), std::string::npos) << log;
   EXPECT_NE(log.find("the disk is full"), std::string::npos) << log;
   EXPECT_EQ(log.find("Segmentation"), std::string::npos) << log;
@@ -96,7 +96,7 @@ TEST(IoFailure, OutNamingAFileIsRefusedWithExit6) {
   for (const std::string mode : {"mono", "multi"}) {
     int code = -1;
     const std::string log = run_limited(mode, dir / "taken", 0, code);
-    EXPECT_EQ(code, crashlink::run::kExitIo) << mode << "\n" << log;
+    EXPECT_EQ(code, crashlink::kExitIo) << mode << "\n" << log;
     EXPECT_NE(log.find((dir / "taken").string()), std::string::npos) << log;
   }
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
@@ -111,7 +111,7 @@ TEST(IoFailure, ANoSpaceLeftFileSystemEndsMonoWithExit6) {
     GTEST_SKIP() << "cannot mount a 2 MB tmpfs here (not root?): the ulimit tests cover the path";
   int code = -1;
   const std::string log = run_limited("mono", mnt / "out", 0, code);
-  EXPECT_EQ(code, crashlink::run::kExitIo) << log;
+  EXPECT_EQ(code, crashlink::kExitIo) << log;
   EXPECT_NE(log.find("the disk is full"), std::string::npos) << log;
   expect_readable(mnt / "out" / "result.h5", log);
   ::umount2(mnt.c_str(), MNT_DETACH);

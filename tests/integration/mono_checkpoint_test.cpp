@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/exit_codes.h"
 #include "solver/run/checkpoint_store.h"
-#include "solver/run/exit_codes.h"
 #include "solver/run/run_single.h"
 #include "tests/integration/process_test_support.h"
 #include "tests/integration/result_compare.h"
@@ -125,7 +125,7 @@ TEST(MonoCheckpointRestart, ADamagedNewestCheckpointIsReportedAndThePreviousOneU
 void expect_refused(const std::string& command, const std::vector<std::string>& expect) {
   int status = -1;
   const std::string out = run_command(command, status);
-  EXPECT_EQ(exit_code(status), crashlink::run::kExitInput) << out;
+  EXPECT_EQ(exit_code(status), crashlink::kExitInput) << out;
   for (const auto& e : expect) EXPECT_NE(out.find(e), std::string::npos) << e << "\n" << out;
 }
 

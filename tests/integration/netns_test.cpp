@@ -37,8 +37,8 @@
 #include <vector>
 
 #include "process_test_support.h"
+#include "solver/core/exit_codes.h"
 #include "solver/io/result_reader.h"
-#include "solver/run/exit_codes.h"
 #include "transport/curve_keygen.h"
 
 using namespace crashlink;
@@ -487,9 +487,9 @@ TEST(NetworkCut, LinkDownIsDetectedOnBothSides) {
       cc, ct, oc, ot, fc, ft);
   const std::string clog = p.coordinator->output(), flog = p.daemons[0]->output(),
                     olog = p.daemons[1]->output();
-  EXPECT_EQ(cc, run::kExitPeer) << clog;
-  EXPECT_EQ(fc, run::kExitPeer) << flog;
-  EXPECT_EQ(oc, run::kExitPeer) << olog;
+  EXPECT_EQ(cc, kExitPeer) << clog;
+  EXPECT_EQ(fc, kExitPeer) << flog;
+  EXPECT_EQ(oc, kExitPeer) << olog;
   EXPECT_GE(ct, 0.9);  // not before the peer timeout
   EXPECT_LE(ct, 5.0);
   EXPECT_LE(ot, 5.0);

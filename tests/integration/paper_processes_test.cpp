@@ -19,10 +19,10 @@
 #include "solver/coordination/coordinator_run.h"
 #include "solver/coordination/paper_exchange.h"
 #include "solver/core/errors.h"
+#include "solver/core/exit_codes.h"
 #include "solver/cosim/paper_runner.h"
 #include "solver/daemon/daemon.h"
 #include "solver/io/scenario_reader.h"
-#include "solver/run/exit_codes.h"
 
 using namespace crashlink;
 using namespace crashlink::proc_test;
@@ -56,7 +56,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
     co.common_step = ro.split;
     co.variable_steps = ro.variable_steps;
     co.drift = ro.drift;
-    co.paper = true;
+    co.coupling = "paper";
     co.in_process = true;
     co.log = nullptr;
     coordination::CoordinatorResult cr;
@@ -72,7 +72,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
         d.scenario = scenario;
         d.out_dir = out.string();
         d.in_process = true;
-        d.paper = true;
+        d.coupling = "paper";
         d.max_step_s = step;  // 0: none
         d.step_safety = ro.step_safety;
         dr[k] = daemon::run_daemon(d);
@@ -247,11 +247,11 @@ TEST_P(PaperProcesses, UnstableRatioIsStoppedWhereTheRunnerStops) {
   std::string log;
   std::vector<int> daemon_exit;
   EXPECT_EQ(run_paper(GetParam(), scenario, out, bar_caps(4), log, {.daemon_exit = &daemon_exit}),
-            run::kExitNumerical)
+            kExitNumerical)
       << log;
   EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
   ASSERT_EQ(daemon_exit.size(), 2u);
-  for (const int c : daemon_exit) EXPECT_EQ(c, run::kExitPeer) << log;  // stopped by it
+  for (const int c : daemon_exit) EXPECT_EQ(c, kExitPeer) << log;  // stopped by it
 
   std::string stopped;
   reference(io::read_scenario(scenario), kFineStep, 4 * kFineStep, 50, stopped);
@@ -310,7 +310,7 @@ TEST(PaperProcessesCli, MismatchedCouplingIsRefusedWithTheFix) {
     const auto ds = d->wait(20s);
     ASSERT_TRUE(cs.has_value()) << c->output();
     ASSERT_TRUE(ds.has_value()) << d->output();
-    EXPECT_EQ(exit_code(*cs), run::kExitInput) << c->output();
+    EXPECT_EQ(exit_code(*cs), kExitInput) << c->output();
     EXPECT_NE(exit_code(*ds), 0) << d->output();
     EXPECT_NE(c->output().find("--coupling"), std::string::npos) << c->output();
     EXPECT_NE(c->output().find("'fine'"), std::string::npos) << c->output();
@@ -486,7 +486,7 @@ TEST(PaperProcessesThreeDomains, VariableMultiIsStoppedByTheGuard) {
   EXPECT_EQ(run_paper(Scheme::inproc, scenario, dir / "out",
                       {{"fine", 0.0}, {"mid", 0.0}, {"coarse", 0.0}}, log,
                       {.variable_steps = true, .daemon_exit = &daemon_exit}),
-            run::kExitNumerical)
+            kExitNumerical)
       << log;
   EXPECT_NE(log.find("the coupling went unstable"), std::string::npos) << log;
   EXPECT_NE(log.find("variable steps, initially"), std::string::npos) << log;

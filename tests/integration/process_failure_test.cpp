@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "process_test_support.h"
+#include "solver/core/exit_codes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
-#include "solver/run/exit_codes.h"
 
 using namespace crashlink;
 using namespace crashlink::proc_test;
@@ -132,8 +132,8 @@ TEST_P(ProcessFailure, FrozenDaemonIsDetectedAsSilent) {
       "[measured] %s: daemon 'coarse' SIGSTOPped: coordinator exit %d after %.3f s, "
       "daemon 'fine' exit %d after %.3f s (peer timeout 1 s)\n",
       transport::scheme_name(scheme()).data(), cc, ct, dc, dt);
-  EXPECT_EQ(cc, run::kExitPeer);
-  EXPECT_EQ(dc, run::kExitPeer);
+  EXPECT_EQ(cc, kExitPeer);
+  EXPECT_EQ(dc, kExitPeer);
   EXPECT_GE(ct, 0.9);  // not before the peer timeout
   EXPECT_LE(ct, 5.0);
   EXPECT_LE(dt, 5.0);
@@ -158,8 +158,8 @@ TEST_P(ProcessFailure, KilledCoordinatorStopsTheDaemons) {
       "[measured] %s: coordinator SIGKILLed: daemon 'fine' exit %d after %.3f s, daemon "
       "'coarse' exit %d after %.3f s (peer timeout 1 s)\n",
       transport::scheme_name(scheme()).data(), fc, ft, dc, dt);
-  EXPECT_EQ(fc, run::kExitPeer);
-  EXPECT_EQ(dc, run::kExitPeer);
+  EXPECT_EQ(fc, kExitPeer);
+  EXPECT_EQ(dc, kExitPeer);
   EXPECT_LE(ft, 5.0);
   EXPECT_LE(dt, 5.0);
   EXPECT_TRUE(has(fine_->output(), "the coordinator")) << fine_->output();

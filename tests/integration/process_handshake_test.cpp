@@ -16,9 +16,9 @@
 #include "process_test_support.h"
 #include "proto/protocol_version.h"
 #include "solver/coordination/coordinator_run.h"
+#include "solver/core/exit_codes.h"
 #include "solver/daemon/daemon.h"
 #include "solver/io/scenario_hash.h"
-#include "solver/run/exit_codes.h"
 #include "transport/daemon_link.h"
 #include "transport/dealer.h"
 #include "transport/errors.h"
@@ -194,7 +194,7 @@ TEST_P(Handshake, OtherScenarioFileIsRefusedWithBothHashes) {
   const auto [code, out] = p.wait_daemon(k);
   std::printf("[measured] %s: daemon with another scenario: exit %d: %s\n", name().c_str(), code,
               out.c_str());
-  EXPECT_EQ(code, run::kExitInput) << out;
+  EXPECT_EQ(code, kExitInput) << out;
   EXPECT_TRUE(has(out, io::scenario_hash(ours))) << out;
   EXPECT_TRUE(has(out, io::scenario_hash(other))) << out;
   EXPECT_TRUE(has(out, "same scenario file")) << out;
@@ -267,7 +267,7 @@ TEST_P(Handshake, MismatchedRegisterStopsTheRunNamingDomainAndNode) {
     EXPECT_TRUE(has(what, "987654")) << what;
   }
   const auto [code, log] = p.wait_coordinator();
-  EXPECT_EQ(code, run::kExitInput) << log;
+  EXPECT_EQ(code, kExitInput) << log;
   EXPECT_TRUE(has(log, "987654")) << log;
 }
 

@@ -19,8 +19,8 @@
 #include <thread>
 
 #include "process_test_support.h"
+#include "solver/core/exit_codes.h"
 #include "solver/io/scenario_hash.h"
-#include "solver/run/exit_codes.h"
 #include "transport/daemon_link.h"
 #include "transport/dealer.h"
 #include "transport/errors.h"
@@ -143,7 +143,7 @@ TEST_P(Sessions, SecondDaemonForARunningDomainIsRefusedAndTheRunEndsAsUndisturbe
   const std::string said = full_output(*intruder);
   std::printf("[measured] %s: the second daemon for 'fine' exited %d after %.3f s: %s\n",
               name().c_str(), exit_code(*st), seconds_since(t0), said.c_str());
-  EXPECT_EQ(exit_code(*st), run::kExitInput) << said;
+  EXPECT_EQ(exit_code(*st), kExitInput) << said;
   EXPECT_TRUE(has(said, "ERROR_CODE_DOMAIN_HELD")) << said;
   EXPECT_TRUE(has(said, "domain 'fine' is already held by a daemon in this run")) << said;
   EXPECT_TRUE(has(said, "fix: stop this daemon")) << said;

@@ -1,6 +1,6 @@
 // A stop on request (issue 20 item 2): SIGTERM or SIGINT to `crashlink run` (what `kill PID`,
 // Ctrl-C or a batch scheduler's cancel sends) stops every process of the run at once, each
-// flushing its file, and the launcher exits with run::kExitStopped and says "stopped on request",
+// flushing its file, and the launcher exits with kExitStopped and says "stopped on request",
 // in mono and in multi over ipc, tcp and inproc. Before, the launcher held the request for the peer
 // timeout + heartbeat + 2 s (7.5 s by default) and a run that ended meanwhile exited 0.
 #include <gtest/gtest.h>
@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "solver/core/exit_codes.h"
 #include "solver/io/result_reader.h"
-#include "solver/run/exit_codes.h"
 #include "tests/integration/process_test_support.h"
 #include "transport/endpoint.h"
 
@@ -72,7 +72,7 @@ TEST_P(StopRequest, EveryProcessStopsAtOnceWithItsFileReadable) {
   const double took_s = std::chrono::duration<double>(run.exited_at() - sent).count();
   std::printf("[measured] %s: every process stopped %.3f s after signal %d\n", c.name.c_str(),
               took_s, c.signal);
-  EXPECT_EQ(exit_code(*status), crashlink::run::kExitStopped) << run.output();
+  EXPECT_EQ(exit_code(*status), crashlink::kExitStopped) << run.output();
   EXPECT_NE(run.output().find("stopped on request"), std::string::npos) << run.output();
   // 1 s asked; the margin is for a machine whose two cores are busy with other tests
   EXPECT_LT(took_s, 2.0) << run.output();
@@ -108,7 +108,7 @@ void expect_stops_on_sigterm(Child& daemon, const char* what) {
   ASSERT_TRUE(st.has_value()) << daemon.output();
   const double took = std::chrono::duration<double>(daemon.exited_at() - sent).count();
   std::printf("[measured] a daemon waiting for %s stopped %.3f s after SIGTERM\n", what, took);
-  EXPECT_EQ(exit_code(*st), crashlink::run::kExitStopped) << daemon.output();
+  EXPECT_EQ(exit_code(*st), crashlink::kExitStopped) << daemon.output();
   EXPECT_LT(took, 2.0) << daemon.output();
 }
 
@@ -163,7 +163,7 @@ TEST(StopRequest, ASignalToOnePieceStopsItAtOnceAndTheRunWithExit7) {
   EXPECT_LT(took, 2.0) << run.output();
   const auto st = run.wait(30s);
   ASSERT_TRUE(st.has_value()) << run.output();
-  EXPECT_EQ(exit_code(*st), crashlink::run::kExitStopped) << run.output();
+  EXPECT_EQ(exit_code(*st), crashlink::kExitStopped) << run.output();
   EXPECT_NE(run.output().find("domain 'right' at t = "), std::string::npos) << run.output();
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
@@ -190,7 +190,7 @@ TEST(StopRequest, AWaitingDaemonStopsAtOnceAndTheCoordinatorWithIt) {
   expect_stops_on_sigterm(fine, "its Setup");
   const auto cs = coordinator->wait(20s);
   ASSERT_TRUE(cs.has_value()) << coordinator->output();
-  EXPECT_EQ(exit_code(*cs), crashlink::run::kExitStopped) << coordinator->output();
+  EXPECT_EQ(exit_code(*cs), crashlink::kExitStopped) << coordinator->output();
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
 

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "coordinator/protocol_error.h"
 #include "solver/core/errors.h"
 
 using namespace crashlink::coordinator;
+using crashlink::ProtocolError;
 
 namespace {
 

@@ -114,7 +114,7 @@ TEST(Proto, SetupRoundTrip) {
   s->add_node_roles(wire::NODE_ROLE_NON_REFERENCE);
   s->add_node_roles(wire::NODE_ROLE_LAYER_GHOST);
   s->set_mode(wire::MODE_MULTI);
-  s->set_coupling(wire::COUPLING_PAPER);
+  s->set_scheme("paper");
   s->mutable_options()->set_drift_correction(true);
   s->mutable_options()->set_heartbeat_interval_ms(250);
   s->mutable_options()->set_peer_timeout_ms(5000);
@@ -133,7 +133,7 @@ TEST(Proto, SetupRoundTrip) {
   EXPECT_EQ(o.node_roles(1), wire::NODE_ROLE_NON_REFERENCE);
   EXPECT_EQ(o.node_roles(2), wire::NODE_ROLE_LAYER_GHOST);
   EXPECT_EQ(o.mode(), wire::MODE_MULTI);
-  EXPECT_EQ(o.coupling(), wire::COUPLING_PAPER);
+  EXPECT_EQ(o.scheme(), "paper");
   EXPECT_TRUE(o.options().drift_correction());
   EXPECT_EQ(o.options().heartbeat_interval_ms(), 250u);
   EXPECT_EQ(o.options().peer_timeout_ms(), 5000u);

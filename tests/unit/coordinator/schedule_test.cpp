@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "coordinator/interpolation.h"
-#include "coordinator/protocol_error.h"
 #include "coordinator/ticks.h"
 #include "solver/core/errors.h"
 
@@ -332,7 +331,7 @@ TEST(Schedule, UnclippedCommonRunStopsAtTheFirstInstantPastTheEnd) {
 }
 
 TEST(Schedule, RejectsProtocolViolations) {
-  using crashlink::coordinator::ProtocolError;
+  using crashlink::ProtocolError;
   Schedule s(2, Pairs{{0, 1}}, StepPolicy::own, 100);
   EXPECT_THROW(s.submit(2, 0, 1), ProtocolError);  // unknown domain
   EXPECT_THROW(s.submit(0, 5, 1), ProtocolError);  // first state must be at 0

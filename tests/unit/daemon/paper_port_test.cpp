@@ -54,7 +54,7 @@ wire::Setup setup_for(const daemon::PaperPort& port) {
 std::string thrown(const std::function<void()>& f) {
   try {
     f();
-  } catch (const transport::ProtocolError& e) {
+  } catch (const ProtocolError& e) {
     return e.what();
   }
   return "(nothing thrown)";

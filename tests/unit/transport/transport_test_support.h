@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "proto/crashlink.pb.h"
+#include "proto/protocol_version.h"
 #include "transport/coordinator_link.h"
 #include "transport/daemon_link.h"
 #include "transport/endpoint.h"
@@ -88,7 +89,7 @@ inline std::vector<wire::Envelope> every_kind(std::size_t nodes) {
   auto add = [&]() -> wire::Envelope& { return out.emplace_back(); };
   {
     auto* h = add().mutable_hello();
-    h->set_protocol_version(7);
+    h->set_protocol_version(wire::kProtocolVersion);
     h->set_scenario_hash("abc123");
     h->set_domain("wiper");
     h->set_role(wire::PEER_ROLE_DAEMON);
@@ -113,7 +114,7 @@ inline std::vector<wire::Envelope> every_kind(std::size_t nodes) {
       s->add_node_roles(i % 2 ? wire::NODE_ROLE_LAYER_GHOST : wire::NODE_ROLE_REFERENCE);
     }
     s->set_mode(wire::MODE_MULTI);
-    s->set_coupling(wire::COUPLING_LAYER);
+    s->set_scheme("layer");
     s->mutable_options()->set_drift_correction(true);
     s->mutable_options()->set_heartbeat_interval_ms(500);
     s->mutable_options()->set_peer_timeout_ms(5000);

@@ -1,7 +1,7 @@
 #pragma once
 // Exit codes of `crashlink`, `crashlink-solver` and `crashlink-coordinator` (docs/processes.md).
 // One table for the three, so that a launcher can tell from a child's code what happened.
-namespace crashlink::run {
+namespace crashlink {
 
 inline constexpr int kExitOk = 0;
 /// Bad input: command line, scenario file, unknown domain; also a daemon refused by the
@@ -22,4 +22,4 @@ inline constexpr int kExitIo = 6;
 /// launcher or to any process of the run; every process stops within 1 s, files flushed.
 inline constexpr int kExitStopped = 7;
 
-}  // namespace crashlink::run
+}  // namespace crashlink
