@@ -9,7 +9,7 @@
 #include "apps/cmd_run.h"
 #include "apps/scenario_variant.h"
 #include "apps/timing_reader.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 
 namespace crashlink::apps {

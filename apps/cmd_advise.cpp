@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "apps/advise_process_sample.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/split_advice.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/io/scenario_reader.h"

@@ -8,7 +8,7 @@
 
 #include "apps/result_head.h"
 #include "apps/timing_reader.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/result_reader.h"
 
 namespace crashlink::apps {

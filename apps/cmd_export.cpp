@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/io/scenario_reader.h"

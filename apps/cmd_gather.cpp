@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "solver/core/exit_codes.h"
+#include "core/exit_codes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"

@@ -15,7 +15,7 @@ struct GatherOptions {
 
 CLI::App* add_gather_command(CLI::App& app, GatherOptions& options);
 
-/// Returns 0 when every domain's file was read, 5 (solver/core/exit_codes.h kExitPeer) when some
+/// Returns 0 when every domain's file was read, 5 (core/exit_codes.h kExitPeer) when some
 /// were missing or short (what could be read is gathered). Errors throw.
 int run_gather(const GatherOptions& options);
 

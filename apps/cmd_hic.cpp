@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "apps/result_head.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/result_reader.h"
 #include "solver/signal/cfc_filter.h"
 #include "solver/signal/head_metrics.h"

@@ -8,7 +8,7 @@
 #include "apps/contact_force_csv.h"
 #include "apps/python_script.h"
 #include "apps/result_head.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::apps {
 

@@ -55,7 +55,7 @@ struct RunCommandOptions {
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);
 
-/// Returns the exit code (solver/core/exit_codes.h): 0; 3 when the guard stopped the run (output
+/// Returns the exit code (core/exit_codes.h): 0; 3 when the guard stopped the run (output
 /// kept); split/multi: 5 when a process failed (the message names it). Input errors throw.
 int run_run(const RunCommandOptions& options);
 

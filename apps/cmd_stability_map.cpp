@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "apps/python_script.h"
-#include "solver/core/errors.h"
-#include "solver/cosim/contact_drop.h"
-#include "solver/cosim/free_vibration.h"
+#include "core/errors.h"
+#include "studies/contact_drop.h"
+#include "studies/free_vibration.h"
 
 namespace crashlink::apps {
 
@@ -73,23 +73,23 @@ int run_stability_map(const StabilityMapOptions& o) {
   }
   for (const auto& shape_key : o.shapes) {
     const bool is_contact = shape_key == "contact";
-    const auto shape = shape_key == "bar"     ? cosim::FreeVibrationShape::Bar
-                       : shape_key == "plate" ? cosim::FreeVibrationShape::Plate
-                                              : cosim::FreeVibrationShape::Block;
+    const auto shape = shape_key == "bar"     ? studies::FreeVibrationShape::Bar
+                       : shape_key == "plate" ? studies::FreeVibrationShape::Plate
+                                              : studies::FreeVibrationShape::Block;
     for (const auto& c : is_contact ? contact : linked) {
       // uniaxial strain holds a bar's or block's lateral dofs; the plate has no such variant
-      if (c.uniaxial && shape == cosim::FreeVibrationShape::Plate && !is_contact) continue;
+      if (c.uniaxial && shape == studies::FreeVibrationShape::Plate && !is_contact) continue;
       for (double r : o.ratios) {
-        cosim::FreeVibrationConfig cfg;
+        studies::FreeVibrationConfig cfg;
         cfg.damping = {c.damping, 3};
         cfg.bulk_linear_in_expansion = c.linear_in_expansion;
         cfg.uniaxial = c.uniaxial;
         cfg.bulk_q_linear = c.q_linear;
         const auto res =
-            is_contact ? (c.paper ? cosim::run_paper_contact_drop(r, c.penalty, o.steps, c.drift)
-                                  : cosim::run_layer_contact_drop(r, c.penalty, o.steps))
-            : c.paper  ? cosim::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
-                       : cosim::run_layer_free_vibration(shape, r, o.steps, cfg);
+            is_contact ? (c.paper ? studies::run_paper_contact_drop(r, c.penalty, o.steps, c.drift)
+                                  : studies::run_layer_contact_drop(r, c.penalty, o.steps))
+            : c.paper  ? studies::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
+                       : studies::run_layer_free_vibration(shape, r, o.steps, cfg);
         const double e_ratio = res.e0_J > 0.0 ? res.e_end_J / res.e0_J : 0.0;
         std::string why = res.error;  // CSV: one quoted cell
         for (char& ch : why)

@@ -1,9 +1,9 @@
 #pragma once
 // `crashlink stability-map [--steps N] [--ratios LIST] [--shapes LIST] [--penalties LIST]
 // [--out DIR]` (issue #5): the long-run stability of the couplings across step ratios on the
-// study's free-vibration set-up (solver/cosim/free_vibration.h: bar, shell plate, hex block;
+// study's free-vibration set-up (studies/free_vibration.h: bar, shell plate, hex block;
 // `layer` with and without the interface damping, `paper` with drift correction [11] on and off)
-// and on a contact across the domains (solver/cosim/contact_drop.h: a block dropped on a slab;
+// and on a contact across the domains (studies/contact_drop.h: a block dropped on a slab;
 // `layer` and `paper` + [11] at each penalty scale); DIR/stability_map.csv (one row per run)
 // and DIR/stability_map.png (the maximum energy rise against the ratio, one curve per shape and
 // configuration; tools/stability_map.py). The issue's runs are 10^5 fine steps (the default);

@@ -17,7 +17,7 @@
 #include "apps/scenario_variant.h"
 #include "apps/sweep_paper.h"
 #include "apps/timing_reader.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/split_advice.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_reader.h"

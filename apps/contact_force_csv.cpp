@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/channel_filter.h"
 
 namespace crashlink::apps {

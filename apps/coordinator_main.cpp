@@ -1,8 +1,8 @@
-// crashlink-coordinator: the coordinator of a `layer` run (solver/coordination/coordinator_run.h,
+// crashlink-coordinator: the coordinator of a `layer` run (coordinator/coordinator_run.h,
 // docs/processes.md). Started by `crashlink run` or by hand:
 //   crashlink-coordinator --bind tcp://0.0.0.0:5555 --scenario FILE --out DIR [--mode multi]
 // It prints the bound endpoint (and writes it to --endpoint-file), waits for one daemon per
-// domain, runs, and writes DIR/coordinator.h5. Exit codes: solver/core/exit_codes.h. Defaults:
+// domain, runs, and writes DIR/coordinator.h5. Exit codes: core/exit_codes.h. Defaults:
 // apps/shared_defaults.h.
 #include <fmt/format.h>
 
@@ -14,14 +14,14 @@
 #include "apps/session_flags.h"
 #include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
-#include "solver/coordination/coordinator_run.h"
-#include "solver/core/exit_codes.h"
+#include "coordinator/coordinator_run.h"
+#include "core/exit_codes.h"
 #include "solver/run/progress.h"
 
 int main(int argc, char** argv) {
   using namespace crashlink;
   CLI::App app{"crashlink-coordinator: couples the domains of a crashlink run"};
-  coordination::CoordinatorOptions o;
+  coordinator::CoordinatorOptions o;
   o.out_dir = apps::SharedDefaults::out;
   o.checkpoint_interval_s = apps::SharedDefaults::checkpoint_interval_s;
   apps::SessionFlags session;
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
       bar->update(t_s, "slowest: " + slowest);
     };
   }
-  const auto r = coordination::run_coordinator(o);
+  const auto r = coordinator::run_coordinator(o);
   if (bar) bar->finish();
   for (const auto& d : r.domains) {
     std::fprintf(stderr,

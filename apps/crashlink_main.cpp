@@ -24,8 +24,8 @@
 #include "apps/cmd_stability_map.h"
 #include "apps/cmd_sweep.h"
 #include "apps/program_cli.h"
-#include "solver/core/errors.h"
-#include "solver/core/exit_codes.h"
+#include "core/errors.h"
+#include "core/exit_codes.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"crashlink: multi-domain, multi-time-scale explicit dynamics for crash simulation"};

@@ -19,8 +19,8 @@
 #include <thread>
 
 #include "apps/stop_signal.h"
-#include "solver/coordination/coordinator_run.h"
-#include "solver/core/errors.h"
+#include "coordinator/coordinator_run.h"
+#include "core/errors.h"
 #include "solver/daemon/daemon.h"
 #include "solver/run/progress.h"
 
@@ -290,7 +290,7 @@ class ProcessRun {
 LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>& domains) {
   const auto wall0 = Clock::now();
   LaunchResult r;
-  coordination::CoordinatorOptions co;
+  coordinator::CoordinatorOptions co;
   co.bind = transport::local_endpoint(transport::Scheme::inproc, "run");
   co.scenario = o.scenario;
   co.out_dir = o.out_dir;
@@ -317,9 +317,9 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
       bar->update(t_s, "slowest: " + slowest);
     };
   }
-  coordination::CoordinatorResult cr;
+  coordinator::CoordinatorResult cr;
   std::thread coordinator([&] {
-    cr = coordination::run_coordinator(co);
+    cr = coordinator::run_coordinator(co);
     if (!bound_set.exchange(true)) bound.set_value(std::string());
   });
   r.endpoint = bound.get_future().get();

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <string>
 
+#include "core/exit_codes.h"
 #include "crashlink_version.h"
 #include "proto/protocol_version.h"
-#include "solver/core/exit_codes.h"
 
 namespace crashlink::apps {
 

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::apps {
 

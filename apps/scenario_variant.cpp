@@ -6,7 +6,7 @@
 
 #include <fstream>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::apps {
 

@@ -6,7 +6,7 @@
 // --step-safety defaulted to 1 and `crashlink run`'s to 0.9, and the by-hand run of the CI scene
 // stopped at 3.56 ms where `crashlink run` finished.
 //
-// The library structs (daemon::DaemonOptions, coordination::CoordinatorOptions,
+// The library structs (daemon::DaemonOptions, coordinator::CoordinatorOptions,
 // transport::SessionOptions) keep their own defaults for in-process callers and tests.
 namespace crashlink::apps {
 

@@ -1,7 +1,7 @@
 // crashlink-solver: one domain of a `layer` run as a daemon (solver/daemon/daemon.h,
 // docs/processes.md). Started by `crashlink run` or by hand on any host:
 //   crashlink-solver --connect tcp://host:port --domain NAME --scenario FILE --out DIR
-// Exit codes: solver/core/exit_codes.h (0 ok, 2 input, usage or refused, 3 guard, 4 internal, 5
+// Exit codes: core/exit_codes.h (0 ok, 2 input, usage or refused, 3 guard, 4 internal, 5
 // stopped because of another process or a socket failure). Defaults: apps/shared_defaults.h.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include "apps/session_flags.h"
 #include "apps/shared_defaults.h"
 #include "apps/stop_signal.h"
-#include "solver/core/exit_codes.h"
+#include "core/exit_codes.h"
 #include "solver/daemon/daemon.h"
 
 int main(int argc, char** argv) {

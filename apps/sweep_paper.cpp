@@ -8,7 +8,7 @@
 #include <ctime>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/cosim/paper_runner.h"
 #include "solver/signal/head_metrics.h"
@@ -54,7 +54,7 @@ PaperSceneResult run_paper_scene(const model::Model& m, bool drift, const std::s
     cosim::PaperOptions o;
     o.ratio_p = static_cast<int>(ratio);
     o.step_safety = 0.9;
-    o.drift = drift ? coordinator::paper::Drift::on : coordinator::paper::Drift::off;
+    o.drift = drift ? coupling::paper::Drift::on : coupling::paper::Drift::off;
     cosim::PaperRunner r(m, o);
     r.initialize();
     out.ratio = static_cast<double>(r.ratio());

@@ -12,13 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "core/state_archive.h"
+#include "coupling/ticks.h"
 #include "proto/crashlink.pb.h"
-#include "solver/core/state_archive.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::coupling {
-
-using Tick = std::int64_t;
 
 /// Why advance() returned.
 enum class Pace : std::uint8_t {

@@ -6,7 +6,7 @@
 #include <climits>
 #include <utility>
 
-#include "solver/core/log_escape.h"
+#include "core/log_escape.h"
 #include "transport/detail/zmq.h"
 #include "transport/received.h"
 

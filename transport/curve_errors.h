@@ -1,10 +1,10 @@
 #pragma once
 // Typed errors of CURVE security (docs/processes.md, "Security (CURVE)"): each names the file and
 // line or the endpoint, what is wrong and the fix. The three that the fix is in the invocation
-// of are input errors (exit code 2 in every crashlink program, solver/core/exit_codes.h).
+// of are input errors (exit code 2 in every crashlink program, core/exit_codes.h).
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::transport {
 

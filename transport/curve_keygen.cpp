@@ -10,7 +10,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "transport/curve_errors.h"
 #include "transport/curve_key.h"
 #include "transport/curve_support.h"

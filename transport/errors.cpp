@@ -4,7 +4,7 @@
 
 #include <utility>
 
-#include "solver/core/log_escape.h"
+#include "core/log_escape.h"
 
 namespace crashlink::transport {
 

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <string>
 
+#include "core/errors.h"
 #include "proto/crashlink.pb.h"
-#include "solver/core/errors.h"
 
 namespace crashlink::transport {
 

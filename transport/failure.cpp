@@ -5,8 +5,8 @@
 #include <exception>
 #include <filesystem>
 
-#include "solver/core/errors.h"
-#include "solver/core/exit_codes.h"
+#include "core/errors.h"
+#include "core/exit_codes.h"
 #include "transport/errors.h"
 
 namespace crashlink::transport {

@@ -1,6 +1,6 @@
 #pragma once
 // What an exception that ends a daemon or the coordinator means (docs/processes.md "Exit codes"):
-// its exit code (solver/core/exit_codes.h), the Error code the peers are told, and the text. One
+// its exit code (core/exit_codes.h), the Error code the peers are told, and the text. One
 // ladder for both processes: each catches first what only it handles (a daemon: the coordinator's
 // Error, a refused CURVE handshake; the coordinator: a stop it decided), then this.
 #include <string>

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/log_escape.h"
 #include "proto/protocol_version.h"
-#include "solver/core/log_escape.h"
 #include "transport/errors.h"
 
 namespace crashlink::transport {
@@ -84,12 +84,6 @@ wire::Envelope make_error(wire::ErrorCode code, std::string message, std::string
 wire::Envelope make_bye(std::string reason) {
   wire::Envelope e;
   e.mutable_bye()->set_reason(std::move(reason));
-  return e;
-}
-
-wire::Envelope make_heartbeat(std::uint64_t sequence) {
-  wire::Envelope e;
-  e.mutable_heartbeat()->set_sequence(sequence);
   return e;
 }
 

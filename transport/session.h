@@ -51,6 +51,5 @@ std::optional<wire::Error> check_hello(const wire::Hello& hello, std::string_vie
 /// An Envelope holding `message` (one of the wire messages).
 wire::Envelope make_error(wire::ErrorCode code, std::string message, std::string domain = {});
 wire::Envelope make_bye(std::string reason);
-wire::Envelope make_heartbeat(std::uint64_t sequence);
 
 }  // namespace crashlink::transport

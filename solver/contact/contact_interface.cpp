@@ -16,10 +16,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/errors.h"
 #include "solver/contact/contact_pass.h"
 #include "solver/contact/node_properties.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 
 namespace crashlink::contact {
 
@@ -130,11 +130,6 @@ const std::string& ContactInterface::name() const {
 std::int64_t ContactInterface::sort_count() const {
   std::int64_t n = 0;
   for (const auto& p : impl_->passes) n += p.sorts;
-  return n;
-}
-std::size_t ContactInterface::candidate_pairs() const {
-  std::size_t n = 0;
-  for (const auto& p : impl_->passes) n += p.candidate_pairs();
   return n;
 }
 std::size_t ContactInterface::segment_count() const {

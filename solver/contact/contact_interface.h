@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 #include "solver/model/model.h"
 
 namespace crashlink::contact {
@@ -55,7 +55,6 @@ class ContactInterface {
   const std::string& name() const;
   /// Diagnostics: bucket sorts done so far, candidate pairs of the last sort, master segments.
   std::int64_t sort_count() const;
-  std::size_t candidate_pairs() const;
   std::size_t segment_count() const;
   /// Diagnostics: slave-node tests skipped so far by sleeping nodes (contact_interface.cpp).
   std::int64_t slept_node_cycles() const;

@@ -52,8 +52,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/errors.h"
 #include "solver/contact/projection.h"
-#include "solver/core/errors.h"
 
 namespace crashlink::contact {
 

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "core/state_archive.h"
 #include "solver/contact/bucket_search.h"
 #include "solver/contact/friction.h"
 #include "solver/contact/node_properties.h"
 #include "solver/contact/projection.h"
 #include "solver/contact/segments.h"
-#include "solver/core/state_archive.h"
 
 namespace crashlink::contact {
 
@@ -100,7 +100,6 @@ class ContactPass {
 
   std::int64_t sorts = 0;
   std::int64_t slept = 0;  ///< node tests skipped by sleeping nodes (diagnostics)
-  std::size_t candidate_pairs() const { return cand_.pairs(); }
   std::size_t segment_count() const { return seg_.size(); }
   std::size_t node_count() const { return nodes_.size(); }
   const std::vector<std::int32_t>& nodes() const { return nodes_; }

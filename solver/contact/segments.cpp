@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::contact {
 

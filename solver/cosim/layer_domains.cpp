@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/shell_bt.h"
 
 namespace crashlink::cosim {

@@ -8,8 +8,8 @@
 #include <string>
 #include <utility>
 
-#include "solver/core/errors.h"
-#include "solver/core/state_archive.h"
+#include "core/errors.h"
+#include "core/state_archive.h"
 
 namespace crashlink::cosim {
 
@@ -41,7 +41,7 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
 
 void LayerNetwork::build_steppers() {
   std::vector<Tick> proposal(d_.solvers.size());
-  const coordinator::TickClock clock(options_.ticks_per_second);
+  const coupling::TickClock clock(options_.ticks_per_second);
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
     auto& s = *d_.solvers[k];
     s.initialize();
@@ -58,7 +58,7 @@ void LayerNetwork::build_steppers() {
   for (std::size_t i = 0; i < fine_of_.size(); ++i)
     links.emplace_back(static_cast<int>(coarse_of_[i]), static_cast<int>(fine_of_[i]));
   for (const auto& s : d_.solvers) names.push_back(s->domain_name());
-  plan_ = coordinator::nested_steps(proposal, links, options_.common_step, names);
+  plan_ = coupling::nested_steps(proposal, links, options_.common_step, names);
   auto ports = layer_ports(d_);
   steppers_.clear();
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
@@ -73,8 +73,8 @@ void LayerNetwork::build_steppers() {
   if (options_.variable_steps) {
     for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);
   } else {  // every domain ends at the same instant, as the coordinator's Setup says
-    const Tick end = coordinator::aligned_end(
-        plan_, d_.solvers.front()->model().controls.end_time_s, options_.ticks_per_second);
+    const Tick end = coupling::aligned_end(plan_, d_.solvers.front()->model().controls.end_time_s,
+                                           options_.ticks_per_second);
     for (auto& st : steppers_) st->set_end_time(end);
   }
 }

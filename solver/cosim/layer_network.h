@@ -1,6 +1,6 @@
 #pragma once
 // Every domain of a `layer` cut in one process and one thread: one LayerStepper per non-empty
-// domain (layer_stepper.h), fixed nested steps (coordinator/nested_steps.h), messages routed in
+// domain (layer_stepper.h), fixed nested steps (coupling/nested_steps.h), messages routed in
 // memory, the earliest domain first (docs/design.md §2.6: the earliest pending state is always
 // answerable, so this never deadlocks). It is the reference the daemons must reproduce to
 // round-off (they run the same steppers, only the messages travel over ZeroMQ), and the way
@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "coordinator/nested_steps.h"
-#include "coordinator/ticks.h"
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
+#include "coupling/nested_steps.h"
+#include "coupling/ticks.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 
@@ -32,7 +32,7 @@ struct LayerNetworkOptions {
   /// [solvers] optional proposals in seconds replacing the solvers' own (each still capped by
   /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
   std::vector<double> proposal_s;
-  std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
+  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
   /// Every domain follows its own step proposal (layer_stepper.h "Steps"; `multi`: the leaders
   /// take step_safety of theirs, LayerStepper::set_proposal_limits; `split`: all the least
   /// proposal of all at every instant); proposal_s must stay empty; plan() is then not used.
@@ -65,7 +65,7 @@ class LayerNetwork {
   std::size_t size() const { return d_.solvers.size(); }
   const integration::Solver& solver(std::size_t k) const { return *d_.solvers[k]; }
   const LayerStepper& stepper(std::size_t k) const { return *steppers_[k]; }
-  const coordinator::StepPlan& plan() const { return plan_; }  ///< [solvers] order
+  const coupling::StepPlan& plan() const { return plan_; }  ///< [solvers] order
   const LayerDomains& domains() const { return d_; }
   const partition::Decomposition& decomposition() const { return d_.dec; }
   double seconds(Tick n) const {
@@ -86,7 +86,7 @@ class LayerNetwork {
   LayerDomains d_;
   std::vector<std::unique_ptr<LayerStepper>> steppers_;
   std::vector<std::size_t> fine_of_, coarse_of_;  ///< [interfaces] solver index of each side
-  coordinator::StepPlan plan_;
+  coupling::StepPlan plan_;
   std::int64_t messages_ = 0;
 };
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::cosim {
 
@@ -78,14 +78,14 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
       ps.rotates = ps.rotates || solver_.inertia()[l] > 0.0;
     }
     if (port.fine_side && !variable_) {
-      ps.meter = coordinator::LayerWorkMeter(seconds(port.partner_step));
+      ps.meter = coupling::LayerWorkMeter(seconds(port.partner_step));
       if (port.partner_step < h_ || port.partner_step % h_ != 0)
         throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                          ": the owner's step " + std::to_string(port.partner_step) +
                          " ticks is not a whole multiple of this domain's step " +
                          std::to_string(h_) +
                          " ticks; the fine side must land on every coarse instant (nested steps, "
-                         "coordinator/nested_steps.h)");
+                         "coupling/nested_steps.h)");
     }
   }
   for (std::size_t k = 0; k < gl.size(); ++k)

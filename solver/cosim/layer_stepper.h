@@ -16,7 +16,7 @@
 //     between the owner's positions u_J(T) and u_J(T+H) (rotation rate constant over [T, T+H]);
 //     its step h divides H (nested_steps.h), so it lands on every T; at each owner instant it
 //     sends the layer's force and moment on J.
-// Time is an integer count of ticks (coordinator/ticks.h). t = 0: initialize() sends every fine
+// Time is an integer count of ticks (coupling/ticks.h). t = 0: initialize() sends every fine
 // port's g_A(0); a coarse port needs it to complete a^0 (exchange_initial_forces' rule).
 //
 // Cycle t -> t + h of this domain (h = step()):
@@ -41,7 +41,7 @@
 // The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
 //
 // Steps (LayerSteps). Fixed: every domain at the step the coordinator planned for the whole run
-// (coordinator/nested_steps.h). Variable (docs/design.md §2.1, [2] with variable steps; every
+// (coupling/nested_steps.h). Variable (docs/design.md §2.1, [2] with variable steps; every
 // domain follows its stable step as the mesh deforms, as a mono run does):
 //   - every domain has at most one coarser partner (its fine ports all name one domain);
 //   - a domain without one (a leader) chooses its next step at each of its instants t, once the
@@ -71,14 +71,14 @@
 #include <utility>
 #include <vector>
 
-#include "coordinator/layer_work.h"
-#include "coordinator/ticks.h"
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
+#include "coupling/layer_work.h"
+#include "coupling/ticks.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::cosim {
 
-using coordinator::Tick;
+using coupling::Tick;
 
 struct LayerPort {
   std::uint32_t index = 0;           ///< interface index (Decomposition::interfaces)
@@ -120,10 +120,10 @@ struct LayerMessage {
   bool pause = false;
 };
 
-/// History rows of one fine-side interface (coordinator/layer_work.h), for the coordinator.
+/// History rows of one fine-side interface (coupling/layer_work.h), for the coordinator.
 struct LayerRows {
   std::uint32_t interface_index = 0;
-  std::vector<coordinator::LayerSample> rows;
+  std::vector<coupling::LayerSample> rows;
 };
 
 class LayerStepper {
@@ -180,7 +180,7 @@ class LayerStepper {
 
   /// Interface histories: with recording on (a daemon; off by default, LayerNetwork keeps none),
   /// each fine port adds a row at every owner instant T from the g_A(T) it sends and the u_J(T)
-  /// it received (coordinator::LayerWorkMeter); take_history() returns the rows since the last
+  /// it received (coupling::LayerWorkMeter); take_history() returns the rows since the last
   /// call, fine ports without new rows left out.
   void set_record_history(bool on) { record_history_ = on; }
   std::vector<LayerRows> take_history();
@@ -213,7 +213,7 @@ class LayerStepper {
   std::int64_t displacements_sent_ahead() const { return displacements_ahead_; }
 
   /// Fixed steps: the run's end instant in ticks instead of controls.end_time, before advance():
-  /// the end rounded up to the plan's base period (coordinator::aligned_end), so that every
+  /// the end rounded up to the plan's base period (coupling::aligned_end), so that every
   /// domain of a chain ends at the same instant (a fine domain would otherwise end at its owner's
   /// first instant after the end time while that owner goes on to its own owner's). ModelError
   /// for a negative value or with variable steps (their `last` flag does it).
@@ -241,19 +241,19 @@ class LayerStepper {
   enum class Phase : std::uint8_t { Initial, Begin, Positions, Rim, Accelerations, Done };
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct PortState {
-    std::deque<LayerMessage> inbox;              ///< received, not consumed yet
-    Tick next_expected = 0;                      ///< time of the next message from the partner
-    std::vector<double> u_T;                     ///< fine side: u_J(T) of the current owner step
-    std::vector<double> u_1;                     ///< fine side: u_J(T + H)
-    std::vector<double> omega;                   ///< fine side: omega_J(T + H/2)
-    Tick T = 0;                                  ///< fine side: the owner step [T, T + H] in use
-    Tick T1 = 0;                                 ///< fine side: T + H, once u_1 is in
-    bool have_u1 = false;                        ///< fine side: u_1 received for this owner step
-    bool rotates = false;                        ///< J has rotational dofs (shell nodes)
-    Tick sent_ahead = -1;                        ///< coarse side: u_J of this instant sent early
-    std::vector<double> ahead_u, ahead_omega;    ///< coarse side: what was sent early
-    coordinator::LayerWorkMeter meter;           ///< fine side: the interface history
-    std::vector<coordinator::LayerSample> rows;  ///< fine side: rows not taken yet
+    std::deque<LayerMessage> inbox;            ///< received, not consumed yet
+    Tick next_expected = 0;                    ///< time of the next message from the partner
+    std::vector<double> u_T;                   ///< fine side: u_J(T) of the current owner step
+    std::vector<double> u_1;                   ///< fine side: u_J(T + H)
+    std::vector<double> omega;                 ///< fine side: omega_J(T + H/2)
+    Tick T = 0;                                ///< fine side: the owner step [T, T + H] in use
+    Tick T1 = 0;                               ///< fine side: T + H, once u_1 is in
+    bool have_u1 = false;                      ///< fine side: u_1 received for this owner step
+    bool rotates = false;                      ///< J has rotational dofs (shell nodes)
+    Tick sent_ahead = -1;                      ///< coarse side: u_J of this instant sent early
+    std::vector<double> ahead_u, ahead_omega;  ///< coarse side: what was sent early
+    coupling::LayerWorkMeter meter;            ///< fine side: the interface history
+    std::vector<coupling::LayerSample> rows;   ///< fine side: rows not taken yet
   };
 
   Tick to_ticks_end(double t_s) const;

@@ -1,7 +1,7 @@
 // LayerStepper checkpoints (layer_stepper.h save_state / restore_state).
 #include <fmt/format.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_stepper.h"
 
 namespace crashlink::cosim {
@@ -137,7 +137,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     ps.T = r.get_int(pre + "T");
     ps.T1 = r.get_int(pre + "T1");
     ps.have_u1 = r.get_bool(pre + "have_u1");
-    coordinator::LayerWorkState h;
+    coupling::LayerWorkState h;
     r.get(pre + "work.g_prev", h.g_prev);
     r.get(pre + "work.u_prev", h.u_prev);
     r.get(pre + "work.m_prev", h.m_prev);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_stepper.h"
 
 namespace crashlink::cosim {
@@ -45,7 +45,7 @@ Tick LayerStepper::proposal_ticks() const {
         fmt::format("{}: the stable step fell to {:.3e} s, below one tick, at "
                     "t = {} ticks, set by {}: an element is collapsing",
                     solver_.domain_name(), dt, t_, solver_.critical_element()));
-  return coordinator::TickClock(ticks_per_second_).step_to_ticks(dt);
+  return coupling::TickClock(ticks_per_second_).step_to_ticks(dt);
 }
 
 Tick LayerStepper::subtree_proposal() const {

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/shell_bt.h"
 

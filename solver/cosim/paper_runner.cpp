@@ -10,13 +10,13 @@
 #include <string>
 #include <utility>
 
-#include "coordinator/interpolation.h"
-#include "solver/core/errors.h"
+#include "core/errors.h"
+#include "coupling/interpolation.h"
 #include "solver/cosim/paper_nodes.h"
 
 namespace crashlink::cosim {
 
-namespace paper = coordinator::paper;
+namespace paper = coupling::paper;
 
 namespace {
 
@@ -119,8 +119,8 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
     v->assign(3 * n, 0.0);
 }
 
-coordinator::Tick PaperRunner::to_ticks(double t_s) const {
-  // coordinator::TickClock::to_ticks' rule (round down, snap within 4 ulps of a whole tick).
+coupling::Tick PaperRunner::to_ticks(double t_s) const {
+  // coupling::TickClock::to_ticks' rule (round down, snap within 4 ulps of a whole tick).
   if (!std::isfinite(t_s) || !(t_s > 0.0))
     throw NumericalError("paper: step " + std::to_string(t_s) + " s is not positive");
   const double x = t_s * static_cast<double>(options_.ticks_per_second);
@@ -130,7 +130,7 @@ coordinator::Tick PaperRunner::to_ticks(double t_s) const {
   if (k < 1.0 || k > 4.6e18)
     throw ModelError("paper: step " + std::to_string(t_s) +
                      " s is not representable in ticks; change ticks_per_second");
-  return static_cast<coordinator::Tick>(k);
+  return static_cast<coupling::Tick>(k);
 }
 
 void PaperRunner::initialize() {
@@ -142,7 +142,7 @@ void PaperRunner::initialize() {
     if (options_.ratio_q < 1 || !(options_.step_safety > 0.0 && options_.step_safety <= 1.0))
       throw ModelError("paper: ratio_q must be >= 1 and step_safety in (0, 1]");
     const double p = options_.ratio_p, q = options_.ratio_q;
-    const coordinator::Tick unit =
+    const coupling::Tick unit =
         to_ticks(options_.step_safety * std::min(F.dt_s(), C.dt_s() * q / p)) / options_.ratio_q;
     if (unit < 1) throw ModelError("paper: the fine step is shorter than ratio_q ticks");
     h_ = unit * options_.ratio_q;
@@ -151,7 +151,7 @@ void PaperRunner::initialize() {
     h_ = to_ticks(options_.fine_dt_s > 0.0 ? options_.fine_dt_s : F.dt_s());
     H_ = to_ticks(options_.coarse_dt_s > 0.0 ? options_.coarse_dt_s : C.dt_s());
   }
-  if (options_.integer_ratio) H_ = std::max<coordinator::Tick>(h_, (H_ / h_) * h_);
+  if (options_.integer_ratio) H_ = std::max<coupling::Tick>(h_, (H_ / h_) * h_);
   if (H_ < h_)
     throw ModelError("paper: the coarse step (" + std::to_string(seconds(H_)) +
                      " s) is shorter than the fine step (" + std::to_string(seconds(h_)) + " s)");
@@ -319,7 +319,7 @@ void PaperRunner::advance(const std::function<void()>& on_fine) {
   uC_hi_ = u_[1];
 
   // F's fine steps inside [T, T+H]: [9] with [10], and [11] against u_C interpolated by [10].
-  const coordinator::Tick T = tC_, T1 = tC_ + H_;
+  const coupling::Tick T = tC_, T1 = tC_ + H_;
   for (std::int64_t k = 1; k <= r; ++k) {
     F.end_cycle_forces();
     F.end_cycle_accelerations();
@@ -329,9 +329,9 @@ void PaperRunner::advance(const std::function<void()>& on_fine) {
     if (k == r) break;  // at T+H: the next advance() corrects it
     read_free(0);
     check_finite(a_free_[0], 0, "free");
-    const coordinator::Weight w = paper::interpolation_weight(tF_, T, T1);
+    const coupling::Weight w = paper::interpolation_weight(tF_, T, T1);
     paper::multiscale_acceleration(a_free_[0], aC_lo_, aC_hi_, w, a_link_);
-    coordinator::interpolate(uC_lo_, uC_hi_, w, u_ref_);
+    coupling::interpolate(uC_lo_, uC_hi_, w, u_ref_);
     for (std::size_t j = 0; j < n; ++j)
       if (nodes_[j].reference == 0)  // F is the reference here: no drift on F
         for (std::size_t d = 0; d < 3; ++d) u_ref_[3 * j + d] = u_[0][3 * j + d];

@@ -11,11 +11,11 @@
 // Cut: partition::decompose(global, Paper): no element moves; a node used by both domains (a
 // link) is present in both; for a contact across domains the master's domain holds copies of the
 // other domain's slave nodes (no elements, no own mass). Every coupled node is integrated in both
-// domains with the SUMMED mass M = sum_k m^k ([5]; coordinator::paper::summed_mass over the
+// domains with the SUMMED mass M = sum_k m^k ([5]; coupling::paper::summed_mass over the
 // partial lumped masses) through Solver::set_mass_override. Reference side of [11]: the coarse
 // domain for a link, the original's domain for a copy (Interface::reference).
 //
-// Time is an integer count of ticks (coordinator/ticks.h). One coarse step [T, T+H] (advance()):
+// Time is an integer count of ticks (coupling/ticks.h). One coarse step [T, T+H] (advance()):
 //   entry: both domains at T with their FREE accelerations a_F(T), a_C(T) ([5]) and u(T);
 //   C at T: a* = a_C(T) + a_F(T) ([8]) (+ [11] on nodes where C is the non-reference side, with
 //           u_ref = u_F(T): F has an instant at T);
@@ -47,9 +47,9 @@
 #include <string>
 #include <vector>
 
-#include "coordinator/paper_coupling.h"
-#include "coordinator/paper_guard.h"
-#include "coordinator/ticks.h"
+#include "coupling/paper_coupling.h"
+#include "coupling/paper_guard.h"
+#include "coupling/ticks.h"
 #include "solver/integration/energy.h"
 #include "solver/integration/solver.h"
 #include "solver/model/model.h"
@@ -68,11 +68,11 @@ struct PaperOptions {
   int ratio_p = 0, ratio_q = 1;
   double step_safety = 1.0;  ///< margin on the initial proposals for ratio_p, in (0, 1]
   /// [11] on the non-reference side every step (the paper), or off (the study's S2).
-  coordinator::paper::Drift drift = coordinator::paper::Drift::on;
+  coupling::paper::Drift drift = coupling::paper::Drift::on;
   /// Guard: stop when the coupled energy rises this fraction of the peak energy above its running
   /// minimum (0 or negative: no energy check; the non-finite check always runs).
   double guard_rise = 0.05;
-  std::int64_t ticks_per_second = coordinator::kDefaultTicksPerSecond;
+  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
 };
 
 /// One node coupled between the two domains: a link node (present in both with its partial
@@ -110,14 +110,14 @@ class PaperRunner {
   /// went unstable" (guard).
   void advance(const std::function<void()>& on_fine = {});
 
-  coordinator::Tick fine_step_ticks() const { return h_; }
-  coordinator::Tick coarse_step_ticks() const { return H_; }
+  coupling::Tick fine_step_ticks() const { return h_; }
+  coupling::Tick coarse_step_ticks() const { return H_; }
   double fine_dt_s() const { return seconds(h_); }
   double coarse_dt_s() const { return seconds(H_); }
   std::int64_t ratio() const { return h_ > 0 ? H_ / h_ : 0; }
-  coordinator::Tick coarse_time_ticks() const { return tC_; }
-  coordinator::Tick fine_time_ticks() const { return tF_; }
-  double seconds(coordinator::Tick n) const {
+  coupling::Tick coarse_time_ticks() const { return tC_; }
+  coupling::Tick fine_time_ticks() const { return tF_; }
+  double seconds(coupling::Tick n) const {
     return static_cast<double>(n) / static_cast<double>(options_.ticks_per_second);
   }
   std::int64_t fine_steps() const { return fine_steps_; }
@@ -148,7 +148,7 @@ class PaperRunner {
   std::vector<double> global_displacement() const;
 
  private:
-  coordinator::Tick to_ticks(double t_s) const;
+  coupling::Tick to_ticks(double t_s) const;
   void read_free(int side);
   void correct(int side, const std::vector<double>& a_link, const std::vector<double>& u_ref,
                double step_product);
@@ -163,7 +163,7 @@ class PaperRunner {
   int domain_[2] = {-1, -1};                         // decomposition domain of each side
   std::vector<std::size_t> g2l_[2];                  // [n_global] local index or kAbsent
   std::vector<PaperNode> nodes_;
-  coordinator::Tick h_ = 0, H_ = 0, tF_ = 0, tC_ = 0;
+  coupling::Tick h_ = 0, H_ = 0, tF_ = 0, tC_ = 0;
   std::int64_t fine_steps_ = 0, coarse_steps_ = 0;
 
   // Interface vectors, [3 x coupled nodes], xyz interleaved.
@@ -175,7 +175,7 @@ class PaperRunner {
   integration::EnergyAccount energy_;
   double ke_twice0_ = 0.0;                       // kinetic energy counted twice at t = 0
   std::vector<std::size_t> reference_nodes_[2];  // local indices of the reference presences
-  coordinator::paper::EnergyGuard guard_;
+  coupling::paper::EnergyGuard guard_;
   double drift_work_J_ = 0.0;
   PaperGap gap_, max_gap_;
 };

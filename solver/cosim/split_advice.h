@@ -6,7 +6,7 @@
 //  * for each threshold between the parts' minimum steps, the split {parts below} | {the rest},
 //    cut and set up exactly as a `multi` run does (cosim::LayerNetwork: the `layer` cut moves
 //    contact surfaces and link layers into the fine domain; the domains' initial steps include
-//    the contact springs; step safety, then coordinator::nested_steps), with the predicted CPU
+//    the contact springs; step safety, then coupling::nested_steps), with the predicted CPU
 //    gain over mono
 //        gain = (N / dt_mono) / sum_k (N_k / dt_k)
 //    N the deformable elements (rigid ones cost nothing per cycle), dt_mono mono's initial step,

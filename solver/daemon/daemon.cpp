@@ -16,10 +16,10 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/errors.h"
+#include "core/exit_codes.h"
+#include "core/log_escape.h"
 #include "proto/envelope_name.h"
-#include "solver/core/errors.h"
-#include "solver/core/exit_codes.h"
-#include "solver/core/log_escape.h"
 #include "solver/daemon/daemon_checkpoints.h"
 #include "solver/daemon/daemon_lanes.h"
 #include "solver/daemon/domain_output.h"

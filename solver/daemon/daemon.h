@@ -29,7 +29,7 @@
 // Output: DIR/domains/<domain>.h5 and .xdmf (io::ResultWriter layout, the domain's sub-model,
 // sampled at the instants a mono run samples: run/domain_recorder.h), what solver/gather reads.
 //
-// Failures (exit codes: solver/core/exit_codes.h): a guard failure (NumericalError), a model error,
+// Failures (exit codes: core/exit_codes.h): a guard failure (NumericalError), a model error,
 // a protocol violation or an internal error is reported to the coordinator as an Error (code, and a
 // message naming the domain, the time and the cycle); an Error from the coordinator, a silent
 // coordinator (PeerTimeoutError) or a socket failure ends the daemon. In every case the result
@@ -67,7 +67,7 @@ struct DaemonOptions {
 };
 
 struct DaemonResult {
-  int exit_code = 0;    ///< solver/core/exit_codes.h
+  int exit_code = 0;    ///< core/exit_codes.h
   std::string message;  ///< empty on success; else what happened (names the domain)
   std::string result_h5;
   std::int64_t cycles = 0;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 #include "solver/integration/solver.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/domain_checkpoint.h"

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <utility>
 
+#include "core/errors.h"
+#include "core/log_escape.h"
 #include "proto/envelope_name.h"
-#include "solver/core/errors.h"
-#include "solver/core/log_escape.h"
 #include "transport/errors.h"
 #include "transport/lane_endpoint.h"
 

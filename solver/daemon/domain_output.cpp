@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/core/log_escape.h"
+#include "core/errors.h"
+#include "core/log_escape.h"
 
 namespace crashlink::daemon {
 

@@ -4,9 +4,9 @@
 
 #include <utility>
 
+#include "core/errors.h"
+#include "core/log_escape.h"
 #include "proto/envelope_name.h"
-#include "solver/core/errors.h"
-#include "solver/core/log_escape.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/apply_setup.h"

@@ -7,8 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/errors.h"
 #include "proto/envelope_name.h"
-#include "solver/core/errors.h"
 #include "solver/daemon/paper_port.h"
 
 namespace crashlink::daemon {

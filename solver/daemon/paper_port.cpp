@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "transport/errors.h"
 
 namespace crashlink::daemon {

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/parameters.h"
 
 namespace crashlink::deck {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/expression.h"
 
 namespace crashlink::deck {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/field_checks.h"
 #include "solver/deck/keyword_layouts.h"
 #include "solver/deck/keyword_parser.h"

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <fstream>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/card_reader.h"
 #include "solver/deck/deck.h"
 #include "solver/deck/field_checks.h"

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 #include "solver/deck/model_builder.h"
 #include "solver/materials/bilinear_hardening.h"
 

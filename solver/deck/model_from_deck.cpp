@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/model_builder.h"
 #include "solver/integration/mass_scaling.h"
 

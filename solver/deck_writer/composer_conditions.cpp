@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
+#include "core/errors.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 #include "solver/deck_writer/composer.h"
 
 namespace crashlink::deck_writer::detail {

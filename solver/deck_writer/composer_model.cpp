@@ -6,7 +6,7 @@
 #include <memory>
 #include <unordered_set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck_writer/composer.h"
 #include "solver/integration/solver.h"
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck_writer/number_field.h"
 
 namespace crashlink::deck_writer {

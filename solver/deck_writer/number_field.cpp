@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::deck_writer {
 

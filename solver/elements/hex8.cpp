@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/hex8_geometry.h"
 #include "solver/elements/hex8_modes.h"
 #include "solver/elements/hex8_simd.h"

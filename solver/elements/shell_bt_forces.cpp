@@ -108,7 +108,7 @@
 #include <cstring>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/shell_bt.h"
 #include "solver/materials/cowper_symonds.h"
 #include "solver/materials/plane_stress_update.h"

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/errors.h"
-#include "solver/core/vec3.h"
+#include "core/errors.h"
+#include "core/vec3.h"
 #include "solver/elements/shell_bt.h"
 
 namespace crashlink::elements {

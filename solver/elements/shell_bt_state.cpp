@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/shell_bt.h"
 #include "solver/materials/plane_stress_update.h"
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/hdf5_handles.h"
 
 namespace crashlink::gather {

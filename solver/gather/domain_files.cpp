@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <unordered_map>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/hdf5_handles.h"
 
 namespace crashlink::gather {

@@ -9,7 +9,7 @@
 #include <map>
 #include <optional>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/gather/coordinator_file.h"
 #include "solver/gather/domain_files.h"
 #include "solver/gather/history_merge.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/gather/history_merge.h"
 
 namespace crashlink::gather {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::integration {
 

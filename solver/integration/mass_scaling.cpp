@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/shell_bt.h"
 #include "solver/integration/solver.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 
 namespace crashlink::integration {
 

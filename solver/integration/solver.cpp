@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/central_difference.h"
 #include "solver/integration/energy_scale.h"
 

@@ -13,8 +13,8 @@
 #include <variant>
 #include <vector>
 
+#include "core/state_archive.h"
 #include "solver/contact/contact_interface.h"
-#include "solver/core/state_archive.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/kernel_io.h"
 #include "solver/elements/shell_bt.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/central_difference.h"
 #include "solver/integration/solver.h"
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::integration {
@@ -87,19 +87,12 @@ void Solver::build_rigid_bodies() {
       // inertia about the line. A hundredth of the mean moment about every axis makes the
       // spin about it finite (it is not defined by such nodes: any finite value serves).
       const double mean = (j[0][0] + j[1][1] + j[2][2]) / 3.0;
-      const double det_j = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) -
-                           j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0]) +
-                           j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+      const double det_j = determinant(j);
       if (mean > 0.0 && !(det_j > 1e-9 * mean * mean * mean))
         for (std::size_t a = 0; a < 3; ++a) j[a][a] += 0.01 * mean;
     }
     s.inertia_body = rb.inertia_given ? rb.inertia_kg_m2 : j;
-    const double det = s.inertia_body[0][0] * (s.inertia_body[1][1] * s.inertia_body[2][2] -
-                                               s.inertia_body[1][2] * s.inertia_body[2][1]) -
-                       s.inertia_body[0][1] * (s.inertia_body[1][0] * s.inertia_body[2][2] -
-                                               s.inertia_body[1][2] * s.inertia_body[2][0]) +
-                       s.inertia_body[0][2] * (s.inertia_body[1][0] * s.inertia_body[2][1] -
-                                               s.inertia_body[1][1] * s.inertia_body[2][0]);
+    const double det = determinant(s.inertia_body);
     if (!(det > 0.0))
       throw ModelError(
           fmt::format("rigid body '{}': inertia tensor is singular (det {:.3e}); give "

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::integration {

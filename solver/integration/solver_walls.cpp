@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::integration {

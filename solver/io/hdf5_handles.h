@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::io {
 

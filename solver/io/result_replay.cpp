@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/result_reader.h"
 
 namespace crashlink::io {

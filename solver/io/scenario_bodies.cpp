@@ -3,7 +3,7 @@
 #include <limits>
 #include <set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io::detail {

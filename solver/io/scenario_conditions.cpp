@@ -1,6 +1,6 @@
 // Boundary conditions, prescribed velocities, loads and initial velocities
 // (docs/scenario-format.md).
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io::detail {

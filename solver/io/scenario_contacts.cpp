@@ -1,7 +1,7 @@
 // The `contacts` section (docs/scenario-format.md): penalty contacts (two-pass, one-pass or
 // single-surface) with Coulomb friction, one model::Contact per entry.
+#include "core/errors.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io::detail {

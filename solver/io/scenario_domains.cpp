@@ -3,8 +3,8 @@
 // domain; a rigid body's parts in one domain (a rigid body is one set of dofs).
 #include <map>
 
-#include "solver/core/errors.h"
-#include "solver/core/log_escape.h"
+#include "core/errors.h"
+#include "core/log_escape.h"
 #include "solver/io/scenario_names.h"
 #include "solver/io/scenario_sections.h"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string_view>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/io/yaml_tree.h"
 

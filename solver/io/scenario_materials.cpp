@@ -1,5 +1,5 @@
 // The `materials` section (docs/scenario-format.md).
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 #include "solver/materials/bilinear_hardening.h"
 

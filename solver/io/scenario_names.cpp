@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "solver/core/log_escape.h"
+#include "core/log_escape.h"
 
 namespace crashlink::io {
 

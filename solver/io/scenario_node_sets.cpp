@@ -4,7 +4,7 @@
 #include <limits>
 #include <unordered_map>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 
 namespace crashlink::io::detail {

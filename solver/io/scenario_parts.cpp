@@ -1,7 +1,7 @@
 // The `parts` section and its mesh generators (docs/scenario-format.md).
 #include <array>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 #include "solver/model/mesh_generators.h"
 #include "solver/model/node_merging.h"

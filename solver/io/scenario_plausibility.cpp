@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_sections.h"
 #include "solver/model/run_estimate.h"
 

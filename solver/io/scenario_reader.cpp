@@ -5,7 +5,7 @@
 #include <fstream>
 #include <memory>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/integration/mass_scaling.h"
 #include "solver/io/scenario_hash.h"

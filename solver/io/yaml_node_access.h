@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/io/yaml_tree.h"
 
 namespace crashlink::io {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <streambuf>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::io {
 

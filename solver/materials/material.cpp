@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::materials {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::materials {
 

@@ -1,5 +1,5 @@
 // Bar generator (mesh_generators.h): a row of Hex8 elements along a coordinate axis.
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 
 namespace crashlink::model {

@@ -1,5 +1,5 @@
 // Box generator (mesh_generators.h): a structured block of Hex8 elements.
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 
 namespace crashlink::model {

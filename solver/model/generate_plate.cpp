@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 
 namespace crashlink::model {

@@ -3,7 +3,7 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 
 namespace crashlink::model {

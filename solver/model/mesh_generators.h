@@ -10,7 +10,7 @@
 // Implementations: one file per generator (generate_box.cpp, generate_plate.cpp, ...).
 #include <array>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/model/model.h"
 
 namespace crashlink::model {

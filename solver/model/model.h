@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/materials/material.h"
 #include "solver/model/curve.h"
 

@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::model {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/energy_scale.h"
 #include "solver/integration/solver.h"
 #include "solver/partition/partition_detail.h"

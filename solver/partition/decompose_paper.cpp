@@ -12,7 +12,7 @@
 #include <map>
 #include <set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/partition/partition_detail.h"
 
 namespace crashlink::partition::detail {

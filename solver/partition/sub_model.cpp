@@ -2,8 +2,8 @@
 // indices local; nodes are numbered in ascending global order.
 #include <algorithm>
 
+#include "core/errors.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 #include "solver/partition/partition_detail.h"
 
 namespace crashlink::partition::detail {

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <utility>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 
 namespace crashlink::run {
 

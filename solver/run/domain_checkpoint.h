@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_replay.h"
 #include "solver/run/domain_recorder.h"

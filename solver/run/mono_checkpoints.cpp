@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/core/state_archive.h"
+#include "core/errors.h"
+#include "core/state_archive.h"
 #include "solver/run/checkpoint_store.h"
 
 namespace crashlink::run {

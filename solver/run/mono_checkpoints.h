@@ -14,7 +14,7 @@
 
 namespace crashlink::run {
 
-/// 1 fs, the coupled runs' default tick (coordinator/ticks.h kDefaultTicksPerSecond).
+/// 1 fs, the coupled runs' default tick (coupling/ticks.h kDefaultTicksPerSecond).
 inline constexpr std::int64_t kMonoTicksPerSecond = 1'000'000'000'000'000;
 
 struct MonoCheckpointOptions {

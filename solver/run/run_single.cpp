@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/errors.h"
 #include "solver/contact/contact_advice.h"
-#include "solver/core/errors.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_writer.h"
 #include "solver/model/run_estimate.h"

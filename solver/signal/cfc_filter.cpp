@@ -7,7 +7,7 @@
 #include <complex>
 #include <numbers>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/sampling.h"
 
 namespace crashlink::signal {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/cfc_filter.h"
 
 namespace crashlink::signal {

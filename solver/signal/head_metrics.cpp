@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/channel_filter.h"
 
 namespace crashlink::signal {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/sampling.h"
 
 namespace crashlink::signal {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string_view>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::signal {
 

@@ -7,7 +7,7 @@
 //   on) -> a Hello checked by transport::check_hello (refused: the run goes on; a second Hello in
 //   a session: refused); nothing before an accepted Hello; Heartbeats swallowed ->
 //   admission (coordinator_run.cpp admit()): an Error stops the run, anything but one Register is
-//   a protocol stop, coordination::check_register; once all registered: match_sides,
+//   a protocol stop, coordinator::check_register; once all registered: match_sides,
 //   plan_steps, the LayerRouter and every Setup ->
 //   routing (route()): LayerForce / LayerDisplacement through LayerRouter::force /
 //   displacement (the forward target must be a known domain; a finished one gets nothing), Bye,
@@ -28,9 +28,9 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "coordinator/layer_router.h"
-#include "solver/coordination/layer_cut.h"
-#include "solver/core/errors.h"
+#include "coordinator/layer_cut.h"
+#include "core/errors.h"
+#include "coupling/layer_router.h"
 #include "tests/fuzz/fuzz_frames.h"
 #include "tests/fuzz/fuzz_scene.h"
 #include "tests/fuzz/fuzz_verbose.h"
@@ -52,7 +52,7 @@ struct RunOver : std::runtime_error {
 
 class Coordinator {
  public:
-  Coordinator(const coordination::LayerCut& cut, const std::string& hash, bool common)
+  Coordinator(const coordinator::LayerCut& cut, const std::string& hash, bool common)
       : cut_(cut), hash_(hash), common_(common) {
     regs_.resize(cut_.names.size());
     registered_.assign(cut_.names.size(), false);
@@ -96,25 +96,25 @@ class Coordinator {
     const auto ku = static_cast<std::size_t>(k);
     if (e.has_error()) throw RunOver("a daemon's Error before the Setups");
     if (!e.has_registration() || registered_[ku]) throw RunOver("protocol stop: not one Register");
-    coordination::check_register(cut_, k, e.registration());
+    coordinator::check_register(cut_, k, e.registration());
     regs_[ku] = e.registration();
     registered_[ku] = true;
     for (bool r : registered_)
       if (!r) return;
-    coordination::match_sides(cut_, regs_);
-    const auto plan = coordination::plan_steps(cut_, regs_, common_);
-    std::vector<coordinator::LayerRoute> routes;
+    coordinator::match_sides(cut_, regs_);
+    const auto plan = coordinator::plan_steps(cut_, regs_, common_);
+    std::vector<coupling::LayerRoute> routes;
     for (const auto& c : cut_.interfaces) {
       const auto H = plan.step[static_cast<std::size_t>(c.coarse)];
       if (H < 1) std::abort();  // nested_steps promises steps >= 1
       routes.push_back({c.fine, c.coarse, c.j_node_ids.size(), H,
                         static_cast<double>(H) / static_cast<double>(kTicksPerSecond)});
     }
-    router_ = std::make_unique<coordinator::LayerRouter>(std::move(routes), cut_.names);
+    router_ = std::make_unique<coupling::LayerRouter>(std::move(routes), cut_.names);
     wire::Options options;
     for (std::size_t d = 0; d < cut_.names.size(); ++d) {
-      const auto s = coordination::setup_message(cut_, plan, static_cast<int>(d), common_, options,
-                                                 kTicksPerSecond);
+      const auto s = coordinator::setup_message(cut_, plan, static_cast<int>(d), common_, options,
+                                                kTicksPerSecond);
       if (s.setup().step_ticks() < 1) std::abort();
     }
   }
@@ -151,18 +151,18 @@ class Coordinator {
     }
   }
 
-  void check(const coordinator::LayerRouter::Routed& r) const {
+  void check(const coupling::LayerRouter::Routed& r) const {
     if (r.to < 0 || static_cast<std::size_t>(r.to) >= cut_.names.size()) std::abort();
   }
 
-  static constexpr std::int64_t kTicksPerSecond = coordinator::kDefaultTicksPerSecond;
-  const coordination::LayerCut& cut_;
+  static constexpr std::int64_t kTicksPerSecond = coupling::kDefaultTicksPerSecond;
+  const coordinator::LayerCut& cut_;
   const std::string& hash_;
   bool common_;
   std::map<std::string, bool> active_;  ///< routing id -> in session
   std::vector<wire::Register> regs_;
   std::vector<bool> registered_, finished_;
-  std::unique_ptr<coordinator::LayerRouter> router_;
+  std::unique_ptr<coupling::LayerRouter> router_;
 };
 
 }  // namespace

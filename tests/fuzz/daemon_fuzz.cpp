@@ -21,7 +21,7 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/apply_setup.h"

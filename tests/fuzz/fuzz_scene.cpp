@@ -46,7 +46,7 @@ const Scene& scene() {
     Scene r;
     r.model = io::parse_scenario(scene_yaml(), "fuzz_plate2.yaml");
     r.dec = partition::decompose(r.model, partition::Scheme::Layer);
-    r.cut = coordination::layer_cut(r.model, r.dec);
+    r.cut = coordinator::layer_cut(r.model, r.dec);
     r.hash = io::scenario_hash_of_text(scene_yaml(), "fuzz_plate2.yaml");
     return r;
   }();

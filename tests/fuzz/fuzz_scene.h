@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "solver/coordination/layer_cut.h"
+#include "coordinator/layer_cut.h"
 #include "solver/model/model.h"
 #include "solver/partition/decomposition.h"
 
@@ -15,7 +15,7 @@ namespace crashlink::fuzz {
 struct Scene {
   model::Model model;
   partition::Decomposition dec;
-  coordination::LayerCut cut;
+  coordinator::LayerCut cut;
   std::string hash;  ///< the scenario hash the daemons' Hellos must carry
 };
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "coordinator/ticks.h"
+#include "coordinator/layer_cut.h"
+#include "coupling/ticks.h"
 #include "proto/protocol_version.h"
-#include "solver/coordination/layer_cut.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 #include "tests/fuzz/fuzz_frames.h"
@@ -22,7 +22,7 @@
 namespace {
 
 using namespace crashlink;
-constexpr std::int64_t kTps = coordinator::kDefaultTicksPerSecond;
+constexpr std::int64_t kTps = coupling::kDefaultTicksPerSecond;
 
 std::string bytes(const wire::Envelope& e) {
   return e.SerializeAsString();
@@ -101,12 +101,12 @@ Session session(const fuzz::Scene& s, bool common, std::size_t max_messages) {
     *e.mutable_registration() = r;
     out.coordinator += fuzz::frame(static_cast<std::uint8_t>(k), bytes(e));
   }
-  const auto plan = coordination::plan_steps(s.cut, regs, common);
+  const auto plan = coordinator::plan_steps(s.cut, regs, common);
   std::vector<cosim::LayerStepper> steppers;
   steppers.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto setup =
-        coordination::setup_message(s.cut, plan, static_cast<int>(k), common, {}, kTps);
+        coordinator::setup_message(s.cut, plan, static_cast<int>(k), common, {}, kTps);
     out.daemon.push_back(std::string(1, static_cast<char>(k)) +
                          fuzz::frame(0, bytes(hello("", s.hash, true))) +
                          fuzz::frame(0, bytes(setup)));

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "core/exit_codes.h"
 #include "proto/protocol_version.h"
-#include "solver/core/exit_codes.h"
 #include "tests/integration/shell_command.h"
 
 using crashlink::testing::run_command;

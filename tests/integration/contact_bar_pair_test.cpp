@@ -9,8 +9,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/errors.h"
 #include "solver/contact/contact_advice.h"
-#include "solver/core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/run_helpers.h"

@@ -1,9 +1,9 @@
-// The stability map's contact case (solver/cosim/contact_drop.h; issue #5 "penalty scale
+// The stability map's contact case (studies/contact_drop.h; issue #5 "penalty scale
 // factors"): a fine block dropped on a coarse slab across the domains. `layer` stays bounded at
 // penalty scales 0.1, 1 and 10 (the penalty enters the stable step, so the planned steps follow
 // it); a step planned for a soft penalty is refused by the solver of a stiff one with a message
 // naming the contact, never run into NaN.
-#include "solver/cosim/contact_drop.h"
+#include "studies/contact_drop.h"
 
 #include <gtest/gtest.h>
 
@@ -11,14 +11,14 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 
 using namespace crashlink;
 
 TEST(ContactDrop, LayerStaysBoundedAtEveryPenaltyScale) {
   for (const double k : {0.1, 1.0, 10.0}) {
-    const auto res = cosim::run_layer_contact_drop(4.0, k, 20000);
+    const auto res = studies::run_layer_contact_drop(4.0, k, 20000);
     std::printf(
         "[measured] contact drop, layer, r = %g (nested %g), penalty x%g, 20000 fine steps: max "
         "rise %.3e of E0, E_end/E0 %.4f%s%s\n",
@@ -34,13 +34,13 @@ TEST(ContactDrop, LayerStaysBoundedAtEveryPenaltyScale) {
 }
 
 TEST(ContactDrop, AStepPlannedForASoftPenaltyIsRefusedWithAStiffOne) {
-  auto soft = cosim::contact_drop_model(4.0, 0.1);
+  auto soft = studies::contact_drop_model(4.0, 0.1);
   soft.domains.clear();
   integration::Solver s(soft, "soft");
   s.initialize();
   const double h_soft = s.dt_s();
 
-  auto stiff = cosim::contact_drop_model(4.0, 1000.0);
+  auto stiff = studies::contact_drop_model(4.0, 1000.0);
   stiff.domains.clear();
   integration::Solver t(stiff, "stiff");
   t.initialize();

@@ -51,7 +51,7 @@
 #include <map>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/contact_tube.h"

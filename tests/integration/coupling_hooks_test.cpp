@@ -15,7 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/test_models.h"
 

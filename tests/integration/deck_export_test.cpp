@@ -14,8 +14,8 @@
 #include <map>
 #include <sstream>
 
+#include "core/errors.h"
 #include "solver/contact/segments.h"
-#include "solver/core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/deck_writer/deck_writer.h"

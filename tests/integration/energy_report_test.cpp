@@ -15,12 +15,12 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/core/errors.h"
-#include "solver/cosim/split_runner.h"
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_reader.h"
 #include "solver/run/run_single.h"
 #include "tests/integration/process_test_support.h"
+#include "tests/support/split_runner.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;

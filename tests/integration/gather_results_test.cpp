@@ -24,14 +24,14 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/cosim/split_runner.h"
+#include "core/errors.h"
 #include "solver/io/coupling_history_writer.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/result_writer.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/run_single.h"
+#include "tests/support/split_runner.h"
 #include "tests/unit/io/result_h5_reader.h"
 #include "tests/unit/partition/partition_models.h"
 

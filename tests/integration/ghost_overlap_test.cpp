@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/integration/solver.h"
 #include "tests/unit/partition/partition_models.h"

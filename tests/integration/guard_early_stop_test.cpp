@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/guard.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/run/run_single.h"

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <string>
 
-#include "solver/core/errors.h"
-#include "solver/cosim/split_runner.h"
+#include "core/errors.h"
 #include "solver/integration/energy_scale.h"
 #include "solver/integration/guard.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/process_test_support.h"
+#include "tests/support/split_runner.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "solver/core/exit_codes.h"
+#include "core/exit_codes.h"
 #include "solver/io/result_reader.h"
 #include "tests/integration/process_test_support.h"
 #include "tests/integration/shell_command.h"

@@ -143,7 +143,7 @@ Pair run_case(const Setup& s, double r) {
   Pair p;
   p.ratio = static_cast<double>(net.plan().step[kc]) / static_cast<double>(net.plan().step[kf]);
   ContactRecorder rec_multi, rec_mono;
-  const auto until = static_cast<coordinator::Tick>(s.t_end * 1e15);
+  const auto until = static_cast<coupling::Tick>(s.t_end * 1e15);
   net.run(
       [&](std::size_t k) {
         if (k == kf) rec_multi.sample(net.solver(kf));

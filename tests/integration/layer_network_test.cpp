@@ -111,7 +111,7 @@ Accuracy hann_vs_mono(double r) {
                         std::abs(F.node_velocity(md.owner_local[g])[0] - mono.node_velocity(g)[0]));
     }
   };
-  const auto until = static_cast<coordinator::Tick>(4.8 * unit * 1e15);
+  const auto until = static_cast<coupling::Tick>(4.8 * unit * 1e15);
   mr.run(sample, until);
   Accuracy a;
   a.disp = du / umax;
@@ -150,7 +150,7 @@ void fix_nodes(model::Model& m, const std::vector<std::int32_t>& nodes, std::uin
 /// `multi` at the domains' own (nested) steps vs mono at the finest of them: max over the base
 /// instants of max|u_multi - u_mono| / max|u_mono| (every domain lands on the base instants).
 double multi_vs_mono(const model::Model& m, const std::string& label, int base_periods,
-                     std::vector<coordinator::Tick>* steps) {
+                     std::vector<coupling::Tick>* steps) {
   cosim::LayerNetworkOptions o;
   o.step_safety = 0.8;
   cosim::LayerNetwork net(m, o);
@@ -164,7 +164,7 @@ double multi_vs_mono(const model::Model& m, const std::string& label, int base_p
   const auto& d = net.domains();
   double worst = 0.0, scale = 0.0;
   for (int k = 1; k <= base_periods; ++k) {
-    const coordinator::Tick T = k * net.plan().base;
+    const coupling::Tick T = k * net.plan().base;
     net.run({}, T);  // every domain paused at T (u(T) known, cycle not begun)
     while (mono.time_s() < net.seconds(T) - 0.5 * net.seconds(h_min)) {
       mono.end_cycle();
@@ -199,7 +199,7 @@ TEST(LayerNetwork, ThreeDomainsThreeStepsMatchMono) {
     const auto end = where(m, [](double x, double, double) { return x > 2.0 - 1e-9; });
     m.loads.push_back({"pulse", end, 0, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, -1e5, 0.0}}});
     m.loads.push_back({"pulse2", end, 1, model::Curve{{0.0, 2e-4, 4e-4}, {0.0, 2e4, 0.0}}});
-    std::vector<coordinator::Tick> steps;
+    std::vector<coupling::Tick> steps;
     const double e = multi_vs_mono(m, "chain 0.2 | 0.1 | 0.05 m", 400, &steps);
     std::sort(steps.begin(), steps.end());
     EXPECT_EQ(steps[1], 2 * steps[0]);
@@ -214,7 +214,7 @@ TEST(LayerNetwork, ThreeDomainsThreeStepsMatchMono) {
     const auto edge = where(m, [](double x, double, double) { return x > 0.5 - 1e-9; });
     m.loads.push_back({"pulse", edge, 0, model::Curve{{0.0, 5e-4, 1e-3}, {0.0, 1e3, 0.0}}});
     m.loads.push_back({"pulse2", edge, 1, model::Curve{{0.0, 5e-4, 1e-3}, {0.0, -5e2, 0.0}}});
-    std::vector<coordinator::Tick> steps;
+    std::vector<coupling::Tick> steps;
     // The difference grows linearly in time (phase drift: mono runs the heavy quadrants at a
     // quarter of their own Courant number), not exponentially: 50 base periods (2.3 ms, some 20
     // wave crossings) within the bound, doubling the time at most doubles it (+25 %).
@@ -242,7 +242,7 @@ TEST(LayerNetwork, AChainEndsTogetherWhateverTheEndTime) {
     cosim::LayerNetwork net(m, o);
     net.initialize();
     ASSERT_TRUE(net.run()) << "end " << end;
-    const coordinator::Tick t = net.stepper(0).time();
+    const coupling::Tick t = net.stepper(0).time();
     EXPECT_EQ(t % net.plan().base, 0) << "end " << end;
     EXPECT_GE(net.seconds(t), end * (1.0 - 1e-12)) << "end " << end;
     EXPECT_LT(net.seconds(t - net.plan().base), end) << "end " << end;

@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "coordinator/coordinator_run.h"
 #include "process_test_support.h"
-#include "solver/coordination/coordinator_run.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/cosim/layer_stepper.h"
@@ -60,12 +60,12 @@ Diff compare(const LastState& s, const model::Model& m, const std::vector<double
 
 /// The reference: every domain's stepper in this thread.
 struct Reference {
-  std::vector<double> u;                 ///< [3 n_global] at the end
-  std::vector<double> mono_u;            ///< mono at the common step (split only)
-  std::vector<coordinator::Tick> steps;  ///< [domains] the plan
-  std::int64_t cycles = 0;               ///< cycles of the first domain
-  std::vector<std::int64_t> cycles_of;   ///< [domains]
-  std::vector<double> coupling_work_J;   ///< [domains] each solver's coupling work at the end
+  std::vector<double> u;                ///< [3 n_global] at the end
+  std::vector<double> mono_u;           ///< mono at the common step (split only)
+  std::vector<coupling::Tick> steps;    ///< [domains] the plan
+  std::int64_t cycles = 0;              ///< cycles of the first domain
+  std::vector<std::int64_t> cycles_of;  ///< [domains]
+  std::vector<double> coupling_work_J;  ///< [domains] each solver's coupling work at the end
 };
 
 Reference reference(const model::Model& m, const cosim::LayerNetworkOptions& o) {
@@ -102,7 +102,7 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
                const std::vector<std::pair<std::string, std::vector<std::string>>>& daemons,
                std::string& log, bool lanes = true, bool variable = false) {
   if (scheme == Scheme::inproc) {
-    coordination::CoordinatorOptions co;
+    coordinator::CoordinatorOptions co;
     co.bind = transport::local_endpoint(Scheme::inproc, "test");
     co.scenario = scenario;
     co.out_dir = out.string();
@@ -111,8 +111,8 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     co.log = nullptr;
     co.lanes = lanes;
     co.variable_steps = variable;
-    coordination::CoordinatorResult cr;
-    std::thread c([&] { cr = coordination::run_coordinator(co); });
+    coordinator::CoordinatorResult cr;
+    std::thread c([&] { cr = coordinator::run_coordinator(co); });
     std::vector<daemon::DaemonResult> dr(daemons.size());
     std::vector<std::thread> ds;
     for (std::size_t k = 0; k < daemons.size(); ++k) {
@@ -359,7 +359,7 @@ TEST_P(LayerProcesses, MultiBarVariableStepsThroughTheCoordinatorIsNetworkToTheB
 
 // Three domains in a chain, fine | mid | coarse (5, 10 and 30 mm hexes), ended at a time that is
 // no instant of the coarse domain. Every domain must end together: with fixed steps at the first
-// common instant after the end time (coordinator::aligned_end, sent with the Setup), with variable
+// common instant after the end time (coupling::aligned_end, sent with the Setup), with variable
 // steps when the leader's u_J says it is its last. Before session 10's fix the fine domain stopped
 // at mid's first instant after the end time and mid waited for it forever (seen in process). The
 // daemons must give LayerNetwork's bits, every domain's last state at the same time.

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/core/state_archive.h"
+#include "core/errors.h"
+#include "core/state_archive.h"
 #include "solver/cosim/layer_network.h"
 #include "tests/unit/partition/partition_models.h"
 

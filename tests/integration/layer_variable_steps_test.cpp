@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/cosim/layer_stepper.h"
@@ -106,8 +106,8 @@ VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
   EXPECT_EQ(md.owner_solver[gi], kf);
   VariableRun r;
   double du = 0.0, umax = 0.0, dv = 0.0, vmax = 0.0;
-  std::vector<coordinator::Tick> coarse_instants;
-  std::vector<coordinator::Tick> fine_instants;
+  std::vector<coupling::Tick> coarse_instants;
+  std::vector<coupling::Tick> fine_instants;
   auto sample = [&](std::size_t k) {
     const auto& st = net.stepper(k);
     if (k == kc) {
@@ -307,7 +307,7 @@ TEST(LayerVariableSteps, RefusesAPartnersMessagesThatDoNotFit) {
   solver.initialize();
   const auto n_j = ports[kc].front().local.size();
   const std::uint32_t iface = ports[kc].front().index;
-  cosim::LayerStepper st(solver, ports[kc], 0, coordinator::kDefaultTicksPerSecond,
+  cosim::LayerStepper st(solver, ports[kc], 0, coupling::kDefaultTicksPerSecond,
                          cosim::LayerSteps::Variable);
   st.initialize();
   cosim::LayerMessage f;

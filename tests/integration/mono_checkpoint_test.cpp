@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/exit_codes.h"
+#include "core/exit_codes.h"
 #include "solver/run/checkpoint_store.h"
 #include "solver/run/run_single.h"
 #include "tests/integration/process_test_support.h"

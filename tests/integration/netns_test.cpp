@@ -36,8 +36,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/exit_codes.h"
 #include "process_test_support.h"
-#include "solver/core/exit_codes.h"
 #include "solver/io/result_reader.h"
 #include "transport/curve_keygen.h"
 

@@ -25,7 +25,7 @@ inline NetworkVsMono network_vs_mono(const model::Model& global, int cycles) {
   o.step_safety = 0.9;  // a fixed step: margin for the step's shrinking under load
   cosim::LayerNetwork net(global, o);
   net.initialize();
-  const coordinator::Tick h = net.plan().step[0];
+  const coupling::Tick h = net.plan().step[0];
   NetworkVsMono r;
   r.step_s = net.seconds(h);
   if (cycles <= 0) cycles = static_cast<int>(global.controls.end_time_s / r.step_s) - 1;
@@ -40,7 +40,7 @@ inline NetworkVsMono network_vs_mono(const model::Model& global, int cycles) {
   mono.begin_cycle();
   // Every domain samples t = cycles h after its begin_cycle() (energies complete there) and
   // pauses at the start of the next cycle.
-  const coordinator::Tick t_end = h * cycles;
+  const coupling::Tick t_end = h * cycles;
   const auto& d = net.domains();
   std::vector<double> u(3 * global.nodes.count(), 0.0);
   net.run(

@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"

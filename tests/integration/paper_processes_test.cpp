@@ -1,6 +1,6 @@
 // The `paper` scheme over real processes and sockets (crashlink-coordinator --coupling paper +
 // crashlink-solver --coupling paper, or crashlink run --coupling paper) and over inproc threads.
-// The coordinator's exchange (solver/coordination/paper_exchange.h) applies [8]-[11] with the same
+// The coordinator's exchange (coordinator/paper_exchange.h) applies [8]-[11] with the same
 // functions in the same order as the in-process cosim::PaperRunner, and the numbers travel as
 // packed doubles, so every domain's displacements must be identical to the runner's, bit for bit;
 // where the runner's guard stops a run, the coordinator's stops it at the same instant. Every
@@ -15,11 +15,12 @@
 #include <thread>
 #include <vector>
 
+#include "coordinator/coordinator_run.h"
+#include "coordinator/paper_exchange.h"
+#include "core/errors.h"
+#include "core/exit_codes.h"
+#include "paper_reference.h"
 #include "process_test_support.h"
-#include "solver/coordination/coordinator_run.h"
-#include "solver/coordination/paper_exchange.h"
-#include "solver/core/errors.h"
-#include "solver/core/exit_codes.h"
 #include "solver/cosim/paper_runner.h"
 #include "solver/daemon/daemon.h"
 #include "solver/io/scenario_reader.h"
@@ -49,7 +50,7 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
               const std::map<std::string, double>& cap, std::string& log,
               const PaperRunOptions& ro = {}) {
   if (scheme == Scheme::inproc) {
-    coordination::CoordinatorOptions co;
+    coordinator::CoordinatorOptions co;
     co.bind = transport::local_endpoint(Scheme::inproc, "paper");
     co.scenario = scenario;
     co.out_dir = out.string();
@@ -59,8 +60,8 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
     co.coupling = "paper";
     co.in_process = true;
     co.log = nullptr;
-    coordination::CoordinatorResult cr;
-    std::thread c([&] { cr = coordination::run_coordinator(co); });
+    coordinator::CoordinatorResult cr;
+    std::thread c([&] { cr = coordinator::run_coordinator(co); });
     std::vector<daemon::DaemonResult> dr(cap.size());
     std::vector<std::thread> ds;
     std::size_t k = 0;
@@ -121,25 +122,6 @@ std::map<std::string, double> bar_caps(int ratio) {
   return {{"fine", kFineStep}, {"coarse", ratio * kFineStep}};
 }
 
-/// The in-process runner at the steps h and H: `coarse_steps` advances (or until its guard stops
-/// it: its message in `stopped`).
-std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, double h, double H,
-                                              std::int64_t coarse_steps, std::string& stopped,
-                                              bool drift = true) {
-  cosim::PaperOptions o;
-  o.drift = drift ? coordinator::paper::Drift::on : coordinator::paper::Drift::off;
-  o.fine_dt_s = h;
-  o.coarse_dt_s = H;
-  auto r = std::make_unique<cosim::PaperRunner>(m, o);
-  r->initialize();
-  try {
-    for (std::int64_t n = 0; n < coarse_steps; ++n) r->advance();
-  } catch (const NumericalError& e) {
-    stopped = e.what();
-  }
-  return r;
-}
-
 /// A string attribute of an HDF5 object ("" if absent).
 std::string string_attribute(const std::string& h5, const std::string& object,
                              const std::string& name) {
@@ -163,37 +145,6 @@ std::string string_attribute(const std::string& h5, const std::string& object,
   }
   H5Fclose(f);
   return out;
-}
-
-/// max |u_file - u_solver| over the nodes of a domain's result file (the solver's local order is
-/// its sub-model's, matched by node id); -1 when nothing could be compared.
-double max_difference(const LastState& s, const integration::Solver& solver) {
-  if (!s.ok()) return -1.0;
-  const auto& ids = solver.model().nodes.id;
-  std::map<std::int64_t, std::size_t> local;
-  for (std::size_t i = 0; i < ids.size(); ++i) local[ids[i]] = i;
-  double worst = 0.0;
-  for (std::size_t i = 0; i < s.node_ids.size(); ++i) {
-    const auto it = local.find(s.node_ids[i]);
-    if (it == local.end()) return -1.0;
-    for (std::size_t d = 0; d < 3; ++d)
-      worst = std::max(worst, std::abs(s.u[3 * i + d] - solver.displacement()[3 * it->second + d]));
-  }
-  return worst;
-}
-
-/// Each domain file's last state is the runner's at its last coarse instant, bit for bit: the
-/// fine domain's file against runner.fine(), the coarse one's against runner.coarse().
-void expect_runner_bits(const std::filesystem::path& out, const cosim::PaperRunner& runner,
-                        const std::string& fine, const std::string& coarse) {
-  for (const auto& [name, solver] :
-       {std::pair<std::string, const integration::Solver*>{fine, &runner.fine()},
-        {coarse, &runner.coarse()}}) {
-    const auto s = last_state((out / "domains" / (name + ".h5")).string());
-    ASSERT_TRUE(s.ok()) << name;
-    EXPECT_NEAR(s.time_s, runner.seconds(runner.coarse_time_ticks()), 1e-12) << name;
-    EXPECT_EQ(max_difference(s, *solver), 0.0) << name << ": not bit-identical to PaperRunner";
-  }
 }
 
 /// The "at t = ... s" of a guard message.
@@ -383,8 +334,8 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
                  .cycles = &cycles});
   EXPECT_EQ(rc, 0) << log;
   if (rc != 0) return 1.0;
-  const auto tps = coordinator::kDefaultTicksPerSecond;
-  const auto h = static_cast<coordinator::Tick>(std::llround(steps["fine"] * tps));
+  const auto tps = coupling::kDefaultTicksPerSecond;
+  const auto h = static_cast<coupling::Tick>(std::llround(steps["fine"] * tps));
   for (const auto& [name, step] : steps) EXPECT_EQ(step, steps["fine"]) << name;
 
   // Mono: fixed, the common step to the coordinator's end; variable, the daemons' rule at every
@@ -394,10 +345,10 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
   mono.initialize();
   const auto own = [&] {
     return static_cast<double>(
-               static_cast<coordinator::Tick>(std::floor(mono.dt_s() * static_cast<double>(tps)))) /
+               static_cast<coupling::Tick>(std::floor(mono.dt_s() * static_cast<double>(tps)))) /
            static_cast<double>(tps);
   };
-  const auto end = coordination::paper_end_ticks(2.0e-4, {h}, tps);
+  const auto end = coordinator::paper_end_ticks(2.0e-4, {h}, tps);
   std::int64_t n = 0;
   for (;; ++n) {
     mono.impose_step(variable ? own() : static_cast<double>(h) / static_cast<double>(tps));

@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/cosim/paper_runner.h"
 #include "solver/integration/solver.h"
 #include "tests/unit/partition/partition_models.h"
@@ -256,7 +256,7 @@ PulseCase pulse_case(int r, Viscosity visc = {}, const Bar& shape = {}) {
 /// Errors vs the mono run on the same mesh at the fine step, measured on the fine side's presence
 /// of an interface node (coupling-study/README.md "Measurements"), up to t = 4.8 L/c (before the
 /// wave reflected at x = 3 m returns). Throws the guard's NumericalError if the run goes unstable.
-Accuracy pulse_vs_mono(int r, coordinator::paper::Drift drift = coordinator::paper::Drift::on,
+Accuracy pulse_vs_mono(int r, coupling::paper::Drift drift = coupling::paper::Drift::on,
                        Viscosity visc = {}) {
   const PulseCase pc = pulse_case(r, visc);
   const auto& m = pc.m;
@@ -322,7 +322,7 @@ Accuracy pulse_vs_mono(int r, coordinator::paper::Drift drift = coordinator::pap
       "%.2f L/c): interface displacement error %.2f %%, interface velocity error %.2f %%, "
       "reflection %.2f %% of v0; net coupling work %.2e of the input work (drift [11] %.2e); max "
       "link gap %.2e of max|u_I|\n",
-      r, drift == coordinator::paper::Drift::on ? "on" : "off", visc.q_linear,
+      r, drift == coupling::paper::Drift::on ? "on" : "off", visc.q_linear,
       visc.in_expansion ? " in expansion too" : "", visc.uniaxial ? ", uniaxial" : "", h,
       static_cast<long long>(a.fine_steps), a.t_end, 100.0 * a.disp, 100.0 * a.vel, 100.0 * a.refl,
       a.coupling, a.drift, a.gap);
@@ -381,7 +381,7 @@ void expect_within_the_issues_bounds(const Accuracy& a) {
 /// r = 2 with this viscosity: the bounds over (b)'s window, then the run continued to t_end;
 /// returns the guard's message ("" if it ran through).
 std::string accurate_then_run(const Viscosity& visc, double t_end, double& t_stop) {
-  expect_within_the_issues_bounds(pulse_vs_mono(2, coordinator::paper::Drift::on, visc));
+  expect_within_the_issues_bounds(pulse_vs_mono(2, coupling::paper::Drift::on, visc));
   return run_until_guard(2, t_end, t_stop, visc);
 }
 
@@ -401,7 +401,7 @@ void expect_guard_message(const std::string& msg, int r) {
 TEST(PaperScheme, RatioTwoHannPulseAccuracyVsMono) {
   const auto a = pulse_vs_mono(2);
   expect_within_the_issues_bounds(a);
-  const auto s2 = pulse_vs_mono(2, coordinator::paper::Drift::off);
+  const auto s2 = pulse_vs_mono(2, coupling::paper::Drift::off);
   EXPECT_GT(s2.gap, a.gap);  // without [11] the two presences of the link drift further apart
 }
 
@@ -525,7 +525,7 @@ struct ContactRun {
 /// copies of the hammer's end-face nodes (§3.1 of Bourel 2005), the originals' domain (coarse) is
 /// the reference of [11]. Runs t_end_over_contact x the contact duration 2L/c, and the mono
 /// model (one Solver, the same step h) alongside.
-ContactRun bars_contact(int r, coordinator::paper::Drift drift, double t_end_over_contact,
+ContactRun bars_contact(int r, coupling::paper::Drift drift, double t_end_over_contact,
                         double penalty) {
   const double L = 0.1, w = 0.01, dx = 1e-3, v0 = 1.0, gap = 1e-5;
   model::Model m;
@@ -643,7 +643,7 @@ ContactRun bars_contact(int r, coordinator::paper::Drift drift, double t_end_ove
       "(%.2e dx), at separation %.3e m, max %.3e m (%.2e dx), at the end %.3e m (%.2e dx); max "
       "|u| of the slave face %.3e m; mean velocities at the end hammer %.4f (mono %.4f), anvil "
       "%.4f (mono %.4f) m/s; net coupling work %.2e of E0 (drift [11] %.2e); %s\n",
-      r, penalty, drift == coordinator::paper::Drift::on ? "on" : "off",
+      r, penalty, drift == coupling::paper::Drift::on ? "on" : "off",
       static_cast<long long>(cr.fine_steps), t_end_over_contact, cr.gap_quarter, cr.gap_contact,
       cr.gap_contact / dx, cr.gap_sep, cr.gap_max, cr.gap_max / dx, cr.gap_end, cr.gap_end / dx,
       cr.u_max, cr.v_hammer, cr.v_hammer_mono, cr.v_anvil, cr.v_anvil_mono, cr.coupling / cr.e0,
@@ -660,7 +660,7 @@ ContactRun bars_contact(int r, coordinator::paper::Drift drift, double t_end_ove
 // neutral drift mode) and the rebound is off. (With the default penalty scale 0.1 the
 // drift-corrected run blows up during the impact at r = 2, 3, 4: see the map below.)
 TEST(PaperScheme, ContactCopiesDriftOnOff) {
-  using coordinator::paper::Drift;
+  using coupling::paper::Drift;
   for (auto d : {Drift::on, Drift::off}) {
     const auto r1 = bars_contact(1, d, 2.5, 0.01);
     EXPECT_TRUE(r1.error.empty()) << r1.error;
@@ -697,7 +697,7 @@ TEST(PaperScheme, ContactCopiesDriftOnOff) {
 // durations each: every run either completes or is stopped by the guard with its message, and no
 // state is ever non-finite. The map itself is printed ([measured] lines).
 TEST(PaperScheme, ContactStabilityMapEndsCleanly) {
-  using coordinator::paper::Drift;
+  using coupling::paper::Drift;
   for (double k : {0.1, 0.03, 0.01})
     for (int r : {2, 3, 4})
       for (auto d : {Drift::on, Drift::off}) {

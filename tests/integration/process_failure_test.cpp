@@ -12,8 +12,8 @@
 #include <tuple>
 #include <vector>
 
+#include "core/exit_codes.h"
 #include "process_test_support.h"
-#include "solver/core/exit_codes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"

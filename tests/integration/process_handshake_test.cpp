@@ -13,10 +13,10 @@
 #include <string>
 #include <thread>
 
+#include "coordinator/coordinator_run.h"
+#include "core/exit_codes.h"
 #include "process_test_support.h"
 #include "proto/protocol_version.h"
-#include "solver/coordination/coordinator_run.h"
-#include "solver/core/exit_codes.h"
 #include "solver/daemon/daemon.h"
 #include "solver/io/scenario_hash.h"
 #include "transport/daemon_link.h"
@@ -65,8 +65,7 @@ class Pieces {
     options_.session.peer_timeout = 1000ms;
     options_.join_timeout = 20s;
     endpoint_ = options_.bind;
-    coordinator_thread_ =
-        std::thread([this] { result_ = coordination::run_coordinator(options_); });
+    coordinator_thread_ = std::thread([this] { result_ = coordinator::run_coordinator(options_); });
   }
 
   /// Starts a daemon for `domain` reading `scenario` (default: the run's); returns its index.
@@ -130,8 +129,8 @@ class Pieces {
   std::string scenario_, endpoint_;
   std::unique_ptr<Child> coordinator_;
   std::vector<std::unique_ptr<Child>> daemons_;
-  coordination::CoordinatorOptions options_;
-  coordination::CoordinatorResult result_;
+  coordinator::CoordinatorOptions options_;
+  coordinator::CoordinatorResult result_;
   std::thread coordinator_thread_;
   std::vector<std::thread> threads_;
   std::vector<daemon::DaemonResult> daemon_results_;

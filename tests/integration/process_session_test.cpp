@@ -18,8 +18,8 @@
 #include <string>
 #include <thread>
 
+#include "core/exit_codes.h"
 #include "process_test_support.h"
-#include "solver/core/exit_codes.h"
 #include "solver/io/scenario_hash.h"
 #include "transport/daemon_link.h"
 #include "transport/dealer.h"

@@ -13,8 +13,8 @@
 #include <fstream>
 #include <string>
 
-#include "solver/core/errors.h"
-#include "solver/core/state_archive.h"
+#include "core/errors.h"
+#include "core/state_archive.h"
 #include "solver/io/result_reader.h"
 #include "tests/integration/run_helpers.h"
 #include "tests/integration/shell_command.h"

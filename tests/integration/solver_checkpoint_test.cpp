@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
 

@@ -12,9 +12,9 @@
 #include <string>
 
 #include "solver/cosim/layer_network.h"
-#include "solver/cosim/split_runner.h"
 #include "solver/integration/solver.h"
 #include "tests/integration/network_vs_mono.h"
+#include "tests/support/split_runner.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;

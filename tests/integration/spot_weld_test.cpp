@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 #include "solver/deck/model_from_deck.h"
 #include "solver/deck_writer/deck_writer.h"
 #include "solver/integration/solver.h"

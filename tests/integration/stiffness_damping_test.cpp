@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "solver/cosim/split_runner.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
 #include "tests/integration/test_models.h"
+#include "tests/support/split_runner.h"
 #include "tests/unit/partition/partition_models.h"
 
 namespace crashlink::testing {

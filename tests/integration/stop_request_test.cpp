@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "solver/core/exit_codes.h"
+#include "core/exit_codes.h"
 #include "solver/io/result_reader.h"
 #include "tests/integration/process_test_support.h"
 #include "transport/endpoint.h"

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <limits>
 
+#include "core/state_archive.h"
 #include "solver/contact/friction.h"
-#include "solver/core/state_archive.h"
 #include "solver/model/mesh_generators.h"
 
 using namespace crashlink;

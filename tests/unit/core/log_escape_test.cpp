@@ -1,6 +1,6 @@
-// solver/core/log_escape.h: a string from a peer becomes one line of printable ASCII that says
+// core/log_escape.h: a string from a peer becomes one line of printable ASCII that says
 // exactly which bytes came, bounded in length.
-#include "solver/core/log_escape.h"
+#include "core/log_escape.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// solver/core/state_archive.h: named records round-trip to the bit; a damaged, truncated or
+// core/state_archive.h: named records round-trip to the bit; a damaged, truncated or
 // foreign file, a missing record and a record sized for another model are refused with
 // CheckpointError naming the file.
-#include "solver/core/state_archive.h"
+#include "core/state_archive.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/deck/model_from_deck.h"
 
 namespace crashlink::testing {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <random>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::deck_writer {
 namespace {

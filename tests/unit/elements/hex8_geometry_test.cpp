@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/elements/hex8.h"
 
 namespace {

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/elements/shell_bt.h"
 
 namespace {

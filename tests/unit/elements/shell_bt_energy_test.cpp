@@ -22,7 +22,7 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/elements/shell_bt.h"
 
 using crashlink::operator*;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/core/vec3.h"
+#include "core/errors.h"
+#include "core/vec3.h"
 #include "solver/elements/shell_bt.h"
 
 using crashlink::operator*;

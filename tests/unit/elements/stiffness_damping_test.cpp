@@ -15,8 +15,8 @@
 #include <random>
 #include <vector>
 
-#include "solver/core/errors.h"
-#include "solver/core/vec3.h"
+#include "core/errors.h"
+#include "core/vec3.h"
 #include "solver/elements/hex8.h"
 #include "solver/elements/shell_bt.h"
 

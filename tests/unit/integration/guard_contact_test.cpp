@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/integration/contact_creation.h"
 #include "solver/integration/guard.h"
 

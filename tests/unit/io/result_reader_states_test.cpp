@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/result_writer.h"
 #include "tests/unit/io/result_h5_reader.h"

@@ -13,7 +13,7 @@
 #include <regex>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/result_writer.h"
 #include "tests/unit/io/result_h5_reader.h"
 

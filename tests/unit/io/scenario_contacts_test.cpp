@@ -1,7 +1,7 @@
 // The `contacts:` section: values map onto model::Contact; mistakes give file:line: key errors.
 #include <gtest/gtest.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 
 namespace crashlink::io {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 
 namespace crashlink::io {

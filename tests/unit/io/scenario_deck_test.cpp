@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 

@@ -2,7 +2,7 @@
 // domain; mistakes give file:line: key errors with the fix.
 #include <gtest/gtest.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 
 namespace crashlink::io {

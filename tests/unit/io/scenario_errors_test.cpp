@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_reader.h"
 #include "tests/unit/io/yaml_marker.h"
 

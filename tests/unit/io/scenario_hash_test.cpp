@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::io {
 namespace {

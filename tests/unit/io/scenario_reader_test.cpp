@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::io {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
 

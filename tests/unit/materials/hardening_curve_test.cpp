@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/materials/material.h"
 
 using crashlink::materials::HardeningCurve;

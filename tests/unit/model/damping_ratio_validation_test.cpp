@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 #include "solver/model/model.h"
 

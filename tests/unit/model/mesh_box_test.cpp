@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 #include "tests/unit/model/mesh_geometry.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "solver/core/vec3.h"
+#include "core/vec3.h"
 #include "solver/model/model.h"
 
 namespace crashlink::model::testing {

@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/model/mesh_generators.h"
 #include "solver/model/node_merging.h"
 

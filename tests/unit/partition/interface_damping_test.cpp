@@ -6,7 +6,7 @@
 
 #include <map>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/partition/decomposition.h"
 #include "tests/unit/partition/partition_models.h"
 

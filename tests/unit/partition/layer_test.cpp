@@ -7,7 +7,7 @@
 #include <limits>
 #include <set>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/partition/decomposition.h"
 #include "tests/unit/partition/partition_models.h"
 

@@ -17,7 +17,7 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::signal {
 namespace {

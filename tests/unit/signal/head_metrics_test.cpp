@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/sampling.h"
 
 namespace crashlink::signal {

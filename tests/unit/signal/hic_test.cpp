@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 
 namespace crashlink::signal {
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "solver/core/errors.h"
+#include "core/errors.h"
 #include "solver/signal/sampling.h"
 #include "solver/signal/signal_csv.h"
 

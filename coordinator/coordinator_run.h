@@ -1,0 +1,107 @@
+#pragma once
+// crashlink-coordinator (docs/design.md §1, §2.6, §2.7, §3): a message pump around its coupling
+// scheme (coordinator_scheme.h; `layer` or `paper`, coordinator_schemes.h). It binds a
+// CoordinatorLink, admits one daemon per non-empty domain of the scheme's cut of the scenario,
+// has the scheme check each Register, then plan the steps and send the Setups; until every daemon
+// has said Bye it hands each message to the scheme (`layer`: LayerReports with the interface
+// history rows and progress, layer vectors routed when there are no lanes; `paper`: each
+// FreeState answered with the Corrections its schedule allows; a guard stop ends the run with
+// exit 3 and "the coupling went unstable") and watches for silence, stalls and stop requests.
+//
+// Output: DIR/coordinator.h5 (io::CouplingHistoryWriter): /coupling/<interface>/ histories and
+// /timing (wall, the coordinator's CPU, each daemon's time spent waiting, from its Bye).
+//
+// Failures (exit codes: core/exit_codes.h): a daemon that reports an Error, dies or goes
+// silent for the peer timeout (CoordinatorLink::check_alive), breaks the protocol or registers an
+// interface that does not match; a domain that does not join within the join timeout. The
+// coordinator then sends an Error naming the culprit to every other daemon, writes its file and
+// returns non-zero with a message naming the culprit. Bytes that are not protocol messages and
+// refused Hellos (other protocol version, other scenario) are answered and logged; the run goes on.
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "coupling/ticks.h"
+#include "transport/session.h"
+
+namespace crashlink::coordinator {
+
+struct CoordinatorOptions {
+  std::string bind;  ///< endpoint to bind: tcp://127.0.0.1:* (port read back), ipc://, inproc://
+  std::string scenario;  ///< scenario file (daemons must run the same content: hash checked)
+  std::string out_dir = "out";
+  bool common_step = true;  ///< split (true) or multi (false)
+  /// The coupling scheme (coordinator_schemes.h: "layer" or "paper"); the daemons' must be the
+  /// same (Setup.scheme).
+  std::string coupling = "layer";
+  bool drift = true;         ///< `paper`: drift correction [11] on
+  double guard_rise = 0.05;  ///< `paper`: energy guard (coupling/paper_guard.h)
+  /// `paper`: each free state's own step proposal instead of the fixed plan (docs/design.md §2.6:
+  /// split imposes the smallest of all at every instant, multi each its own). `layer`:
+  /// Setup.variable_steps (multi: every domain follows its own proposal; split: all the least
+  /// proposal of all), checkpoints at the leader's instants (coordinator_checkpoints.h).
+  bool variable_steps = false;
+  std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
+  transport::SessionOptions session;
+  std::chrono::milliseconds join_timeout{60000};  ///< every domain joined and registered by then
+  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
+  /// Called once bound, with the real endpoint (in-process launcher and tests).
+  std::function<void(const std::string&)> on_bound;
+  /// Called as the run goes: the time reached by the slowest domain, the end time [s] and that
+  /// domain's name.
+  std::function<void(double, double, const std::string&)> on_progress;
+  /// Set from outside (signal handler, launcher) to stop the run: every daemon gets an Error.
+  const std::atomic<bool>* stop = nullptr;
+  /// > 0: every domain writes a checkpoint at every multiple of this interval [s], rounded to a
+  /// whole multiple of every domain's step (variable steps: at the leader's first instant at or
+  /// after each multiple) (docs/design.md §2.6 "Checkpoints"), into
+  /// OUT/checkpoints/<T>/<domain>; the coordinator its own into OUT/checkpoints/<T>/coordinator.
+  double checkpoint_interval_s = 0.0;
+  /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons
+  /// list theirs in their Register); a run without one is refused (exit 2, naming what each has).
+  bool restart = false;
+  /// Let the daemons exchange the layer vectors directly when every one offers a lane
+  /// (Register.lane_endpoint); false: always through the coordinator (--no-lanes).
+  bool lanes = true;
+  bool in_process = false;  ///< a thread of a bigger process: CPU time of this thread only
+  std::FILE* log = stderr;  ///< notices (refused peers, garbage), one line each; nullptr: none
+};
+
+/// What one daemon reported in its Bye (zeros if it did not say Bye).
+struct DomainOutcome {
+  std::string name;
+  bool finished = false;  ///< said Bye
+  double cpu_seconds = 0.0;
+  double wait_seconds = 0.0;
+  double wall_seconds = 0.0;
+  std::int64_t cycles = 0;
+  double dt_min_s = 0.0;
+  std::int64_t elements = 0;
+  std::int64_t step_ticks = 0;  ///< the fixed step it was given (0 before the Setup)
+};
+
+struct CoordinatorResult {
+  int exit_code = 0;    ///< core/exit_codes.h
+  std::string message;  ///< empty on success; else what happened, naming the culprit
+  std::string culprit;  ///< the domain that failed, if known
+  std::string endpoint;
+  std::string coordinator_h5;
+  double cpu_seconds = 0.0;
+  double wall_seconds = 0.0;
+  std::int64_t messages_forwarded = 0;         ///< layer vectors routed (0 over lanes)
+  bool lanes = false;                          ///< the layer vectors went daemon to daemon
+  std::int64_t reports = 0;                    ///< LayerReports received
+  std::int64_t notices = 0;                    ///< refused or dropped messages logged
+  std::int64_t checkpoint_interval_ticks = 0;  ///< the interval used (0: none)
+  std::int64_t restarted_from_ticks = -1;      ///< the checkpoint resumed from (-1: from t = 0)
+  std::vector<DomainOutcome> domains;
+};
+
+/// Runs the coordinator to the end of the run (or the first failure). Never throws.
+CoordinatorResult run_coordinator(const CoordinatorOptions& options);
+
+}  // namespace crashlink::coordinator

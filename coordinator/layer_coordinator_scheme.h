@@ -1,0 +1,21 @@
+#pragma once
+// `layer` as the coordinator runs it (docs/design.md §2.7 "How to distribute layer"): the layer
+// cut (layer_cut.h), the fixed steps (split: common, multi: nested) or the first of variable
+// ones, the lanes when every daemon offered one (docs/processes.md "Lanes"), the routing of
+// LayerDisplacement / LayerForce through the coordinator otherwise (coupling/layer_router.h),
+// the interface history rows of the fine sides' LayerReports, and the coordinator's checkpoints
+// (coordinator_checkpoints.h), behind CoordinatorScheme.
+#include <memory>
+#include <string>
+
+#include "coordinator/coordinator_scheme.h"
+#include "solver/model/model.h"
+
+namespace crashlink::coordinator {
+
+/// `options` must outlive the scheme; `hash` is the scenario's.
+std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(const model::Model& model,
+                                                                 const CoordinatorOptions& options,
+                                                                 const std::string& hash);
+
+}  // namespace crashlink::coordinator
