@@ -16,9 +16,12 @@
 #include "apps/launcher.h"
 #include "apps/timing_reader.h"
 #include "coordinator/coordinator_run.h"
+#include "coordinator/coordinator_schemes.h"
 #include "core/errors.h"
 #include "core/exit_codes.h"
+#include "coupling/coupling_config.h"
 #include "solver/contact/contact_advice.h"
+#include "solver/daemon/domain_schemes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/gather/history_merge.h"
 #include "solver/integration/mass_scaling.h"
@@ -140,20 +143,20 @@ void print_energy(std::FILE* f, const model::Model& model, const std::string& h5
 }  // namespace
 
 int run_coupled(const RunCommandOptions& o) {
-  const bool paper = o.coupling == "paper";
-  if (paper && (o.checkpoint_interval_s > 0.0 || !o.restart.empty()))
-    throw InputError(
-        "--coupling paper: --checkpoint-interval and --restart are features of "
-        "`layer` runs; run `paper` without them");
-  if (!paper && o.no_drift)
-    throw InputError(
-        "--no-drift switches the drift correction [11] of --coupling paper off; "
-        "`layer` has none");
+  // The run's configuration, checked once before anything starts (coordinator::validate).
+  coupling::CouplingConfig run;
+  run.scheme = o.coupling;
+  run.common_step = o.mode == "split";
+  run.variable_steps = o.variable_steps;
+  run.drift = !o.no_drift;
+  run.checkpoint_interval_s = o.checkpoint_interval_s;
+  run.restart = !o.restart.empty();
+  run.lanes = !o.no_lanes;
+  coordinator::validate(run);
   const auto model = io::read_scenario(o.scenario);
   if (model.controls.mass_scaling_dt_s > 0.0)
     std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
-  const auto dec =
-      partition::decompose(model, paper ? partition::Scheme::Paper : partition::Scheme::Layer);
+  const auto dec = partition::decompose(model, daemon::domain_scheme_named(run.scheme).cut);
   std::vector<std::string> domains, emptied;
   for (const auto& d : dec.domains) {
     if (!d.empty()) {
@@ -170,8 +173,8 @@ int run_coupled(const RunCommandOptions& o) {
         "domain; give '{}' more than one element across the interface (a finer mesh or more "
         "parts), or merge it into its neighbour, or use --mode mono (`crashlink advise {}` "
         "shows the cuts that work)",
-        o.mode, paper ? "paper" : "layer", o.scenario, fmt::join(emptied, "', '"),
-        fmt::join(emptied, "', '"), o.scenario));
+        o.mode, run.scheme, o.scenario, fmt::join(emptied, "', '"), fmt::join(emptied, "', '"),
+        o.scenario));
   }
   if (domains.size() < 2) {
     throw InputError(fmt::format(
@@ -199,18 +202,12 @@ int run_coupled(const RunCommandOptions& o) {
   LaunchOptions lo;
   lo.scenario = o.scenario;
   lo.out_dir = o.out;
-  lo.common_step = o.mode == "split";
+  lo.run = run;
   lo.scheme = scheme_of(o.transport);
   lo.progress = !o.quiet;
   lo.session = o.session;
   lo.join_timeout_ms = o.join_timeout_ms;
   lo.step_safety = o.step_safety;
-  lo.checkpoint_interval_s = o.checkpoint_interval_s;
-  lo.restart = !o.restart.empty();
-  lo.lanes = !o.no_lanes;
-  lo.paper = paper;
-  lo.drift = !o.no_drift;
-  lo.variable_steps = o.variable_steps;
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

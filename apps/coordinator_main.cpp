@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   CLI::App app{"crashlink-coordinator: couples the domains of a crashlink run"};
   coordinator::CoordinatorOptions o;
   o.out_dir = apps::SharedDefaults::out;
-  o.checkpoint_interval_s = apps::SharedDefaults::checkpoint_interval_s;
+  o.run.checkpoint_interval_s = apps::SharedDefaults::checkpoint_interval_s;
   apps::SessionFlags session;
   std::string mode = apps::SharedDefaults::coupled_mode;
   int join_timeout_ms = apps::SharedDefaults::join_timeout_ms;
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 86400000))
       ->capture_default_str();
   app.add_flag("--progress", progress, "progress line on stderr (the slowest domain's time)");
-  app.add_option("--checkpoint-interval", o.checkpoint_interval_s,
+  app.add_option("--checkpoint-interval", o.run.checkpoint_interval_s,
                  "write checkpoints (all domains) every this much simulated time, s, rounded to a "
                  "multiple of every domain's step; 0: none")
       ->check(CLI::NonNegativeNumber)
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-lanes", no_lanes,
                "route the layer vectors through the coordinator even where the daemons offer "
                "lanes (daemon to daemon; docs/processes.md \"Lanes\")");
-  app.add_flag("--restart", o.restart,
+  app.add_flag("--restart", o.run.restart,
                "resume from the newest checkpoint in --out that every domain has (the daemons "
                "list theirs when they register)");
   std::string coupling = apps::SharedDefaults::coupling;
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   bool no_drift = false;
   app.add_flag("--no-drift", no_drift, "`paper`: drift correction [11] off (the study's S2)");
   app.add_flag(
-      "--variable-steps", o.variable_steps,
+      "--variable-steps", o.run.variable_steps,
       "variable steps instead of fixed steps planned at the start. `paper`: impose each free "
       "state's own step proposal (split: the smallest of all at every instant; multi: each its "
       "own); `layer`: the same, the leader choosing the step from its own and its holders' "
@@ -80,10 +80,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return apps::parse_error_exit(app, e, "crashlink-coordinator");
   }
-  o.common_step = mode == "split";
-  o.lanes = !no_lanes;
-  o.coupling = coupling;
-  o.drift = !no_drift;
+  o.run.common_step = mode == "split";
+  o.run.lanes = !no_lanes;
+  o.run.scheme = coupling;
+  o.run.drift = !no_drift;
   o.session = session.options();
   o.join_timeout = std::chrono::milliseconds{join_timeout_ms};
   apps::install_stop_handlers();

@@ -143,25 +143,24 @@ class ProcessRun {
                                   "--out",
                                   out.string(),
                                   "--mode",
-                                  o_.common_step ? "split" : "multi",
+                                  o_.run.common_step ? "split" : "multi",
                                   "--endpoint-file",
                                   endpoint_file.string(),
                                   "--join-timeout-ms",
                                   std::to_string(o_.join_timeout_ms)};
     for (const auto& a : o_.session.arguments()) args.push_back(a);
     if (o_.progress) args.emplace_back("--progress");
-    if (o_.checkpoint_interval_s > 0.0) {
+    // The run's configuration (coupling/coupling_config.h) as the coordinator's flags.
+    args.emplace_back("--coupling");
+    args.push_back(o_.run.scheme);
+    if (o_.run.checkpoint_interval_s > 0.0) {
       args.emplace_back("--checkpoint-interval");
-      args.push_back(fmt::format("{:.17g}", o_.checkpoint_interval_s));
+      args.push_back(fmt::format("{:.17g}", o_.run.checkpoint_interval_s));
     }
-    if (o_.restart) args.emplace_back("--restart");
-    if (!o_.lanes) args.emplace_back("--no-lanes");
-    if (o_.paper) {
-      args.emplace_back("--coupling");
-      args.emplace_back("paper");
-      if (!o_.drift) args.emplace_back("--no-drift");
-    }
-    if (o_.variable_steps) args.emplace_back("--variable-steps");
+    if (o_.run.restart) args.emplace_back("--restart");
+    if (!o_.run.lanes) args.emplace_back("--no-lanes");
+    if (!o_.run.drift) args.emplace_back("--no-drift");
+    if (o_.run.variable_steps) args.emplace_back("--variable-steps");
     add("coordinator", spawn(coordinator_exe, args));
 
     LaunchResult r;
@@ -173,10 +172,8 @@ class ProcessRun {
         for (const auto& s : o_.session.arguments()) a.push_back(s);
         a.emplace_back("--step-safety");
         a.push_back(fmt::format("{:.17g}", o_.step_safety));
-        if (o_.paper) {
-          a.emplace_back("--coupling");
-          a.emplace_back("paper");
-        }
+        a.emplace_back("--coupling");
+        a.push_back(o_.run.scheme);
         add(d, spawn(solver_exe, a));
       }
     }
@@ -294,17 +291,11 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
   co.bind = transport::local_endpoint(transport::Scheme::inproc, "run");
   co.scenario = o.scenario;
   co.out_dir = o.out_dir;
-  co.common_step = o.common_step;
+  co.run = o.run;
   co.session = o.session.options();
   co.join_timeout = std::chrono::milliseconds{o.join_timeout_ms};
   co.in_process = true;
   co.stop = &stop_flag();
-  co.checkpoint_interval_s = o.checkpoint_interval_s;
-  co.restart = o.restart;
-  co.lanes = o.lanes;
-  co.coupling = o.paper ? "paper" : "layer";
-  co.drift = o.drift;
-  co.variable_steps = o.variable_steps;
   std::promise<std::string> bound;
   std::atomic<bool> bound_set{false};
   co.on_bound = [&](const std::string& ep) {
@@ -336,7 +327,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
         d.session = o.session.options();
         d.in_process = true;
         d.step_safety = o.step_safety;
-        d.coupling = o.paper ? "paper" : "layer";
+        d.coupling = o.run.scheme;
         d.stop = &stop_flag();
         dr[k] = daemon::run_daemon(d);
       });

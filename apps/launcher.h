@@ -18,6 +18,7 @@
 
 #include "apps/session_flags.h"
 #include "apps/shared_defaults.h"
+#include "coupling/coupling_config.h"
 #include "transport/endpoint.h"
 
 namespace crashlink::apps {
@@ -25,18 +26,13 @@ namespace crashlink::apps {
 struct LaunchOptions {
   std::string scenario;
   std::string out_dir;
-  bool common_step = false;  ///< split (true) or multi (false)
+  /// How the run couples (coupling/coupling_config.h), for the coordinator and every daemon.
+  coupling::CouplingConfig run;
   transport::Scheme scheme = transport::Scheme::ipc;
   bool progress = true;  ///< the coordinator's progress line on stderr
   SessionFlags session;
   int join_timeout_ms = SharedDefaults::join_timeout_ms;
   double step_safety = SharedDefaults::step_safety;  ///< to every daemon (--step-safety)
-  double checkpoint_interval_s = SharedDefaults::checkpoint_interval_s;  ///< to the coordinator
-  bool restart = false;         ///< CoordinatorOptions::restart (out_dir holds the run)
-  bool lanes = true;            ///< CoordinatorOptions::lanes
-  bool paper = false;           ///< --coupling paper for the coordinator and every daemon
-  bool drift = true;            ///< `paper`: drift correction [11] (--no-drift otherwise)
-  bool variable_steps = false;  ///< CoordinatorOptions::variable_steps
 };
 
 /// How one piece of the run ended.

@@ -29,8 +29,8 @@ CoordinatorCheckpoints::CoordinatorCheckpoints(const CoordinatorOptions& options
       row_latest_(cut.interfaces.size(), 0) {}
 
 Tick CoordinatorCheckpoints::plan(const std::vector<Tick>& steps) {
-  if (!(o_.checkpoint_interval_s > 0.0)) return every_ = 0;
-  if (o_.variable_steps) {
+  if (!(o_.run.checkpoint_interval_s > 0.0)) return every_ = 0;
+  if (o_.run.variable_steps) {
     plan_variable();
     return every_;
   }
@@ -43,7 +43,7 @@ Tick CoordinatorCheckpoints::plan(const std::vector<Tick>& steps) {
           "the domains' steps have no common multiple that fits a tick count; run without "
           "checkpoints");
   }
-  const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
+  const double want = o_.run.checkpoint_interval_s * static_cast<double>(o_.run.ticks_per_second);
   const auto n = std::max<std::int64_t>(
       1, static_cast<std::int64_t>(std::llround(want / static_cast<double>(l))));
   every_ = n * l;
@@ -51,8 +51,8 @@ Tick CoordinatorCheckpoints::plan(const std::vector<Tick>& steps) {
     std::fprintf(o_.log,
                  "crashlink-coordinator: checkpoints every %.6e s (asked %.6e s; a multiple of "
                  "every domain's step) into %s/checkpoints\n",
-                 static_cast<double>(every_) / static_cast<double>(o_.ticks_per_second),
-                 o_.checkpoint_interval_s, o_.out_dir.c_str());
+                 static_cast<double>(every_) / static_cast<double>(o_.run.ticks_per_second),
+                 o_.run.checkpoint_interval_s, o_.out_dir.c_str());
     std::fflush(o_.log);
   }
   return every_;
@@ -74,17 +74,17 @@ void CoordinatorCheckpoints::plan_variable() {
         "instants the others land on; this cut has {} ({}), each with instants of its own; run "
         "with fixed steps to write checkpoints",
         leaders.size(), fmt::join(leaders, ", ")));
-  const double want = o_.checkpoint_interval_s * static_cast<double>(o_.ticks_per_second);
+  const double want = o_.run.checkpoint_interval_s * static_cast<double>(o_.run.ticks_per_second);
   if (!(want < 4.0e18))
     throw InputError(fmt::format("the checkpoint interval {} s does not fit a tick count",
-                                 o_.checkpoint_interval_s));
+                                 o_.run.checkpoint_interval_s));
   every_ = std::max<std::int64_t>(1, std::llround(want));
   if (o_.log != nullptr) {
     std::fprintf(o_.log,
                  "crashlink-coordinator: checkpoints at the first instant of '%s' at or after "
                  "every %.6e s (variable steps) into %s/checkpoints\n",
                  leaders.empty() ? "?" : leaders.front().c_str(),
-                 static_cast<double>(every_) / static_cast<double>(o_.ticks_per_second),
+                 static_cast<double>(every_) / static_cast<double>(o_.run.ticks_per_second),
                  o_.out_dir.c_str());
     std::fflush(o_.log);
   }
@@ -119,7 +119,7 @@ Tick CoordinatorCheckpoints::choose_restart(const std::vector<wire::Register>& r
     throw InputError(fmt::format(
         "--restart: no checkpoint instant (ticks of 1/{} s) that the coordinator and every "
         "domain have intact ({}); run from the start without --restart",
-        o_.ticks_per_second, listing));
+        o_.run.ticks_per_second, listing));
   // A newer instant that some piece lacks (not written, or damaged and reported by its owner):
   // the restart falls back to the newest one every piece has, and says so.
   Tick newest_any = common.back();
@@ -132,9 +132,10 @@ Tick CoordinatorCheckpoints::choose_restart(const std::vector<wire::Register>& r
     log(fmt::format(
         "the newest checkpoint instant, t = {:.6e} s, is missing or damaged in {}: falling back "
         "to t = {:.6e} s, the newest that every piece has intact ({})",
-        static_cast<double>(newest_any) / static_cast<double>(o_.ticks_per_second),
+        static_cast<double>(newest_any) / static_cast<double>(o_.run.ticks_per_second),
         fmt::join(lacking, ", "),
-        static_cast<double>(common.back()) / static_cast<double>(o_.ticks_per_second), listing));
+        static_cast<double>(common.back()) / static_cast<double>(o_.run.ticks_per_second),
+        listing));
   }
   return common.back();
 }
@@ -168,7 +169,7 @@ double CoordinatorCheckpoints::restore(Tick T, coupling::LayerRouter& router,
     std::fill(row_latest_.begin(), row_latest_.end(), T);
     cpu_before = r.get_double("run.cpu_seconds");
     rows = history.replay((std::filesystem::path(dir) / "coordinator.h5").string(),
-                          static_cast<double>(T) / static_cast<double>(o_.ticks_per_second));
+                          static_cast<double>(T) / static_cast<double>(o_.run.ticks_per_second));
   }
   restart_from_ = T;
   latest_written_ = T;
@@ -176,7 +177,7 @@ double CoordinatorCheckpoints::restore(Tick T, coupling::LayerRouter& router,
     std::fprintf(o_.log,
                  "crashlink-coordinator: restarting every domain from the checkpoint at t = "
                  "%.6e s (%zu interface history rows kept)\n",
-                 static_cast<double>(T) / static_cast<double>(o_.ticks_per_second), rows);
+                 static_cast<double>(T) / static_cast<double>(o_.run.ticks_per_second), rows);
     std::fflush(o_.log);
   }
   return cpu_before;

@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <stdexcept>
 #include <utility>
 
 #include "coordinator/coordinator_schemes.h"
@@ -76,7 +77,9 @@ class Coordinator final : private CoordinatorPort {
     std::vector<std::string> lanes;
     for (std::size_t k = 0; k < regs_.size(); ++k)
       if (registered_[k]) lanes.push_back(regs_[k].lane_endpoint());
-    remove_session_files(link_ ? o_.bind : std::string(), o_.endpoint_file, lanes,
+    // Only what this coordinator made: another one may be running on that socket or file.
+    remove_session_files(link_ ? o_.bind : std::string(),
+                         endpoint_written_ ? o_.endpoint_file : std::string(), lanes,
                          scheme_ ? cut().names : std::vector<std::string>{});
     r.cpu_seconds = run_cpu_seconds();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
@@ -99,9 +102,9 @@ class Coordinator final : private CoordinatorPort {
   /// A Setup leaves with this run's scheme name (Setup.scheme), whatever the scheme filled in.
   void send(int k, const wire::Envelope& e) override {
     const auto& to = cut().names[static_cast<std::size_t>(k)];
-    if (e.has_setup() && e.setup().scheme() != o_.coupling) {
+    if (e.has_setup() && e.setup().scheme() != o_.run.scheme) {
       wire::Envelope named = e;
-      named.mutable_setup()->set_scheme(o_.coupling);
+      named.mutable_setup()->set_scheme(o_.run.scheme);
       link_->send(to, named);
       return;
     }
@@ -109,6 +112,8 @@ class Coordinator final : private CoordinatorPort {
   }
   /// The message's bytes as they came (CoordinatorLink::forward: no re-serialisation, no copy).
   void forward_current(int to) override {
+    if (current_ == nullptr)
+      throw std::logic_error("CoordinatorPort::forward_current outside the handling of a message");
     if (outcomes_[static_cast<std::size_t>(to)].finished) return;  // nothing left to use it for
     link_->forward(cut().names[static_cast<std::size_t>(to)], *current_);
   }
@@ -129,10 +134,11 @@ class Coordinator final : private CoordinatorPort {
   const LayerCut& cut() const { return scheme_->cut(); }
 
   void prepare() {
+    validate(o_.run);  // every rule on the configuration (coordinator_schemes.h)
     auto read = io::read_scenario_with_hash(o_.scenario);  // one parse for both
     const std::string hash = std::move(read.hash);
     model_ = std::make_unique<model::Model>(std::move(read.model));
-    scheme_ = coordinator_scheme_named(o_.coupling).make(*model_, o_, hash);
+    scheme_ = coordinator_scheme_named(o_.run.scheme).make(*model_, o_, hash);
     const auto& names = cut().names;
     outcomes_.resize(names.size());
     for (std::size_t k = 0; k < names.size(); ++k) outcomes_[k].name = names[k];
@@ -142,19 +148,21 @@ class Coordinator final : private CoordinatorPort {
 
     std::filesystem::create_directories(o_.out_dir);
     hash_ = hash;
-    if (!o_.restart) run::remove_checkpoints(o_.out_dir, run::kCoordinatorPiece);
+    if (!o_.run.restart) run::remove_checkpoints(o_.out_dir, run::kCoordinatorPiece);
     history_ = std::make_unique<CouplingHistory>(
-        (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut(), o_.coupling);
+        (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut(), o_.run.scheme);
 
     transport::CoordinatorConfig config;
     config.scenario_hash = hash;
     config.domains = cut().names;
-    config.ticks_per_second = o_.ticks_per_second;
+    config.ticks_per_second = o_.run.ticks_per_second;
     config.options = o_.session;
     link_ = std::make_unique<transport::CoordinatorLink>(o_.bind, config);
     reclaim_orphan_lanes(o_.bind, o_.log);
-    if (!o_.endpoint_file.empty())
+    if (!o_.endpoint_file.empty()) {
       write_file_atomically(o_.endpoint_file, link_->endpoint() + "\n");
+      endpoint_written_ = true;
+    }
     if (o_.log != nullptr) {
       std::fprintf(o_.log, "crashlink-coordinator: listening on %s for %zu domains ('%s')\n",
                    link_->endpoint().c_str(), cut().names.size(),
@@ -258,8 +266,14 @@ class Coordinator final : private CoordinatorPort {
       if (in) {
         const int k = index_of(in->domain);
         auto& e = in->envelope;
+        // forward_current() reaches this message only while it is handled.
+        struct ClearOnExit {
+          transport::Incoming*& slot;
+          ~ClearOnExit() { slot = nullptr; }
+        };
+        current_ = &*in;
+        const ClearOnExit clear{current_};
         try {
-          current_ = &*in;
           if (scheme_->receive(k, e, *this)) {
             latest_[static_cast<std::size_t>(k)] = scheme_->reached(k);
           } else if (e.has_bye()) {
@@ -274,15 +288,13 @@ class Coordinator final : private CoordinatorPort {
                                                       in->domain, wire::body_name(e))));
           }
         } catch (const ProtocolError& x) {
-          current_ = nullptr;
           throw StopRun(protocol_stop(in->domain, x.what()));
         }
-        current_ = nullptr;
         if (o_.on_progress) {
           const int slow = slowest();
           const double t = slow < 0 ? end_s
                                     : static_cast<double>(latest_[static_cast<std::size_t>(slow)]) /
-                                          static_cast<double>(o_.ticks_per_second);
+                                          static_cast<double>(o_.run.ticks_per_second);
           o_.on_progress(t, end_s,
                          slow < 0 ? std::string() : cut().names[static_cast<std::size_t>(slow)]);
         }
@@ -292,7 +304,7 @@ class Coordinator final : private CoordinatorPort {
         std::vector<bool> finished;
         for (const auto& out : outcomes_) finished.push_back(out.finished);
         throw StopRun(
-            stuck_stop(cut().names, finished, latest_, o_.ticks_per_second, stall.still_for()));
+            stuck_stop(cut().names, finished, latest_, o_.run.ticks_per_second, stall.still_for()));
       }
     }
   }
@@ -377,8 +389,10 @@ class Coordinator final : private CoordinatorPort {
   std::int64_t notices_ = 0;
   std::set<std::string> logged_;
   std::string hash_;
-  std::vector<coupling::Tick> latest_;      ///< [daemons] the instant of the latest report
-  transport::Incoming* current_ = nullptr;  ///< the message being handled (forward_current)
+  std::vector<coupling::Tick> latest_;  ///< [daemons] the instant of the latest report
+  transport::Incoming* current_ = nullptr;
+  bool endpoint_written_ = false;  ///< the endpoint file is ours to remove  ///< the message being
+                                   ///< handled (forward_current)
 };
 
 }  // namespace

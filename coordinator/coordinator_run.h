@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/coupling_config.h"
 #include "coupling/ticks.h"
 #include "transport/session.h"
 
@@ -34,21 +35,12 @@ struct CoordinatorOptions {
   std::string bind;  ///< endpoint to bind: tcp://127.0.0.1:* (port read back), ipc://, inproc://
   std::string scenario;  ///< scenario file (daemons must run the same content: hash checked)
   std::string out_dir = "out";
-  bool common_step = true;  ///< split (true) or multi (false)
-  /// The coupling scheme (coordinator_schemes.h: "layer" or "paper"); the daemons' must be the
-  /// same (Setup.scheme).
-  std::string coupling = "layer";
-  bool drift = true;         ///< `paper`: drift correction [11] on
-  double guard_rise = 0.05;  ///< `paper`: energy guard (coupling/paper_guard.h)
-  /// `paper`: each free state's own step proposal instead of the fixed plan (docs/design.md §2.6:
-  /// split imposes the smallest of all at every instant, multi each its own). `layer`:
-  /// Setup.variable_steps (multi: every domain follows its own proposal; split: all the least
-  /// proposal of all), checkpoints at the leader's instants (coordinator_checkpoints.h).
-  bool variable_steps = false;
+  /// How the run couples (coupling/coupling_config.h): the scheme, split or multi, steps,
+  /// checkpoints, restart, lanes, tick; checked by validate() (coordinator_schemes.h).
+  coupling::CouplingConfig run;
   std::string endpoint_file;  ///< not empty: the bound endpoint is written there (atomically)
   transport::SessionOptions session;
   std::chrono::milliseconds join_timeout{60000};  ///< every domain joined and registered by then
-  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
   /// Called once bound, with the real endpoint (in-process launcher and tests).
   std::function<void(const std::string&)> on_bound;
   /// Called as the run goes: the time reached by the slowest domain, the end time [s] and that
@@ -56,17 +48,6 @@ struct CoordinatorOptions {
   std::function<void(double, double, const std::string&)> on_progress;
   /// Set from outside (signal handler, launcher) to stop the run: every daemon gets an Error.
   const std::atomic<bool>* stop = nullptr;
-  /// > 0: every domain writes a checkpoint at every multiple of this interval [s], rounded to a
-  /// whole multiple of every domain's step (variable steps: at the leader's first instant at or
-  /// after each multiple) (docs/design.md §2.6 "Checkpoints"), into
-  /// OUT/checkpoints/<T>/<domain>; the coordinator its own into OUT/checkpoints/<T>/coordinator.
-  double checkpoint_interval_s = 0.0;
-  /// Resume from the newest checkpoint that the coordinator and every daemon have (the daemons
-  /// list theirs in their Register); a run without one is refused (exit 2, naming what each has).
-  bool restart = false;
-  /// Let the daemons exchange the layer vectors directly when every one offers a lane
-  /// (Register.lane_endpoint); false: always through the coordinator (--no-lanes).
-  bool lanes = true;
   bool in_process = false;  ///< a thread of a bigger process: CPU time of this thread only
   std::FILE* log = stderr;  ///< notices (refused peers, garbage), one line each; nullptr: none
 };

@@ -1,9 +1,12 @@
 #include "coordinator/coordinator_schemes.h"
 
+#include <fmt/format.h>
+
 #include <utility>
 
 #include "coordinator/layer_coordinator_scheme.h"
 #include "coordinator/paper_coordinator_scheme.h"
+#include "core/errors.h"
 #include "coupling/named_table.h"
 
 namespace crashlink::coordinator {
@@ -12,15 +15,15 @@ namespace {
 
 coupling::NamedTable<CoordinatorSchemeEntry>& table() {
   static coupling::NamedTable<CoordinatorSchemeEntry> t({
-      {"layer", make_layer_coordinator_scheme},
-      {"paper", make_paper_coordinator_scheme},
+      {"layer", make_layer_coordinator_scheme, validate_layer_config},
+      {"paper", make_paper_coordinator_scheme, validate_paper_config},
   });
   return t;
 }
 
 }  // namespace
 
-const std::deque<CoordinatorSchemeEntry>& coordinator_schemes() {
+std::deque<CoordinatorSchemeEntry> coordinator_schemes() {
   return table().all();
 }
 
@@ -30,6 +33,18 @@ const CoordinatorSchemeEntry& coordinator_scheme_named(std::string_view name) {
 
 void register_coordinator_scheme(CoordinatorSchemeEntry entry) {
   table().add(std::move(entry));
+}
+
+void validate(const coupling::CouplingConfig& c) {
+  const auto& entry = coordinator_scheme_named(c.scheme);
+  if (!(c.checkpoint_interval_s >= 0.0))
+    throw InputError(
+        fmt::format("--checkpoint-interval {}: must be >= 0 s (0: none)", c.checkpoint_interval_s));
+  if (c.ticks_per_second < 1)
+    throw InputError(fmt::format("{} ticks per second: must be >= 1", c.ticks_per_second));
+  if (!(c.guard_rise > 0.0))
+    throw InputError(fmt::format("energy guard rise {}: must be > 0", c.guard_rise));
+  if (entry.validate != nullptr) entry.validate(c);
 }
 
 }  // namespace crashlink::coordinator

@@ -26,10 +26,6 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   LayerCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o,
                          const std::string& hash)
       : o_(o), hash_(hash) {
-    if (!o_.drift)
-      throw InputError(
-          "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
-          "or drop the option)");
     cut_ = layer_cut(model, partition::decompose(model, partition::Scheme::Layer));
     latest_.assign(cut_.names.size(), 0);
     step_.assign(cut_.names.size(), 0);
@@ -44,32 +40,32 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   void start(const std::vector<wire::Register>& regs, const wire::Options& base,
              CoordinatorPort& port) override {
     match_sides(cut_, regs);
-    const auto plan = plan_steps(cut_, regs, o_.common_step);
+    const auto plan = plan_steps(cut_, regs, o_.run.common_step);
     step_ = plan.step;
     std::vector<coupling::LayerRoute> routes;
     for (const auto& c : cut_.interfaces) {
       const auto H = plan.step[static_cast<std::size_t>(c.coarse)];
       routes.push_back({c.fine, c.coarse, c.j_node_ids.size(), H,
-                        static_cast<double>(H) / static_cast<double>(o_.ticks_per_second)});
+                        static_cast<double>(H) / static_cast<double>(o_.run.ticks_per_second)});
     }
     router_ = std::make_unique<coupling::LayerRouter>(std::move(routes), cut_.names);
-    router_->set_variable_steps(o_.variable_steps);
-    lanes_ = o_.lanes && std::all_of(regs.begin(), regs.end(), [](const wire::Register& r) {
+    router_->set_variable_steps(o_.run.variable_steps);
+    lanes_ = o_.run.lanes && std::all_of(regs.begin(), regs.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
     checkpoints_ = std::make_unique<CoordinatorCheckpoints>(o_, cut_, hash_);
     wire::Options options = base;
     options.set_checkpoint_interval_ticks(checkpoints_->plan(plan.step));
-    if (o_.restart) {
+    if (o_.run.restart) {
       const auto T = checkpoints_->choose_restart(regs, router_->size() > 0);
       cpu_before_ = checkpoints_->restore(T, *router_, port.history());
       if (router_->size() > 0) std::fill(latest_.begin(), latest_.end(), T);
     }
     const coupling::Tick restart_from = checkpoints_->restarted_from();
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
-      auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.common_step, options,
-                                 o_.ticks_per_second);
-      setup.mutable_setup()->set_variable_steps(o_.variable_steps);
+      auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.run.common_step, options,
+                                 o_.run.ticks_per_second);
+      setup.mutable_setup()->set_variable_steps(o_.run.variable_steps);
       if (restart_from >= 0) {
         setup.mutable_setup()->set_restart(true);
         setup.mutable_setup()->set_restart_ticks(restart_from);
@@ -79,13 +75,13 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     }
     std::string steps;
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
-      steps +=
-          fmt::format("{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
-                      static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
+      steps += fmt::format(
+          "{}{} {:.4e} s", k == 0 ? "" : ", ", cut_.names[k],
+          static_cast<double>(plan.step[k]) / static_cast<double>(o_.run.ticks_per_second));
     }
     port.log(fmt::format(
-        "{} run, {}: {}; layer vectors {}", o_.common_step ? "split" : "multi",
-        o_.variable_steps ? "variable steps (each its own proposal), planned first" : "steps",
+        "{} run, {}: {}; layer vectors {}", o_.run.common_step ? "split" : "multi",
+        o_.run.variable_steps ? "variable steps (each its own proposal), planned first" : "steps",
         steps, lanes_ ? "daemon to daemon (lanes)" : "through the coordinator"));
   }
 
@@ -142,14 +138,14 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     latest_[ku] = rep.time_ticks();
     // At the end time the daemon writes its results before its Bye.
     if (static_cast<double>(rep.time_ticks()) >=
-        cut_.end_time_s * static_cast<double>(o_.ticks_per_second) - 0.5)
+        cut_.end_time_s * static_cast<double>(o_.run.ticks_per_second) - 0.5)
       port.allow_silence(k);
     for (const auto& rows : rep.rows()) {
       const auto i = rows.interface_index();
       const auto samples = router_->rows(
           k, i, {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
           view(rows.force_n()), view(rows.link_work_j()));
-      port.history().append(i, samples, o_.ticks_per_second);
+      port.history().append(i, samples, o_.run.ticks_per_second);
       if (!samples.empty()) checkpoints_->rows_reached(i, samples.back().time);
     }
     if (rep.checkpoint()) checkpoints_->announced(rep.time_ticks());
@@ -184,6 +180,13 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
 };
 
 }  // namespace
+
+void validate_layer_config(const coupling::CouplingConfig& config) {
+  if (!config.drift)
+    throw InputError(
+        "--no-drift: a `paper` option; `layer` has no drift correction (add --coupling paper, "
+        "or drop the option)");
+}
 
 std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(const model::Model& model,
                                                                  const CoordinatorOptions& options,

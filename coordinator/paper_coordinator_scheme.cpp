@@ -18,10 +18,6 @@ namespace {
 class PaperCoordinatorScheme final : public CoordinatorScheme {
  public:
   PaperCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o) : o_(o) {
-    if (o_.checkpoint_interval_s > 0.0 || o_.restart)
-      throw InputError(
-          "--coupling paper: checkpoints and --restart are features of `layer` "
-          "runs; run `paper` without them");
     cut_ = paper_cut(model, partition::decompose(model, partition::Scheme::Paper));
     step_.assign(cut_.cut.names.size(), 0);
   }
@@ -36,30 +32,32 @@ class PaperCoordinatorScheme final : public CoordinatorScheme {
   void start(const std::vector<wire::Register>& regs, const wire::Options& base,
              CoordinatorPort& port) override {
     const auto table = match_paper(cut_, regs);
-    const auto plan = plan_steps(cut_.cut, regs, o_.common_step);
+    const auto plan = plan_steps(cut_.cut, regs, o_.run.common_step);
     step_ = plan.step;
     wire::Options options = base;
-    options.set_drift_correction(o_.drift);
+    options.set_drift_correction(o_.run.drift);
     exchange_ = std::make_unique<PaperExchange>(
-        cut_, table, plan.step, o_.drift ? coupling::paper::Drift::on : coupling::paper::Drift::off,
-        o_.guard_rise, o_.ticks_per_second,
-        !o_.variable_steps ? PaperExchange::Steps::fixed
-        : o_.common_step   ? PaperExchange::Steps::variable_common
-                           : PaperExchange::Steps::variable_own);
+        cut_, table, plan.step,
+        o_.run.drift ? coupling::paper::Drift::on : coupling::paper::Drift::off, o_.run.guard_rise,
+        o_.run.ticks_per_second,
+        !o_.run.variable_steps ? PaperExchange::Steps::fixed
+        : o_.run.common_step   ? PaperExchange::Steps::variable_common
+                               : PaperExchange::Steps::variable_own);
     const auto& names = cut_.cut.names;
     std::string steps;
     for (std::size_t k = 0; k < names.size(); ++k) {
       port.send(static_cast<int>(k),
-                paper_setup(cut_, table, plan, static_cast<int>(k), o_.common_step, options,
-                            o_.ticks_per_second, exchange_->end_ticks()));
-      steps +=
-          fmt::format("{}{} {:.4e} s", k == 0 ? "" : ", ", names[k],
-                      static_cast<double>(plan.step[k]) / static_cast<double>(o_.ticks_per_second));
+                paper_setup(cut_, table, plan, static_cast<int>(k), o_.run.common_step, options,
+                            o_.run.ticks_per_second, exchange_->end_ticks()));
+      steps += fmt::format(
+          "{}{} {:.4e} s", k == 0 ? "" : ", ", names[k],
+          static_cast<double>(plan.step[k]) / static_cast<double>(o_.run.ticks_per_second));
     }
     port.log(fmt::format(
         "{} run, scheme `paper` (drift correction [11] {}, {} coupled nodes), {}: {}",
-        o_.common_step ? "split" : "multi", o_.drift ? "on" : "off", table.nodes.size(),
-        o_.variable_steps ? "variable steps (each state's proposal), initially" : "steps", steps));
+        o_.run.common_step ? "split" : "multi", o_.run.drift ? "on" : "off", table.nodes.size(),
+        o_.run.variable_steps ? "variable steps (each state's proposal), initially" : "steps",
+        steps));
   }
 
   /// Domain k's free state in, the corrections it allows out, the rows it completes.
@@ -69,10 +67,10 @@ class PaperCoordinatorScheme final : public CoordinatorScheme {
       exchange_->submit(k, e.free_state());
       while (auto c = exchange_->next()) port.send(c->first, c->second);
     } catch (...) {
-      port.history().append(exchange_->take_rows(), o_.ticks_per_second);  // what was complete
+      port.history().append(exchange_->take_rows(), o_.run.ticks_per_second);  // what was complete
       throw;
     }
-    port.history().append(exchange_->take_rows(), o_.ticks_per_second);
+    port.history().append(exchange_->take_rows(), o_.run.ticks_per_second);
     return true;
   }
 
@@ -101,6 +99,13 @@ class PaperCoordinatorScheme final : public CoordinatorScheme {
 };
 
 }  // namespace
+
+void validate_paper_config(const coupling::CouplingConfig& config) {
+  if (config.checkpoint_interval_s > 0.0 || config.restart)
+    throw InputError(
+        "--coupling paper: checkpoints and --restart are features of `layer` "
+        "runs; run `paper` without them");
+}
 
 std::unique_ptr<CoordinatorScheme> make_paper_coordinator_scheme(const model::Model& model,
                                                                  const CoordinatorOptions& options,

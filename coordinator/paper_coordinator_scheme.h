@@ -12,7 +12,10 @@
 
 namespace crashlink::coordinator {
 
-/// `options` must outlive the scheme. Throws InputError for a checkpoint interval or a restart.
+/// `paper`'s rule on a run's configuration: no checkpoints, no restart (InputError).
+void validate_paper_config(const coupling::CouplingConfig& config);
+
+/// `options` must outlive the scheme.
 std::unique_ptr<CoordinatorScheme> make_paper_coordinator_scheme(const model::Model& model,
                                                                  const CoordinatorOptions& options,
                                                                  const std::string& hash);

@@ -60,16 +60,22 @@ class DomainScheme {
   /// The instant reached, ticks.
   virtual Tick time() const = 0;
 
-  /// The interfaces whose vectors may travel daemon to daemon (empty: everything goes through the
-  /// coordinator, and the daemon offers no lane).
+  /// The scheme's vectors may travel daemon to daemon (docs/processes.md "Lanes"): the daemon then
+  /// offers a lane (false: everything goes through the coordinator).
+  virtual bool uses_lanes() const = 0;
+  /// The interfaces whose vectors travel on the partners' lanes, when there are lanes.
   virtual std::vector<LanePartner> lane_partners() const = 0;
+  /// A message that may come on a lane (a partner's vector); anything else there is a protocol
+  /// error of the lane.
+  virtual bool lane_message(const wire::Envelope& e) const = 0;
 
   /// This scheme's part of the Register (the interface nodes, their masses and positions).
   virtual void fill_register(wire::Register& r) const = 0;
 
   /// The coordinator's Setup, checked against this domain's cut (ProtocolError naming the values
   /// otherwise). Returns true when the solver was replaced by another (the daemon then moves what
-  /// refers to it). Fresh start or restart follows: initialize() or restore_state().
+  /// refers to it; the old one lives until initialize()). Fresh start or restart follows:
+  /// initialize() or restore_state().
   virtual bool start(const wire::Setup& setup) = 0;
   /// A fresh start, after start().
   virtual void initialize() = 0;

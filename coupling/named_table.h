@@ -23,7 +23,8 @@ class NamedTable {
  public:
   explicit NamedTable(std::deque<Entry> entries) : entries_(std::move(entries)) {}
 
-  const std::deque<Entry>& all() const {
+  /// A copy: another thread may add an entry meanwhile.
+  std::deque<Entry> all() const {
     const std::scoped_lock lock(mutex_);
     return entries_;
   }

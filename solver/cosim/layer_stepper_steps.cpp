@@ -10,16 +10,10 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "coupling/step_policy.h"
 #include "solver/cosim/layer_stepper.h"
 
 namespace crashlink::cosim {
-
-namespace {
-/// Variable steps: a leader's step changes by at most this fraction per step (choose_step).
-constexpr double kStepChange = 0.02;
-/// Variable steps: a leader changes to a cheaper kind of step only for more than this gain.
-constexpr double kSwitchGain = 0.05;
-}  // namespace
 
 void LayerStepper::set_proposal_limits(double leader_safety, double max_step_s) {
   if (!(leader_safety > 0.0 && leader_safety <= 1.0) || !(max_step_s >= 0.0))
@@ -74,16 +68,9 @@ Tick LayerStepper::choose_step() const {
                        "only?); set controls.dt_max");
     return H;
   }
-  // A leader's next step (header, "Steps"): H = p_own or a whole multiple of a holder's proposal
-  // below it, whichever costs least per unit time; the holders' proposals come with g_A(t).
-  Tick own = proposal_ticks();
-  if (own > 0 && leader_safety_ < 1.0)
-    own = std::max<Tick>(1, static_cast<Tick>(leader_safety_ * static_cast<double>(own)));
-  struct Holder {
-    Tick p;
-    double w;
-  };
-  std::vector<Holder> holders;
+  // A leader's next step (header, "Steps"; coupling/step_policy.h): the holders' proposals come
+  // with g_A(t), one per partner.
+  std::vector<coupling::HolderProposal> holders;
   std::vector<std::string> seen;
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
@@ -93,46 +80,10 @@ Tick LayerStepper::choose_step() const {
     holders.push_back({state_[p].inbox.front().proposal,
                        static_cast<double>(std::max<std::size_t>(port.partner_elements, 1))});
   }
-  if (own == 0)
-    for (const auto& k : holders) own = std::max(own, k.p);
-  if (own == 0)
-    throw ModelError("layer stepper '" + solver_.domain_name() +
-                     "': no domain of this coupling has a stable-step limit (rigid bodies only?); "
-                     "set controls.dt_max");
-  const double w_own =
-      static_cast<double>(std::max<std::size_t>(solver_.model().element_count(), 1));
-  auto rate = [&](Tick H) {
-    double c = w_own;
-    for (const auto& k : holders) c += k.w * static_cast<double>(k.p > 0 ? (H + k.p - 1) / k.p : 1);
-    return c / static_cast<double>(H);
-  };
-  std::vector<Tick> candidates{own};
-  for (const auto& k : holders)
-    if (k.p > 0 && k.p <= own) candidates.push_back((own / k.p) * k.p);
-  Tick best = own;
-  double best_rate = rate(own);
-  for (const Tick H : candidates) {
-    const double r = rate(H);
-    if (r < best_rate || (r == best_rate && H > best)) {
-      best = H;
-      best_rate = r;
-    }
-  }
-  // Hysteresis: the candidate nearest the last step stays unless another one is cheaper by more
-  // than kSwitchGain (two nearly equal costs must not make the step jump back and forth).
-  if (h_ > 0) {
-    Tick near = own;
-    for (const Tick H : candidates)
-      if (std::abs(H - h_) < std::abs(near - h_)) near = H;
-    if (rate(near) <= (1.0 + kSwitchGain) * best_rate) best = near;
-  }
-  // Up toward that target by at most kStepChange per step (a jump of the step by x costs the
-  // central-difference energy balance about x / 2 of that step's work, [2]); down at once: a
-  // holder's falling proposal must shrink H with it, or its substep count would jump instead.
-  if (h_ > 0)
-    best = std::min(
-        best, h_ + std::max<Tick>(1, static_cast<Tick>(kStepChange * static_cast<double>(h_))));
-  return best;
+  return coupling::leader_step(
+      proposal_ticks(), leader_safety_,
+      static_cast<double>(std::max<std::size_t>(solver_.model().element_count(), 1)), holders, h_,
+      solver_.domain_name());
 }
 
 bool LayerStepper::finishes_at(Tick t) const {

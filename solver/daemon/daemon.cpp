@@ -187,7 +187,7 @@ class Daemon {
     }
     scheme_->set_ticks_per_second(tps_);
     open_output();
-    if (o_.offer_lane && !scheme_->lane_partners().empty()) lanes_.open_own(o_.endpoint);
+    if (o_.offer_lane && scheme_->uses_lanes()) lanes_.open_own(o_.endpoint);
     link_->send(register_message());
     const wire::Setup setup = await_setup();
     check_scheme(setup);
@@ -279,7 +279,7 @@ class Daemon {
     for (;;) {
       if (o_.stop != nullptr && o_.stop->load())
         throw transport::StopRequested("stopped on request");  // a partner may be frozen
-      if (auto r = lanes_.receive(20ms)) {
+      if (auto r = lanes_.receive(20ms, *scheme_)) {
         pending_.push_back(std::move(*r));
         break;
       }

@@ -108,7 +108,8 @@ bool DaemonLanes::send(std::int64_t interface_index, const wire::Envelope& e) {
   return true;
 }
 
-std::optional<wire::Envelope> DaemonLanes::receive(std::chrono::milliseconds wait) {
+std::optional<wire::Envelope> DaemonLanes::receive(std::chrono::milliseconds wait,
+                                                   const coupling::DomainScheme& scheme) {
   std::string peer, what;
   wire::Envelope e;
   bool ok = false;
@@ -124,7 +125,7 @@ std::optional<wire::Envelope> DaemonLanes::receive(std::chrono::milliseconds wai
     what = ok ? std::string() : r->error;
     if (ok) e = std::move(r->envelope);
   }
-  if (!ok || out_.find(peer) == out_.end()) {
+  if (!ok || out_.find(peer) == out_.end() || !scheme.lane_message(e)) {
     throw ProtocolError("lane",
                         fmt::format("domain '{}' got {} on its lane {} from '{}'; a lane carries "
                                     "only its partners' vectors",

@@ -40,8 +40,9 @@ class DaemonLanes {
   /// Sends on the lane of interface `interface_index`; false when it has none.
   bool send(std::int64_t interface_index, const wire::Envelope& e);
   /// A partner's message within `wait`, or nullopt. Throws ProtocolError for bytes that are not an
-  /// Envelope or a sender that is not a partner.
-  std::optional<wire::Envelope> receive(std::chrono::milliseconds wait);
+  /// Envelope, a sender that is not a partner, or a message `scheme` does not take on a lane.
+  std::optional<wire::Envelope> receive(std::chrono::milliseconds wait,
+                                        const coupling::DomainScheme& scheme);
 
  private:
   /// Where one partner's vectors leave: its ZeroMQ lane or its shared-memory lane.

@@ -20,7 +20,7 @@ coupling::NamedTable<DomainSchemeEntry>& table() {
 
 }  // namespace
 
-const std::deque<DomainSchemeEntry>& domain_schemes() {
+std::deque<DomainSchemeEntry> domain_schemes() {
   return table().all();
 }
 

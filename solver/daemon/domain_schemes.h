@@ -23,7 +23,7 @@ struct DomainSchemeEntry {
 };
 
 /// Every scheme, the built-in ones first (a deque: registering keeps the references valid).
-const std::deque<DomainSchemeEntry>& domain_schemes();
+std::deque<DomainSchemeEntry> domain_schemes();
 /// The scheme named `name`; InputError listing the names otherwise.
 const DomainSchemeEntry& domain_scheme_named(std::string_view name);
 /// Adds a scheme (a test's); InputError if the name is taken.

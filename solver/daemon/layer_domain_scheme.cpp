@@ -27,6 +27,11 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   coupling::Tick time() const override { return stepper_ ? stepper_->time() : 0; }
   void set_ticks_per_second(std::int64_t tps) override { tps_ = tps; }
 
+  bool uses_lanes() const override { return true; }
+  bool lane_message(const wire::Envelope& e) const override {
+    return e.has_layer_displacement() || e.has_layer_force();
+  }
+
   std::vector<coupling::LanePartner> lane_partners() const override {
     std::vector<coupling::LanePartner> out;
     for (const auto& port : ports()) out.push_back({port.index, port.partner, port.local.size()});

@@ -24,7 +24,9 @@ class PaperDomainScheme final : public coupling::DomainScheme {
   const integration::Solver& solver() const override { return *port_.solver; }
   coupling::Tick time() const override { return time_; }
   void set_ticks_per_second(std::int64_t tps) override { tps_ = tps; }
+  bool uses_lanes() const override { return false; }
   std::vector<coupling::LanePartner> lane_partners() const override { return {}; }
+  bool lane_message(const wire::Envelope& /*e*/) const override { return false; }
 
   void fill_register(wire::Register& r) const override {
     const auto& sub = port_.solver->model();
@@ -53,13 +55,14 @@ class PaperDomainScheme final : public coupling::DomainScheme {
     step_ = setup.step_ticks();
     if (auto fresh = use_summed_masses(port_, setup, o_.domain)) {
       fresh->initialize();
+      retired_ = std::move(port_.solver);  // what refers to it moves first (the recorder)
       port_.solver = std::move(fresh);
       return true;
     }
     return false;
   }
 
-  void initialize() override {}
+  void initialize() override { retired_.reset(); }
 
   /// docs/design.md §2.6: the free state at t leaves, its Correction comes (deliver), is applied,
   /// the cycle begins (energies at t, guard, output), the imposed step is taken; the next free
@@ -155,6 +158,8 @@ class PaperDomainScheme final : public coupling::DomainScheme {
 
   coupling::DomainSchemeOptions o_;
   PaperPort port_;
+  std::unique_ptr<integration::Solver>
+      retired_;  ///< the solver start() replaced, until initialize()
   std::int64_t tps_ = 0;
   coupling::Tick time_ = 0;          ///< the instant of the next free state
   coupling::Tick step_ = 0;          ///< the last imposed step (first: the Setup's)

@@ -82,3 +82,37 @@ TEST(CliMessages, CompareRefusesASwappedPairAndAnotherModel) {
 }
 
 }  // namespace
+
+// The run's configuration is checked once, before anything starts (coordinator::validate, issue
+// 23): a scheme's own rule refuses the run with exit 2 and its fix, from `crashlink run` and from
+// `crashlink-coordinator` alike, and no process of the run is started (no domains/ folder).
+TEST(CliMessages, ASchemesOwnRuleRefusesTheRunBeforeItStarts) {
+  const fs::path dir = fresh_dir("msg_config");
+  const std::string bar = crashlink::proc_test::write_file(
+      dir / "bar.yaml", crashlink::proc_test::bar_parts_yaml(
+                            "cfgbar", 1e-4, {{"fine", 0.0, 0.2, 20}, {"coarse", 0.2, 0.4, 10}}));
+  int status = -1;
+  const struct {
+    std::string args;
+    std::string said;
+  } cases[] = {
+      {"--mode multi --coupling paper --checkpoint-interval 1e-5",
+       "--coupling paper: checkpoints and --restart are features of `layer` runs"},
+      {"--mode multi --no-drift", "--no-drift: a `paper` option; `layer` has no drift correction"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = dir / "o";
+    const std::string log = run_command(
+        bin("crashlink") + " run " + bar + " --quiet " + c.args + " --out " + out.string(), status);
+    EXPECT_EQ(code_of(status), 2) << c.args << "\n" << log;
+    EXPECT_NE(log.find(c.said), std::string::npos) << c.args << "\n" << log;
+    EXPECT_FALSE(fs::exists(out / "domains")) << c.args << ": a piece of the run started";
+  }
+  const std::string log =
+      run_command(bin("crashlink-coordinator") + " --bind tcp://127.0.0.1:0 --scenario " + bar +
+                      " --out " + (dir / "c").string() + " --coupling paper --restart",
+                  status);
+  EXPECT_EQ(code_of(status), 2) << log;
+  EXPECT_NE(log.find("features of `layer` runs"), std::string::npos) << log;
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+}

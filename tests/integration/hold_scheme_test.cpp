@@ -18,7 +18,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -26,6 +25,7 @@
 #include "coordinator/coordinator_schemes.h"
 #include "coordinator/paper_cut.h"
 #include "coordinator/paper_exchange.h"
+#include "inproc_run.h"
 #include "paper_reference.h"
 #include "process_test_support.h"
 #include "solver/daemon/daemon.h"
@@ -57,17 +57,18 @@ class HoldCoordinatorScheme final : public coordinator::CoordinatorScheme {
   void start(const std::vector<wire::Register>& regs, const wire::Options& options,
              coordinator::CoordinatorPort& port) override {
     table_ = coordinator::match_paper(cut_, regs);
-    plan_ = coordinator::plan_steps(cut_.cut, regs, o_.common_step);
-    end_ = coordinator::paper_end_ticks(cut_.cut.end_time_s, plan_.step, o_.ticks_per_second);
+    plan_ = coordinator::plan_steps(cut_.cut, regs, o_.run.common_step);
+    end_ = coordinator::paper_end_ticks(cut_.cut.end_time_s, plan_.step, o_.run.ticks_per_second);
     const auto n = cut_.cut.names.size();
     states_.resize(n);
     latest_.assign(n, -1);
     waiting_.assign(n, false);
     finished_.assign(n, false);
     for (std::size_t k = 0; k < n; ++k)
-      port.send(static_cast<int>(k),
-                coordinator::paper_setup(cut_, table_, plan_, static_cast<int>(k), o_.common_step,
-                                         options, o_.ticks_per_second, end_));
+      port.send(
+          static_cast<int>(k),
+          coordinator::paper_setup(cut_, table_, plan_, static_cast<int>(k), o_.run.common_step,
+                                   options, o_.run.ticks_per_second, end_));
   }
 
   bool receive(int k, const wire::Envelope& e, coordinator::CoordinatorPort& port) override {
@@ -138,7 +139,7 @@ class HoldCoordinatorScheme final : public coordinator::CoordinatorScheme {
     c->set_stop(stop);
     const auto h = stop ? 0 : plan_.step[k];
     c->set_imposed_step_ticks(h);
-    c->set_imposed_step_s(static_cast<double>(h) / static_cast<double>(o_.ticks_per_second));
+    c->set_imposed_step_s(static_cast<double>(h) / static_cast<double>(o_.run.ticks_per_second));
     for (const auto node : table_.node_of[k]) {
       const auto& copies = table_.nodes[static_cast<std::size_t>(node)].copies;
       for (std::size_t xyz = 0; xyz < 3; ++xyz) {
@@ -188,37 +189,14 @@ int run_hold(const std::string& scenario, const std::filesystem::path& out, int 
   co.bind = transport::local_endpoint(transport::Scheme::inproc, "hold");
   co.scenario = scenario;
   co.out_dir = out.string();
-  co.common_step = false;
-  co.coupling = "hold";
-  co.in_process = true;
-  co.log = nullptr;
-  coordinator::CoordinatorResult cr;
-  std::thread c([&] { cr = coordinator::run_coordinator(co); });
-  const std::map<std::string, double> caps{{"fine", kFineStep}, {"coarse", ratio * kFineStep}};
-  std::vector<daemon::DaemonResult> dr(caps.size());
-  std::vector<std::thread> ds;
-  std::size_t k = 0;
-  for (const auto& [name, cap] : caps) {
-    ds.emplace_back([&, k, name = name, cap = cap] {
-      daemon::DaemonOptions d;
-      d.endpoint = co.bind;
-      d.domain = name;
-      d.scenario = scenario;
-      d.out_dir = out.string();
-      d.in_process = true;
-      d.coupling = "hold";
-      d.max_step_s = cap;
-      dr[k] = daemon::run_daemon(d);
-    });
-    ++k;
-  }
-  for (auto& t : ds) t.join();
-  c.join();
-  log = cr.message;
-  for (const auto& d : dr) log += "\n" + d.message;
-  for (const auto& d : dr)
+  co.run.common_step = false;
+  co.run.scheme = "hold";
+  const auto r = run_inproc(co, {{"fine", kFineStep}, {"coarse", ratio * kFineStep}});
+  log = r.coordinator.message;
+  for (const auto& d : r.daemons) log += "\n" + d.message;
+  for (const auto& d : r.daemons)
     if (d.exit_code != 0) return d.exit_code;
-  return cr.exit_code;
+  return r.coordinator.exit_code;
 }
 
 TEST(HoldScheme, AtEqualStepsIsThePaperLinkWithoutDriftBitForBit) {

@@ -106,11 +106,11 @@ int run_pieces(Scheme scheme, const std::string& scenario, const std::filesystem
     co.bind = transport::local_endpoint(Scheme::inproc, "test");
     co.scenario = scenario;
     co.out_dir = out.string();
-    co.common_step = mode == "split";
+    co.run.common_step = mode == "split";
     co.in_process = true;
     co.log = nullptr;
-    co.lanes = lanes;
-    co.variable_steps = variable;
+    co.run.lanes = lanes;
+    co.run.variable_steps = variable;
     coordinator::CoordinatorResult cr;
     std::thread c([&] { cr = coordinator::run_coordinator(co); });
     std::vector<daemon::DaemonResult> dr(daemons.size());

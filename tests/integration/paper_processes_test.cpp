@@ -12,13 +12,13 @@
 #include <iterator>
 #include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "coordinator/coordinator_run.h"
 #include "coordinator/paper_exchange.h"
 #include "core/errors.h"
 #include "core/exit_codes.h"
+#include "inproc_run.h"
 #include "paper_reference.h"
 #include "process_test_support.h"
 #include "solver/cosim/paper_runner.h"
@@ -54,47 +54,25 @@ int run_paper(Scheme scheme, const std::string& scenario, const std::filesystem:
     co.bind = transport::local_endpoint(Scheme::inproc, "paper");
     co.scenario = scenario;
     co.out_dir = out.string();
-    co.common_step = ro.split;
-    co.variable_steps = ro.variable_steps;
-    co.drift = ro.drift;
-    co.coupling = "paper";
-    co.in_process = true;
-    co.log = nullptr;
-    coordinator::CoordinatorResult cr;
-    std::thread c([&] { cr = coordinator::run_coordinator(co); });
-    std::vector<daemon::DaemonResult> dr(cap.size());
-    std::vector<std::thread> ds;
+    co.run.common_step = ro.split;
+    co.run.variable_steps = ro.variable_steps;
+    co.run.drift = ro.drift;
+    co.run.scheme = "paper";
+    const auto r =
+        run_inproc(co, cap, [&](daemon::DaemonOptions& d) { d.step_safety = ro.step_safety; });
+    log = r.coordinator.message;
+    if (ro.steps != nullptr)
+      for (const auto& d : r.coordinator.domains)
+        (*ro.steps)[d.name] =
+            static_cast<double>(d.step_ticks) / static_cast<double>(co.run.ticks_per_second);
     std::size_t k = 0;
     for (const auto& [name, step] : cap) {
-      ds.emplace_back([&, k, name = name, step = step] {
-        daemon::DaemonOptions d;
-        d.endpoint = co.bind;
-        d.domain = name;
-        d.scenario = scenario;
-        d.out_dir = out.string();
-        d.in_process = true;
-        d.coupling = "paper";
-        d.max_step_s = step;  // 0: none
-        d.step_safety = ro.step_safety;
-        dr[k] = daemon::run_daemon(d);
-      });
+      if (ro.cycles != nullptr) (*ro.cycles)[name] = r.daemons[k].cycles;
+      if (ro.daemon_exit != nullptr) ro.daemon_exit->push_back(r.daemons[k].exit_code);
       ++k;
     }
-    for (auto& t : ds) t.join();
-    c.join();
-    log = cr.message;
-    if (ro.steps != nullptr)
-      for (const auto& d : cr.domains)
-        (*ro.steps)[d.name] =
-            static_cast<double>(d.step_ticks) / static_cast<double>(co.ticks_per_second);
-    k = 0;
-    for (const auto& [name, step] : cap) {
-      if (ro.cycles != nullptr) (*ro.cycles)[name] = dr[k].cycles;
-      if (ro.daemon_exit != nullptr) ro.daemon_exit->push_back(dr[k].exit_code);
-      ++k;
-    }
-    for (const auto& d : dr) log += "\n" + d.message;
-    return cr.exit_code;
+    for (const auto& d : r.daemons) log += "\n" + d.message;
+    return r.coordinator.exit_code;
   }
   std::string endpoint;
   auto c = start_coordinator(bind_endpoint(scheme, out), scenario, out, "multi", endpoint,

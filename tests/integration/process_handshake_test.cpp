@@ -58,7 +58,7 @@ class Pieces {
     options_.bind = transport::local_endpoint(Scheme::inproc, "handshake");
     options_.scenario = scenario_;
     options_.out_dir = out().string();
-    options_.common_step = false;
+    options_.run.common_step = false;
     options_.in_process = true;
     options_.log = log_;
     options_.session.heartbeat_interval = 100ms;

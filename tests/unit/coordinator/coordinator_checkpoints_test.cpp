@@ -38,9 +38,9 @@ struct Fixture {
     cut.interfaces.push_back(c);
     o.out_dir = dir.string();
     o.log = nullptr;
-    o.ticks_per_second = 10;  // H = 1 tick: the interval of 0.4 s is 4 ticks
-    o.checkpoint_interval_s = 0.4;
-    o.variable_steps = true;
+    o.run.ticks_per_second = 10;  // H = 1 tick: the interval of 0.4 s is 4 ticks
+    o.run.checkpoint_interval_s = 0.4;
+    o.run.variable_steps = true;
   }
   ~Fixture() { std::filesystem::remove_all(dir); }
   coupling::LayerRouter router() const {
@@ -67,7 +67,7 @@ TEST(CoordinatorCheckpoints, WritesEachAnnouncedInstantOnceWhenTheRowsHaveReache
   ck.announced(5);  // the leader's first instant after 4 ticks, from the coarse daemon
   ck.write_when_complete(router, history, 1.0);
   EXPECT_EQ(ck.written(), 0) << "written before the fine side's rows reached it";
-  history.append(0, f.rows({0, 2, 5}), f.o.ticks_per_second);
+  history.append(0, f.rows({0, 2, 5}), f.o.run.ticks_per_second);
   ck.rows_reached(0, 5);
   ck.write_when_complete(router, history, 1.0);
   EXPECT_EQ(ck.written(), 1);

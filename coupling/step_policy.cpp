@@ -1,0 +1,57 @@
+#include "coupling/step_policy.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+
+namespace crashlink::coupling {
+
+Tick leader_step(Tick own, double leader_safety, double own_cost,
+                 std::span<const HolderProposal> holders, Tick last, const std::string& domain) {
+  if (own > 0 && leader_safety < 1.0)
+    own = std::max<Tick>(1, static_cast<Tick>(leader_safety * static_cast<double>(own)));
+  if (own == 0)
+    for (const auto& k : holders) own = std::max(own, k.proposal);
+  if (own == 0)
+    throw ModelError("layer stepper '" + domain +
+                     "': no domain of this coupling has a stable-step limit (rigid bodies only?); "
+                     "set controls.dt_max");
+  // Cost per unit time of a step H: own cycles plus each holder's substeps per H.
+  auto rate = [&](Tick H) {
+    double c = own_cost;
+    for (const auto& k : holders)
+      c += k.cost * static_cast<double>(k.proposal > 0 ? (H + k.proposal - 1) / k.proposal : 1);
+    return c / static_cast<double>(H);
+  };
+  std::vector<Tick> candidates{own};
+  for (const auto& k : holders)
+    if (k.proposal > 0 && k.proposal <= own) candidates.push_back((own / k.proposal) * k.proposal);
+  Tick best = own;
+  double best_rate = rate(own);
+  for (const Tick H : candidates) {
+    const double r = rate(H);
+    if (r < best_rate || (r == best_rate && H > best)) {
+      best = H;
+      best_rate = r;
+    }
+  }
+  // Hysteresis: the candidate nearest the last step stays unless another one is cheaper by more
+  // than kSwitchGain (two nearly equal costs must not make the step jump back and forth).
+  if (last > 0) {
+    Tick near = own;
+    for (const Tick H : candidates)
+      if (std::abs(H - last) < std::abs(near - last)) near = H;
+    if (rate(near) <= (1.0 + kSwitchGain) * best_rate) best = near;
+  }
+  // Up toward that target by at most kStepChange per step; down at once: a holder's falling
+  // proposal must shrink H with it, or its substep count would jump instead.
+  if (last > 0)
+    best = std::min(
+        best, last + std::max<Tick>(1, static_cast<Tick>(kStepChange * static_cast<double>(last))));
+  return best;
+}
+
+}  // namespace crashlink::coupling

@@ -1,0 +1,37 @@
+#pragma once
+// How a `layer` domain with variable steps chooses its next step (docs/multirate.md "Variable
+// steps"), as pure functions of the proposals, so that the policy is tested on its own:
+//   - common (split): every domain at the least proposal of all;
+//   - a leader's (multi): its own proposal, or a whole multiple of a holder's proposal below it,
+//     whichever costs least per unit of simulated time (cost: elements x cycles), kept near the
+//     last step unless another is cheaper by more than kSwitchGain (hysteresis), and raised by at
+//     most kStepChange of the last step per step (ramp); lowered at once.
+// Fixed steps need no policy: the plan (nested_steps.h) is kept for the whole run.
+#include <span>
+#include <string>
+
+#include "coupling/ticks.h"
+
+namespace crashlink::coupling {
+
+/// A leader's step changes by at most this fraction of the last step per step: a jump of the step
+/// by x costs the central-difference energy balance about x / 2 of that step's work ([2]).
+inline constexpr double kStepChange = 0.02;
+/// A leader changes to a cheaper kind of step only for more than this gain.
+inline constexpr double kSwitchGain = 0.05;
+
+/// One domain holding ghosts of the leader: its subtree's least proposal (ticks, 0: no limit) and
+/// its cost per cycle (its element count).
+struct HolderProposal {
+  Tick proposal = 0;
+  double cost = 1.0;
+};
+
+/// The leader's next step H in ticks. own: its own proposal (0: no limit), scaled here by
+/// leader_safety in (0, 1] (at least one tick); own_cost its element count; last the step just
+/// taken (0: the first). Throws ModelError naming `domain` when neither it nor a holder has a
+/// limit (rigid bodies only).
+Tick leader_step(Tick own, double leader_safety, double own_cost,
+                 std::span<const HolderProposal> holders, Tick last, const std::string& domain);
+
+}  // namespace crashlink::coupling
