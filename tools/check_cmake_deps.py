@@ -82,32 +82,21 @@ def owner(include, folders):
     return folders.get(folder)
 
 
-def public_libraries(lib, libs):
-    """Project libraries `lib` brings to its users: itself and its public dependencies'."""
-    seen, todo = set(), [lib]
-    while todo:
-        cur = todo.pop()
-        if cur in seen or cur not in libs:
+def brought_publicly(lib, libs):
+    """What `lib` gives its users: the project libraries (itself and its public dependencies',
+    transitively) and the external packages among their public dependencies."""
+    projects, packages, pending = set(), set(), [lib]
+    while pending:
+        cur = pending.pop()
+        if cur in projects or cur not in libs:
             continue
-        seen.add(cur)
-        todo += [d.split("::", 1)[1] for d in libs[cur]["public"] if d.startswith("crashlink::")]
-    return seen
-
-
-def public_closure(lib, libs):
-    """External packages `lib` and its public dependencies bring to their users."""
-    seen, out, todo = set(), set(), [lib]
-    while todo:
-        cur = todo.pop()
-        if cur in seen or cur not in libs:
-            continue
-        seen.add(cur)
+        projects.add(cur)
         for d in libs[cur]["public"]:
             if d.startswith("crashlink::"):
-                todo.append(d.split("::", 1)[1])
+                pending.append(d.split("::", 1)[1])
             else:
-                out.add(d)
-    return out
+                packages.add(d)
+    return projects, packages
 
 
 def check(root):
@@ -120,9 +109,11 @@ def check(root):
         declared = lib["public"] + lib["private"]
         declared_libs = {d.split("::", 1)[1] for d in declared if d.startswith("crashlink::")}
         declared_ext = {d for d in declared if not d.startswith("crashlink::")}
-        reachable = set()
+        reachable, brought = set(), set()
         for d in declared_libs:
-            reachable |= public_libraries(d, libs)
+            projects, packages = brought_publicly(d, libs)
+            reachable |= projects
+            brought |= packages
         used_libs, used_ext_prefixes = set(), set()
         for path in sources(root, lib["folder"], folders):
             text = open(path, encoding="utf-8").read()
@@ -145,9 +136,6 @@ def check(root):
         for d in sorted(declared_libs - used_libs):
             problems.append(f"{lib['cmake']}: library {name} declares crashlink::{d} but "
                             f"includes none of its headers; drop it")
-        brought = set()
-        for d in declared_libs:
-            brought |= public_closure(d, libs)
         for names, prefixes in EXTERNAL:
             used = any(i.startswith(prefixes) for i in used_ext_prefixes)
             have = set(names) & declared_ext

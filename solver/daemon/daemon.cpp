@@ -137,6 +137,11 @@ class Daemon {
                                         });
   }
 
+  /// What the scheme is built with: the domain, the step safety and cap of its proposals.
+  coupling::DomainSchemeOptions scheme_options() const {
+    return {o_.domain, o_.step_safety, o_.max_step_s};
+  }
+
   double seconds(coupling::Tick n) const {
     return static_cast<double>(n) / static_cast<double>(tps_);
   }
@@ -156,7 +161,7 @@ class Daemon {
     model_ = std::make_unique<model::Model>(std::move(read.model));
     const auto& entry = domain_scheme_named(o_.coupling);
     dec_ = std::make_unique<partition::Decomposition>(partition::decompose(*model_, entry.cut));
-    scheme_ = entry.make(*dec_, *model_, {o_.domain, o_.step_safety, o_.max_step_s});
+    scheme_ = entry.make(*dec_, *model_, scheme_options());
     elements_ = static_cast<std::int64_t>(solver()->model().element_count());
     solver()->initialize();
     initialized_ = true;
@@ -214,8 +219,7 @@ class Daemon {
     const auto& sub = s.model();
     wire::Envelope e;
     auto* r = e.mutable_registration();
-    const std::int64_t proposal =
-        coupling::proposal_ticks(s, {o_.domain, o_.step_safety, o_.max_step_s}, tps_);
+    const std::int64_t proposal = coupling::proposal_ticks(s, scheme_options(), tps_);
     r->set_stable_step_ticks(proposal);
     r->set_stable_step_s(s.dt_s());
     r->set_end_time_s(sub.controls.end_time_s);
