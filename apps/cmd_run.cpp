@@ -4,10 +4,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "apps/cmd_compare.h"
 #include "apps/cmd_hic.h"
+#include "apps/program_cli.h"
 #include "apps/stop_signal.h"
+#include "coordinator/coordinator_schemes.h"
 #include "core/errors.h"
 #include "core/exit_codes.h"
 #include "solver/deck/model_from_deck.h"
@@ -29,11 +33,12 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->capture_default_str();
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
-  run->add_option("--coupling", o.coupling,
-                  "split/multi: layer (default) | paper (Bourel 2005 [8]-[11]: stable only up to "
-                  "a step ratio of about 2; its guard stops it beyond, docs/paper-scheme.md)")
-      ->check(CLI::IsMember({"layer", "paper"}))
-      ->capture_default_str();
+  std::vector<std::string> schemes;
+  for (const auto& scheme : coordinator::coordinator_schemes()) schemes.push_back(scheme.name);
+  add_coupling_option(*run, o.coupling, schemes,
+                      "split/multi: the coupling scheme (paper: Bourel 2005 [8]-[11], stable only "
+                      "up to a step ratio of about 2; its guard stops it beyond, "
+                      "docs/paper-scheme.md)");
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
                 "each domain's step follows its stable step as the mesh deforms instead of "

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/exit_codes.h"
 #include "crashlink_version.h"
@@ -41,6 +42,17 @@ inline int parse_error_exit(CLI::App& app, const CLI::ParseError& e, const std::
   std::fprintf(stderr, "%s: usage error: %s\nRun `%s --help` for the options.\n", command.c_str(),
                what.empty() ? e.what() : what.c_str(), command.c_str());
   return kExitInput;
+}
+
+/// "--coupling NAME": one of the registered schemes' names (the tables of
+/// solver/daemon/domain_schemes.h and coordinator/coordinator_schemes.h), which CLI11 lists in the
+/// option's help with the default.
+inline CLI::Option* add_coupling_option(CLI::App& app, std::string& coupling,
+                                        const std::vector<std::string>& names,
+                                        const std::string& what) {
+  return app.add_option("--coupling", coupling, what)
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
 }
 
 }  // namespace crashlink::apps

@@ -321,13 +321,16 @@ inline std::vector<std::string> coordinator_args(const std::string& bind,
           mode};
 }
 
-/// Starts crashlink-coordinator and returns it once it listens; `endpoint` gets the real one.
+/// Starts crashlink-coordinator (or `program`) and returns it once it listens; `endpoint` gets the
+/// real one.
 inline std::unique_ptr<Child> start_coordinator(const std::string& bind,
                                                 const std::string& scenario,
                                                 const std::filesystem::path& out,
                                                 const std::string& mode, std::string& endpoint,
-                                                std::vector<std::string> extra = {}) {
+                                                std::vector<std::string> extra = {},
+                                                const std::string& program = {}) {
   std::vector<std::string> a = coordinator_args(bind, scenario, out, mode);
+  if (!program.empty()) a.front() = program;  // a test's own build of the same program
   for (const auto& s : fast_session_args()) a.push_back(s);
   for (auto& s : extra) a.push_back(std::move(s));
   auto c = std::make_unique<Child>(a);
@@ -354,8 +357,10 @@ inline std::vector<std::string> solver_args(const std::string& endpoint, const s
 inline std::unique_ptr<Child> start_solver(const std::string& endpoint, const std::string& domain,
                                            const std::string& scenario,
                                            const std::filesystem::path& out,
-                                           std::vector<std::string> extra = {}) {
+                                           std::vector<std::string> extra = {},
+                                           const std::string& program = {}) {
   std::vector<std::string> a = solver_args(endpoint, domain, scenario, out);
+  if (!program.empty()) a.front() = program;  // a test's own build of the same program
   for (const auto& s : fast_session_args()) a.push_back(s);
   for (auto& s : extra) a.push_back(std::move(s));
   return std::make_unique<Child>(a);

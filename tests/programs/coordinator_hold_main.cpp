@@ -1,0 +1,9 @@
+// crashlink-coordinator-hold: crashlink-coordinator with the test scheme "hold" registered first
+// (tests/support/hold_scheme.h; run by tests/integration/hold_scheme_test.cpp).
+#include "apps/coordinator_program.h"
+#include "tests/support/hold_scheme.h"
+
+int main(int argc, char** argv) {
+  crashlink::test_schemes::register_hold();
+  return crashlink::apps::coordinator_program(argc, argv);
+}
