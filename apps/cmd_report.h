@@ -1,8 +1,8 @@
 #pragma once
-// `crashlink report RESULT.h5 [--out DIR] [--probe NAME]`: the PNGs an engineer looks at first
-// (issue #5): head acceleration (g) against time (ms) after CFC 1000 with the HIC15 window shaded
-// and its value; the energy balance with each contact interface's energy; the interface drift
-// (/coupling); the contact forces after CFC 180 (issue 21).
+// `crashlink report RESULT.h5 [--out DIR] [--probe NAME]`: the PNGs an engineer looks at first:
+// head acceleration (g) against time (ms) after CFC 1000 with the HIC15 window shaded and its
+// value; the energy balance with each contact interface's energy; the interface drift
+// (/coupling); the contact forces after CFC 180.
 // The head metrics are computed here (solver/signal/head_metrics.h, the one filter and HIC
 // implementation) and written to DIR/head_cfc1000.csv, the filtered contact forces to
 // DIR/contact_forces_cfc180.csv (contact_force_csv.h); the plots are drawn by tools/report.py

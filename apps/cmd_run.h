@@ -4,19 +4,8 @@
 // [--join-timeout-ms N] [--step-safety F] [--reference mono] [--checkpoint-interval S]
 // [--restart DIR]` (docs/design.md §4): runs the scenario,
 // shows progress, prints the summary and, for every probe on a rigid body (a headform), HIC15 and
-// HIC36 after CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`).
-//   mono: the whole model in this process (run/run_single.h).
-//   split | multi: the coordinator and one daemon per domain (apps/launcher.h), then the results
-//     gathered into DIR/result.h5; the summary adds the coordinator's share of the CPU time and
-//     the wall time against the sum of the CPU times.
-//   --reference mono (split | multi only): afterwards, the same scene in `mono` into
-//     DIR/reference/, then the paper's Table 1 of the two (`crashlink compare`, cmd_compare.h).
-//   --checkpoint-interval S: checkpoints of every process (mono: of the run) every S of simulated
-//     time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest one every
-//     process has, and ends as the uninterrupted run would have (docs/checkpoints.md).
-//   SCENARIO may be a keyword deck (.k, .key, .dyn, .kw) with --units SYSTEM [--ignore K1,K2]:
-//     mono; split and multi take a scenario YAML naming the deck with its domains
-//     (`model: {deck: model.k, units: ...}`, docs/decks.md "In a scenario").
+// HIC36 after CFC 1000 (the same output as `crashlink hic DIR/result.h5 --probe NAME`). The
+// modes and options: run_run.
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
@@ -55,6 +44,19 @@ struct RunCommandOptions {
 
 CLI::App* add_run_command(CLI::App& app, RunCommandOptions& options);
 
+/// Runs the command:
+///   mono: the whole model in this process (run/run_single.h).
+///   split | multi: the coordinator and one daemon per domain (apps/launcher.h), then the results
+///     gathered into DIR/result.h5; the summary adds the coordinator's share of the CPU time and
+///     the wall time against the sum of the CPU times.
+///   --reference mono (split | multi only): afterwards, the same scene in `mono` into
+///     DIR/reference/, then the paper's Table 1 of the two (`crashlink compare`, cmd_compare.h).
+///   --checkpoint-interval S: checkpoints of every process (mono: of the run) every S of
+///     simulated time in DIR/checkpoints; --restart DIR resumes the run in DIR from the newest
+///     one every process has, and ends as the uninterrupted run would have (docs/checkpoints.md).
+///   SCENARIO may be a keyword deck (.k, .key, .dyn, .kw) with --units SYSTEM [--ignore K1,K2]:
+///     mono; split and multi take a scenario YAML naming the deck with its domains
+///     (`model: {deck: model.k, units: ...}`, docs/decks.md "In a scenario").
 /// Returns the exit code (core/exit_codes.h): 0; 3 when the guard stopped the run (output
 /// kept); split/multi: 5 when a process failed (the message names it). Input errors throw.
 int run_run(const RunCommandOptions& options);

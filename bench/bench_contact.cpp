@@ -1,19 +1,7 @@
-// Contact cost per tested node per cycle, one-pass, two-pass and single-surface,
+// Contact cost per tested node per cycle, one-pass, two-pass and single-surface
 // (ContactInterface::compute: travel check, re-sorts when due, projection, forces) against the
-// master surface size: a square plate of n x n shell segments (10k, 100k, 1M) and the nodes of a
-// second plate of the same size and pitch, offset by a third of an element in plane, hovering at
-// the contact distance with a random vertical jitter of +-5 % of the element size so that about
-// half of them are in contact. Each cycle the slave nodes move by a random velocity of up to 2e-3
-// element sizes per step and bounce in a +-5 % band vertically, so that a re-sort is due every ~88
-// cycles (margin/2 = 0.177 element sizes of travel; about the rate in a crash run): 100 timed
-// cycles hold one at every size. The numbering is the plate generator's, row by row, as a mesher
-// numbers a structured plate; slave and master are separate blocks, as two parts are. Linear-time
-// search means the per-node figure stays flat: 1M vs 10k within 1.3x. Items processed = slave nodes
-// x cycles: the reported items_per_second inverted is ns/node/cycle. Only ContactInterface::compute
-// is timed (manual time), in the thread's CPU time: the harness's own passes over the nodes (moving
-// the slaves, zeroing f) stream 3n-long arrays that fit the cache at 10k and not at 1M and would
-// count as contact growth, and on a machine shared with other jobs the wall time also counts the
-// time slices others take.
+// master surface size (10k, 100k, 1M segments): the scene and what is timed are on
+// BM_ContactPerSlaveNode, the figures in docs/benchmarks.md "Contact".
 #include <benchmark/benchmark.h>
 #include <time.h>
 
@@ -31,9 +19,22 @@ constexpr double kH = 0.005;  // element size [m]
 constexpr double kT = 0.001;  // shell thickness [m]
 constexpr double kDt = 1e-6;  // step [s]
 
+/// range(0) = n: a square plate of n x n shell segments and the nodes of a second plate of the
+/// same size and pitch, offset by a third of an element in plane, hovering at the contact
+/// distance with a random vertical jitter of +-5 % of the element size so that about half of them
+/// are in contact. Each cycle the slave nodes move by a random velocity of up to 2e-3 element
+/// sizes per step and bounce in a +-5 % band vertically, so that a re-sort is due every ~88
+/// cycles (margin/2 = 0.177 element sizes of travel; about the rate in a crash run): 100 timed
+/// cycles hold one at every size. The numbering is the plate generator's, row by row, as a mesher
+/// numbers a structured plate; slave and master are separate blocks, as two parts are.
 /// range(1): 0 node-to-surface (one pass), 1 surface-to-surface (two passes: also the master
 /// plate's nodes against the slave plate's faces), 2 single-surface over both plates (every node
-/// against every other segment). Items = the nodes the passes test.
+/// against every other segment). Items = the nodes the passes test, x cycles: the reported
+/// items_per_second inverted is ns/node/cycle. Only ContactInterface::compute is timed (manual
+/// time), in the thread's CPU time: the harness's own passes over the nodes (moving the slaves,
+/// zeroing f) stream 3n-long arrays that fit the cache at 10k and not at 1M and would count as
+/// contact growth, and on a machine shared with other jobs the wall time also counts the time
+/// slices others take.
 void BM_ContactPerSlaveNode(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const auto kind = static_cast<model::ContactKind>(state.range(1) == 0   ? 0

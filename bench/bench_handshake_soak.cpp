@@ -1,22 +1,8 @@
-// Handshake soak (issue #6: "10^6 handshakes with flat memory"). One long-lived coordinator
-// endpoint (the product's CoordinatorLink, on its own thread, polled as the coordinator polls it)
-// and N daemon connections made one after the other by the main thread, each a new DaemonLink
-// (new DEALER socket, new tcp/ipc connection): Hello -> the coordinator's Hello -> Bye -> close.
-// Every --refuse-every'th daemon carries a wrong scenario hash and is refused with an Error
-// (ERROR_CODE_SCENARIO_MISMATCH), so the refusal path is soaked too. The domains are the
-// coordinator's configured ones (--domains, used in turn), as in a run: the soak reuses routing
-// ids, which is what a long-lived ROUTER must survive without keeping per-connection state.
-//
-// Before the next handshake it waits until both ends of the last connection are closed (ZeroMQ
-// closes them in background threads; without the wait they pile up by the hundred).
-//
-// At 10^3, 10^4, ... and at N it prints the resident memory (VmRSS), its peak (VmHWM), its
-// anonymous part (RssAnon), the heap in use (glibc mallinfo2: every arena, every thread), the
-// rate and the refusals; the last line is the verdict: RSS and heap at N against at --base (after
-// the warm-up), flat when both grew less than --max-growth-kib. Exit 0 flat, 1 grows, 2 a
-// handshake failed, a connection was not released, or bad arguments.
-// --leak-bytes B leaks B bytes per handshake on purpose (a self-check: the verdict must say
-// GROWS; ctest Soak.HandshakesShortCatchesALeak).
+// Handshake soak: 10^6 handshakes with flat memory (docs/processes.md "Soak"; the figures:
+// docs/benchmarks.md "Handshake soak"). One long-lived coordinator endpoint (the product's
+// CoordinatorLink, on its own thread) and N daemon connections made one after the other, each a
+// new DaemonLink; the handshakes, what is printed and the verdict: soak.
+// Exit 0 flat, 1 grows, 2 a handshake failed, a connection was not released, or bad arguments.
 #include <fmt/format.h>
 #include <malloc.h>
 
@@ -219,8 +205,9 @@ int open_fds() {
   return n;
 }
 
-/// --leak-bytes: blocks chained through their first bytes (no container that would grow too),
-/// written so that they are resident.
+/// --leak-bytes B leaks B bytes per handshake on purpose (a self-check: the verdict must say
+/// GROWS; ctest Soak.HandshakesShortCatchesALeak): blocks chained through their first bytes (no
+/// container that would grow too), written so that they are resident.
 void* leak(std::size_t bytes, void* previous) {
   if (bytes == 0) return previous;
   auto* block = static_cast<unsigned char*>(std::malloc(std::max(bytes, sizeof(void*))));
@@ -229,6 +216,19 @@ void* leak(std::size_t bytes, void* previous) {
   return block;
 }
 
+/// The coordinator endpoint is polled on its own thread as the coordinator polls it (Coordinator);
+/// the main thread makes N daemon connections one after the other, each a new DaemonLink (new
+/// DEALER socket, new tcp/ipc connection): Hello -> the coordinator's Hello -> Bye -> close.
+/// Every --refuse-every'th daemon carries a wrong scenario hash and is refused with an Error
+/// (ERROR_CODE_SCENARIO_MISMATCH), so the refusal path is soaked too. The domains are the
+/// coordinator's configured ones (--domains, used in turn), as in a run: the soak reuses routing
+/// ids, which is what a long-lived ROUTER must survive without keeping per-connection state.
+/// Before the next handshake it waits until both ends of the last connection are closed (ZeroMQ
+/// closes them in background threads; without the wait they pile up by the hundred).
+/// At 10^3, 10^4, ... and at N it prints the resident memory (VmRSS), its peak (VmHWM), its
+/// anonymous part (RssAnon), the heap in use (glibc mallinfo2: every arena, every thread), the
+/// rate and the refusals; the last line is the verdict: RSS and heap at N against at --base
+/// (after the warm-up), flat when both grew less than --max-growth-kib. Returns the exit code.
 int soak(const Args& args) {
   std::vector<std::string> domains;
   for (int d = 0; d < args.domains; ++d) domains.push_back(fmt::format("soak{}", d));

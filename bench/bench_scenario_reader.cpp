@@ -1,22 +1,14 @@
-// Memory and time of the scenario reader on long lists (issue 20, item 13; docs/benchmarks.md
-// "Scenario reader"). Generates a scenario per size whose bulk is one list of N values, then runs
-// each in a fresh process (this program again, --read FILE) that does what every process of a
-// run does with the scenario: io::read_scenario_with_hash (the model and the scenario hash from
-// one parse; until issue 20 item 13, io::scenario_hash and io::read_scenario parsed it twice).
-// The child reports its time and its peak resident memory (VmHWM) against its resident memory
-// before reading (VmRSS); one line per size: input MB, seconds, peak and growth, and both per
-// input MB.
+// Memory and time of the scenario reader on long lists (docs/benchmarks.md "Scenario reader":
+// the figures). Generates a scenario per size whose bulk is one list of N values (generate), then
+// runs each in a fresh process (this program again, --read FILE: read_one) that does what every
+// process of a run does with the scenario; one line per size: input MB, seconds, peak and growth,
+// and both per input MB.
 //
 //   bench_scenario_reader [--sizes 1e6,4e6,13e6] [--list ids|curve] [--style flow|block]
 //                         [--dir DIR (/tmp)] [--keep]
 //   bench_scenario_reader --read FILE        (the child: one line of figures)
 //
-// --list ids: a node set `{nodes: [id, ...]}` of N ids on a 10x10x10 box (1331 nodes, ids
-// spread over them), fixed in z by `boundary`; --list curve: a prescribed velocity whose curve
-// has N/2 points (N numbers, t and v). --style block writes one `- value` per line.
-// The child also prints a checksum of what the reader made of the list (the fixed dofs, the
-// curve), so that two builds can be checked to read the same model. Exit 0, 2 on bad arguments
-// or a failed child.
+// Exit 0, 2 on bad arguments or a failed child.
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -116,6 +108,10 @@ void write_list(std::ofstream& out, std::size_t n, bool block, const std::string
   out << "]\n";
 }
 
+/// The scenario of size n at path. --list ids: a node set `{nodes: [id, ...]}` of N ids on a
+/// 10x10x10 box (1331 nodes, ids spread over them), fixed in z by `boundary`; --list curve: a
+/// prescribed velocity whose curve has N/2 points (N numbers, t and v). --style block writes one
+/// `- value` per line.
 void generate(const std::string& path, std::size_t n, const Options& o) {
   std::ofstream out(path);
   out << "name: reader_bench\n"
@@ -159,7 +155,11 @@ std::uint64_t fnv(std::uint64_t h, const void* data, std::size_t bytes) {
   return h;
 }
 
-/// The child: reads like a daemon; one line "bytes seconds hwm_kib base_kib sum hash".
+/// The child: reads like a daemon, io::read_scenario_with_hash (the model and the scenario hash
+/// from one parse); one line "bytes seconds hwm_kib base_kib sum hash": its time and its peak
+/// resident memory (VmHWM) against its resident memory before reading (VmRSS), and a checksum of
+/// what the reader made of the list (the fixed dofs, the curve), so that two builds can be
+/// checked to read the same model.
 int read_one(const std::string& path) {
   const long base = status_kib("VmRSS");
   const auto t0 = Clock::now();

@@ -45,7 +45,7 @@ struct LayerCut {
 /// empty domain.
 LayerCut layer_cut(const model::Model& global, const partition::Decomposition& dec);
 
-/// Checks daemon k's Register against the cut (see the header comment). Throws ModelError naming
+/// Checks daemon k's Register against the cut (the file comment). Throws ModelError naming
 /// the domain, the interface and the node id.
 void check_register(const LayerCut& cut, int k, const wire::Register& reg);
 

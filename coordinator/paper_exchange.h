@@ -1,28 +1,10 @@
 #pragma once
 // The coordinator's run loop core for the `paper` scheme over processes (docs/design.md §2.2-§2.6;
-// Bourel 2005 [5]-[11]): every daemon sends its free state (FreeState: free accelerations [5],
-// displacements, half-step velocities, its energies at its previous instant); the schedule of
-// docs/design.md §2.6 (coupling::Schedule, fixed steps of the plan) decides which state is
-// answered next; the answer (Correction) is
-//   a* = a_own + [10](a_partner(t_l^j), a_partner(t_l^{j+1}); theta)      ([8], [9] with [10])
-//        + (u_ref - u) / (dt^n dt^{n-1/2})   on the non-reference side    ([11], switchable)
-// with u_ref the reference side's displacement interpolated by [10] - the same functions, in the
-// same order, as cosim::PaperRunner, so a run over processes reproduces it bit for bit.
-//
-// Steps: the plan's, fixed (default), or variable (docs/design.md §2.6: each free state carries its
-// domain's proposal; split imposes the smallest of all at every instant and, like a single-domain
-// run, stops at the first instant at or after the end time; multi each its own, the last step
-// clipped to the end time).
-//
-// At every instant where all domains stand together (their energies arrive with their next free
-// state; with variable multi steps, whenever the oldest of the domains' latest energies advances,
-// their sum) the energy guard (coupling/paper_guard.h) checks the coupled energy; a rise, or a
-// non-finite free or corrected acceleration, throws NumericalError "the coupling went unstable"
-// (nothing non-finite is ever sent). Per interface, at every instant both sides were answered, a
-// history row: displacement gap and velocity jump (max over the nodes, from the free states),
-// cumulative work of the link forces M (a_link - a_free) and of the drift forces M da on both
-// presences (trapezoid rule, as the Solver counts work), and the resultant link force on the
-// coarse side's presences.
+// Bourel 2005 [5]-[11]): every daemon sends its free state; the schedule of docs/design.md §2.6
+// (coupling::Schedule) decides which state is answered next; the answer (Correction, [8]-[11]:
+// PaperExchange::next) uses the same functions, in the same order, as cosim::PaperRunner, so a run
+// over processes reproduces it bit for bit. Steps: PaperExchange::Steps. Guard: check_energies();
+// interface history: PaperRow. The session: docs/paper-scheme.md "Over processes".
 //
 // Limits (each refused where it is found): every coupled node in exactly two domains;
 // translations only (cosim::PaperRunner's rule, checked by the daemons).
@@ -48,7 +30,11 @@ namespace crashlink::coordinator {
 coupling::Tick paper_end_ticks(double end_time_s, const std::vector<coupling::Tick>& steps,
                                std::int64_t ticks_per_second);
 
-/// One interface history row (io::CouplingSample's fields).
+/// One interface history row (io::CouplingSample's fields), per interface at every instant both
+/// sides were answered: displacement gap and velocity jump (max over the nodes, from the free
+/// states), cumulative work of the link forces M (a_link - a_free) and of the drift forces M da on
+/// both presences (trapezoid rule, as the Solver counts work), and the resultant link force on the
+/// coarse side's presences.
 struct PaperRow {
   std::uint32_t interface = 0;
   coupling::Tick time = 0;
@@ -61,7 +47,10 @@ struct PaperRow {
 
 class PaperExchange {
  public:
-  /// How the steps are chosen.
+  /// How the steps are chosen: the plan's, fixed (default), or variable (docs/design.md §2.6: each
+  /// free state carries its domain's proposal; split imposes the smallest of all at every instant
+  /// and, like a single-domain run, stops at the first instant at or after the end time; multi
+  /// each its own, the last step clipped to the end time).
   enum class Steps {
     fixed,            ///< the plan's `steps` for the whole run (cosim::PaperRunner's way)
     variable_common,  ///< split: at every instant the smallest proposal of all (docs/design.md
@@ -75,11 +64,15 @@ class PaperExchange {
                 std::vector<coupling::Tick> steps, coupling::paper::Drift drift, double guard_rise,
                 std::int64_t ticks_per_second, Steps policy = Steps::fixed);
 
-  /// Domain k's free state. Throws ProtocolError (wrong time, sizes) and
-  /// NumericalError (the coupling went unstable).
+  /// Domain k's free state (FreeState: free accelerations [5], displacements, half-step
+  /// velocities, its energies at its previous instant). Throws ProtocolError (wrong time, sizes)
+  /// and NumericalError (the coupling went unstable).
   void submit(int k, const wire::FreeState& s);
-  /// The next correction the schedule allows, as (daemon, Envelope), or nullopt. Throws
-  /// NumericalError when the corrected acceleration is not finite.
+  /// The next correction the schedule allows, as (daemon, Envelope), or nullopt. The correction:
+  ///   a* = a_own + [10](a_partner(t_l^j), a_partner(t_l^{j+1}); theta)      ([8], [9] with [10])
+  ///        + (u_ref - u) / (dt^n dt^{n-1/2})   on the non-reference side    ([11], switchable)
+  /// with u_ref the reference side's displacement interpolated by [10]. Throws NumericalError when
+  /// the corrected acceleration is not finite (nothing non-finite is ever sent).
   std::optional<std::pair<int, wire::Envelope>> next();
   /// History rows completed since the last call.
   std::vector<PaperRow> take_rows();
@@ -127,6 +120,11 @@ class PaperExchange {
 
   double seconds(coupling::Tick t) const;
   [[noreturn]] void unstable(coupling::Tick t, const std::string& what) const;
+  /// At every instant where all domains stand together (their energies arrive with their next
+  /// free state; with variable multi steps, whenever the oldest of the domains' latest energies
+  /// advances, their sum) the energy guard (coupling/paper_guard.h) checks the coupled energy; a
+  /// rise, or a non-finite free or corrected acceleration, throws NumericalError "the coupling
+  /// went unstable".
   void check_energies();
   void add_rows(int k, coupling::Tick t);
 

@@ -2,20 +2,8 @@
 // The coordinator's side of the `paper` coupling scheme (docs/design.md §2.2-§2.4; Bourel,
 // Combescure, Di Valentin 2005, equations [5]-[11]; the study's scheme S1 in
 // coupling-study/mts.py), as pure functions: no transport, no solver, no state.
-//
-//   [5] / §2.2  summed_mass:            M = sum_k m^k of every interface node; each domain then
-//                                       computes its free acceleration a^k = f^k / M ([5]).
-//   [6]-[8]     link_acceleration:      the corrected (link) acceleration of a node shared by
-//                                       several domains at a common instant, a* = sum_k a^k ([8]).
-//   [9], [10]   interpolation_weight,   multi-time-scale: the partner's free acceleration at an
-//               multiscale_acceleration instant t_A of domain A is interpolated linearly between
-//                                       its two free states t_B^n <= t_A <= t_B^{n+1} ([10]) and
-//                                       added to A's own ([9]). Coinciding instants give [8] bit
-//                                       for bit (no interpolation, §2.3).
-//   [11] / §2.4 drift_correction:       on the NON-reference side only, da = (u_ref(t) - u(t)) /
-//                                       (dt^n dt^{n-1/2}), u_ref interpolated in time by [10]: a
-//                                       one-sided spring of stiffness M / (dt^n dt^{n-1/2})
-//                                       (drift_stiffness). Switchable (Drift::off).
+// By equation: [5] summed_mass; [6]-[8] link_acceleration; [9], [10] interpolation_weight,
+// multiscale_acceleration; [11] drift_step_product, drift_correction, drift_stiffness.
 //
 // Array shapes (n = interface node count; vectors are xyz interleaved):
 //   masses                 [n]        kg
@@ -35,11 +23,13 @@ namespace crashlink::coupling::paper {
 
 /// [5], §2.2 of docs/design.md: M[i] = sum_k partial[k][i], summed in domain order (k = 0, 1, ...),
 /// so every domain receives the same bits. partial: [domains][n] kg (a copy of another domain's
-/// slave node contributes 0: it has no own mass). Throws ModelError for no domain, unequal
-/// lengths, a negative or non-finite mass, or a node whose sum is not positive.
+/// slave node contributes 0: it has no own mass). Each domain then computes its free acceleration
+/// a^k = f^k / M ([5]). Throws ModelError for no domain, unequal lengths, a negative or non-finite
+/// mass, or a node whose sum is not positive.
 std::vector<double> summed_mass(std::span<const std::vector<double>> partial);
 
-/// [8] (and [7]): the corrected acceleration of the link nodes at a common instant,
+/// [8] (with the link problem [6] and [7]): the corrected (link) acceleration of the nodes shared
+/// by several domains at a common instant,
 /// out[i] = sum_k a_free[k][i], in domain order. a_free: [domains][3n]; out: [3n]. Every domain
 /// sharing the node receives this same vector ([8]: U*_A = U*_B = U_A + U_B).
 void link_acceleration(std::span<const std::span<const double>> a_free, std::span<double> out);
@@ -53,7 +43,10 @@ Weight interpolation_weight(Tick t, Tick t0, Tick t1);
 /// [9] with [10]: domain A's corrected acceleration at its instant t_A inside the partner B's step
 /// [t_B^n, t_B^{n+1}]:
 ///   out = a_own + a_B(t_B^n) (1 - theta) + a_B(t_B^{n+1}) theta,   theta = w (see above).
-/// All [3n]. At theta = 0 or 1 this is link_acceleration of the two, bit for bit (a + b).
+/// (the partner's free acceleration interpolated linearly between its two free states
+/// t_B^n <= t_A <= t_B^{n+1}, [10], and added to A's own, [9]). All [3n]. At theta = 0 or 1 this
+/// is link_acceleration of the two, bit for bit (a + b): coinciding instants give [8] (no
+/// interpolation, §2.3).
 void multiscale_acceleration(std::span<const double> a_own, std::span<const double> a_partner_lower,
                              std::span<const double> a_partner_upper, Weight w,
                              std::span<double> out);
@@ -67,11 +60,12 @@ enum class Drift : bool { off = false, on = true };
 /// dt^{n-1} >= 0.
 double drift_step_product(double dt_n, double dt_prev);
 
-/// [11]: the drift correction of the non-reference side,
+/// [11] / §2.4: the drift correction, on the NON-reference side only,
 ///   da[i] = (u_ref[i] - u[i]) / (dt^n dt^{n-1/2})   (Drift::on),   da[i] = 0   (Drift::off).
 /// u_ref is the reference side's displacement at the same instant (interpolated by [10] when the
 /// instants differ, docs/design.md §2.4); step_product = drift_step_product(...). It moves the node
-/// onto u_ref(t) in one step if nothing else acts. All [3n].
+/// onto u_ref(t) in one step if nothing else acts: a one-sided spring of stiffness
+/// M / (dt^n dt^{n-1/2}) (drift_stiffness). All [3n].
 void drift_correction(std::span<const double> u_ref, std::span<const double> u, double step_product,
                       Drift drift, std::span<double> da);
 

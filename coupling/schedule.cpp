@@ -111,7 +111,7 @@ Bracket Schedule::bracket(int l, Tick t) const {
     b.t0 = b.t1 = t;
     return b;
   }
-  // t_l^j <= t < t_l^{j+1}: guaranteed by the answerability rule (header comment).
+  // t_l^j <= t < t_l^{j+1}: guaranteed by the answerability rule (answerable()).
   const int previous = 1 - latest;
   CRASHLINK_ASSERT(d.count >= 2 && d.time[previous] <= t && t < d.time[latest]);
   if (d.time[previous] == t) {

@@ -1,30 +1,9 @@
 #pragma once
 // The multi-rate scheduling rule of docs/design.md §2.6 as pure logic (no sockets, no payloads).
-//
 // Daemon loop: send the free state at t^{n+1} -> wait for its answer -> apply it -> next step.
-// Coordinator, here:
-// - keeps each domain's last two free states (their times and stable steps; the payloads live
-//   with the caller in two slots per domain, see submit());
-// - a pending free state of domain k at t is *answerable* when every partner l of k has a free
-//   state at a time >= t. Then l's last two states bracket t, t_l^j <= t <= t_l^{j+1}, which is
-//   what [10] of Bourel 2005 interpolates between: l's state at t_l^j was answered only once k
-//   had a state at >= t_l^j, and k's states grow with time, so t_l^j <= t; l cannot send a state
-//   after t_l^{j+1} until t_l^{j+1} is answered, which needs k at >= t_l^{j+1}, so t_l^{j+1} = t
-//   and the new pair (t, later) still brackets t exactly;
-// - answers in increasing time order, globally: pop() answers the smallest (time, domain) among
-//   all domains' pending states *and* the next instants of the domains still computing (known,
-//   since the answer imposes each domain's next step). So the answers are non-decreasing in time
-//   and their order does not depend on arrival order: the coordinator's sums are bit-reproducible.
-//   The earliest pending state is always answerable once every domain is waiting (all its
-//   partners are waiting at times >= t), so the scheme never deadlocks.
-//   The price: a domain may wait for a non-partner that is behind it (never in a 2-domain run or a
-//   complete partner graph).
-// - Step policy: `common` (modes mono and split) imposes the minimum stable step over all domains
-//   and gates every state on all domains; `own` (mode multi) lets each domain keep its own step.
-//   Both clip the last step so every domain lands on the end time exactly (a single shorter final
-//   step; docs/design.md §2.7's warning is about shortening every coarse step, not this one),
-//   unless `common` is built unclipped: then every domain stops at the first common instant at or
-//   after the end time, as a single-domain run does.
+// The coordinator's side is Schedule: when a state is answerable (Schedule::answerable, the
+// bracket [10] of Bourel 2005 interpolates in), in which order (Schedule::pop), with which step
+// (StepPolicy).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -68,11 +47,20 @@ struct Answer {
   std::vector<Bracket> partners;  // one per partner of k, in increasing partner index
 };
 
+/// Step policy: `common` (modes mono and split) imposes the minimum stable step over all domains
+/// and gates every state on all domains; `own` (mode multi) lets each domain keep its own step.
+/// Both clip the last step so every domain lands on the end time exactly (a single shorter final
+/// step; docs/design.md §2.7's warning is about shortening every coarse step, not this one),
+/// unless `common` is built unclipped: then every domain stops at the first common instant at or
+/// after the end time, as a single-domain run does.
 enum class StepPolicy {
   common,  // modes mono, split: everyone takes the global minimum stable step (docs/design.md §2.6)
   own,     // mode multi: each domain keeps its own stable step
 };
 
+/// The coordinator's side: keeps each domain's last two free states (their times and stable
+/// steps; the payloads live with the caller in two slots per domain, see submit()), and answers
+/// them by the rule of pop().
 class Schedule {
  public:
   /// n_domains domains 0..n-1; `partners`: undirected pairs (k, l) of domains sharing an
@@ -90,8 +78,16 @@ class Schedule {
   /// positive before the end.
   int submit(int k, Tick time, Tick stable_step);
 
-  /// The next answer by the rule in the header comment, or nullopt if it must wait for a free
-  /// state still being computed (or everyone is finished). Marks the state answered.
+  /// The next answer, or nullopt if it must wait for a free state still being computed (or
+  /// everyone is finished). Marks the state answered.
+  /// Answers in increasing time order, globally: the smallest (time, domain) among all domains'
+  /// pending states *and* the next instants of the domains still computing (known,
+  /// since the answer imposes each domain's next step). So the answers are non-decreasing in time
+  /// and their order does not depend on arrival order: the coordinator's sums are
+  /// bit-reproducible. The earliest pending state is always answerable once every domain is
+  /// waiting (all its partners are waiting at times >= t), so the scheme never deadlocks.
+  /// The price: a domain may wait for a non-partner that is behind it (never in a 2-domain run or
+  /// a complete partner graph).
   std::optional<Answer> pop();
 
   int domain_count() const { return static_cast<int>(domains_.size()); }
@@ -117,6 +113,12 @@ class Schedule {
     int latest_slot() const { return static_cast<int>((count - 1) % 2); }
   };
 
+  /// A pending free state of domain k at t is answerable when every partner l of k has a free
+  /// state at a time >= t. Then l's last two states bracket t, t_l^j <= t <= t_l^{j+1}, which is
+  /// what [10] of Bourel 2005 interpolates between: l's state at t_l^j was answered only once k
+  /// had a state at >= t_l^j, and k's states grow with time, so t_l^j <= t; l cannot send a state
+  /// after t_l^{j+1} until t_l^{j+1} is answered, which needs k at >= t_l^{j+1}, so t_l^{j+1} = t
+  /// and the new pair (t, later) still brackets t exactly.
   bool answerable(int k, Tick t) const;
   Bracket bracket(int l, Tick t) const;
 

@@ -40,7 +40,7 @@ Tick TickClock::to_ticks(double t_s) const {
         ticks_per_second_));
   }
   // t_s carries at most half an ulp of representation error and the product one more rounding:
-  // a value that close to an integer is that integer (header comment: the snap exception).
+  // a value that close to an integer is that integer (to_ticks(): the snap exception).
   const double nearest = std::nearbyint(x);
   const double snap = kSnapUlps * std::numeric_limits<double>::epsilon() * std::max(1.0, x);
   const double n = std::abs(x - nearest) <= snap ? nearest : std::floor(x);

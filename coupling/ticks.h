@@ -1,21 +1,7 @@
 #pragma once
 // Time as an integer count of ticks (docs/design.md §2.6: "never compare doubles for equality to
-// decide who waits"). Every time and step on the wire and in the scheduler is a Tick.
-//
-// Tick length rule
-// - One tick is 1 / ticks_per_second seconds, ticks_per_second an integer; the default is 10^15
-//   (1 fs). A decimal tick makes the steps people write (1e-6 s, 2.5e-7 s) whole numbers of ticks,
-//   so steps in ratio 1:3 or 1:1.5 give instants that coincide exactly and [10] of Bourel 2005 is
-//   not needed there. An int64 of femtoseconds spans 9223 s; to_seconds is exact to the last bit
-//   up to 2^53 ticks (9 s).
-// - Not chosen: "the greatest tick that divides every domain's step": stable steps change every
-//   cycle ([1], [2] with variable steps), so no such tick exists for a real run.
-// - Steps are rounded DOWN to whole ticks, so a step never exceeds the stable step it came from.
-//   One exception, by design: a value that is a whole number of ticks up to the rounding of the
-//   double it arrived in (within kSnapUlps ulps, about 1e-15 relative) is taken as that whole
-//   number, so 3e-6 s is 3'000'000'000 ticks and not 2'999'999'999. That excess is below the
-//   precision of any stable-step estimate (Courant safety factors are ~0.9).
-// - With 1 fs, a 1e-8 s step loses at most 1e-7 of itself to rounding.
+// decide who waits"). Every time and step on the wire and in the scheduler is a Tick. The tick
+// length rule: TickClock; rounding seconds to ticks: TickClock::to_ticks.
 #include <cstdint>
 
 namespace crashlink::coupling {
@@ -24,9 +10,18 @@ using Tick = std::int64_t;
 
 inline constexpr std::int64_t kDefaultTicksPerSecond = 1'000'000'000'000'000;  // 1 tick = 1 fs
 
+/// Tick length rule:
+/// - One tick is 1 / ticks_per_second seconds, ticks_per_second an integer; the default is 10^15
+///   (1 fs). A decimal tick makes the steps people write (1e-6 s, 2.5e-7 s) whole numbers of
+///   ticks, so steps in ratio 1:3 or 1:1.5 give instants that coincide exactly and [10] of Bourel
+///   2005 is not needed there. An int64 of femtoseconds spans 9223 s; to_seconds is exact to the
+///   last bit up to 2^53 ticks (9 s).
+/// - Not chosen: "the greatest tick that divides every domain's step": stable steps change every
+///   cycle ([1], [2] with variable steps), so no such tick exists for a real run.
+/// - With 1 fs, a 1e-8 s step loses at most 1e-7 of itself to rounding (to_ticks).
 class TickClock {
  public:
-  /// Values within this many ulps of a whole number of ticks snap to it (see the header comment).
+  /// Values within this many ulps of a whole number of ticks snap to it (to_ticks).
   static constexpr double kSnapUlps = 4.0;
 
   /// Throws crashlink::ModelError unless 1 <= ticks_per_second <= 2^53 (exact in a double).
@@ -41,7 +36,12 @@ class TickClock {
   double to_seconds(Tick n) const;
 
   /// An instant or duration t >= 0 in seconds to ticks: the greatest n with n ticks <= t, after
-  /// snapping. Throws crashlink::NumericalError for a negative or non-finite t (a blown-up step)
+  /// snapping. Steps are rounded DOWN to whole ticks, so a step never exceeds the stable step it
+  /// came from. One exception, by design: a value that is a whole number of ticks up to the
+  /// rounding of the double it arrived in (within kSnapUlps ulps, about 1e-15 relative) is taken
+  /// as that whole number, so 3e-6 s is 3'000'000'000 ticks and not 2'999'999'999. That excess is
+  /// below the precision of any stable-step estimate (Courant safety factors are ~0.9).
+  /// Throws crashlink::NumericalError for a negative or non-finite t (a blown-up step)
   /// and crashlink::ModelError when t does not fit in 2^62 ticks.
   Tick to_ticks(double t_s) const;
 

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Records or checks a matrix of runs for a refactor that must not change a bit (issue 23):
+# Records or checks a matrix of runs for a refactor that must not change a bit:
 #   tools/same_results.sh record DIR [--full]   run the matrix with build/apps/crashlink into DIR
 #   tools/same_results.sh check DIR [--full]    run it again into DIR.new and compare each
 #                                               result.h5 with tests/docker/compare_results.py

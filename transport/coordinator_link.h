@@ -1,27 +1,8 @@
 #pragma once
 // Coordinator end of the session (session.h) over a Router: the table of peers (routing id =
 // domain name -> last heard, last sent), the Hello handshake, heartbeats, dead peers, Bye/Error.
-//
-// Main loop sketch:
-//   CoordinatorLink link(endpoint, {hash, {"car", "wiper"}, ticks_per_second});
-//   link.await_all_joined(30s);                       // handshakes; early messages are queued
-//   while (...) {
-//     if (auto in = link.poll(100ms)) { ... in->domain, in->envelope ... link.send(d, reply); }
-//     link.check_alive();                             // throws PeerTimeoutError naming the domain
-//   }
-// poll() answers Hellos, swallows Heartbeats and sends its own; it returns every other message of
-// a joined domain (Register, FreeState, LayerForce, LayerDisplacement, Bye, Error). An Error from
-// a daemon comes back with Error.domain filled in: `throw RemoteError(in->envelope.error())`
-// reports it with the domain's name. Refused Hellos and bytes that are not Envelopes are answered
-// with an Error to the sender and recorded as notices (take_notices()), never thrown; so are the
-// daemons the CURVE handshake refused (Router::take_refusals(): their key and address).
-//
-// Sessions: a daemon's routing id names its connection (DaemonLink: "<domain>#<random>"), the
-// Hello names its domain. A domain is held by one session at a time: a Hello for a domain whose
-// session is open, or that seal() closed, is refused (ERROR_CODE_DOMAIN_HELD) and the running
-// session is not touched. drop() ends a session from this side and frees its domain.
-// Every string of a peer in a notice or an error text is escaped (core::log_escape).
-// One thread at a time.
+// The main loop and the sessions: CoordinatorLink; what a poll answers, swallows and returns:
+// CoordinatorLink::poll. One thread at a time.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -58,6 +39,19 @@ struct Notice {
   std::string text;  // names the peer and says what happened
 };
 
+/// Main loop sketch:
+///   CoordinatorLink link(endpoint, {hash, {"car", "wiper"}, ticks_per_second});
+///   link.await_all_joined(30s);                       // handshakes; early messages are queued
+///   while (...) {
+///     if (auto in = link.poll(100ms)) { ... in->domain, in->envelope ... link.send(d, reply); }
+///     link.check_alive();                             // throws PeerTimeoutError naming the domain
+///   }
+/// Sessions: a daemon's routing id names its connection (DaemonLink: "<domain>#<random>"), the
+/// Hello names its domain. A domain is held by one session at a time: a Hello for a domain whose
+/// session is open, or that seal() closed, is refused (ERROR_CODE_DOMAIN_HELD) and the running
+/// session is not touched. drop() ends a session from this side and frees its domain.
+/// Every string of a peer in a notice or an error text is escaped (core::log_escape).
+/// One thread at a time.
 class CoordinatorLink {
  public:
   /// Binds `endpoint` (tcp://127.0.0.1:* is resolved, see endpoint()). Throws TransportError.
@@ -67,8 +61,13 @@ class CoordinatorLink {
   const CoordinatorConfig& config() const { return config_; }
 
   /// The next message of a joined domain, or nullopt after `timeout` (0: do not wait) or as soon
-  /// as a new domain has joined (see all_joined()). Meanwhile handles handshakes, heartbeats
-  /// (both ways) and garbage (see the header comment).
+  /// as a new domain has joined (see all_joined()). Meanwhile it answers Hellos, swallows
+  /// Heartbeats and sends its own; it returns every other message of a joined domain (Register,
+  /// FreeState, LayerForce, LayerDisplacement, Bye, Error). An Error from a daemon comes back with
+  /// Error.domain filled in: `throw RemoteError(in->envelope.error())` reports it with the
+  /// domain's name. Refused Hellos and bytes that are not Envelopes are answered with an Error to
+  /// the sender and recorded as notices (take_notices()), never thrown; so are the daemons the
+  /// CURVE handshake refused (Router::take_refusals(): their key and address).
   std::optional<Incoming> poll(std::chrono::milliseconds timeout);
 
   /// Sends to a joined domain. Sending Bye or Error ends that domain's session (no more

@@ -3,19 +3,7 @@
 // "<domain>#<16 random hex digits>" (session_routing_id), so that a second daemon started for the
 // same domain is a second connection, which the coordinator refuses without touching the first
 // (ZeroMQ would hand the first one's routing id over to it: ROUTER_HANDOVER, router.h).
-//
-//   DaemonLink link(endpoint, daemon_hello("wiper", hash));   // handshake; throws on refusal
-//   link.send(register_envelope);
-//   while (auto m = link.receive(5s)) { ... }                 // Setup, Correction, ..., Bye
-//   link.bye("end time reached");
-//
-// The constructor sends the Hello and waits for the coordinator's answer: its Hello
-// (coordinator_hello(), with ticks_per_second) or an Error, thrown as RemoteError whose text is
-// the coordinator's (both values and the fix for a version or scenario mismatch). receive()
-// swallows Heartbeats, sends its own when idle, and throws PeerTimeoutError naming the
-// coordinator's endpoint when the coordinator has been silent for the peer timeout. A daemon busy
-// computing for longer than the heartbeat interval calls keep_alive() now and then.
-// One thread at a time.
+// Use: DaemonLink. One thread at a time.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -32,11 +20,20 @@ namespace crashlink::transport {
 /// A fresh routing id for a session of `domain`: its first 200 bytes, '#', 16 random hex digits.
 std::string session_routing_id(std::string_view domain);
 
+///   DaemonLink link(endpoint, daemon_hello("wiper", hash));   // handshake; throws on refusal
+///   link.send(register_envelope);
+///   while (auto m = link.receive(5s)) { ... }                 // Setup, Correction, ..., Bye
+///   link.bye("end time reached");
+/// A daemon busy computing for longer than the heartbeat interval calls keep_alive() now and then.
+/// One thread at a time.
 class DaemonLink {
  public:
-  /// Connects to `endpoint` as hello.domain() and performs the handshake. Throws RemoteError (the
-  /// coordinator refused: version, scenario, unknown domain), TransportError (no answer within
-  /// options.handshake_timeout, bad endpoint) or ProtocolError (an answer that is not a Hello).
+  /// Connects to `endpoint` as hello.domain() and performs the handshake: sends the Hello and
+  /// waits for the coordinator's answer, its Hello (coordinator_hello(), with ticks_per_second) or
+  /// an Error, thrown as RemoteError whose text is the coordinator's (both values and the fix for a
+  /// version or scenario mismatch). Throws RemoteError (the coordinator refused: version,
+  /// scenario, unknown domain), TransportError (no answer within options.handshake_timeout, bad
+  /// endpoint) or ProtocolError (an answer that is not a Hello).
   DaemonLink(std::string_view endpoint, const wire::Hello& hello,
              const SessionOptions& options = {});
 
@@ -58,9 +55,10 @@ class DaemonLink {
   void bye(std::string reason);
 
   /// The next message from the coordinator other than a Heartbeat, or nullopt after `timeout`
-  /// (0: do not wait). A Bye is returned and ends the session. Throws RemoteError (the
-  /// coordinator sent an Error), PeerTimeoutError (coordinator silent for the peer timeout),
-  /// ProtocolError (bytes that are not an Envelope, a Hello mid-session, session ended).
+  /// (0: do not wait); swallows Heartbeats and sends its own when idle. A Bye is returned and ends
+  /// the session. Throws RemoteError (the coordinator sent an Error), PeerTimeoutError naming the
+  /// coordinator's endpoint (coordinator silent for the peer timeout), ProtocolError (bytes that
+  /// are not an Envelope, a Hello mid-session, session ended).
   std::optional<wire::Envelope> receive(std::chrono::milliseconds timeout);
 
   /// Sends a Heartbeat if nothing was sent for the heartbeat interval, and throws

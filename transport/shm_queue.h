@@ -1,20 +1,12 @@
 #pragma once
 // Shared-memory lanes between the daemons of one machine (docs/processes.md "Lanes"): the layer
-// vectors of an ipc session go through memory both processes map, not through sockets. On this
-// kind of virtual machine a ZeroMQ message costs three thread wake-ups (the sender's I/O thread,
-// the receiver's I/O thread, the receiver) and about 80 us of CPU; here a message is a memcpy and,
-// only when the receiver sleeps, one futex wake-up.
+// vectors of an ipc session go through memory both processes map, not through sockets. A ZeroMQ
+// message wakes three threads (the sender's I/O thread, the receiver's I/O thread, the receiver);
+// here a message is a memcpy and, only when the receiver sleeps, one futex wake-up.
 //
-//   ShmDoorbell  one 4 KiB file per receiving daemon, PATH.bell: a futex word every sender bumps
-//                after a push, and a flag saying the receiver sleeps on it.
-//   ShmQueue     one file per (sender, receiver), PATH.from.<sender>: a ring of length-prefixed
-//                byte strings, single producer, single consumer; head (bytes written) and tail
-//                (bytes read) are counters that only grow, so full and empty are never confused.
-//
-// The receiver creates both (write, then rename: a file that exists is complete) before it can
-// be sent to; a sender opens them when it first sends, waiting up to a timeout for them to appear.
-// Files are removed by their creator. The ring holds whole messages only: a message larger than
-// the ring is refused with a TransportError naming the sizes and the fix.
+// The receiver creates both files, ShmDoorbell and ShmQueue (write, then rename: a file that
+// exists is complete) before it can be sent to; a sender opens them when it first sends, waiting
+// up to a timeout for them to appear. Files are removed by their creator.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -57,6 +49,8 @@ class ShmMapping {
 /// removed. Never throws. The coordinator calls it at its start (for "/dev/shm", "crashlink-").
 std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix);
 
+/// One 4 KiB file per receiving daemon, PATH.bell: a futex word every sender bumps after a push,
+/// and a flag saying the receiver sleeps on it.
 class ShmDoorbell {
  public:
   /// Receiver: creates PATH (replacing a stale one).
@@ -79,6 +73,10 @@ class ShmDoorbell {
   ShmMapping map_;
 };
 
+/// One file per (sender, receiver), PATH.from.<sender>: a ring of length-prefixed byte strings,
+/// single producer, single consumer; head (bytes written) and tail (bytes read) are counters that
+/// only grow, so full and empty are never confused. The ring holds whole messages only: a message
+/// larger than the ring is refused with a TransportError naming the sizes and the fix.
 class ShmQueue {
  public:
   static constexpr std::size_t kDefaultCapacity = std::size_t{4} << 20;  // bytes of ring

@@ -15,7 +15,7 @@ double median_edge_m(const model::Model& m, const std::vector<std::int32_t>& fac
 /// One line per contact set up against its own accuracy: a one-pass (node_to_surface) contact
 /// whose slave faces are coarser than the master surface by more than kCoarseSlaveRatio lets the
 /// master's finer nodes sink between the slave nodes (a one-pass contact checks only the slave
-/// nodes; measured on two bars of 1 and 2.5 mm hexes: the pulse 8.5 % long, the pressure 9 % low,
+/// nodes; what that costs on two bars: docs/scenario-format.md "contacts",
 /// tests/integration/contact_bar_pair_test.cpp). Empty when nothing is to be said.
 std::vector<std::string> advice(const model::Model& m);
 

@@ -8,8 +8,7 @@
 //                     slave in turn). Flush faces then press with both passes' springs.
 //   SingleSurface:    the master parts' nodes against their own segments, each node's own and
 //                     neighbouring segments skipped (Benson & Hallquist 1990).
-// Energy: ContactStep::energy_J = -sum over steps of 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) over
-// the forces this interface applied (the trapezoid rule of the solver's work terms, energy.h).
+// The interface's energy and step bound: ContactInterface::compute.
 #include "solver/contact/contact_interface.h"
 
 #include <algorithm>
@@ -159,6 +158,11 @@ std::size_t ContactInterface::pass_count() const {
   return impl_->passes.size();
 }
 
+/// Energy: ContactStep::energy_J = -sum over steps of 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) over
+/// the forces this interface applied (the trapezoid rule of the solver's work terms, energy.h),
+/// with dt v^{n+1/2} = u^{n+1} - u^n. Step: dt_stable_s = 2 sqrt(min m_eff / k) over the
+/// candidate pairs; at the start (dt = 0) also 2 / sqrt(max k / m_eff) over every pair that may
+/// ever touch (ContactPass::max_stiffness_over_mass).
 ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
   Impl& s = *impl_;
   ContactStep out;

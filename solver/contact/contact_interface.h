@@ -56,7 +56,7 @@ class ContactInterface {
   /// Diagnostics: bucket sorts done so far, candidate pairs of the last sort, master segments.
   std::int64_t sort_count() const;
   std::size_t segment_count() const;
-  /// Diagnostics: slave-node tests skipped so far by sleeping nodes (contact_interface.cpp).
+  /// Diagnostics: slave-node tests skipped so far by sleeping nodes (docs/contact.md "Search").
   std::int64_t slept_node_cycles() const;
   /// Every node the interface acts on (its passes' nodes and segment nodes), sorted.
   std::vector<std::int32_t> nodes() const;

@@ -1,51 +1,12 @@
 // One contact pass: nodes against segments, penalty (§2.1 of Bourel 2005: penalty [BEL 00]).
-//
-// Per cycle, for every node s of the pass and its candidate segments (bucket_search.h):
-//   closest point x_c, shape functions N_a, unit normal n (projection.h); h = o_s + o_m
-//   (thickness offsets: half the shell thickness around the node, t/2 of a shell segment, 0 for
-//   solids); distance d from the segment's mid-surface; penetration g = h - d.
-//   The pair is the candidate with the NEAREST closest point of all (classify: the signed
-//   distance to the surface), in contact when every tied nearest one says g > 0 (beyond
-//   round-off, 1e-10 of the segment size): g is then h minus the distance to the surface, a
-//   function of the configuration alone (no memory of earlier segments), continuous as the node
-//   slides from one segment to the next, so the penalty force below is the gradient of the
-//   potential 1/2 k g^2 and gives back what it stored (a rule "keep last cycle's segment" made
-//   g jump when it let go, creating energy: issue 21).
-//     F_n = k g n on the node, -N_a F_n on the segment's nodes      (Belytschko, Liu & Moran,
-//   Nonlinear Finite Elements for Continua and Structures (2000), 10.4.3 penalty; Hallquist,
-//   LS-DYNA Theory Manual, "Penalty method": f_s = -k_i l n_i, f_m^i = N_i f_s).
-//   sum_a N_a = 1: momentum is conserved to round-off.
-// A node squeezed between two walls (the layers of a fold on either side of it, both within h):
-//   the nearest segment alone made the node's potential the V-shaped 1/2 k (h - min(d_1,
-//   d_2))^2, its force flipping from one wall's push to the other's each time the node crossed
-//   the middle, every few cycles; the central-difference step does not conserve energy across
-//   such a kink: the fine-mesh tube's corner nodes (issue 21) created 127 J, 5 % of E0, in 1.5e5
-//   such switches in 2.5 ms. So the wall on the other side gets its own spring: among the
-//   candidates whose push makes more than 120 degrees with the pair's (kOpposingCos) and that
-//   share no node with the pair's segments (not the same sheet around the pair's closest
-//   point), the nearest and its ties push too when they say penetrating. The potential is then
-//   1/2 k_1 g_1^2 + 1/2 k_2 g_2^2, smooth across the middle (a wall whose push angle crosses
-//   120 degrees while it penetrates adds its spring at once: not smoothed yet). Shell segments
-//   only, on both walls: solid faces are one-sided and their depth rule already picks the face.
-// Friction: friction.h, history F_t per node, stick stiffness = the same k.
-//
-// Sides: shells are two-sided; the side is the sign of (x_s - x_c).n when contact starts and is
-// kept while the node stays in contact (a node pushed past the mid-surface is pushed back, not
-// through), on the segment it was taken on and those sharing a node with it (the same sheet:
-// the orientation carries through shared nodes); on any other segment the side is where the
-// node is now (carried to the far wall of a fold, whose normal may point the other way, it
-// made g = h + d instead of h - d and shot the node through that wall); solid faces are one-sided
-// (outward normal) and accept penetrations up to depth_m (half the element's thickness). Off the
-// edges of a segment the direction x_s - x_c replaces n (rounded edges: continuous force around a
-// convex edge).
-//
-// Search re-sorted only when needed. A pair (s, i) can come into contact only if x_s lies within
-// the reach of segment i, i.e. inside its node box inflated by h (+ depth for solid faces). The
-// sort inflates it further by `margin`. Since the sort every node has moved at most D = sum dt^n
-// max_j |v_j^{n+1/2}|; the candidate list is complete while 2 D <= margin.
-// Sleeping nodes: when all of node s's candidates were rejected by the box or slab test, G = min
-// over them of a lower bound of (distance - reach) > 0; the distance shrinks by at most 2 D'
-// after a further travel D', so the node is skipped until D' reaches G / 2.
+// Sources: Belytschko, Liu & Moran, Nonlinear Finite Elements for Continua and Structures
+// (2000), 10.4.3 penalty; Hallquist, LS-DYNA Theory Manual, "Penalty method".
+// Per cycle (compute): the candidates of the bucket sort (bucket_search.h), each one's verdict
+// (classify: distance, penetration, side), the nearest of them as the pair (nearest,
+// penetrating), a second pair when a wall squeezes the node from the other side, the forces
+// (push; friction in friction.h). The formulas are on those functions; why the rules are what
+// they are (the nearest surface, two walls, sides, the search margin, sleeping nodes):
+// docs/contact.md.
 #include "solver/contact/contact_pass.h"
 
 #include <algorithm>
@@ -99,7 +60,8 @@ bool beyond_slab(const double* xa, const double* p, double reach) {
   return s.sp < s.lo - margin || s.sp > s.hi + margin;
 }
 
-/// A lower bound of (distance from p to the segment xa) - reach from the node box and the slab.
+/// A lower bound of (distance from p to the segment xa) - reach from the node box and the slab
+/// (a sleeping node's G, ContactPass::compute).
 double gap_beyond_reach(const double* xa, const double* p, double reach) {
   double gap = -kInf;
   for (int d = 0; d < 3; ++d) {
@@ -232,7 +194,7 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
   }
 }
 
-/// Pair stiffness (issue 21, docs/scenario-format.md "contacts"):
+/// Pair stiffness (docs/scenario-format.md "contacts"):
 ///   k = max(k_segment, k_soft),
 ///   k_segment the segment's (LS-DYNA SOFT=0: solids s K A^2 / V, shells s K A / max diagonal);
 ///             a rigid segment: the node's own elements' (node_properties.h), both rigid: the
@@ -350,16 +312,26 @@ void ContactPass::sort(const double* x) {
   ++sorts;
 }
 
-/// Node k against segment i at xa: the signed distance rule of the header. Returns false when
-/// the segment cannot be the node's nearest surface (deeper than half its element below a
-/// one-sided face); otherwise the projection, the penetration g = h - d, the unit direction of
-/// the push on the node and the shell side, and last_dist_ = the node's distance to the segment.
+/// Node k against segment i at xa: closest point x_c, shape functions N_a and unit normal n
+/// (projection.h); h = o_s + o_m (thickness offsets: half the shell thickness around the node,
+/// t/2 of a shell segment, 0 for solids); d the distance from the segment's mid-surface, signed;
+/// penetration
+///   g = h - d.
+/// Returns false when the segment cannot be the node's nearest surface (deeper than half its
+/// element below a one-sided face); otherwise the projection, g, the unit direction of the push
+/// on the node and the shell side, and last_dist_ = the node's distance to the segment.
 ///   inside the segment (or within 1e-6 of its size off the normal through the closest point):
 ///     d = (x_s - x_c) . n (shells: on the node's side), push along n;
-///   off an edge, outside (or a shell): d = |x_s - x_c|, push along x_s - x_c (rounded edge);
+///   off an edge, outside (or a shell): d = |x_s - x_c|, push along x_s - x_c (rounded edges:
+///     a continuous force around a convex edge);
 ///   off an edge, behind a one-sided face: d = -|x_s - x_c|, push towards x_c (a node at the
 ///     bottom of a pit its own push made in the master face projects off the edges of every
 ///     face around it, and is inside).
+/// Sides (docs/contact.md "Sides"): shells are two-sided; the side is the sign of (x_s - x_c) . n
+/// when contact starts and is kept while the node stays in contact, on the segment it was taken
+/// on and those sharing a node with it; on any other segment the side is where the node is now.
+/// Solid faces are one-sided (outward normal) and accept penetrations up to depth_m (half the
+/// element's thickness).
 bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const double* p,
                            Projection& pr, double& g, double* dir, int& side) {
   pr = seg_.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
@@ -369,8 +341,8 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
   const double h = node_offset_m_[k] + seg_.offset_m[i];
   const bool two = seg_.two_sided[i] != 0;
   // A node straight above the shared edge of two faces projects onto that edge of both, the
-  // faces slightly warped by the deformation: it counts as inside both (a side face caught such
-  // nodes of issue 21's bars at a millimetre's depth).
+  // faces slightly warped by the deformation: it counts as inside both (otherwise a side face
+  // catches such nodes at a millimetre's depth).
   const double lateral2 = std::max(0.0, rl * rl - dn * dn);
   const double tol = 1e-6 * seg_size_m_[i];
   const bool use_normal = pr.interior || lateral2 <= tol * tol;
@@ -425,7 +397,8 @@ bool ContactPass::share_node(std::size_t i, std::size_t j) const {
 
 /// The nearest of `in` and its ties (within 1e-9 of the largest segment size among them), in
 /// the order of their nodes' ids: the same pair, force and sums whatever the order of the
-/// segments in this model (mono or a cut one).
+/// segments in this model (mono or a cut one). The pair is the candidate with the nearest
+/// closest point of all, not last cycle's segment (docs/contact.md "The nearest surface").
 void ContactPass::nearest(const std::vector<Hit>& in, std::vector<Hit>& out) const {
   out.clear();
   double best_dist = kInf, tie_size = 0.0;
@@ -440,8 +413,11 @@ void ContactPass::nearest(const std::vector<Hit>& in, std::vector<Hit>& out) con
               [&](const Hit& l, const Hit& r) { return seg_key_[l.i] < seg_key_[r.i]; });
 }
 
-/// Every one of the tied nearest segments says penetrating (beyond round-off, 1e-10 of the
-/// segment size).
+/// Every one of the tied nearest segments says penetrating, g > 0 beyond round-off (1e-10 of the
+/// segment size). g is then h minus the distance to the surface, a function of the
+/// configuration alone and continuous as the node slides from one segment to the next, so the
+/// force of push() is the gradient of the potential 1/2 k g^2
+/// (docs/contact.md "The nearest surface").
 bool ContactPass::penetrating(const std::vector<Hit>& group) const {
   bool inside = !group.empty();
   for (const auto& h : group) inside = inside && h.g > 1e-10 * seg_size_m_[h.i];
@@ -460,11 +436,15 @@ void ContactPass::mean_direction(const std::vector<Hit>& group, double* dir) {
     for (int a = 0; a < 3; ++a) dir[a] = group[0].dir[a];
 }
 
-/// One spring on node k from a group of tied nearest segments: F_n = k g n on the node,
-/// -N_a F_n / (group size) on each segment's nodes (the header's formula). Tied nearest
+/// One spring on node k from a group of tied nearest segments (Belytschko, Liu & Moran (2000),
+/// 10.4.3 penalty; Hallquist, LS-DYNA Theory Manual, "Penalty method": f_s = -k_i l n_i,
+/// f_m^i = N_i f_s):
+///   F_n = k g n on the node,   -N_a F_n / (group size) on each segment's nodes,
+/// potential 1/2 k g^2 [J]; sum_a N_a = 1: momentum is conserved to round-off. Tied nearest
 /// segments (a node straight below a vertex or an edge of a convex master, by symmetry): the
 /// mean direction, the force shared equally, the largest penetration and stiffness of them, so
-/// that mirror images get mirror forces. Friction (the node's one history) on the first pair.
+/// that mirror images get mirror forces. Friction (friction.h: the node's one history F_t, stick
+/// stiffness = the same k) on the first pair only.
 void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const double* dir,
                        const double* v, double dt, const FrictionLaw& friction,
                        const StiffnessRule& rule, double* f, AppliedForces& applied,
@@ -509,6 +489,20 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
   }
 }
 
+/// The pass's forces at configuration x (t^{n+1}) with mid-step velocities v, added into f.
+/// Search (docs/contact.md "Search"): a pair (s, i) can come into contact only if x_s lies
+/// within the reach of segment i, its node box inflated by h (+ depth for solid faces); the sort
+/// inflates it further by margin_m_. Since the sort every node has moved at most
+///   D = sum dt^n max_j |v_j^{n+1/2}|,
+/// and the candidate list is complete while 2 D <= margin: the pass re-sorts only then.
+/// Sleeping nodes: when all of node s's candidates were rejected by the box or slab test,
+/// G = min over them of a lower bound of (distance - reach) > 0 (gap_beyond_reach); the distance
+/// shrinks by at most 2 D' after a further travel D', so the node is skipped until D' = G / 2.
+/// Two walls (docs/contact.md "Between two walls"): among the candidates whose push makes more
+/// than 120 degrees with the pair's (kOpposingCos) and that share no node with the pair's
+/// segments, the nearest and its ties push too when they say penetrating; the potential is then
+///   1/2 k_1 g_1^2 + 1/2 k_2 g_2^2,
+/// smooth across the middle. Shell segments only, on both walls.
 void ContactPass::compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
                           const StiffnessRule& rule, double* f, AppliedForces& applied,
                           PassResult& out) {
@@ -574,7 +568,7 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       hits_.push_back(hit);
     }
     // The nearest segments (the pair), then, when a wall on the other side squeezes the node
-    // too, the nearest of that wall (a second pair): the header.
+    // too, the nearest of that wall (a second pair): see the function's comment.
     nearest(hits_, pair_);
     // Contact when the nearest segments all say penetrating (beyond round-off, 1e-10 of the
     // segment size). A tie that disagrees is a node in front of a face and level with the

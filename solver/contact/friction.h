@@ -1,8 +1,7 @@
 #pragma once
 // Coulomb friction with an elastic predictor and a return to the cone (Hallquist, LS-DYNA
-// Theory Manual, "Friction": F* = F^n - k du_t, F^{n+1} = F* if |F*| <= mu F_n, else
-// mu F_n F*/|F*|), with the exponential decay mu = mu_d + (mu_s - mu_d) exp(-c |v_rel|).
-// Vectors are [3]; all in the global frame.
+// Theory Manual, "Friction"), with an exponential decay of mu with the slip speed; the formulas
+// are on friction_update and FrictionLaw::mu. Vectors are [3]; all in the global frame.
 #include <cmath>
 
 namespace crashlink::contact {
@@ -12,14 +11,19 @@ struct FrictionLaw {
   double mu_dynamic = 0.0;
   double decay_s_m = 0.0;
   bool active() const { return mu_static > 0.0 || mu_dynamic > 0.0; }
+  /// mu = mu_d + (mu_s - mu_d) exp(-c |v_rel|), c = decay_s_m [s/m], |v_rel| the slip speed
+  /// [m/s] (Hallquist, LS-DYNA Theory Manual, "Friction").
   double mu(double v_slip_m_s) const {
     return mu_dynamic + (mu_static - mu_dynamic) * std::exp(-decay_s_m * v_slip_m_s);
   }
 };
 
-/// Updates the tangential force on the slave node `ft` [N] in place. `n` unit contact normal
-/// (pointing to the slave); `v_rel` [m/s] slave minus master velocity at the contact point;
-/// `k` stick stiffness [N/m]; `dt` [s]; `fn` normal force magnitude [N].
+/// Updates the tangential force on the slave node `ft` [N] in place (Hallquist, LS-DYNA Theory
+/// Manual, "Friction"):
+///   F* = F^n - k du_t,  du_t = v_t dt (the tangential part of v_rel),
+///   F^{n+1} = F* if |F*| <= mu F_n, else mu F_n F* / |F*|   (return to the cone).
+/// `n` unit contact normal (pointing to the slave); `v_rel` [m/s] slave minus master velocity at
+/// the contact point; `k` stick stiffness [N/m]; `dt` [s]; `fn` normal force magnitude F_n [N].
 /// The old force is first rotated onto the current tangent plane (projection, then rescaled
 /// to its old magnitude) so that a history carried across a curved surface keeps its size.
 inline void friction_update(const FrictionLaw& law, const double* n, const double* v_rel, double k,

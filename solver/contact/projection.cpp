@@ -10,11 +10,12 @@ namespace {
 constexpr double kXiA[4] = {-1.0, 1.0, 1.0, -1.0};
 constexpr double kEtaA[4] = {-1.0, -1.0, 1.0, 1.0};
 
+/// The bilinear shape functions N_a = (1 + xi xi_a)(1 + eta eta_a)/4.
 void bilinear(double xi, double eta, double* N) {
   for (int a = 0; a < 4; ++a) N[a] = 0.25 * (1.0 + xi * kXiA[a]) * (1.0 + eta * kEtaA[a]);
 }
 
-/// x_,xi and x_,eta of the bilinear map at (xi, eta).
+/// x_,xi and x_,eta of the bilinear map at (xi, eta): sum_a N_a,xi x_a and sum_a N_a,eta x_a.
 void tangents(const double* xa, double xi, double eta, double* t1, double* t2) {
   for (int d = 0; d < 3; ++d) {
     t1[d] = 0.0;

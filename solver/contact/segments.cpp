@@ -114,7 +114,8 @@ std::array<std::int32_t, 4> face_nodes(const model::Model& m, const FaceRef& f) 
   return q;
 }
 
-/// Appends face f (nodes q) to the set with its offset, depth and stiffness.
+/// Appends face f (nodes q) to the set with its offset (shells t/2), depth (hex faces V / (2 A),
+/// half the element's thickness) and stiffness (shell_stiffness, solid_face_stiffness).
 void push_face(const model::Model& m, const FaceRef& f, const std::array<std::int32_t, 4>& q,
                double penalty_scale, SegmentSet& s) {
   const double* x0 = m.nodes.x0.data();

@@ -1,21 +1,8 @@
 #pragma once
-// Master segments of a contact interface and the penalty stiffness of each (set-up, once).
-//
-// Segments come from the master parts:
-//   Shell4 parts: every element, a quad or a triangle (n3 == n2); two-sided, offset t/2 on
-//                 whichever side the slave node is.
-//   Hex8 parts:   the exterior faces (faces used by exactly one Hex8 element of the whole
-//                 model), nodes ordered so that the normal points out of the element; one-sided,
-//                 offset 0.
-// Layout (structure of arrays, s = segment count):
-//   nodes      [4s]  node indices, triangle: nodes[4i+3] == nodes[4i+2]
-//   offset_m   [s]   master thickness offset (t/2 for shells, 0 for solid faces) [m]
-//   depth_m    [s]   one-sided faces: deepest penetration still treated as contact (half the
-//                    element's thickness V/A) [m]; shells: 0 (two-sided, see contact_interface.cpp)
-//   stiffness_N_m [s] penalty stiffness of a slave node on the segment (LS-DYNA SOFT=0) [N/m];
-//                    0 for segments of rigid parts (the slave side's stiffness is used instead)
-//   two_sided  [s]   1 for shells
-//   rigid      [s]   1 if the segment belongs to a rigid part
+// Master segments of a contact interface and the penalty stiffness of each (set-up, once):
+// shell elements and exterior hexahedron faces of the master parts (build_segments), the slave
+// faces of a two-pass contact (slave_faces, build_faces). Stiffness: Hallquist, LS-DYNA Theory
+// Manual, "Penalty method" (SOFT = 0), on solid_face_stiffness and shell_stiffness.
 #include <cstdint>
 #include <vector>
 
@@ -23,16 +10,22 @@
 
 namespace crashlink::contact {
 
+/// Structure of arrays, s = segment count.
 struct SegmentSet {
-  std::vector<std::int32_t> nodes;
+  std::vector<std::int32_t> nodes;  ///< [4s] node indices, triangle: nodes[4i+3] == nodes[4i+2]
+  /// [s] master thickness offset (t/2 for shells, 0 for solid faces) [m]
   std::vector<double> offset_m;
+  /// [s] one-sided faces: deepest penetration still treated as contact (half the element's
+  /// thickness V/A) [m]; shells: 0 (two-sided: contact_pass.cpp classify)
   std::vector<double> depth_m;
+  /// [s] penalty stiffness of a slave node on the segment (LS-DYNA SOFT=0) [N/m]; 0 for segments
+  /// of rigid parts (the slave side's stiffness is used instead)
   std::vector<double> stiffness_N_m;
-  std::vector<double>
-      rigid_stiffness_N_m;  ///< [s] what stiffness_N_m would be with the rigid
-                            ///< material's own moduli (used if both sides are rigid)
-  std::vector<std::uint8_t> two_sided;
-  std::vector<std::uint8_t> rigid;
+  /// [s] what stiffness_N_m would be with the rigid material's own moduli (used if both sides
+  /// are rigid)
+  std::vector<double> rigid_stiffness_N_m;
+  std::vector<std::uint8_t> two_sided;  ///< [s] 1 for shells
+  std::vector<std::uint8_t> rigid;      ///< [s] 1 if the segment belongs to a rigid part
 
   std::size_t size() const { return offset_m.size(); }
   bool triangle(std::size_t i) const { return nodes[4 * i + 3] == nodes[4 * i + 2]; }
@@ -51,8 +44,13 @@ double segment_area(const double* x, const std::int32_t* q);
 /// Longest diagonal of a quad, longest edge of a triangle.
 double segment_max_diagonal(const double* x, const std::int32_t* q);
 
-/// Segments of `master_parts` at the reference coordinates. Throws ModelError if a part index
-/// is out of range or the parts give no segment.
+/// Segments of `master_parts` at the reference coordinates:
+///   Shell4 parts: every element, a quad or a triangle (n3 == n2); two-sided, offset t/2 on
+///                 whichever side the slave node is;
+///   Hex8 parts:   the exterior faces (faces used by exactly one Hex8 element of the whole
+///                 model), nodes ordered so that the normal points out of the element; one-sided,
+///                 offset 0, depth V / (2 A).
+/// Throws ModelError if a part index is out of range or the parts give no segment.
 SegmentSet build_segments(const model::Model& m, const std::vector<int>& master_parts,
                           double penalty_scale);
 

@@ -5,64 +5,10 @@
 // in the in-process LayerNetwork (layer_network.h) and in a crashlink-solver daemon (the daemon
 // blocks on its socket when the stepper waits).
 //
-// Ports. Each interface is seen from one domain as a Port:
-//   coarse side (fine_side = false): this domain owns J and integrates it at its own step H with
-//     a_J = (g_B + g_A) / M_J ([8] of Bourel 2005, M_J the natural summed mass); it sends
-//     u_J(T+H) (and the rotation rate omega_J^{T+H/2} of shell nodes) as soon as g_A(T) is
-//     applied (predicted; after its positions at T+H at the first step or for rigid or prescribed
-//     J), computes its own forces at T+H, then needs the fine side's layer force g_A(T+H) (and
-//     moment) before its accelerations at T+H.
-//   fine side (fine_side = true): this domain holds J as read-only ghosts moving linearly in time
-//     between the owner's positions u_J(T) and u_J(T+H) (rotation rate constant over [T, T+H]);
-//     its step h divides H (nested_steps.h), so it lands on every T; at each owner instant it
-//     sends the layer's force and moment on J.
-// Time is an integer count of ticks (coupling/ticks.h). t = 0: initialize() sends every fine
-// port's g_A(0); a coarse port needs it to complete a^0 (exchange_initial_forces' rule).
-//
-// Cycle t -> t + h of this domain (h = step()):
-//   begin_cycle()                                        (state at t sampled: on_sample)
-//   fine ports: need u_J(T') for the owner instant T' >= t + h      -> Wait::Displacement
-//   set_ghost_displacement / set_ghost_angular_velocity, end_cycle_positions()
-//   coarse ports: send u_J(t + h), omega_J(t + h/2), unless sent ahead -> on_outbox
-//     (see below; sent ahead: checked against the passes instead)
-//   end_cycle_compute()                                  (overlaps the partners' work)
-//   fine ports at an owner instant (t + h = k H): send g_A(t + h)    -> on_outbox
-//   coarse ports: need g_A(t + h)                                   -> Wait::Force
-//   add_coupling_force/moment
-//   coarse ports: send u_J(t + 2h), omega_J(t + 3h/2) predicted now  -> on_outbox
-//   end_cycle_accelerations(), impose_step(h)
-// The prediction (Solver::predict_next_positions) is the arithmetic the next cycle's nodal passes
-// will do on J: it takes the owner's whole tail (accelerations, velocities and positions of every
-// node, ~0.1 ms on the head-impact body) off the round trip the fine side waits on. The next
-// cycle checks that the passes gave the same bits and sends nothing more (a std::logic_error,
-// naming the node otherwise: a bug, exit 4). Ports whose J nodes move otherwise (rigid, prescribed)
-// send after the passes, as does the first cycle after initialize() or restore_state().
-//
-// The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
-//
-// Steps (LayerSteps). Fixed: every domain at the step the coordinator planned for the whole run
-// (coupling/nested_steps.h). Variable (docs/design.md §2.1, [2] with variable steps; every
-// domain follows its stable step as the mesh deforms, as a mono run does):
-//   - every domain has at most one coarser partner (its fine ports all name one domain);
-//   - a domain without one (a leader) chooses its next step at each of its instants t, once the
-//     holders' g_A(t) are in: each g_A carries its sender's step proposal p_k at t. Of H = p_own
-//     and H = m p_k (m = floor(p_own / p_k) >= 1, for each holder k) it takes the one with the
-//     least cost per unit time (w_own + sum_k w_k ceil(H / p_k)) / H, w = element counts
-//     (the ratio just above a whole number costs one substep more, or a shorter coarse step);
-//   - a domain with one (a follower) learns the owner step [T, T + H] from the time of u_J(T + H)
-//     before its first cycle in it, and commits n = ceil(H / p) substeps of H / n (whole ticks,
-//     the last ones a tick longer when n does not divide H), p the proposal it sent with g_A(T).
-//     The later substeps may not exceed the stable step itself (Solver::impose_committed_step).
-//   - a follower's own holders see its substeps as its steps.
-// Variable common (`split`, LayerSteps::VariableCommon): one step for all, as a mono run takes it
-// (docs/design.md §2.1: the smallest proposal of all at every instant). Every g_A(t) carries the
-// least proposal of its sender's whole subtree (a domain that holds ghosts and has holders of its
-// own sends its g_A(t) only once its holders' g_A(t) are in); the leader takes H = the least of its
-// own and its holders' (no step safety, no hysteresis, no limit on the rise), and every follower
-// then takes its owner step in one substep.
-//
-// Array shapes: Port::local [n_J] (local solver index of each J node, Interface::j_nodes_global
-// order); every vector in a LayerMessage [3 n_J], xyz interleaved, the same order.
+// Source: Bourel, Combescure, Di Valentin 2005, [8] (LayerPort). The two sides of an interface:
+// LayerPort ("Ports"); the cycle and the u_J sent ahead: LayerStepper ("Cycle"); how steps are
+// chosen: LayerSteps ("Steps", "Variable common"). Time is an integer count of ticks
+// (coupling/ticks.h). How it runs and what is measured: docs/multirate.md.
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -80,6 +26,19 @@ namespace crashlink::cosim {
 
 using coupling::Tick;
 
+/// Ports. Each interface is seen from one domain as a LayerPort:
+///   coarse side (fine_side = false): this domain owns J and integrates it at its own step H with
+///     a_J = (g_B + g_A) / M_J ([8] of Bourel 2005, M_J the natural summed mass); it sends
+///     u_J(T+H) (and the rotation rate omega_J^{T+H/2} of shell nodes) as soon as g_A(T) is
+///     applied (predicted; after its positions at T+H at the first step or for rigid or prescribed
+///     J), computes its own forces at T+H, then needs the fine side's layer force g_A(T+H) (and
+///     moment) before its accelerations at T+H.
+///   fine side (fine_side = true): this domain holds J as read-only ghosts moving linearly in time
+///     between the owner's positions u_J(T) and u_J(T+H) (rotation rate constant over [T, T+H]);
+///     its step h divides H (nested_steps.h), so it lands on every T; at each owner instant it
+///     sends the layer's force and moment on J.
+/// `local` lists the J nodes in Interface::j_nodes_global order, as every LayerMessage vector
+/// does.
 struct LayerPort {
   std::uint32_t index = 0;           ///< interface index (Decomposition::interfaces)
   bool fine_side = false;            ///< true: J are ghosts here; false: this domain owns J
@@ -96,13 +55,33 @@ class LayerPartnerError : public ModelError {
   using ModelError::ModelError;
 };
 
-/// How a LayerStepper's steps are chosen (layer_stepper.h, "Steps"). VariableCommon: `split` with
-/// variable steps, every domain at the smallest proposal of all at every instant.
+/// Steps: how a LayerStepper's steps are chosen.
+/// Fixed: every domain at the step the coordinator planned for the whole run
+/// (coupling/nested_steps.h).
+/// Variable (docs/design.md §2.1, [2] with variable steps; every domain follows its stable step as
+/// the mesh deforms, as a mono run does):
+///   - every domain has at most one coarser partner (its fine ports all name one domain);
+///   - a domain without one (a leader) chooses its next step at each of its instants t, once the
+///     holders' g_A(t) are in: each g_A carries its sender's step proposal p_k at t (rule:
+///     LayerStepper::choose_step);
+///   - a domain with one (a follower) learns the owner step [T, T + H] from the time of u_J(T + H)
+///     before its first cycle in it, and commits n = ceil(H / p) substeps of H / n (whole ticks,
+///     the last ones a tick longer when n does not divide H; LayerStepper::next_substep), p the
+///     proposal it sent with g_A(T). The later substeps may not exceed the stable step itself
+///     (Solver::impose_committed_step).
+///   - a follower's own holders see its substeps as its steps.
+/// Variable common (`split`, VariableCommon): one step for all, as a mono run takes it
+/// (docs/design.md §2.1: the smallest proposal of all at every instant). Every g_A(t) carries the
+/// least proposal of its sender's whole subtree (a domain that holds ghosts and has holders of its
+/// own sends its g_A(t) only once its holders' g_A(t) are in); the leader takes H = the least of
+/// its own and its holders' (no step safety, no hysteresis, no limit on the rise), and every
+/// follower then takes its owner step in one substep.
 enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
 /// omega_J(time - H/2) [rad/s] (`second`, empty when no J node rotates). Force: ghost holder ->
-/// owner, g_A(time) [N] and the moment [N m] (`second`, empty when no J node rotates).
+/// owner, g_A(time) [N] and the moment [N m] (`second`, empty when no J node rotates). Every
+/// vector is [3 n_J], xyz interleaved, J in Interface::j_nodes_global order.
 struct LayerMessage {
   enum class Kind : std::uint8_t { Displacement, Force };
   Kind kind = Kind::Displacement;
@@ -126,6 +105,25 @@ struct LayerRows {
   std::vector<coupling::LayerSample> rows;
 };
 
+/// Cycle t -> t + h of this domain (h = step()):
+///   begin_cycle()                                        (state at t sampled: on_sample)
+///   fine ports: need u_J(T') for the owner instant T' >= t + h      -> Wait::Displacement
+///   set_ghost_displacement / set_ghost_angular_velocity, end_cycle_positions()
+///   coarse ports: send u_J(t + h), omega_J(t + h/2), unless sent ahead -> on_outbox
+///     (see below; sent ahead: checked against the passes instead)
+///   end_cycle_compute()                                  (overlaps the partners' work)
+///   fine ports at an owner instant (t + h = k H): send g_A(t + h)    -> on_outbox
+///   coarse ports: need g_A(t + h)                                   -> Wait::Force
+///   add_coupling_force/moment
+///   coarse ports: send u_J(t + 2h), omega_J(t + 3h/2) predicted now  -> on_outbox
+///   end_cycle_accelerations(), impose_step(h)
+/// The prediction (Solver::predict_next_positions) is the arithmetic the next cycle's nodal passes
+/// will do on J: it takes the owner's whole tail (accelerations, velocities and positions of every
+/// node) off the round trip the fine side waits on. The next cycle checks that the passes gave the
+/// same bits and sends nothing more (a std::logic_error, naming the node otherwise: a bug,
+/// exit 4). Ports whose J nodes move otherwise (rigid, prescribed) send after the passes, as does
+/// the first cycle after initialize() or restore_state().
+/// The run ends after the cycle whose begin_cycle() finds t >= end_time (Solver::finished()).
 class LayerStepper {
  public:
   enum class Wait : std::uint8_t {
@@ -143,8 +141,9 @@ class LayerStepper {
                std::int64_t ticks_per_second, LayerSteps steps = LayerSteps::Fixed);
 
   /// After Solver::initialize() (the caller's: a daemon registers the initial stable step first):
-  /// imposes the step, queues g_A(0) of every fine port. Throws ModelError when the step exceeds
-  /// the solver's stable step (Solver::impose_step).
+  /// imposes the step, queues g_A(0) of every fine port (t = 0: a coarse port needs it to complete
+  /// a^0, exchange_initial_forces' rule). Throws ModelError when the step exceeds the solver's
+  /// stable step (Solver::impose_step).
   void initialize();
 
   /// Delivers a partner's message (any order across interfaces; in time order per interface).
@@ -170,7 +169,7 @@ class LayerStepper {
   std::deque<LayerMessage> take_outbox();
   /// Called by advance() as soon as it has queued a message it will not wait on before its next
   /// computation: u_J(t + h) as soon as g_A(t) is applied (predicted; or right after the positions
-  /// at t + h, see the header comment), before this domain's nodal passes and forces, and
+  /// at t + h, see the class comment), before this domain's nodal passes and forces, and
   /// g_A(t + h) right after those forces. A daemon takes the outbox there and sends it, so that
   /// the partner computes while this domain computes its forces instead of taking turns
   /// (docs/design.md §2.6 "Overlap"). Unset (LayerNetwork), the messages wait in the outbox until
@@ -274,7 +273,12 @@ class LayerStepper {
   Tick proposal_ticks() const;
   Tick subtree_proposal() const;         ///< variable common: the least of own and holders' g_A(t_)
   bool forces_wait_for_holders() const;  ///< variable common: g_A(t) after the holders' g_A(t)
-  Tick choose_step() const;        ///< a leader's next step, from the holders' g_A (inbox fronts)
+  /// A leader's next step, from the holders' g_A (inbox fronts). Of H = p_own and H = m p_k
+  /// (m = floor(p_own / p_k) >= 1, for each holder k) it takes the one with the least cost per
+  /// unit time (w_own + sum_k w_k ceil(H / p_k)) / H, w = element counts (the ratio just above a
+  /// whole number costs one substep more, or a shorter coarse step). Variable common: the least
+  /// proposal of all (subtree_proposal()).
+  Tick choose_step() const;
   bool at_owner_end() const;       ///< a follower at the end T + H of its owner step
   bool finishes_at(Tick t) const;  ///< variable: this domain's run ends at instant t
   bool pauses_at(Tick t) const;    ///< variable: this domain pauses at instant t (u_J's flag)
@@ -282,8 +286,10 @@ class LayerStepper {
   /// A variable leader about to pause at t_: it sends nothing ahead, so that the u_J(t_ + h) it
   /// sends after the pause is marked against the `until` of the call that sends it.
   bool pausing_now() const;
-  bool start_owner_step();    ///< false: waits for the owner's next u_J
-  Tick next_substep() const;  ///< a follower's next step inside the owner step
+  bool start_owner_step();  ///< false: waits for the owner's next u_J
+  /// A follower's next step inside the owner step H: H / n whole ticks, n = ceil(H / p)
+  /// (LayerSteps), the last ones a tick longer when n does not divide H.
+  Tick next_substep() const;
 
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;

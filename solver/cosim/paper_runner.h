@@ -3,40 +3,11 @@
 // ([5]-[11]; docs/design.md §2.2-§2.5; scheme S1 of coupling-study/mts.py), for two domains in one
 // process, each at its own fixed step, the coarse step H a whole multiple r of the fine step h.
 // Kept for comparison with `layer` (the default): the study and docs/design.md §2.7 say where it
-// fails (stable only up to a ratio of about 2.3, and only with bulk viscosity, in 1-D; measured
-// here with crashlink's compression-only bulk viscosity: r = 2 goes unstable too, later); the guard
-// below stops a run that goes unstable with a NumericalError saying so. docs/paper-scheme.md has
-// the measured numbers.
+// fails; the guard stops a run that goes unstable with a NumericalError saying so. The measured
+// numbers: docs/paper-scheme.md "Measured".
 //
-// Cut: partition::decompose(global, Paper): no element moves; a node used by both domains (a
-// link) is present in both; for a contact across domains the master's domain holds copies of the
-// other domain's slave nodes (no elements, no own mass). Every coupled node is integrated in both
-// domains with the SUMMED mass M = sum_k m^k ([5]; coupling::paper::summed_mass over the
-// partial lumped masses) through Solver::set_mass_override. Reference side of [11]: the coarse
-// domain for a link, the original's domain for a copy (Interface::reference).
-//
-// Time is an integer count of ticks (coupling/ticks.h). One coarse step [T, T+H] (advance()):
-//   entry: both domains at T with their FREE accelerations a_F(T), a_C(T) ([5]) and u(T);
-//   C at T: a* = a_C(T) + a_F(T) ([8]) (+ [11] on nodes where C is the non-reference side, with
-//           u_ref = u_F(T): F has an instant at T);
-//   F at T: a* = a_F(T) + a_C(T) ([8]) (+ [11] where F is non-reference, u_ref = u_C(T));
-//   both begin_cycle() (energies at T: the guard runs here); C steps to T+H: free state at T+H;
-//   F's fine steps t = T + k h, k = 1..r-1: a* = a_F(t) + [10](a_C(T), a_C(T+H); k/r) ([9])
-//           (+ [11] with u_ref = [10](u_C(T), u_C(T+H); k/r) where F is non-reference);
-//   F's last fine step lands on T+H with its free state: the next advance() starts there.
-// This is the earliest-pending-state order of docs/design.md §2.6 (ties: both at T answered
-// together). The corrections reach the solvers through Solver::set_acceleration: the implied force
-// M (a* - a_free) - link [8]-[10] and drift [11] together - is counted in each domain's
-// coupling_work_J (trapezoid rule, like every work term of energy.h).
-//
-// Guard (docs/design.md §7 rule 10): at every coarse instant, the coupled energy
-//   E = sum_k (KE + IE + HG + contact)_k - the reference side's KE of the coupled nodes (counted
-//       twice otherwise) - external work
-// (= initial energy + net work of the coupling) is compared with its running minimum; a rise above
-// guard_rise x the peak energy, or any non-finite free or corrected acceleration, ends the run with
-// a NumericalError "the coupling went unstable" (scheme, ratio, time, fix). No NaN is ever written
-// into a solver.
-//
+// The cut and the summed masses [5]: the constructor. One coarse step, [8]-[11]: advance(). The
+// guard: sample_energy(). Time is an integer count of ticks (coupling/ticks.h).
 // Limits: translations only (a link node with rotary inertia, i.e. a shell node shared by both
 // domains, is refused: the Solver has no hook to impose a corrected angular acceleration); fixed
 // steps; integer ratio H/h (else ModelError).
@@ -97,6 +68,12 @@ class PaperRunner {
 
   /// Cuts `global` (which must outlive the runner) with the paper scheme; throws ModelError unless
   /// the cut gives exactly two non-empty domains coupled by at least one node.
+  /// Cut: partition::decompose(global, Paper): no element moves; a node used by both domains (a
+  /// link) is present in both; for a contact across domains the master's domain holds copies of
+  /// the other domain's slave nodes (no elements, no own mass). Every coupled node is integrated in
+  /// both domains with the SUMMED mass M = sum_k m^k ([5]; coupling::paper::summed_mass over the
+  /// partial lumped masses) through Solver::set_mass_override. Reference side of [11]: the coarse
+  /// domain for a link, the original's domain for a copy (Interface::reference).
   explicit PaperRunner(const model::Model& global, PaperOptions options = {});
   PaperRunner(const PaperRunner&) = delete;
   PaperRunner& operator=(const PaperRunner&) = delete;
@@ -104,10 +81,22 @@ class PaperRunner {
   /// t = 0 in both domains and the fixed steps h and H (ModelError if H < h or H/h is not a whole
   /// number). The t = 0 correction happens at the start of the first advance().
   void initialize();
-  /// One coarse step T -> T+H (see the file comment). `on_fine` is called after every
-  /// begin_cycle() of F, i.e. at F's instants T, T+h, ..., T+H-h (C begun at T: its state is at T
-  /// on the first call, its forces at T+H on the later ones). Throws NumericalError "the coupling
-  /// went unstable" (guard).
+  /// One coarse step [T, T+H]:
+  ///   entry: both domains at T with their FREE accelerations a_F(T), a_C(T) ([5]) and u(T);
+  ///   C at T: a* = a_C(T) + a_F(T) ([8]) (+ [11] on nodes where C is the non-reference side, with
+  ///           u_ref = u_F(T): F has an instant at T);
+  ///   F at T: a* = a_F(T) + a_C(T) ([8]) (+ [11] where F is non-reference, u_ref = u_C(T));
+  ///   both begin_cycle() (energies at T: the guard runs here); C steps to T+H: free state at T+H;
+  ///   F's fine steps t = T + k h, k = 1..r-1: a* = a_F(t) + [10](a_C(T), a_C(T+H); k/r) ([9])
+  ///           (+ [11] with u_ref = [10](u_C(T), u_C(T+H); k/r) where F is non-reference);
+  ///   F's last fine step lands on T+H with its free state: the next advance() starts there.
+  /// This is the earliest-pending-state order of docs/design.md §2.6 (ties: both at T answered
+  /// together). The corrections reach the solvers through Solver::set_acceleration: the implied
+  /// force M (a* - a_free) - link [8]-[10] and drift [11] together - is counted in each domain's
+  /// coupling_work_J (trapezoid rule, like every work term of energy.h). `on_fine` is called after
+  /// every begin_cycle() of F, i.e. at F's instants T, T+h, ..., T+H-h (C begun at T: its state is
+  /// at T on the first call, its forces at T+H on the later ones). Throws NumericalError "the
+  /// coupling went unstable" (guard).
   void advance(const std::function<void()>& on_fine = {});
 
   coupling::Tick fine_step_ticks() const { return h_; }
@@ -152,6 +141,13 @@ class PaperRunner {
   void read_free(int side);
   void correct(int side, const std::vector<double>& a_link, const std::vector<double>& u_ref,
                double step_product);
+  /// Guard (docs/design.md §7 rule 10): at every coarse instant, the coupled energy
+  ///   E = sum_k (KE + IE + HG + contact)_k - the reference side's KE of the coupled nodes (counted
+  ///       twice otherwise) - external work
+  /// (= initial energy + net work of the coupling) is compared with its running minimum; a rise
+  /// above guard_rise x the peak energy, or any non-finite free or corrected acceleration
+  /// (check_finite), ends the run with a NumericalError "the coupling went unstable" (scheme,
+  /// ratio, time, fix). No NaN is ever written into a solver.
   void sample_energy();
   [[noreturn]] void unstable(const std::string& what) const;
   void check_finite(const std::vector<double>& a, int side, const char* what) const;

@@ -1,22 +1,8 @@
 #pragma once
-// Which split into two domains pays (issue #5, `crashlink advise`; the paper's conclusion: "the
-// choice of decomposition is decisive"). From the scenario alone, before any run:
-//  * every element's initial stable step (the kernels' own dt_e, times controls.dt_scale),
-//    summarised per part (min, median, max and a histogram on log-spaced bins);
-//  * for each threshold between the parts' minimum steps, the split {parts below} | {the rest},
-//    cut and set up exactly as a `multi` run does (cosim::LayerNetwork: the `layer` cut moves
-//    contact surfaces and link layers into the fine domain; the domains' initial steps include
-//    the contact springs; step safety, then coupling::nested_steps), with the predicted CPU
-//    gain over mono
-//        gain = (N / dt_mono) / sum_k (N_k / dt_k)
-//    N the deformable elements (rigid ones cost nothing per cycle), dt_mono mono's initial step,
-//    dt_k each domain's planned step. Every element is assumed to cost the same per cycle and the
-//    coordinator nothing: this is the ideal gain of `crashlink compare`;
-//  * and, for the best split and the scenario's own, the gain measured on a timed sample: mono
-//    and the coupled domains (in one thread, cosim::LayerNetwork, no transport) each advance the
-//    same short simulated time from t = 0, CPU time compared (median of 3 alternating pairs). It
-//    includes what the element count leaves out: the contacts (all in the fine domain under
-//    `layer`), the hex/shell cost difference, the coupling's own work.
+// Which split into two domains pays (`crashlink advise`; the paper's conclusion: "the choice of
+// decomposition is decisive"), from the scenario alone, before any run: every part's element steps
+// (survey_steps), then each threshold split with its predicted CPU gain and, for the best split
+// and the scenario's own, the gain measured on a timed sample (advise_split).
 #include <string>
 #include <vector>
 
@@ -40,7 +26,9 @@ struct StepSurvey {
   int finest_part() const;
 };
 
-/// The first half of advise_split (no cut, no run): one mono Solver initialised.
+/// The first half of advise_split (no cut, no run): one mono Solver initialised. Every element's
+/// initial stable step (the kernels' own dt_e, times controls.dt_scale), summarised per part (min,
+/// median, max and a histogram on log-spaced bins).
 StepSurvey survey_steps(const model::Model& global);
 
 struct SplitCandidate {
@@ -61,6 +49,20 @@ struct SplitAdvice : StepSurvey {
   bool has_scenario_split = false;
 };
 
+/// survey_steps, then for each threshold between the parts' minimum steps, the split
+/// {parts below} | {the rest}, cut and set up exactly as a `multi` run does (cosim::LayerNetwork:
+/// the `layer` cut moves contact surfaces and link layers into the fine domain; the domains'
+/// initial steps include the contact springs; step safety, then coupling::nested_steps), with the
+/// predicted CPU gain over mono
+///     gain = (N / dt_mono) / sum_k (N_k / dt_k)
+/// N the deformable elements (rigid ones cost nothing per cycle), dt_mono mono's initial step,
+/// dt_k each domain's planned step. Every element is assumed to cost the same per cycle and the
+/// coordinator nothing: this is the ideal gain of `crashlink compare`.
+/// For the best split and the scenario's own, the gain measured on a timed sample: mono and the
+/// coupled domains (in one thread, cosim::LayerNetwork, no transport) each advance the same short
+/// simulated time from t = 0, CPU time compared (median of 3 alternating pairs). It includes what
+/// the element count leaves out: the contacts (all in the fine domain under `layer`), the
+/// hex/shell cost difference, the coupling's own work.
 /// step_safety: the coupled run's factor on the domains' initial steps (`--step-safety`);
 /// sample_base_periods: length of the timed sample in coarse steps (0: no sample).
 SplitAdvice advise_split(const model::Model& global, double step_safety,

@@ -11,23 +11,6 @@
 #include "solver/materials/cowper_symonds.h"
 #include "solver/materials/solid_update.h"
 
-// Stable step bound (see hex8.h). For nodal displacements u (24-vector) of one element the
-// one-point stiffness gives u.K1 u = V eps:C:eps with eps = sym(sum_I u_I (x) B_I), and
-//   eps:C:eps = lambda (tr eps)^2 + 2 mu |eps|^2
-//   (tr eps)^2 = (u_iI B_iI)^2 <= |u|^2 B_iI B_iI                       (Cauchy-Schwarz in R^24)
-//   |eps|^2 <= |grad u|^2 = |U B^T|_F^2 <= |u|^2 lmax(B B^T)             (U: 3x8, B: 3x8)
-// so lmax(K1) <= V (max(lambda,0) B_iI B_iI + 2 mu lmax(B B^T)); both inequalities are equalities
-// for the volumetric mode of a cube. The hourglass stiffness K_hg = k sum_alpha gamma_alpha
-// gamma_alpha^T (x) I_3 has lmax = k lmax(G), G_ab = gamma_a . gamma_b, and lmax(K1 + K_hg) <=
-// lmax(K1) + lmax(K_hg). With the lumped mass M = rho V0 / 8 I, omega_max^2 = lmax(K) 8/(rho V0).
-// This replaces FB eq. 31, omega^2 <= 8 (lambda + 2 mu) B_iI B_iI / rho, which is safe but for a
-// cube with nu = 0.3 gives a step 0.45 times the true one (2.2x more cycles).
-//
-// Evaluation: W elements at a time, one per SIMD lane (W = 4 for AVX2), every quantity a lane
-// vector; the per-node sums are done in the mode form of hex8_modes.h (M1-M8), so the only
-// per-node work is the transform of x and v after the gather and the synthesis of f before the
-// scatter-add.
-
 namespace crashlink::elements {
 
 namespace {
@@ -168,9 +151,13 @@ void hex8_lumped_mass(const model::Part& part, const materials::Material& mat, c
 
 namespace {
 
-/// The kernel (hex8.h); kDamped adds the stiffness-proportional damping stress, kScaled reads the
-/// elements' density factors (mass scaling). The undamped, unscaled instance is the kernel without
-/// that code, so a part without them pays nothing for it.
+/// The kernel (formulas on hex8_internal_forces, hex8.h); kDamped adds the stiffness-proportional
+/// damping stress, kScaled reads the elements' density factors (mass scaling). The undamped,
+/// unscaled instance is the kernel without that code, so a part without them pays nothing for it.
+/// Evaluation: W elements at a time, one per SIMD lane (W = 4 for AVX2), every quantity a lane
+/// vector; the per-node sums are done in the mode form of hex8_modes.h (M1-M8, each on the phase
+/// that uses it), so the only per-node work is the transform of x and v after the gather and the
+/// synthesis of f before the scatter-add.
 template <bool kDamped, bool kScaled>
 KernelResult hex8_forces(const model::Part& part, const materials::Material& mat, Hex8State& st,
                          const NodalView& nv, const StepInfo& step) {
@@ -318,7 +305,8 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     }
     const vd inv_v = one / V;
 
-    // ---- velocity gradient at x^{n+1/2} (M3), D = sym L
+    // ---- velocity gradient at x^{n+1/2}, D = sym L, from the velocity modes V_k:
+    //   V L_ij = v_iI b_jI = 1/8 sum_k V_k,i g_k,j                           (FB eq. 13)    (M3)
     vd L[3][3];
     {
       const vd s = eighth / Vm;
@@ -394,7 +382,8 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       j2_return(mat.hardening, y_low, mu, nl, sn, ep, rate ? &mat : nullptr, d);
     }
 
-    // ---- b b^T (M4), its trace b.b and the lmax bound; length for the bulk viscosity
+    // ---- b b^T, its trace b.b and the lmax bound; length for the bulk viscosity
+    //   sum_I b_iI b_jI = 1/8 sum_k g_k,i g_k,j                               (Parseval)     (M4)
     vd M[6];  // 00 11 22 01 12 02
     {
       constexpr int mi[6] = {0, 1, 2, 0, 1, 0}, mj[6] = {0, 1, 2, 1, 2, 2};
@@ -424,7 +413,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       q = bulk_v * rho_cur * len * (q2_v * len * em * em - q1_v * c_v * el);
       // The viscous pressure acts in the force at t^n (q^n) and at t^{n+1} (q): its work over
       // the step is 1/2 (q^n + q) (-tr D) V dt, the trapezoid rule every work term uses
-      // (docs/energy-balance.md). Counting q alone leaves a 1 % imbalance under a shock.
+      // (docs/energy-balance.md "Bulk viscosity": counting q alone leaves an imbalance)
       // (with the full tr D: q^n still acts while an element that was compressing expands).
       const vd q_old = viscous ? load(bq_all) : zero;
       vd e = (sd - half * (q_old + q) * (d[0] + d[1] + d[2])) * Vm * dt_v;
@@ -433,6 +422,10 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     }
 
     // ---- hourglass control (FB eq. 22-30, stiffness form): c (M5), rates (M6), update
+    //   gamma_alpha = Gamma_alpha - sum_{k=0..5} c_alpha,k phi_k,
+    //   c_alpha,k = t_alpha . g_k,  t_alpha = X_{3+alpha} / (8 V)                (FB eq. 22)   (M5)
+    //   qdot_alpha,i = v_iI gamma_alpha,I
+    //                = V_{3+alpha},i - sum_k c_alpha,k V_k,i                    (FB eq. 22-30) (M6)
     vd t[4][3];  // X_{3+alpha} / (8 V)
     {
       const vd s = eighth * inv_v;
@@ -477,7 +470,21 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       e_hg_sum += e;
     }
 
-    // ---- 2 / omega_max (hex8.h): lmax(G) bound from the Gram matrix (M7)
+    // ---- 2 / omega_max (hex8.h): lmax(G) bound from the Gram matrix
+    //   gamma_a . gamma_b = 8 (delta_ab - c_b,3+a - c_a,3+b + sum_k c_a,k c_b,k)               (M7)
+    // (c_.,6 = 0: Gamma_4 = phi_6 is orthogonal to phi_0..5). The bound: for nodal displacements
+    // u (24-vector) of one element the one-point stiffness gives u.K1 u = V eps:C:eps with
+    // eps = sym(sum_I u_I (x) B_I), and
+    //   eps:C:eps = lambda (tr eps)^2 + 2 mu |eps|^2
+    //   (tr eps)^2 = (u_iI B_iI)^2 <= |u|^2 B_iI B_iI                     (Cauchy-Schwarz in R^24)
+    //   |eps|^2 <= |grad u|^2 = |U B^T|_F^2 <= |u|^2 lmax(B B^T)           (U: 3x8, B: 3x8)
+    // so lmax(K1) <= V (max(lambda,0) B_iI B_iI + 2 mu lmax(B B^T)); both inequalities are
+    // equalities for the volumetric mode of a cube. The hourglass stiffness K_hg = k sum_alpha
+    // gamma_alpha gamma_alpha^T (x) I_3 has lmax = k lmax(G), G_ab = gamma_a . gamma_b, and
+    // lmax(K1 + K_hg) <= lmax(K1) + lmax(K_hg). With the lumped mass M = rho V0 / 8 I,
+    // omega_max^2 = lmax(K) 8/(rho V0). This replaces FB eq. 31, omega^2 <= 8 (lambda + 2 mu)
+    // B_iI B_iI / rho, which is safe but for a cube with nu = 0.3 gives a step 0.45 times the true
+    // one (2.2x more cycles).
     auto stable_bound = [&]() {
       vd G[4][4];  // G / 8
       CRASHLINK_HEX8_UNROLL
@@ -539,7 +546,11 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       e_damp_sum += e;
     }
 
-    // ---- forces f_iI = sum_k phi_k(I) F_k,i (M8), s = sigma^{n+1} - q I (+ sigma_d)
+    // ---- forces, s = sigma^{n+1} - q I (+ sigma_d):
+    //   f_iI = b_jI s_ij + Q_alpha,i gamma_alpha,I                          (FB eq. 13, 22-30)
+    //        = sum_k phi_k(I) F_k,i,   F_k,i = P_ij g_k,j + [k = 3+alpha] Q_alpha,i,
+    //   P_ij = 1/8 s_ij - Q_alpha,i t_alpha,j                                                  (M8)
+    // synthesised by the transposed transform (hex8::synthesise)
     {
       const vd S[3][3] = {{sf[0], sf[3], sf[5]}, {sf[3], sf[1], sf[4]}, {sf[5], sf[4], sf[2]}};
       vd P[3][3];

@@ -1,38 +1,23 @@
 #pragma once
 // Mode form of the one-point hexahedron of Flanagan & Belytschko 1981 (FB, IJNME 17, 679-706),
 // used by the kernel (hex8.cpp) so that it never forms per-node gradient or hourglass vectors.
-// Nodal values u_I of a field are replaced by their sums against the vectors phi_k(I) of
-// hex8_geometry.h (k = 0..6: xi, eta, zeta, eta zeta, zeta xi, xi eta, xi eta zeta at the nodes;
-// with the constant vector 1 an orthogonal basis of R^8, phi_k . phi_m = 8 delta_km):
-//   U_k = sum_I phi_k(I) u_I,      u_I = 1/8 (U_c + sum_k phi_k(I) U_k),  U_c = sum_I u_I    (M1)
-// computed by a three-stage Walsh-Hadamard transform (24 additions per component instead of 56
-// multiply-adds). For the coordinates X_k = 8 a_k with the a_k of hex8_geometry.h (so
-// Gamma_alpha . x = X_{3+alpha}), and with g_k = dV/da_k (hex8_geometry.h)
-//   b_I = dV/dx_I = 1/8 sum_{k=0..5} phi_k(I) g_k                                          (M2)
-// With phi_k . phi_m = 8 delta_km every FB sum over the nodes becomes a sum over modes (V_k: the
-// modes of the velocities, s = sigma - q I):
-//   velocity gradient  V L_ij = v_iI b_jI = 1/8 sum_k V_k,i g_k,j           (FB eq. 13)    (M3)
-//   b b^T              sum_I b_iI b_jI = 1/8 sum_k g_k,i g_k,j              (Parseval)     (M4)
-//   hourglass vectors  gamma_alpha = Gamma_alpha - sum_{k=0..5} c_alpha,k phi_k,
-//                      c_alpha,k = t_alpha . g_k,  t_alpha = X_{3+alpha} / (8 V) (FB eq. 22) (M5)
-//   hourglass rates    qdot_alpha,i = v_iI gamma_alpha,I
-//                                   = V_{3+alpha},i - sum_k c_alpha,k V_k,i  (FB eq. 22-30) (M6)
-//   Gram matrix        gamma_a . gamma_b = 8 (delta_ab - c_b,3+a - c_a,3+b + sum_k c_a,k c_b,k)
-//                      (c_.,6 = 0: Gamma_4 = phi_6 is orthogonal to phi_0..5)               (M7)
-//   internal force     f_iI = b_jI s_ij + Q_alpha,i gamma_alpha,I  (FB eq. 13, 22-30)
-//                           = sum_k phi_k(I) F_k,i,   F_k,i = P_ij g_k,j + [k = 3+alpha] Q_alpha,i,
-//                      P_ij = 1/8 s_ij - Q_alpha,i t_alpha,j                                 (M8)
-// and the force is synthesised by the transposed transform. F has no constant mode, so the
-// internal forces have zero resultant by construction.
+// Nodal values u_I of a field are replaced by their modes, their sums against the vectors phi_k(I)
+// of hex8_geometry.h (analyse, M1); with phi_k . phi_m = 8 delta_km every FB sum over the nodes
+// becomes a sum over modes. The identities used (M1-M8) are on the functions and on the phases of
+// the kernel (hex8.cpp) that compute them.
 //
 // Functions are templates over the number type T (double, or the lane vector vd of hex8_simd.h).
 #include "solver/elements/hex8_simd.h"
 
 namespace crashlink::elements::hex8 {
 
-/// Modes U_k = sum_I phi_k(I) u_I, k = 0..6 (M1), of nodal values u (LS-DYNA order); the
-/// constant mode is not formed. Face nodes j = 0..3 sit at (xi, eta) = (-,-), (+,-), (+,+), (-,+);
-/// node j + 4 is above node j.
+/// Modes U_k = sum_I phi_k(I) u_I, k = 0..6, of nodal values u (LS-DYNA order), with phi_k of
+/// hex8_geometry.h (k = 0..6: xi, eta, zeta, eta zeta, zeta xi, xi eta, xi eta zeta at the nodes;
+/// with the constant vector 1 an orthogonal basis of R^8, phi_k . phi_m = 8 delta_km):
+///   U_k = sum_I phi_k(I) u_I,      u_I = 1/8 (U_c + sum_k phi_k(I) U_k),  U_c = sum_I u_I    (M1)
+/// computed by a three-stage Walsh-Hadamard transform (24 additions per component instead of 56
+/// multiply-adds). The constant mode U_c is not formed. Face nodes j = 0..3 sit at (xi, eta) =
+/// (-,-), (+,-), (+,+), (-,+); node j + 4 is above node j.
 template <class T>
 inline void analyse(const T (&u)[8], T (&m)[7]) {
   // zeta stage: s_j even, d_j odd in zeta
@@ -50,7 +35,9 @@ inline void analyse(const T (&u)[8], T (&m)[7]) {
   m[6] = dp - dr;  // xi eta zeta
 }
 
-/// Nodal values u_I = sum_{k=0..6} phi_k(I) m_k (no constant mode): the transpose of analyse.
+/// Nodal values u_I = sum_{k=0..6} phi_k(I) m_k (no constant mode): the transpose of analyse. The
+/// kernel synthesises the internal forces with it (M8, hex8.cpp); their modes F have no constant
+/// mode, so the forces have zero resultant by construction.
 template <class T>
 inline void synthesise(const T (&m)[7], T (&u)[8]) {
   // zeta-even face from (xi, eta, xi eta) = m0, m1, m5
@@ -70,7 +57,10 @@ inline void synthesise(const T (&m)[7], T (&u)[8]) {
 }
 
 /// g_k = dV/da_k (k = 0..5 for a1..a6, hex8_geometry.h) from the coordinate modes X (X[k][i],
-/// k = 0..N-1, N >= 6; X_k = 8 a_k); returns the exact volume V = a1 . dV/da1 + a4 . dV/da4.
+/// k = 0..N-1, N >= 6; X_k = 8 a_k with the a_k of hex8_geometry.h, so Gamma_alpha . x =
+/// X_{3+alpha}); returns the exact volume V = a1 . dV/da1 + a4 . dV/da4. The volume gradient in
+/// the mode form:
+///   b_I = dV/dx_I = 1/8 sum_{k=0..5} phi_k(I) g_k                                          (M2)
 /// With a = X/8 the factors 8 and 8/3 of hex8_geometry.h become 8/64 and 8/(3*64).
 template <class T, int N>
 inline T mode_volume_gradient(const T (&X)[N][3], T (&g)[6][3]) {

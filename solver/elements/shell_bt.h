@@ -1,6 +1,10 @@
 #pragma once
 // Belytschko-Tsay 4-node shell: one in-plane integration point, Gauss points through the thickness,
 // corotational local frame, Mindlin kinematics, hourglass control by generalized stiffness forces.
+// Element numbering: Part::connectivity holds 4 node indices per element, counter-clockwise about
+// the shell normal; a triangle is the degenerate quad with connectivity[4e+3] == connectivity[4e+2]
+// (LS-DYNA's N3 = N4 convention, 0-based here), whose membrane response is the exact
+// constant-strain triangle. Formulas: shell_bt_forces.cpp; more in docs/elements.md.
 //
 // Sources:
 //   [BLT84] Belytschko, Lin, Tsay 1984, "Explicit algorithms for the nonlinear dynamics of
@@ -10,45 +14,6 @@
 //   [FB81]  Flanagan, Belytschko 1981, IJNME 17, 679-706 (hourglass shape vector gamma).
 //   [LSTM]  Hallquist, LS-DYNA Theory Manual (2006), chapter 7 "Belytschko-Tsay shell" and chapter
 //           "Time step control" (shell characteristic length).
-//
-// Element numbering: Part::connectivity holds 4 node indices per element, counter-clockwise about
-// the shell normal. A triangle is the degenerate quad with connectivity[4e+3] == connectivity[4e+2]
-// (LS-DYNA's N3 = N4 convention, 0-based here); its membrane response is then the exact
-// constant-strain triangle.
-//
-// Data layout of ShellState (ne elements, np = through-thickness points, L = kShellLanes, ns =
-// stride = ne rounded up to L so a batch of lanes may read and write past the last element
-// harmlessly). Every per-element array is blocked by batches of L elements ("AoSoA"): an array of
-// R rows per element is [ns/L][R][L], row r of element e at (e/L * R + r) * L + e % L
-// (ShellState::block_index), so that a batch reads and writes one contiguous block per array (one
-// memory stream each, whatever np).
-// Two forms, chosen by the first shell_internal_forces call from the material (make_shell_state
-// does not know it and returns the point form with zero stress):
-//   point form (J2 plasticity): the in-plane stress at every Gauss point
-//     sigma_Pa     R = 3 np, row 3k + c: component c (0 xx, 1 yy, 2 xy) at point k; local
-//                               corotational frame [Pa]
-//     eps_p        R = np, row k: equivalent plastic strain at point k [-]
-//   resultant form (elastic): the stress is linear through the thickness, sigma(zeta) = a + zeta b
-//     (every increment C (d + zeta h/2 k) dt is), so two stresses per component hold it exactly:
-//     resultant_Pa R = 6, rows a_xx, a_yy, a_xy, b_xx, b_yy, b_xy [Pa]; the resultants are N = h a
-//                               and M = h^2 b / 6 (Gauss quadrature with np >= 2 points integrates
-//                               the linear profile exactly, so both forms give the same forces,
-//                               energies and point stresses)
-//     sigma_Pa and eps_p are empty.
-//   both forms:
-//     shear_Pa     R = 2, rows tau_yz, tau_zx: transverse shear (elastic, so constant through the
-//                               thickness: every point receives the same increment kG gamma dt)
-//                               [Pa]
-//     thickness_m  R = 1: current thickness (updated from the thickness strain) [m]
-//     hourglass    R = 5: generalized hourglass forces in the local frame Q_x, Q_y, Q_z [N],
-//                               Q_thx, Q_thy [N m]
-//   damped parts only (Part::damped(); empty otherwise), stiffness-proportional damping:
-//     damping_beta_s    R = 1: beta_e = xi_e L_e / c [s], recorded at the first call
-//     damping_stress_Pa R = 8: viscous stresses in the force at t^n (for the trapezoid work; not
-//                               part of the material state): membrane a_xx, a_yy, a_xy, bending
-//                               b_xx, b_yy, b_xy (sigma_d = a + zeta b), shear tau_yz, tau_zx [Pa]
-// Bytes per element of history: point form 8 (4 np + 8): 224 B for np = 5; resultant form
-// 8 * 14 = 112 B for any np; damping adds 8 * 9 = 72 B.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -67,7 +32,39 @@ inline constexpr int kShellMaxPoints = 10;
 /// Transverse shear correction factor of the Mindlin plate (Reissner's 5/6).
 inline constexpr double kShellShearFactor = 5.0 / 6.0;
 
-/// Integration-point and hourglass history of one shell part (layout in the header comment).
+/// Integration-point and hourglass history of one shell part (ne elements, np = through-thickness
+/// points, L = kShellLanes, ns = stride = ne rounded up to L so a batch of lanes may read and write
+/// past the last element harmlessly). Every per-element array is blocked by batches of L elements
+/// ("AoSoA"): an array of R rows per element is [ns/L][R][L], row r of element e at
+/// (e/L * R + r) * L + e % L (block_index), so that a batch reads and writes one contiguous block
+/// per array (one memory stream each, whatever np).
+/// Two forms, chosen by the first shell_internal_forces call from the material (make_shell_state
+/// does not know it and returns the point form with zero stress):
+///   point form (J2 plasticity): the in-plane stress at every Gauss point
+///     sigma_Pa     R = 3 np, row 3k + c: component c (0 xx, 1 yy, 2 xy) at point k; local
+///                               corotational frame [Pa]
+///     eps_p        R = np, row k: equivalent plastic strain at point k [-]
+///   resultant form (elastic): the stress is linear through the thickness, sigma(zeta) = a + zeta b
+///     (every increment C (d + zeta h/2 k) dt is), so two stresses per component hold it exactly:
+///     resultant_Pa R = 6, rows a_xx, a_yy, a_xy, b_xx, b_yy, b_xy [Pa]; the resultants are N = h a
+///                               and M = h^2 b / 6 (Gauss quadrature with np >= 2 points integrates
+///                               the linear profile exactly, so both forms give the same forces,
+///                               energies and point stresses)
+///     sigma_Pa and eps_p are empty.
+///   both forms:
+///     shear_Pa     R = 2, rows tau_yz, tau_zx: transverse shear (elastic, so constant through the
+///                               thickness: every point receives the same increment kG gamma dt)
+///                               [Pa]
+///     thickness_m  R = 1: current thickness (updated from the thickness strain) [m]
+///     hourglass    R = 5: generalized hourglass forces in the local frame Q_x, Q_y, Q_z [N],
+///                               Q_thx, Q_thy [N m]
+///   damped parts only (Part::damped(); empty otherwise), stiffness-proportional damping:
+///     damping_beta_s    R = 1: beta_e = xi_e L_e / c [s], recorded at the first call
+///     damping_stress_Pa R = 8: viscous stresses in the force at t^n (for the trapezoid work; not
+///                               part of the material state): membrane a_xx, a_yy, a_xy, bending
+///                               b_xx, b_yy, b_xy (sigma_d = a + zeta b), shear tau_yz, tau_zx [Pa]
+/// Bytes per element of history: point form 8 (4 np + 8): 224 B for np = 5; resultant form
+/// 8 * 14 = 112 B for any np; damping adds 8 * 9 = 72 B.
 struct ShellState {
   std::size_t element_count = 0;
   std::size_t stride = 0;            ///< element_count rounded up to kShellLanes
@@ -85,7 +82,7 @@ struct ShellState {
   std::vector<double> damping_stress_Pa;  ///< damped parts: [ns/L][8][L]; else empty
   bool damping_recorded = false;          ///< damping_beta_s filled (first kernel call)
 
-  /// Index of row r of element e in a blocked array of R rows per element (layout comment).
+  /// Index of row r of element e in a blocked array of R rows per element (layout above).
   static std::size_t block_index(std::size_t R, std::size_t r, std::size_t e) {
     return (e / kShellLanes * R + r) * kShellLanes + e % kShellLanes;
   }
@@ -143,7 +140,7 @@ void shell_lumped_mass(const model::Part& part, const materials::Material& mat, 
 /// update over dt^n = step.dt_s (none when 0); stable step and energy increments returned.
 /// Throws NumericalError for an element of zero (or non-finite) area, naming it.
 /// An elastic material puts st into the resultant form, a J2 material into the point form (the
-/// conversion is exact for stresses linear through the thickness; see the layout comment).
+/// conversion is exact for stresses linear through the thickness; see ShellState).
 /// Artificial bulk viscosity (step.bulk_viscosity; the integrator sets it from
 /// Controls::shell_bulk_viscosity) acts on the membrane: for an in-plane area rate
 /// tr D_m = d_xx + d_yy < 0, q = rho L_e (Q2 L_e tr^2 - Q1 c tr) is an in-plane pressure (formula

@@ -3,106 +3,10 @@
 // Per batch of kShellLanes elements: gather nodal x, v, omega into local arrays [node][xyz][lane];
 // every step below is a loop over lanes, vectorised by the compiler (square roots through
 // materials::sqrt_lanes: a std::sqrt loop is not vectorised under -fmath-errno); then scatter-add
-// forces and moments. Performance notes (bench/bench_shell.cpp):
-//   * the history is blocked per batch (shell_bt.h): one contiguous block per array and batch,
-//     copied into local [rows][lane] arrays and back (copy_doubles), so the lane loops touch locals
-//     only and vectorise without alias checks, and the memory streams stay few whatever np;
-//   * elastic parts keep 8 stresses per element (resultant form) instead of 5 np;
-//   * J2 parts: elastic trial stresses of all np points of the batch first, then one call of
-//     materials::plane_stress_j2_return_lanes for all np * kShellLanes points (the division and
-//     square-root latencies of the points overlap), or, when only some trial stresses exceed the
-//     initial yield, for those only, packed; none: no call. Then the sums through the thickness
-//     and the write-back.
-//
-// Kinematics at the single in-plane point, in the corotational frame (e1, e2, e3) built from a
-// geometry (x^{n+1} for the forces, x^{n+1/2} for the velocity strains, below): e3 = r31 x r42 /
-// |.| ([LSTM] BT shell), e1 = the normalised r31/|r31| - r42/|r42| (the bisector of the diagonals;
-// for a rectangle numbered as the manual's figure it is along r21, the manual's e1), e2 = e3 x e1
-// (= the other bisector, along r31/|r31| + r42/|r42|). Not the manual's e1 along r21: an edge's
-// rotation under in-plane shear differs from the other edges', so a frame that follows edge 1-2
-// rotates the stored stresses differently depending on the corner where the numbering starts, and a
-// mesh and its mirror image (whose elements start at mirrored corners of other edges) drift apart.
-// The bisector frame is the same for every starting corner (a shift by one node turns it by 90
-// degrees, an exact relabelling of the isotropic response) and is mirrored with the element: a
-// symmetric structure stays symmetric to round-off (issue 21: the sphere dropped on a plate kept
-// the symmetry about x = 0 to 1e-13 but lost that about y = 0 at 1e-4 of the impact speed, with e1
-// along r21; LS-DYNA offers invariant node numbering for the same reason, *CONTROL_SHELL INN). A
-// triangle (n3 == n2) takes the same formula, r31 and r42 being then its edges from nodes 1 and 2
-// to node 3: its frame still depends on the numbering. The velocity strains use the frame, B and
-// gamma of the MID-STEP geometry x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} = (x^n + x^{n+1}) / 2
-// (kernel_io.h; as hex8.cpp), the forces those of x^{n+1}. Why (energy consistency,
-// docs/energy-balance.md): write G(x) for the frame and B together (global velocities -> local
-// strain rates) and du = dt v^{n+1/2}. The integrator's identity books the nodal work 1/2 (f^n +
-// f^{n+1}) . du with f^n = G(x^n)^T sigma^n, the element its midpoint-rule work 1/2 (sigma^n +
-// sigma^{n+1}) : G du. With G = G(x^{n+1}) they differ by 1/2 sigma^n (G(x^{n+1}) - G(x^n)) du,
-// O(dt^2) per step and O(dt) over a run (the balance error of shell scenes halved with the step);
-// with G(x^{n+1/2}) the two halves cancel to 1/4 (sigma^n - sigma^{n+1}) G' du du + O(du^3),
-// O(dt^2) over a run (tests/unit/elements/ shell_bt_energy_test.cpp). The work's area (h_mid A) is
-// that of x^{n+1/2} as well: A B is the operator. A rigid rotation step x^{n+1} = R x^n has the
-// chord velocity (R - I) x^n / dt = W x^{n+1/2} / dt, W = 2 (R - I)(R + I)^{-1} skew (Cayley
-// transform; Hughes, Winget 1980, IJNME 15, 1862-1867), so it is exactly strain-free at x^{n+1/2}
-// (and curvature- and shear-free for nodal angular velocities equal to W's axial vector / dt); at
-// x^{n+1} its membrane strain would be (1 - cos theta) ~ theta^2 / 2 per step. Mindlin velocity
-// field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]):
-//   d_xx  = B1.vx,            d_yy = B2.vy,            2d_xy = B2.vx + B1.vy          (membrane)
-//   k_xx  = B1.thy,           k_yy = -B2.thx,          2k_xy = B2.thy - B1.thx        (curvature)
-//   2d_xz = B1.vz + N.thy,    2d_yz = B2.vz - N.thx,   N_I = 1/4                       (shear)
-// with B1_I = dN_I/dx, B2_I = dN_I/dy at the centre, 2A B1 = (y2-y4, y3-y1, y4-y2, y1-y3),
-// 2A B2 = (x4-x2, x1-x3, x2-x4, x3-x1) (1-based node numbers, [LSTM] BT shell).
-// Point strain increment at z = zeta h/2: d_eps = (d + z k) dt; stress update in the local frame
-// (the frame rotates with the element, so no objective-rate correction is needed [BLT84]).
-// Resultants N = int s dz, M = int z s dz, Q = int tau dz (Gauss through the thickness); nodal
-// forces from the virtual power P = A (N : d + M : k + Q . gamma):
-//   f_x = A (B1 N_xx + B2 N_xy),  f_y = A (B2 N_yy + B1 N_xy),  f_z = A (B1 Q_x + B2 Q_y)
-//   m_x = -A (B2 M_yy + B1 M_xy + Q_y/4),  m_y = A (B1 M_xx + B2 M_xy + Q_x/4),  m_z = 0.
-// Hourglass ([BT83], [FB81]): gamma_I = h_I - (h.x) B1_I - (h.y) B2_I, h = (1,-1,1,-1), generalized
-// rates qdot = gamma.(vx, vy, vz, thx, thy), stiffness form Q^{n+1} = Q^n + K qdot dt in the
-// corotational frame, forces gamma_I Q. Stiffnesses ([LSTM] BT hourglass control, r = part
-// hourglass coefficient, BB = sum_I B1_I^2 + B2_I^2):
-//   in-plane K_m = r E h A BB / 8,  rotations K_th = r E h^3 A BB / 192,
-//   out-of-plane K_w = r kappa G h^3 BB / 12 (the manual writes A BB; we drop A so that K_w is a
-//   force per length; it is then of the size of the twist stiffness D / L^2 of the element).
-// Elastic parts (resultant form of ShellState, see shell_bt.h): sigma(zeta) = a + zeta b with
-//   a += C d dt,  b += C k (h/2) dt,  tau += kappa G gamma dt,
-//   N = h a, M = h^2 b / 6, Q = h tau; stress work per unit area (Gauss sums with sum w = 2,
-//   sum w zeta = 0, sum w zeta^2 = 2/3, exact for these quadratic integrands):
-//   (h_mid/2) [ (a^n + a) . d dt + (b^n + b) . k (h/2) dt / 3 + (tau^n + tau) . gamma dt ],
-//   thickness strain -nu/E (da_xx + da_yy): identical to the point-wise update to round-off.
-// J2 parts keep the in-plane stress per point and update it point by point as above; the
-// transverse shear stays elastic and constant through the thickness, as in the resultant form.
-// Membrane bulk viscosity (step.bulk_viscosity, from Controls::shell_bulk_viscosity): the hex's
-// form (hex8.h; Hallquist, LS-DYNA Theory Manual, "Artificial bulk viscosity": von Neumann-
-// Richtmyer quadratic + Landshoff linear term) with the in-plane area rate and the shell's length
-// and wave speed: for tr = d_xx + d_yy < 0,
-//   q = rho L_e (Q2 L_e tr^2 - Q1 c tr),
-// L_e and c of the stable step below, rho the material density (the reference density: the kernel
-// keeps no reference area for the current density rho A0 h0 / (A h); they differ by the membrane
-// and thickness strains, a few percent in the compressions q is meant to damp); q acts as an
-// in-plane pressure on the membrane forces only (N_xx, N_yy -= q h, not stored in the stress), its
-// work -q tr A h_mid dt is part of the internal energy, and it reduces the step as in the hex:
-//   dt_e = (L_e / c) (sqrt(1 + xi^2) - xi),  xi = Q1 - Q2 L_e tr / c
-// (Belytschko, Liu, Moran 2000, section 6.3, critical step with damping; = LS-DYNA's
-// L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|). With StepInfo::linear_in_expansion
-// (Abaqus/Explicit's linear bulk viscosity) the linear term acts in expansion too:
-// q = -rho L_e Q1 c tr and xi = Q1 for tr >= 0.
-// Stiffness-proportional damping (parts with Part::damping_ratio; the hex's form, hex8.h): a
-// viscous stress beta_e C (d + z k) at every point through the thickness (C the plane-stress
-// moduli c11, c12, G) and beta_e kappa G gamma in transverse shear, i.e. a membrane stress
-// a_d = beta C d, a bending stress b_d = beta C k h/2 (sigma_d = a_d + zeta b_d, exact for the
-// linear profile in both history forms) and tau_d. beta_e = xi_e L_e / c (the undamped element
-// step, 2 / omega_max in the stable-step sense below) at the first call, fixed for the run.
-// Added to N, M, Q of the forces only (not to the material state, not to the thickness strain);
-// work by the trapezoid rule with the stresses of t^n kept in ShellState, counted in the internal
-// energy; in the stable step its current ratio beta c / L_e adds to the bulk viscosity's xi.
-// Stable step ([LSTM] "Time step control"; LS-DYNA *CONTROL_TIMESTEP ISDO = 1):
-//   dt_e = L_e / c, L_e = (1 + beta) A / max(L_1..L_4, D_1, D_2), c = sqrt(E / (rho (1 - nu^2))),
-//   L_k sides, D_k diagonals, beta = 0 for quads and 1/2 for triangles. Deviations from LS-DYNA's
-//   default (ISDO = 0: sides only, beta = 1 for triangles), found with the eigenvalue test
-//   (tests/unit/elements/shell_bt_stable_step_test.cpp): ISDO = 0 overestimates 2/omega_max of a
-//   free single square by sqrt(1 + nu), beta = 1 that of a free single triangle by up to 21%. With
-//   the choice here dt_e / (2/omega_max) is 0.75-1.0 for single elements and 0.68 in a plate. The
-//   hourglass stiffnesses are far below the membrane and shear ones for r <= 0.15 and are not
-//   included (checked by the eigenvalue test).
+// forces and moments. The corotational frame and the operators B and gamma are on geometry(); the
+// velocity strains, stress update, resultants, damping, bulk viscosity, hourglass forces, nodal
+// forces and stable step on the phases of shell_forces that compute them. Derivations, the choices
+// against LS-DYNA's defaults and the performance notes: docs/elements.md "Belytschko-Tsay shell".
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -149,8 +53,8 @@ inline void gather(const double* a, const std::int32_t (&nd)[4][L], double (&out
 
 /// Copies n doubles (n a multiple of 4) by 256-bit loads and stores. Not memcpy: GCC turns a
 /// memcpy of a few hundred bytes into `rep movsq` and one of a runtime size into a libc call, whose
-/// start-up costs were 8 % of the head impact's cycle (perf annotate of bench_cycle, session 16);
-/// the empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
+/// start-up costs showed in the cycle's profile (docs/elements.md "Shell kernel performance"); the
+/// empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
 inline void copy_doubles(double* __restrict dst, const double* __restrict src, std::size_t n) {
   CRASHLINK_ASSERT(n % 4 == 0);
 #if defined(__AVX__)
@@ -188,17 +92,32 @@ inline void store_block(double* a, const double (&in)[R][L]) {
   copy_doubles(a, &in[0][0], R * L);
 }
 
-/// Corotational frame and in-plane operators of one configuration of a batch (header comment):
+/// Corotational frame and in-plane operators of one configuration of a batch (geometry() below):
 /// e1, e2, e3, the area A, B1, B2 and the hourglass shape vector gamma (Gm).
 struct Geometry {
   double e1[3][L], e2[3][L], e3[3][L];
   double A[L], B1[4][L], B2[4][L], Gm[4][L];
 };
 
-/// The Geometry of the coordinates X [node][xyz][lane]; kSizes: also the largest squared side or
-/// diagonal in the element plane (lmax2) and BB = sum_I B1_I^2 + B2_I^2 (the stable step and the
-/// hourglass stiffnesses). Always inlined: on the caller's local arrays the lane loops vectorise
-/// without alias checks (out of line, through the references, the kernel was 20 % slower).
+/// The Geometry of the coordinates X [node][xyz][lane]: the corotational frame ([LSTM] BT shell,
+/// with e1 on the diagonals)
+///   e3 = r31 x r42 / |r31 x r42|,   e1 = the normalised r31/|r31| - r42/|r42|,   e2 = e3 x e1,
+/// the area A = |r31 x r42| / 2 and, at the centre, B1_I = dN_I/dx, B2_I = dN_I/dy in the local
+/// coordinates (1-based node numbers, [LSTM] BT shell):
+///   2A B1 = (y2-y4, y3-y1, y4-y2, y1-y3),   2A B2 = (x4-x2, x1-x3, x2-x4, x3-x1),
+/// and the hourglass shape vector ([BT83], [FB81])
+///   gamma_I = h_I - (h.x) B1_I - (h.y) B2_I,   h = (1, -1, 1, -1).
+/// e1 is the bisector of the diagonals (e2 the other bisector, along r31/|r31| + r42/|r42|); for a
+/// rectangle numbered as the manual's figure it is along r21, the manual's e1. Unlike the manual's
+/// e1 along r21 it is the same for every starting corner (a shift by one node turns it by 90
+/// degrees, an exact relabelling of the isotropic response) and is mirrored with the element, so a
+/// symmetric structure stays symmetric to round-off (docs/elements.md "Shell corotational frame").
+/// A triangle (n3 == n2) takes the same formula, r31 and r42 being then its edges from nodes 1 and
+/// 2 to node 3: its frame still depends on the numbering.
+/// kSizes: also the largest squared side or diagonal in the element plane (lmax2) and
+/// BB = sum_I B1_I^2 + B2_I^2 (the stable step and the hourglass stiffnesses). Always inlined: on
+/// the caller's local arrays the lane loops vectorise without alias checks (docs/elements.md
+/// "Shell kernel performance").
 template <bool kSizes>
 [[gnu::always_inline]] inline void geometry(const double (&X)[4][3][L], Geometry& g, double* lmax2,
                                             double* BB) {
@@ -219,7 +138,7 @@ template <bool kSizes>
   }
   sqrt_lanes(nsq, len, L);  // |r31 x r42| = 2A
   sqrt_lanes(q, p, L);      // |r31| |r42|
-  // e1 bisects the diagonals (header comment): r31/|r31| - r42/|r42|, here scaled by |r31| |r42|^2
+  // e1 bisects the diagonals (above): r31/|r31| - r42/|r42|, here scaled by |r31| |r42|^2
   // > 0 (one square root, no division): b = r31 |r42|^2 - r42 |r31| |r42|. A combination of r31
   // and r42, b is normal to e3 = r31 x r42 / |.| without a projection.
   double b[3][L];
@@ -290,9 +209,10 @@ struct ExpansionLanes {
   double *xi, *q, *ework, *nxx, *nyy;
 };
 
-/// The bulk viscosity's linear term in expansion (header comment) on the lanes where the main
-/// loop left q = 0: q = -rho Le Q1 c tr (rho_q1_c = rho Q1 c per lane), xi = Q1, its work and
-/// the membrane resultants. Out of line and cold: off by default, it must not weigh on that loop.
+/// The bulk viscosity's linear term in expansion (StepInfo::linear_in_expansion, Abaqus/Explicit's
+/// linear bulk viscosity) on the lanes where the main loop left q = 0, tr = d_xx + d_yy >= 0:
+/// q = -rho Le Q1 c tr (rho_q1_c = rho Q1 c per lane), xi = Q1, its work and the membrane
+/// resultants. Out of line and cold: off by default, it must not weigh on that loop.
 [[gnu::noinline, gnu::cold]] void linear_in_expansion(const ExpansionLanes& s,
                                                       const double* rho_q1_c, double xi_q1,
                                                       double dt) {
@@ -310,8 +230,9 @@ struct ExpansionLanes {
   }
 }
 
-/// The kernel; kDamped adds the stiffness-proportional damping (header comment). The undamped
-/// instance is the kernel without any damping code, so an undamped part pays nothing for it.
+/// The kernel; kDamped adds the stiffness-proportional damping. The undamped instance is the
+/// kernel without any damping code, so an undamped part pays nothing for it. Each phase below
+/// carries its formula.
 template <bool kDamped>
 KernelResult shell_forces(const model::Part& part, const materials::Material& mat, ShellState& st,
                           const NodalView& nv, const StepInfo& step) {
@@ -343,12 +264,17 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   const double nu_over_E = K.el.nu / K.el.E_Pa;
   const double E = K.el.E_Pa;
   const double inv_c = 1.0 / K.c_plate;
-  // Bulk viscosity (header comment): on only with a step to take.
+  // Bulk viscosity (formula in the thickness phase below): on only with a step to take.
   const bool bulk = step.bulk_viscosity && update;
   const double bulk_on = bulk ? 1.0 : 0.0;
   const double q1 = step.q_linear, q2 = step.q_quadratic, rho = mat.density_kg_m3;
   const bool linear_in_expansion_on = bulk && step.linear_in_expansion;  // Q1 in expansion
-  // Hourglass stiffness factors [LSTM]/[BT83] (header comment): k = factor * h (h^3) A BB.
+  // Hourglass stiffnesses ([LSTM] BT hourglass control, [BT83]; r = part hourglass coefficient,
+  // BB = sum_I B1_I^2 + B2_I^2):
+  //   in-plane K_m = r E h A BB / 8,  rotations K_th = r E h^3 A BB / 192,
+  //   out-of-plane K_w = r kappa G h^3 BB / 12 (the manual writes A BB; we drop A so that K_w is a
+  //   force per length; it is then of the size of the twist stiffness D / L^2 of the element).
+  // Here their factors: k = factor * h (h^3) A BB.
   const double km_f = K.r_hg * E / 8.0, kw_f = K.r_hg * kG / 12.0, kt_f = K.r_hg * E / 192.0;
   const std::int32_t* conn = part.connectivity.data();
   double* const thick = st.thickness_m.data();
@@ -416,15 +342,28 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
             part.name, part.element_id[e], A[l], lmax[l]));
       }
     }
-    // Characteristic length (header comment): L_e = (1 + beta) A / max(side, diagonal).
+    // Characteristic length ([LSTM] "Time step control"; LS-DYNA *CONTROL_TIMESTEP ISDO = 1):
+    //   L_e = (1 + beta) A / max(L_1..L_4, D_1, D_2),
+    // L_k sides, D_k diagonals, beta = 0 for quads and 1/2 for triangles (not LS-DYNA's default,
+    // ISDO = 0 and beta = 1: docs/elements.md "Shell stable step").
     for (std::size_t l = 0; l < L; ++l) Le[l] = (1.0 + 0.5 * tri[l]) * A[l] / lmax[l];
 
     // ---- velocity strains at the centre ------------------------------------------------------
+    // Mindlin velocity field v_x = v_x^m + z th_y, v_y = v_y^m - z th_x ([BLT84]), with B1, B2 of
+    // geometry() and N_I = 1/4:
+    //   d_xx  = B1.vx,            d_yy = B2.vy,            2d_xy = B2.vx + B1.vy     (membrane)
+    //   k_xx  = B1.thy,           k_yy = -B2.thx,          2k_xy = B2.thy - B1.thx   (curvature)
+    //   2d_xz = B1.vz + N.thy,    2d_yz = B2.vz - N.thx                              (shear)
+    // and the hourglass rates qdot = gamma.(vx, vy, vz, thx, thy) ([BT83], [FB81]).
     double dm[3][L], kap[3][L],
         gs[2][L];     // (d_xx, d_yy, 2d_xy), (k_xx, k_yy, 2k_xy), (2d_yz, 2d_xz)
     double qd[5][L];  // hourglass rates gamma.(vx, vy, vz, thx, thy)
-    // At the mid-step geometry x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} (header comment): frame gm,
-    // area Am, operators B1m, B2m, Gmm. Without update Am = A (the work is 0 then).
+    // At the mid-step geometry x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} = (x^n + x^{n+1}) / 2
+    // (kernel_io.h; as hex8.cpp): frame gm, area Am, operators B1m, B2m, Gmm; the forces use those
+    // of x^{n+1}. The element's midpoint work then matches the nodal trapezoid work to O(dt^2) over
+    // a run, and a rigid rotation step is exactly strain-free (Cayley transform; Hughes, Winget
+    // 1980, IJNME 15, 1862-1867): docs/elements.md "Shell mid-step geometry". The work's area
+    // (h_mid A) is that of x^{n+1/2} as well. Without update Am = A (the work is 0 then).
     Geometry gm;
     double Am[L];
     if (update) {
@@ -491,7 +430,20 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
     }
 
-    // ---- stress update, resultants (header comment) ------------------------------------------
+    // ---- stress update, resultants -----------------------------------------------------------
+    // Point strain increment at z = zeta h/2: d_eps = (d + z k) dt; stress update in the local
+    // frame (the frame rotates with the element, so no objective-rate correction is needed
+    // [BLT84]). Resultants N = int s dz, M = int z s dz, Q = int tau dz (Gauss through the
+    // thickness). Elastic parts (resultant form of ShellState, shell_bt.h): sigma(zeta) =
+    // a + zeta b with
+    //   a += C d dt,  b += C k (h/2) dt,  tau += kappa G gamma dt,
+    //   N = h a,  M = h^2 b / 6,  Q = h tau;
+    // stress work per unit area (Gauss sums with sum w = 2, sum w zeta = 0, sum w zeta^2 = 2/3,
+    // exact for these quadratic integrands):
+    //   (h_mid/2) [ (a^n + a) . d dt + (b^n + b) . k (h/2) dt / 3 + (tau^n + tau) . gamma dt ],
+    // thickness strain -nu/E (da_xx + da_yy): identical to the point-wise update to round-off.
+    // J2 parts keep the in-plane stress per point and update it point by point; the transverse
+    // shear stays elastic and constant through the thickness, as in the resultant form.
     // Per lane: N/h1 (Nn), 6 M / h1^2 (Mn), Q / h1 (Qn) as stresses; work per unit area / (h_mid/2)
     // (ework); thickness strain increment (dezz).
     double Nn[3][L], Mn[3][L], Qn[2][L], ework[L], dezz[L], h[1][L], tau[2][L];
@@ -580,7 +532,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
         // candidates only, packed (padded to a multiple of 4 with copies of the last one).
         const std::size_t n_all = nk * L;
         zero_doubles(dzp, n_all);
-        // (four partial sums: one ordered sum is a scalar loop, 4 % of the kernel)
+        // (four partial sums: one ordered sum is a scalar loop)
         double psum[4] = {0.0, 0.0, 0.0, 0.0};
         for (std::size_t i = 0; i < n_all; i += 4)
           for (std::size_t j = 0; j < 4; ++j) psum[j] += cand[i + j];
@@ -663,8 +615,15 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
     }
 
-    // ---- stiffness-proportional damping (header comment): viscous stresses sigma_d = a + zeta b
-    // and tau_d, added to the stresses of the forces, trapezoid work as the stress work
+    // ---- stiffness-proportional damping (parts with Part::damping_ratio; the hex's form, hex8.h)
+    // A viscous stress beta_e C (d + z k) at every point through the thickness (C the plane-stress
+    // moduli c11, c12, G) and beta_e kappa G gamma in transverse shear, i.e. a membrane stress
+    // a_d = beta C d, a bending stress b_d = beta C k h/2 (sigma_d = a_d + zeta b_d, exact for the
+    // linear profile in both history forms) and tau_d. beta_e = xi_e L_e / c (the undamped
+    // element step, 2 / omega_max in the stable-step sense) at the first call, fixed for the run.
+    // Added to N, M, Q of the forces only (not to the material state, not to the thickness
+    // strain); work by the trapezoid rule with the stresses of t^n kept in ShellState, counted in
+    // the internal energy.
     [[maybe_unused]] double beta[1][L], edamp[L];
     if constexpr (kDamped) {
       if (record_beta) {
@@ -719,7 +678,16 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       h_new[0][l] = h1;
       const double a = A[l];
       const double vol_mid = 0.5 * (h_n + h1) * Am[l];  // midpoint volume h_mid A^{n+1/2}
-      // Bulk viscosity q (header comment), 0 in expansion or when off.
+      // Membrane bulk viscosity (step.bulk_viscosity, from Controls::shell_bulk_viscosity): the
+      // hex's form (hex8.h; Hallquist, LS-DYNA Theory Manual, "Artificial bulk viscosity": von
+      // Neumann-Richtmyer quadratic + Landshoff linear term) with the in-plane area rate and the
+      // shell's L_e and c of the stable step: for tr = d_xx + d_yy < 0
+      //   q = rho L_e (Q2 L_e tr^2 - Q1 c tr),   xi = Q1 - Q2 L_e tr / c,
+      // 0 in expansion or when off. rho is the material density (the reference density: the kernel
+      // keeps no reference area for the current density rho A0 h0 / (A h); they differ by the
+      // membrane and thickness strains, a few percent in the compressions q is meant to damp).
+      // q acts as an in-plane pressure on the membrane forces only (N_xx, N_yy -= q h, not stored
+      // in the stress); its work -q tr A h_mid dt is part of the internal energy.
       const double tr_m = dm[0][l] + dm[1][l];  // in-plane area rate tr D_m [1/s]
       const double on = tr_m < 0.0 ? bulk_on : 0.0;
       const double tr = on * tr_m;
@@ -738,7 +706,8 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       for (int c = 0; c < 3; ++c) Mn[c][l] *= h2_6;
       Qn[0][l] *= h1;
       Qn[1][l] *= h1;
-      // Hourglass stiffnesses [LSTM]/[BT83] (header comment) and the rate update.
+      // Hourglass stiffnesses (factors above) and the update in the corotational frame, stiffness
+      // form ([BT83], [FB81]): Q^{n+1} = Q^n + K qdot dt; the forces are gamma_I Q.
       const double h3 = h1 * h1 * h1;
       const double km = km_f * h1 * a * BB[l], kw = kw_f * h3 * BB[l], kt = kt_f * h3 * a * BB[l];
       const double kq[5] = {km, km, kw, kt, kt};
@@ -751,13 +720,16 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       ehg[l] = eh;
     }
-    if (linear_in_expansion_on) {  // the linear term in expansion (header comment), q = 0 above
+    if (linear_in_expansion_on) {  // the linear term in expansion, q = 0 above
       double rho_q1_c[L];
       for (std::size_t l = 0; l < L; ++l) rho_q1_c[l] = rho * ms[l] * q1 * K.c_plate / mrs[l];
       linear_in_expansion({dm[0], dm[1], h[0], h_new[0], Am, Le, xi, q_new[0], ework, Nn[0], Nn[1]},
                           rho_q1_c, q1, dt);
     }
-    // Nodal forces and moments, local frame -> global (header comment).
+    // Nodal forces and moments from the virtual power P = A (N : d + M : k + Q . gamma), plus the
+    // hourglass forces gamma_I Q, local frame -> global:
+    //   f_x = A (B1 N_xx + B2 N_xy),  f_y = A (B2 N_yy + B1 N_xy),  f_z = A (B1 Q_x + B2 Q_y)
+    //   m_x = -A (B2 M_yy + B1 M_xy + Q_y/4),  m_y = A (B1 M_xx + B2 M_xy + Q_x/4),  m_z = 0.
     for (int I = 0; I < 4; ++I)
       for (std::size_t l = 0; l < L; ++l) {
         const double a = A[l], b1 = B1[I][l], b2 = B2[I][l], g = Gm[I][l];
@@ -776,8 +748,16 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       if (bulk) store_block(bulk_q + b0, q_new);
       store_block(hgs + 5 * b0, Qh);
     }
-    // Stable step (header comment), reduced by the bulk viscosity and the damping (its ratio at
-    // the current L_e / c: beta c / L_e; BLM section 6.3 with the two ratios added).
+    // Stable step ([LSTM] "Time step control"; LS-DYNA *CONTROL_TIMESTEP ISDO = 1):
+    //   dt_e = L_e / c,   c = sqrt(E / (rho (1 - nu^2))),
+    // reduced by the bulk viscosity:
+    //   dt_e = (L_e / c) (sqrt(1 + xi^2) - xi),   xi = Q1 - Q2 L_e tr / c
+    // (Belytschko, Liu, Moran 2000, section 6.3, critical step with damping; = LS-DYNA's
+    // L / (Q + sqrt(Q^2 + c^2)), Q = Q1 c + Q2 L |tr|; xi = Q1 for tr >= 0 with
+    // StepInfo::linear_in_expansion), and by the damping: its ratio at the current L_e / c,
+    // beta c / L_e, adds to xi (BLM section 6.3 with the two ratios added). The hourglass
+    // stiffnesses are far below the membrane and shear ones for r <= 0.15 and are not included
+    // (checked by the eigenvalue test, docs/elements.md "Shell stable step").
     double dte[L];
     if constexpr (kDamped)
       for (std::size_t l = 0; l < L; ++l) xi[l] += beta[0][l] * (K.c_plate / mrs[l]) / Le[l];

@@ -1,5 +1,5 @@
 #pragma once
-// Energy created by contact interfaces (issue 21, item 5: honest energy reporting).
+// Energy created by contact interfaces (honest energy reporting).
 //
 // Each interface's contact energy (contact::ContactStep::energy_J) is minus the work its forces
 // have done since the start. Frictionless it is the energy of its penalty springs (>= 0 up to the

@@ -372,7 +372,7 @@ void Solver::compute_contact_forces(double dt) {
   //   dt_stable <= dt_c sqrt(1 - s^2) / s     (0.48 dt_c at s = 0.9; s taken <= 0.995).
   // A minimum, so that every domain of a cut model bounds its own springs as mono does; a soft
   // spring (k = 0.1 m / dt^2, w_c dt = 0.32) never binds, a stiff one on a light node does: the
-  // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up (issue 21).
+  // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up.
   const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {

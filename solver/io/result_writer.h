@@ -1,20 +1,8 @@
 #pragma once
 // The result writer: DIR/result.h5 (layout: docs/result-format.md, contract: docs/design.md §4) and
 // DIR/result.xdmf for ParaView. Plain data in, no solver internals. SI units; every dataset
-// carries a "units" attribute.
-//
-// Robustness: history is buffered and written by flush_history(), which runs automatically every
-// ResultWriterOptions::history_flush_samples samples or history_flush_wall_s wall seconds and is
-// followed by H5Fflush, so a run that dies leaves a readable file with every sample up to the last
-// flush. Field states and timing are flushed as they are written, and result.xdmf is rewritten
-// (atomically) after each field state. The destructor closes everything, also during stack
-// unwinding, and never throws. HDF5 failures throw ResultFileError (solver/io/hdf5_handles.h)
-// naming the file, the object and the call.
-//
-// Array layouts: n = model node count, ne = element count of a part.
-//   FieldState::displacement_m, velocity_m_s  [3n] interleaved xyz, node i at 3i..3i+2
-//   PartFieldState::eps_p, von_mises_Pa        [ne]
-//   PartFieldState::stress_Pa                  [6ne] Voigt xx,yy,zz,xy,yz,zx, element e at 6e
+// carries a "units" attribute. What a run that dies leaves behind: ResultWriter and
+// docs/result-format.md "Robustness". Arrays: n = model node count, ne = element count of a part.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -62,14 +50,14 @@ struct ContactSample {
 struct PartFieldState {
   std::span<const double> eps_p;         ///< [ne] effective plastic strain [-]
   std::span<const double> von_mises_Pa;  ///< [ne]
-  std::span<const double> stress_Pa;     ///< [6ne] Voigt, see the header comment
+  std::span<const double> stress_Pa;     ///< [6ne] Voigt xx,yy,zz,xy,yz,zx, element e at 6e
 };
 
 /// One field state. `parts` is empty (no element results) or one entry per model.parts, in order.
 struct FieldState {
   double time_s = 0.0;
-  std::span<const double> displacement_m;  ///< [3n], required
-  std::span<const double> velocity_m_s;    ///< [3n], empty: not written
+  std::span<const double> displacement_m;  ///< [3n] interleaved xyz, node i at 3i..3i+2; required
+  std::span<const double> velocity_m_s;    ///< [3n] as displacement_m; empty: not written
   std::vector<PartFieldState> parts;
 };
 
@@ -104,6 +92,13 @@ struct ResultWriterOptions {
 std::string result_link_name(const std::string& name, const char* fallback, std::size_t index);
 
 /// Not thread-safe (nor is the serial HDF5 library): one thread owns the writer.
+/// Robustness: history is buffered and written by flush_history(), which runs automatically every
+/// ResultWriterOptions::history_flush_samples samples or history_flush_wall_s wall seconds and is
+/// followed by H5Fflush, so a run that dies leaves a readable file with every sample up to the last
+/// flush. Field states and timing are flushed as they are written, and result.xdmf is rewritten
+/// (atomically) after each field state. The destructor closes everything, also during stack
+/// unwinding, and never throws. HDF5 failures throw ResultFileError (solver/io/hdf5_handles.h)
+/// naming the file, the object and the call.
 class ResultWriter {
  public:
   /// Creates `dir` if needed, DIR/result.h5 (truncated) with /mesh, empty /history datasets and

@@ -103,7 +103,7 @@ std::vector<std::int32_t> read_selection(const YamlNode& sel, const ScenarioBuil
     for (const char* k : {"part", "box"})
       if (auto v = sel.optional(k))
         v->fail("an explicit 'nodes' list cannot be combined with 'part' or 'box'; use one");
-    // A list may hold millions of ids (issue 20, item 13): each is marked on the model's nodes,
+    // A list may hold millions of ids: each is marked on the model's nodes,
     // which gives the sorted unique indices without a copy of the list.
     const YamlList list = ids->list("node ids");
     const NodeIdIndex index_of(m);

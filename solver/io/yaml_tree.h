@@ -1,5 +1,5 @@
 #pragma once
-// A parsed YAML document in a compact form (issue 20, item 13: a scenario's long lists). Built
+// A parsed YAML document in a compact form (for a scenario's long lists). Built
 // from yaml-cpp's event parser (YAML::Parser, first document only, as YAML::Load), so the
 // structure, the scalars and the line of every node are exactly those YAML::Load would give;
 // only the storage differs. yaml-cpp's own node tree costs several hundred bytes per scalar; here

@@ -24,8 +24,8 @@ inline double cowper_symonds_factor(double rate_per_s, double c_per_s, double p)
 }
 
 /// phi[i] = cowper_symonds_factor(rate[i], C, P) for i < n (n a multiple of 4), four at a time
-/// with libmvec's vector pow where it is there (a scalar std::pow costs ~40 ns: +67 % on a
-/// yielding 5-point shell).
+/// with libmvec's vector pow where it is there (a scalar std::pow per point is far slower:
+/// docs/elements.md "Material updates").
 inline void cowper_symonds_factors(const double* rate_per_s, double c_per_s, double p, double* phi,
                                    std::size_t n) {
 #if defined(CRASHLINK_LIBMVEC_POW)

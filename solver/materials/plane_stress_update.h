@@ -1,24 +1,12 @@
 #pragma once
 // Plane-stress material updates at one integration point of a shell (sigma_zz = 0), in the
 // element's corotational frame: elastic (hypoelastic increment) and J2 plasticity with isotropic
-// piecewise-linear hardening.
+// piecewise-linear hardening by the projected return of Simo & Taylor 1986 ("A return mapping
+// algorithm for plane stress elastoplasticity", IJNME 22, 649-670; also Simo & Hughes,
+// Computational Inelasticity, 1998, section 3.4), formulas on plane_stress_j2_return.
 //
-// J2 algorithm: the projected return of Simo & Taylor 1986 ("A return mapping algorithm for plane
-// stress elastoplasticity", IJNME 22, 649-670; also Simo & Hughes, Computational Inelasticity,
-// 1998, section 3.4): the backward-Euler closest-point projection in the plane-stress subspace,
-// solved exactly in the eigenbasis that diagonalises both the plane-stress elasticity C and the
-// von Mises projector P, with a scalar Newton iteration on the plastic multiplier dgamma. No
-// iteration on the thickness strain is needed (unlike the LS-DYNA radial return + secant on
-// eps_zz): sigma_zz = 0 holds exactly, the thickness strain increment is a by-product.
-//
-// Notation (vectors of in-plane components, engineering shear strain gamma_xy = 2 eps_xy):
-//   sigma = [s_xx, s_yy, s_xy],   d_eps = [d_eps_xx, d_eps_yy, d_gamma_xy]
-//   C     = E/(1-nu^2) [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]]          plane-stress elasticity
-//   P     = 1/3 [[2, -1, 0], [-1, 2, 0], [0, 0, 6]]                       sigma^T P sigma = 2/3
-//   vm^2 vm^2  = s_xx^2 + s_yy^2 - s_xx s_yy + 3 s_xy^2 = a^2 + 3 (b^2 + c^2) with a = (s_xx +
-//   s_yy)/2, b = (s_xx - s_yy)/2, c = s_xy (the eigen-coordinates of C and P).
-// Flow rule d_eps_p = dgamma P sigma_{n+1}; equivalent plastic strain (work conjugate to vm):
-//   d_eps_bar = (2/3) dgamma vm_{n+1}.
+// In-plane components (engineering shear strain gamma_xy = 2 eps_xy):
+//   sigma = [s_xx, s_yy, s_xy],   d_eps = [d_eps_xx, d_eps_yy, d_gamma_xy].
 // The transverse shear stresses (tau_yz, tau_zx) stay elastic (as in LS-DYNA's shell plasticity
 // for the Belytschko-Tsay element); they enter the von Mises output only.
 #include <algorithm>
@@ -35,7 +23,9 @@
 
 namespace crashlink::materials {
 
-/// Plane-stress elastic constants, precomputed once per part.
+/// Plane-stress elastic constants, precomputed once per part: the plane-stress elasticity
+///   C = E/(1-nu^2) [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]]
+///     = [[c11, c12, 0], [c12, c11, 0], [0, 0, G]].
 struct PlaneStressElastic {
   double E_Pa = 0.0;    ///< Young's modulus
   double nu = 0.0;      ///< Poisson's ratio
@@ -50,7 +40,8 @@ struct PlaneStressElastic {
   }
 };
 
-/// Elastic plane-stress increment sigma += C d_eps (components as in the header comment).
+/// Elastic plane-stress increment sigma += C d_eps (C of PlaneStressElastic; components as in the
+/// file comment).
 inline void plane_stress_elastic_update(const PlaneStressElastic& c, double d_eps_xx,
                                         double d_eps_yy, double d_gamma_xy, double& s_xx,
                                         double& s_yy, double& s_xy) {
@@ -126,11 +117,22 @@ struct PlaneStressReturn {
 /// Relative tolerance of the consistency condition |vm - sigma_y| <= tol * sigma_y.
 inline constexpr double kPlaneStressReturnTolerance = 1e-12;
 
-/// Plane-stress J2 return (Simo & Taylor 1986): on entry s_* is the elastic trial stress
-/// sigma_n + C d_eps and eps_p the equivalent plastic strain at t^n; on exit the stress and eps_p
-/// at t^{n+1} satisfy vm = sigma_y(eps_p) to kPlaneStressReturnTolerance (or are unchanged when the
-/// trial state is inside the yield surface). Throws NumericalError if Newton fails (does not
-/// happen for a hardening curve whose slope stays above -E/3).
+/// Plane-stress J2 return (Simo & Taylor 1986; Simo & Hughes 1998, section 3.4): the
+/// backward-Euler closest-point projection in the plane-stress subspace, solved exactly in the
+/// eigenbasis that diagonalises both the plane-stress elasticity C (PlaneStressElastic) and the
+/// von Mises projector P, with a scalar Newton iteration on the plastic multiplier dgamma:
+///   P    = 1/3 [[2, -1, 0], [-1, 2, 0], [0, 0, 6]],      sigma^T P sigma = 2/3 vm^2,
+///   vm^2 = s_xx^2 + s_yy^2 - s_xx s_yy + 3 s_xy^2 = a^2 + 3 (b^2 + c^2),
+/// with a = (s_xx + s_yy)/2, b = (s_xx - s_yy)/2, c = s_xy (the eigen-coordinates of C and P).
+/// Flow rule d_eps_p = dgamma P sigma_{n+1}; equivalent plastic strain (work conjugate to vm):
+///   d_eps_bar = (2/3) dgamma vm_{n+1}.
+/// No iteration on the thickness strain is needed (unlike the LS-DYNA radial return + secant on
+/// eps_zz): sigma_zz = 0 holds exactly, the thickness strain increment is a by-product.
+/// On entry s_* is the elastic trial stress sigma_n + C d_eps and eps_p the equivalent plastic
+/// strain at t^n; on exit the stress and eps_p at t^{n+1} satisfy vm = sigma_y(eps_p) to
+/// kPlaneStressReturnTolerance (or are unchanged when the trial state is inside the yield
+/// surface). Throws NumericalError if Newton fails (does not happen for a hardening curve whose
+/// slope stays above -E/3).
 PlaneStressReturn plane_stress_j2_return(const PlaneStressElastic& c, const HardeningView& h,
                                          double& s_xx, double& s_yy, double& s_xy, double& eps_p);
 
@@ -322,7 +324,8 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
   std::memcpy(eps_p, ep_out, n * sizeof(double));
 }
 
-/// Von Mises stress of a shell point: plane stress plus the transverse shears [Pa].
+/// Von Mises stress of a shell point, plane stress plus the transverse shears [Pa]:
+/// sqrt(s_xx^2 + s_yy^2 - s_xx s_yy + 3 (s_xy^2 + t_yz^2 + t_zx^2)).
 inline double shell_von_mises(double s_xx, double s_yy, double s_xy, double t_yz, double t_zx) {
   const double q =
       s_xx * s_xx + s_yy * s_yy - s_xx * s_yy + 3.0 * (s_xy * s_xy + t_yz * t_yz + t_zx * t_zx);

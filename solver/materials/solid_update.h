@@ -1,22 +1,12 @@
 #pragma once
 // Three-dimensional (solid) material updates at one integration point: hypoelastic increment and
-// J2 radial return with isotropic piecewise-linear hardening. SI units.
+// J2 radial return with isotropic piecewise-linear hardening. SI units. Sources: Belytschko-Liu-
+// Moran 2014, "Nonlinear Finite Elements for Continua and Structures" (BLM); Simo & Hughes 1998,
+// "Computational Inelasticity". Formulas on the functions.
 //
 // Components: symmetric tensors in Voigt order xx, yy, zz, xy, yz, zx. Stresses are Cauchy
 // stresses [Pa]; rates of deformation D are TENSOR components (D_xy, not the engineering shear
 // 2 D_xy) [1/s].
-//
-// Elastic law (hypoelastic, isotropic; Belytschko-Liu-Moran 2014, "Nonlinear Finite Elements for
-// Continua and Structures", eq. 5.4.1 with the Jaumann rate, Box 5.1): sigma_dot = lambda tr(D) I
-// + 2 mu D. The objective (rotation) part is applied by the element before these functions.
-//
-// J2 return (Simo & Hughes 1998, "Computational Inelasticity", Box 3.1, radial return; BLM
-// Box 5.5): with the trial deviator s_tr, q_tr = sqrt(3/2 s_tr:s_tr), the backward-Euler
-// consistency condition for the effective plastic strain increment d_ep is
-//   q_tr - 3 mu d_ep - sigma_y(ep_n + d_ep) = 0,            s = (1 - 3 mu d_ep / q_tr) s_tr.
-// On one linear segment of the curve (slope H) d_ep = (q_tr - 3 mu d_acc - sigma_y(ep)) / (3 mu +
-// H) in closed form; the solver walks the segments, so the return is exact on the piecewise-linear
-// curve (no Newton tolerance).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -38,7 +28,9 @@ inline double von_mises(const Voigt6& sigma) {
   return std::sqrt(1.5 * ss);
 }
 
-/// Hypoelastic increment sigma += dt (lambda tr(D) I + 2 mu D) (BLM eq. 5.4.1).
+/// Hypoelastic increment sigma += dt (lambda tr(D) I + 2 mu D) of the isotropic law
+/// sigma_dot = lambda tr(D) I + 2 mu D (BLM eq. 5.4.1 with the Jaumann rate, Box 5.1). The
+/// objective (rotation) part is applied by the element before this call.
 /// lambda_Pa, mu_Pa: Lame constants; d: rate of deformation [1/s]; dt_s: step [s].
 inline void hypoelastic_increment(double lambda_Pa, double mu_Pa, const Voigt6& d, double dt_s,
                                   Voigt6& sigma) {
@@ -61,7 +53,7 @@ struct J2Return {
 /// The segment of the hardening curve on which a return from eps_p_n starts: yield stress
 /// sigma_y(eps_p_n) [Pa], slope H [Pa] of the segment [eps_p_n, end) (right-hand slope at a kink)
 /// and its end (infinity on the last, extrapolated segment). If the return ends on this segment,
-/// it is the closed form d_ep = (q_tr - yield) / (3 mu + H) of the header comment: batched
+/// it is the closed form d_ep = (q_tr - yield) / (3 mu + H) of j2_radial_return: batched
 /// kernels evaluate that lane-wise and call j2_radial_return only for the rest.
 struct J2Segment {
   double yield_Pa = 0.0;  ///< sigma_y(eps_p_n) [Pa]
@@ -88,11 +80,17 @@ inline J2Segment j2_segment(const HardeningCurve& h, double eps_p_n) {
 /// a trial stress with q_tr <= this bound is elastic without a look-up of the curve.
 double j2_yield_lower_bound(const HardeningCurve& h);
 
-/// J2 radial return of a trial stress (in: trial Cauchy stress, out: returned stress) with
-/// isotropic piecewise-linear hardening h scaled by `scale` (the Cowper-Symonds factor of the
-/// step, cowper_symonds.h; 1: none), shear modulus mu_Pa, effective plastic strain eps_p_n at
-/// t^n. Exact on the curve (segment walk, see the header comment). Throws NumericalError if a
-/// softening segment is steeper than -3 mu (the return has no unique solution there).
+/// J2 radial return (Simo & Hughes 1998, Box 3.1; BLM Box 5.5) of a trial stress (in: trial
+/// Cauchy stress, out: returned stress) with isotropic piecewise-linear hardening h scaled by
+/// `scale` (the Cowper-Symonds factor of the step, cowper_symonds.h; 1: none), shear modulus
+/// mu_Pa, effective plastic strain eps_p_n at t^n. With the trial deviator s_tr,
+/// q_tr = sqrt(3/2 s_tr:s_tr), the backward-Euler consistency condition for the effective plastic
+/// strain increment d_ep is
+///   q_tr - 3 mu d_ep - sigma_y(ep_n + d_ep) = 0,            s = (1 - 3 mu d_ep / q_tr) s_tr.
+/// On one linear segment of the curve (slope H) d_ep = (q_tr - 3 mu d_acc - sigma_y(ep)) / (3 mu +
+/// H) in closed form; the solver walks the segments, so the return is exact on the
+/// piecewise-linear curve (no Newton tolerance). Throws NumericalError if a softening segment is
+/// steeper than -3 mu (the return has no unique solution there).
 J2Return j2_radial_return(const HardeningCurve& h, double mu_Pa, double eps_p_n, Voigt6& sigma,
                           double scale = 1.0);
 

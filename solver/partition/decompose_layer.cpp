@@ -1,22 +1,5 @@
 // The `layer` decomposition (docs/design.md §2.7, "How to distribute layer";
-// docs/decomposition.md).
-//
-// 1. Link claims: every node used by elements of several domains is a permanent-link node; every
-//    element touching it is claimed by the finest of those domains (the coarse side's first
-//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade.
-// 2. Contact claims: all surface elements of a contact (master parts' elements, the elements
-//    holding slave nodes) go to the finest domain holding one of them, so the contact lies in one
-//    domain (for a cross-domain contact: the coarse body's contact-surface layer moves into F).
-// 3. Rigid bodies move whole (a rigid body is one set of dofs: it cannot be integrated by two
-//    daemons). 2 and 3 are repeated to a fixed point; claims only ever go finer, so it ends.
-// 4. Nodes: a node used by one domain is owned by it. A node used by several domains is owned by
-//    the coarsest of them (the far nodes J of a moved layer: integrated at the coarse step with
-//    their natural summed mass, the link sum [8]) and is a read-only ghost in the others.
-//    Check: no element of an originally finer domain touches a node owned by a coarser one (it
-//    would be integrated above its stable step).
-// 5. Interface damping (model::InterfaceDamping, off by default): stiffness-proportional damping
-//    on the elements within n element layers of J on both sides (the moved layer is the fine
-//    side's first), the coupling study's stabiliser of the layer scheme in 2-D/3-D.
+// docs/decomposition.md): steps 1-4 in decompose_layer, step 5 in interface_damping.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -26,7 +9,10 @@
 
 namespace crashlink::partition::detail {
 
-// Step 5 (partition_detail.h): the element layers around J, breadth-first from the seed nodes.
+// Step 5 (partition_detail.h), interface damping (model::InterfaceDamping, off by default):
+// stiffness-proportional damping on the elements within n element layers of J on both sides (the
+// moved layer is the fine side's first), the coupling study's stabiliser of the layer scheme in
+// 2-D/3-D. The element layers around J, breadth-first from the seed nodes.
 std::vector<double> interface_damping(const Analysis& a, const std::vector<std::uint8_t>& seed) {
   const model::Model& g = *a.global;
   const auto& idamp = g.coupling.interface_damping;
@@ -66,6 +52,20 @@ std::vector<double> interface_damping(const Analysis& a, const std::vector<std::
   return xi;
 }
 
+// 1. Link claims: every node used by elements of several domains is a permanent-link node; every
+//    element touching it is claimed by the finest of those domains (the coarse side's first
+//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade.
+// 2. Contact claims: all surface elements of a contact (master parts' elements, the elements
+//    holding slave nodes) go to the finest domain holding one of them, so the contact lies in one
+//    domain (for a cross-domain contact: the coarse body's contact-surface layer moves into F).
+// 3. Rigid bodies move whole (a rigid body is one set of dofs: it cannot be integrated by two
+//    daemons). 2 and 3 are repeated to a fixed point; claims only ever go finer, so it ends.
+// 4. Nodes: a node used by one domain is owned by it. A node used by several domains is owned by
+//    the coarsest of them (the far nodes J of a moved layer: integrated at the coarse step with
+//    their natural summed mass, the link sum [8]) and is a read-only ghost in the others.
+//    Check: no element of an originally finer domain touches a node owned by a coarser one (it
+//    would be integrated above its stable step).
+// 5. Interface damping: interface_damping above.
 Decomposition decompose_layer(const Analysis& a) {
   const model::Model& g = *a.global;
   const std::size_t ne = a.element_count(), n = a.node_count(), nd = a.domain_count();

@@ -1,26 +1,8 @@
 #pragma once
 // Cutting a global model into per-domain sub-models for the two coupling schemes of docs/design.md
-// §2. Pure functions over model::Model; no networking, no solution state. Rules and figure:
-// docs/decomposition.md.
-//
-//   layer (docs/design.md §2.7, the default): at every interface the domain with the smaller stable
-//   step
-//     (fine, F) takes the coarse side's (C) first element layer; F owns its elements, the moved
-//     layer and all their nodes except the layer's far nodes J; J are read-only ghosts in F, owned
-//     by C with their natural summed lumped mass (no added mass). Every contact ends up inside one
-//     domain.
-//   paper (docs/design.md §2.2 and §2.5, Bourel 2005 §2.3-§3 and [3]-[11]): no element moves; a
-//   link node
-//     is present in every domain whose elements use it, each with its partial lumped mass (the
-//     coordinator sums them, [5]); for a contact across domains, the master's domain A gets copies
-//     of the other domain's slave nodes (no elements, no own mass) and computes the contact on them
-//     (§3.1 of Bourel 2005).
-//
-// Array shapes (n_local = local node count of a domain):
-//   DomainModel::global_node, ghost, copy, interface_mass_kg   [n_local]
-//   DomainModel::part_global                                    [local part count]
-//   DomainModel::part_elements[p]                               [element count of local part p]
-//   Interface::j_nodes_global, j_mass_kg                        [n_J]
+// §2 (Scheme: layer; paper, after Bourel 2005). Pure functions over model::Model; no networking, no
+// solution state. Rules and figure: docs/decomposition.md. Array shapes: on each field (n_local =
+// local node count of a domain, n_J = node count of an interface).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,6 +11,17 @@
 
 namespace crashlink::partition {
 
+/// How decompose() cuts:
+///   Layer (docs/design.md §2.7, the default): at every interface the domain with the smaller
+///     stable step (fine, F) takes the coarse side's (C) first element layer; F owns its elements,
+///     the moved layer and all their nodes except the layer's far nodes J; J are read-only ghosts
+///     in F, owned by C with their natural summed lumped mass (no added mass). Every contact ends
+///     up inside one domain.
+///   Paper (docs/design.md §2.2 and §2.5, Bourel 2005 §2.3-§3 and [3]-[11]): no element moves; a
+///     link node is present in every domain whose elements use it, each with its partial lumped
+///     mass (the coordinator sums them, [5]); for a contact across domains, the master's domain A
+///     gets copies of the other domain's slave nodes (no elements, no own mass) and computes the
+///     contact on them (§3.1 of Bourel 2005).
 enum class Scheme : std::uint8_t { Layer, Paper };
 
 /// One domain's sub-model. Node and element user ids are the global ones; indices are local.
@@ -62,7 +55,8 @@ struct Interface {
   /// paper: the larger-step domain for a link, the domain owning the originals for copies.
   int reference = -1;
   /// layer: the far nodes J of the moved layer (owned by coarse, ghosts in fine);
-  /// paper: the shared nodes (link) or the copied slave nodes (contact). Ascending global indices.
+  /// paper: the shared nodes (link) or the copied slave nodes (contact). [n_J] ascending global
+  /// indices.
   std::vector<std::int32_t> j_nodes_global;
   /// [n_J] natural lumped mass of each node summed over every element of the global model [kg].
   std::vector<double> j_mass_kg;

@@ -1,5 +1,5 @@
-// Membrane bulk viscosity of the Belytschko-Tsay shell (shell_bt_forces.cpp header comment):
-// a rectangle a x b (the geometry x^{n+1}) under an imposed uniform in-plane velocity field
+// Membrane bulk viscosity of the Belytschko-Tsay shell (shell_bt_forces.cpp, its bulk viscosity
+// phase): a rectangle a x b (the geometry x^{n+1}) under an imposed uniform in-plane velocity field
 // v = L X, one step. The kernel takes the velocity strains on the mid-step geometry
 // x - dt/2 v = (I - dt/2 L) X, where v is the gradient Lm = L (I - dt/2 L)^{-1}; tr below is
 // tr Lm, and the work's area that of the mid-step geometry, det(I - dt/2 L) a b.
@@ -29,7 +29,8 @@ using crashlink::Vec3;
 constexpr double kE = 210e9, kNu = 0.3, kRho = 7850.0, kH = 0.002, kA = 0.04, kB = 0.025;
 constexpr double kDt = 1e-7;  // [s]
 
-/// The in-plane gradient on the mid-step geometry (header comment): tr Lm and det(I - dt/2 L).
+/// The in-plane gradient on the mid-step geometry (the kernel's mid-step geometry): tr Lm and det(I
+/// - dt/2 L).
 struct MidStep {
   double tr = 0.0, area_factor = 1.0;
 };

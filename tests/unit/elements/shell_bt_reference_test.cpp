@@ -1,7 +1,7 @@
 // The optimised Belytschko-Tsay kernel (lane batches, resultant form for elastic parts, the
 // vectorised J2 return, blocked history) against a naive reference: one element at a time, every
 // stress component at every Gauss point, the scalar plane_stress_j2_return; the formulas of
-// shell_bt_forces.cpp's header comment written out once more in the plainest way.
+// shell_bt_forces.cpp's kernel phases written out once more in the plainest way.
 // Checked over several steps with general velocities on a warped patch of distorted quads and
 // triangles (element count not a multiple of kShellLanes, so padding lanes are exercised):
 //   * elastic (resultant form): forces, moments, energies, thickness and point stresses equal the
