@@ -17,6 +17,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "coordinator/admission.h"
+#include "coordinator/coordinator_checkpoints.h"
 #include "coordinator/coordinator_schemes.h"
 #include "coordinator/coordinator_stops.h"
 #include "coordinator/coupling_history.h"
@@ -56,7 +58,7 @@ class Coordinator final : private CoordinatorPort {
       prepare();
       admit();
       route();
-      scheme_->finish();
+      checkpoints_->prune_all();
     } catch (const StopRun& s) {
       stop = s.stop();
     } catch (const transport::PeerTimeoutError& e) {
@@ -74,12 +76,10 @@ class Coordinator final : private CoordinatorPort {
       r.message = stop->text;
       r.culprit = stop->culprits.empty() ? std::string() : stop->culprits.front();
     }
-    std::vector<std::string> lanes;
-    for (std::size_t k = 0; k < regs_.size(); ++k)
-      if (registered_[k]) lanes.push_back(regs_[k].lane_endpoint());
     // Only what this coordinator made: another one may be running on that socket or file.
     remove_session_files(link_ ? o_.bind : std::string(),
-                         endpoint_written_ ? o_.endpoint_file : std::string(), lanes,
+                         endpoint_written_ ? o_.endpoint_file : std::string(),
+                         admission_ ? admission_->lane_endpoints() : std::vector<std::string>{},
                          scheme_ ? cut().names : std::vector<std::string>{});
     r.cpu_seconds = run_cpu_seconds();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
@@ -87,6 +87,10 @@ class Coordinator final : private CoordinatorPort {
     r.endpoint = link_ ? link_->endpoint() : std::string();
     r.notices = notices_;
     if (scheme_) scheme_->fill_result(r);
+    if (checkpoints_) {
+      r.checkpoint_interval_ticks = checkpoints_->every();
+      r.restarted_from_ticks = checkpoints_->restarted_from();
+    }
     r.domains = outcomes_;
     return r;
   }
@@ -124,6 +128,7 @@ class Coordinator final : private CoordinatorPort {
                                                              std::chrono::seconds{30}));
   }
   CouplingHistory& history() override { return *history_; }
+  CoordinatorCheckpoints& checkpoints() override { return *checkpoints_; }
   double cpu_seconds() const override { return run_cpu_seconds(); }
   void log(const std::string& line) override {
     if (o_.log == nullptr) return;
@@ -138,17 +143,15 @@ class Coordinator final : private CoordinatorPort {
     auto read = io::read_scenario_with_hash(o_.scenario);  // one parse for both
     const std::string hash = std::move(read.hash);
     model_ = std::make_unique<model::Model>(std::move(read.model));
-    scheme_ = coordinator_scheme_named(o_.run.scheme).make(*model_, o_, hash);
+    scheme_ = coordinator_scheme_named(o_.run.scheme).make(*model_, o_);
     const auto& names = cut().names;
     outcomes_.resize(names.size());
     for (std::size_t k = 0; k < names.size(); ++k) outcomes_[k].name = names[k];
-    regs_.resize(names.size());
-    registered_.assign(names.size(), false);
     latest_.assign(names.size(), 0);
 
     std::filesystem::create_directories(o_.out_dir);
-    hash_ = hash;
     if (!o_.run.restart) run::remove_checkpoints(o_.out_dir, run::kCoordinatorPiece);
+    checkpoints_ = std::make_unique<CoordinatorCheckpoints>(o_, cut(), hash);
     history_ = std::make_unique<CouplingHistory>(
         (std::filesystem::path(o_.out_dir) / "coordinator.h5").string(), cut(), o_.run.scheme);
 
@@ -177,55 +180,19 @@ class Coordinator final : private CoordinatorPort {
     return it == cut().names.end() ? -1 : static_cast<int>(it - cut().names.begin());
   }
 
-  /// Every domain joins and registers; then the Setups.
+  /// Every domain joins and registers (admission.h); then the Setups.
   void admit() {
-    const auto deadline = Clock::now() + o_.join_timeout;
-    std::size_t count = 0;
-    while (count < cut().names.size()) {
+    admission_ = std::make_unique<Admission>(o_, *scheme_, *link_);
+    admission_->run([this] {
       check_stop_requested();
-      const auto now = Clock::now();
-      if (now >= deadline) {
-        std::vector<std::string> absent, silent;
-        for (std::size_t k = 0; k < cut().names.size(); ++k) {
-          if (registered_[k]) continue;
-          (link_->joined(cut().names[k]) ? silent : absent).push_back(cut().names[k]);
-        }
-        throw StopRun(join_timeout_stop(absent, silent, o_.join_timeout, link_->endpoint()));
-      }
-      auto in = link_->poll(std::min<std::chrono::milliseconds>(
-          100ms, std::chrono::ceil<std::chrono::milliseconds>(deadline - now)));
-      drop_silent_unregistered();
       log_notices();
-      link_->check_alive();
-      if (!in) continue;
-      const int k = index_of(in->domain);
-      const auto& e = in->envelope;
-      if (e.has_error()) throw StopRun(remote_error_stop(in->domain, e.error()));
-      if (!e.has_registration() || registered_[static_cast<std::size_t>(k)]) {
-        throw StopRun(protocol_stop(in->domain,
-                                    fmt::format("domain '{}' sent a {} before its Setup; expected "
-                                                "one Register",
-                                                in->domain, wire::body_name(e))));
-      }
-      try {
-        scheme_->check_register(k, e.registration());
-      } catch (const ModelError& x) {
-        throw StopRun(Stop{kExitInput,
-                           wire::ERROR_CODE_MODEL,
-                           {in->domain},
-                           fmt::format("coordinator: {}", x.what())});
-      }
-      regs_[static_cast<std::size_t>(k)] = e.registration();
-      registered_[static_cast<std::size_t>(k)] = true;
-      link_->seal(in->domain);  // the run counts on this session: no second daemon for it
-      ++count;
-    }
+    });
     wire::Options options;
     options.set_heartbeat_interval_ms(
         static_cast<std::uint32_t>(o_.session.heartbeat_interval.count()));
     options.set_peer_timeout_ms(static_cast<std::uint32_t>(o_.session.peer_timeout.count()));
     try {
-      scheme_->start(regs_, options, *this);
+      scheme_->start(admission_->registers(), options, *this);
     } catch (const coupling::InterfaceError& x) {
       throw StopRun(Stop{kExitInput, wire::ERROR_CODE_MODEL, x.domains(),
                          fmt::format("coordinator: {}", x.what())});
@@ -233,25 +200,6 @@ class Coordinator final : private CoordinatorPort {
     for (std::size_t k = 0; k < cut().names.size(); ++k) {
       outcomes_[k].step_ticks = scheme_->step(static_cast<int>(k));
       latest_[k] = scheme_->reached(static_cast<int>(k));
-    }
-  }
-
-  /// Before the run: a domain that said Hello but has been silent for the peer timeout without
-  /// registering (a daemon that died or hangs during its start, or a peer that only said Hello)
-  /// loses its session and the domain waits for a daemon again, up to the join timeout; the
-  /// waiting coordinator goes on. A registered domain that goes silent stops the run
-  /// (check_alive()): the others' Setups depend on it.
-  void drop_silent_unregistered() {
-    for (const auto& d : link_->dead_peers()) {
-      const int k = index_of(d);
-      if (k < 0 || registered_[static_cast<std::size_t>(k)]) continue;
-      link_->drop(
-          d, wire::ERROR_CODE_TIMEOUT,
-          fmt::format("domain '{}' said Hello and then nothing for {:.1f} s (peer timeout), no "
-                      "Register: its session is dropped and the domain waits for a daemon until "
-                      "the join timeout ({:.1f} s after the start)",
-                      d, std::chrono::duration<double>(o_.session.peer_timeout).count(),
-                      std::chrono::duration<double>(o_.join_timeout).count()));
     }
   }
 
@@ -381,18 +329,16 @@ class Coordinator final : private CoordinatorPort {
   double cpu0_ = 0.0;
   std::unique_ptr<model::Model> model_;
   std::unique_ptr<CoordinatorScheme> scheme_;
-  std::vector<wire::Register> regs_;
-  std::vector<bool> registered_;
+  std::unique_ptr<Admission> admission_;
   std::vector<DomainOutcome> outcomes_;
   std::unique_ptr<CouplingHistory> history_;
+  std::unique_ptr<CoordinatorCheckpoints> checkpoints_;
   std::unique_ptr<transport::CoordinatorLink> link_;
   std::int64_t notices_ = 0;
   std::set<std::string> logged_;
-  std::string hash_;
-  std::vector<coupling::Tick> latest_;  ///< [daemons] the instant of the latest report
-  transport::Incoming* current_ = nullptr;
-  bool endpoint_written_ = false;  ///< the endpoint file is ours to remove  ///< the message being
-                                   ///< handled (forward_current)
+  std::vector<coupling::Tick> latest_;      ///< [daemons] the instant of the latest report
+  transport::Incoming* current_ = nullptr;  ///< the message being handled (forward_current)
+  bool endpoint_written_ = false;           ///< the endpoint file is ours to remove
 };
 
 }  // namespace

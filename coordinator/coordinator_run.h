@@ -1,22 +1,18 @@
 #pragma once
 // crashlink-coordinator (docs/design.md §1, §2.6, §2.7, §3): a message pump around its coupling
-// scheme (coordinator_scheme.h; `layer` or `paper`, coordinator_schemes.h). It binds a
-// CoordinatorLink, admits one daemon per non-empty domain of the scheme's cut of the scenario,
-// has the scheme check each Register, then plan the steps and send the Setups; until every daemon
-// has said Bye it hands each message to the scheme (`layer`: LayerReports with the interface
-// history rows and progress, layer vectors routed when there are no lanes; `paper`: each
-// FreeState answered with the Corrections its schedule allows; a guard stop ends the run with
-// exit 3 and "the coupling went unstable") and watches for silence, stalls and stop requests.
+// scheme (coordinator_scheme.h, by name from coordinator_schemes.h). It binds a CoordinatorLink,
+// admits one daemon per non-empty domain of the scheme's cut (admission.h), has the scheme plan
+// the steps and send the Setups, then hands each message to the scheme until every daemon has said
+// Bye, watching for silence, stalls and stop requests.
 //
-// Output: DIR/coordinator.h5 (io::CouplingHistoryWriter): /coupling/<interface>/ histories and
-// /timing (wall, the coordinator's CPU, each daemon's time spent waiting, from its Bye).
+// Output: DIR/coordinator.h5 (coupling_history.h): the interface histories and /timing; the
+// coordinator's checkpoints (coordinator_checkpoints.h).
 //
-// Failures (exit codes: core/exit_codes.h): a daemon that reports an Error, dies or goes
-// silent for the peer timeout (CoordinatorLink::check_alive), breaks the protocol or registers an
-// interface that does not match; a domain that does not join within the join timeout. The
-// coordinator then sends an Error naming the culprit to every other daemon, writes its file and
-// returns non-zero with a message naming the culprit. Bytes that are not protocol messages and
-// refused Hellos (other protocol version, other scenario) are answered and logged; the run goes on.
+// Failures (exit codes: core/exit_codes.h; coordinator_stops.h): a daemon that reports an Error,
+// dies, goes silent for the peer timeout, breaks the protocol or registers a mismatching
+// interface; a domain absent at the join timeout. Every other daemon is sent an Error naming the
+// culprit, the file is written, and the result names the culprit. Bytes that are not protocol
+// messages and refused Hellos are answered and logged; the run goes on.
 #include <atomic>
 #include <chrono>
 #include <cstdint>

@@ -1,11 +1,12 @@
 #pragma once
 // A coupling scheme as the coordinator sees it (docs/design.md §2.6, §2.7): the scheme's cut of the
 // scenario, its check of each Register, its plan and Setups, and what it does with each message
-// of the run (route a layer vector, answer a free state, record the interface history). The
-// coordinator (coordinator_run.cpp) is a message pump around it: it admits the daemons, hands
-// their messages over and handles Bye, Error, silence and stop itself. Implemented by `layer`
-// (layer_coordinator_scheme.h) and `paper` (paper_coordinator_scheme.h); listed by name in
-// coordinator_schemes.h.
+// of the run (route a layer vector, answer a free state, record the interface history). It does no
+// IO of its own: the coordinator (coordinator_run.cpp), a message pump around it, admits the
+// daemons, hands their messages over, handles Bye, Error, silence and stop, and owns the files
+// (the interface histories, the checkpoints) that the scheme fills through its CoordinatorPort.
+// Implemented by `layer` (layer_coordinator_scheme.h) and `paper` (paper_coordinator_scheme.h);
+// listed by name in coordinator_schemes.h.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -19,6 +20,7 @@
 namespace crashlink::coordinator {
 
 class CouplingHistory;
+class CoordinatorCheckpoints;
 
 /// What a scheme may ask of the coordinator process.
 class CoordinatorPort {
@@ -31,6 +33,10 @@ class CoordinatorPort {
   virtual void allow_silence(int k) = 0;
   /// DIR/coordinator.h5's interface histories.
   virtual CouplingHistory& history() = 0;
+  /// The run's checkpoints (DIR/checkpoints, docs/checkpoints.md): the scheme plans the interval
+  /// from its steps, resumes a restart and says when its state is complete at an instant; the
+  /// coordinator owns them and prunes them at the end.
+  virtual CoordinatorCheckpoints& checkpoints() = 0;
   /// The run's CPU time so far (with the runs before a restart), s.
   virtual double cpu_seconds() const = 0;
   /// One line on the coordinator's log.
@@ -61,8 +67,6 @@ class CoordinatorScheme {
   virtual coupling::Tick reached(int k) const = 0;
   /// Domain k's planned step, ticks (0 before start()).
   virtual coupling::Tick step(int k) const = 0;
-  /// Every domain said Bye.
-  virtual void finish() = 0;
   /// The scheme's figures in the result (routed vectors, lanes, reports, checkpoints).
   virtual void fill_result(CoordinatorResult& r) const = 0;
   /// The CPU time of the runs before the checkpoint resumed from, s.

@@ -13,7 +13,7 @@
 namespace crashlink::coordinator {
 
 using MakeCoordinatorScheme = std::unique_ptr<CoordinatorScheme> (*)(
-    const model::Model& model, const CoordinatorOptions& options, const std::string& hash);
+    const model::Model& model, const CoordinatorOptions& options);
 
 /// The scheme's own rules on a run's configuration: InputError naming the option and the fix.
 using ValidateCoupling = void (*)(const coupling::CouplingConfig& config);

@@ -23,9 +23,7 @@ std::span<const double> view(const google::protobuf::RepeatedField<double>& v) {
 
 class LayerCoordinatorScheme final : public CoordinatorScheme {
  public:
-  LayerCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o,
-                         const std::string& hash)
-      : o_(o), hash_(hash) {
+  LayerCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o) : o_(o) {
     cut_ = layer_cut(model, partition::decompose(model, partition::Scheme::Layer));
     latest_.assign(cut_.names.size(), 0);
     step_.assign(cut_.names.size(), 0);
@@ -53,15 +51,15 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     lanes_ = o_.run.lanes && std::all_of(regs.begin(), regs.end(), [](const wire::Register& r) {
                return !r.lane_endpoint().empty();
              });
-    checkpoints_ = std::make_unique<CoordinatorCheckpoints>(o_, cut_, hash_);
+    auto& checkpoints = port.checkpoints();
     wire::Options options = base;
-    options.set_checkpoint_interval_ticks(checkpoints_->plan(plan.step));
+    options.set_checkpoint_interval_ticks(checkpoints.plan(plan.step));
     if (o_.run.restart) {
-      const auto T = checkpoints_->choose_restart(regs, router_->size() > 0);
-      cpu_before_ = checkpoints_->restore(T, *router_, port.history());
+      const auto T = checkpoints.choose_restart(regs, router_->size() > 0);
+      cpu_before_ = checkpoints.restore(T, *router_, port.history());
       if (router_->size() > 0) std::fill(latest_.begin(), latest_.end(), T);
     }
-    const coupling::Tick restart_from = checkpoints_->restarted_from();
+    const coupling::Tick restart_from = checkpoints.restarted_from();
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.run.common_step, options,
                                  o_.run.ticks_per_second);
@@ -110,16 +108,10 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   coupling::Tick reached(int k) const override { return latest_[static_cast<std::size_t>(k)]; }
   coupling::Tick step(int k) const override { return step_[static_cast<std::size_t>(k)]; }
 
-  void finish() override {
-    if (checkpoints_) checkpoints_->prune_all();
-  }
-
   void fill_result(CoordinatorResult& r) const override {
     r.messages_forwarded = router_ ? router_->forwarded() : 0;
     r.lanes = lanes_;
     r.reports = reports_;
-    r.checkpoint_interval_ticks = checkpoints_ ? checkpoints_->every() : 0;
-    r.restarted_from_ticks = checkpoints_ ? checkpoints_->restarted_from() : -1;
   }
 
   double cpu_before() const override { return cpu_before_; }
@@ -146,10 +138,10 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
           k, i, {rows.time_ticks().data(), static_cast<std::size_t>(rows.time_ticks_size())},
           view(rows.force_n()), view(rows.link_work_j()));
       port.history().append(i, samples, o_.run.ticks_per_second);
-      if (!samples.empty()) checkpoints_->rows_reached(i, samples.back().time);
+      if (!samples.empty()) port.checkpoints().rows_reached(i, samples.back().time);
     }
-    if (rep.checkpoint()) checkpoints_->announced(rep.time_ticks());
-    checkpoints_->write_when_complete(*router_, port.history(), port.cpu_seconds());
+    if (rep.checkpoint()) port.checkpoints().announced(rep.time_ticks());
+    port.checkpoints().write_when_complete(*router_, port.history(), port.cpu_seconds());
   }
 
   /// A partner's lane in daemon k's Setup for every domain k shares an interface with.
@@ -168,12 +160,10 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   }
 
   const CoordinatorOptions& o_;
-  std::string hash_;
   LayerCut cut_;
   std::vector<coupling::Tick> latest_;  ///< [daemons] the instant of the latest report
   std::vector<coupling::Tick> step_;    ///< [daemons] the planned steps
   std::unique_ptr<coupling::LayerRouter> router_;
-  std::unique_ptr<CoordinatorCheckpoints> checkpoints_;  ///< once the steps are planned
   bool lanes_ = false;
   std::int64_t reports_ = 0;
   double cpu_before_ = 0.0;
@@ -188,10 +178,9 @@ void validate_layer_config(const coupling::CouplingConfig& config) {
         "or drop the option)");
 }
 
-std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(const model::Model& model,
-                                                                 const CoordinatorOptions& options,
-                                                                 const std::string& hash) {
-  return std::make_unique<LayerCoordinatorScheme>(model, options, hash);
+std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(
+    const model::Model& model, const CoordinatorOptions& options) {
+  return std::make_unique<LayerCoordinatorScheme>(model, options);
 }
 
 }  // namespace crashlink::coordinator

@@ -16,9 +16,8 @@ namespace crashlink::coordinator {
 /// `layer`'s rule on a run's configuration: no drift correction to switch off (InputError).
 void validate_layer_config(const coupling::CouplingConfig& config);
 
-/// `options` must outlive the scheme; `hash` is the scenario's.
+/// `options` must outlive the scheme.
 std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(const model::Model& model,
-                                                                 const CoordinatorOptions& options,
-                                                                 const std::string& hash);
+                                                                 const CoordinatorOptions& options);
 
 }  // namespace crashlink::coordinator

@@ -87,7 +87,6 @@ class PaperCoordinatorScheme final : public CoordinatorScheme {
 
   coupling::Tick reached(int k) const override { return exchange_ ? exchange_->latest(k) : 0; }
   coupling::Tick step(int k) const override { return step_[static_cast<std::size_t>(k)]; }
-  void finish() override {}
   void fill_result(CoordinatorResult& /*r*/) const override {}
   double cpu_before() const override { return 0.0; }
 
@@ -107,9 +106,8 @@ void validate_paper_config(const coupling::CouplingConfig& config) {
         "runs; run `paper` without them");
 }
 
-std::unique_ptr<CoordinatorScheme> make_paper_coordinator_scheme(const model::Model& model,
-                                                                 const CoordinatorOptions& options,
-                                                                 const std::string& /*hash*/) {
+std::unique_ptr<CoordinatorScheme> make_paper_coordinator_scheme(
+    const model::Model& model, const CoordinatorOptions& options) {
   return std::make_unique<PaperCoordinatorScheme>(model, options);
 }
 

@@ -17,7 +17,6 @@ void validate_paper_config(const coupling::CouplingConfig& config);
 
 /// `options` must outlive the scheme.
 std::unique_ptr<CoordinatorScheme> make_paper_coordinator_scheme(const model::Model& model,
-                                                                 const CoordinatorOptions& options,
-                                                                 const std::string& hash);
+                                                                 const CoordinatorOptions& options);
 
 }  // namespace crashlink::coordinator

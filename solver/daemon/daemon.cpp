@@ -17,10 +17,10 @@
 #include <utility>
 
 #include "core/errors.h"
-#include "core/exit_codes.h"
-#include "core/log_escape.h"
 #include "proto/envelope_name.h"
 #include "solver/daemon/daemon_checkpoints.h"
+#include "solver/daemon/daemon_failure.h"
+#include "solver/daemon/daemon_handshake.h"
 #include "solver/daemon/daemon_lanes.h"
 #include "solver/daemon/domain_output.h"
 #include "solver/daemon/domain_schemes.h"
@@ -32,11 +32,9 @@
 #include "solver/run/cpu_clock.h"
 #include "solver/run/domain_checkpoint.h"
 #include "solver/run/domain_recorder.h"
-#include "transport/curve_errors.h"
 #include "transport/daemon_link.h"
 #include "transport/dealer.h"
 #include "transport/errors.h"
-#include "transport/failure.h"
 #include "transport/lane_endpoint.h"
 #include "transport/router.h"
 #include "transport/shm_lane.h"
@@ -52,14 +50,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// How a failure ends the daemon.
-struct Failure {
-  int exit_code = kExitInternal;
-  wire::ErrorCode code = wire::ERROR_CODE_INTERNAL;
-  bool tell_coordinator = true;  ///< false when the coordinator is the one who stopped us
-  std::string text;
-};
-
 class Daemon {
  public:
   explicit Daemon(const DaemonOptions& o) : o_(o) {}
@@ -67,33 +57,19 @@ class Daemon {
   DaemonResult run() {
     wall0_ = Clock::now();
     cpu0_ = cpu_seconds();
-    std::optional<Failure> failure;
+    std::optional<DaemonFailure> failure;
     try {
       prepare();
       connect();
       loop();
       finish();
-    } catch (const transport::RemoteError& e) {
-      const bool refused = e.code() == wire::ERROR_CODE_VERSION_MISMATCH ||
-                           e.code() == wire::ERROR_CODE_SCENARIO_MISMATCH ||
-                           e.code() == wire::ERROR_CODE_DOMAIN_HELD;
-      const int exit_code = refused                                ? kExitInput
-                            : e.code() == wire::ERROR_CODE_STOPPED ? kExitStopped
-                                                                   : kExitPeer;
-      failure = Failure{exit_code, e.code(), false,
-                        fmt::format("{}: {} by the coordinator: {}", where(),
-                                    refused ? "refused" : "stopped", e.what())};
-    } catch (const transport::CurveRefusedError& e) {
-      // Refused by the coordinator's CURVE check: a second handshake would be refused too.
-      failure = Failure{kExitInput, wire::ERROR_CODE_PROTOCOL, false,
-                        fmt::format("{}: {}", where(), e.what())};
     } catch (...) {
-      const auto f = transport::current_failure();
-      failure = Failure{f.exit_code, f.code, true, fmt::format("{}: {}", where(), f.text)};
+      failure = current_daemon_failure(where());
     }
     DaemonResult r;
     if (failure) {
-      if (failure->tell_coordinator) tell(*failure);
+      if (failure->tell_coordinator)
+        tell_coordinator(*failure, link_, o_.endpoint, o_.domain, hash_, o_.session);
       if (output_)
         output_->close_after_failure(seconds_since(wall0_), run_cpu_seconds(), elements_);
       r.exit_code = failure->exit_code;
@@ -193,9 +169,10 @@ class Daemon {
     scheme_->set_ticks_per_second(tps_);
     open_output();
     if (o_.offer_lane && scheme_->uses_lanes()) lanes_.open_own(o_.endpoint);
-    link_->send(register_message());
+    link_->send(register_message(*scheme_, scheme_options(), tps_, checkpoints_->instants(),
+                                 {lanes_.endpoint(), lanes_.public_key()}));
     const wire::Setup setup = await_setup();
-    check_scheme(setup);
+    check_scheme(setup, o_.domain, o_.coupling);
     if (scheme_->start(setup)) {
       // A new solver (the Setup's masses): the recorder follows it.
       output_->follow(*solver());
@@ -212,25 +189,6 @@ class Daemon {
     // (docs/design.md §2.6 "Overlap").
     scheme_->set_on_outbox([this] { send_outbox(); });
     run_wall0_ = Clock::now();
-  }
-
-  wire::Envelope register_message() const {
-    const auto& s = *solver();
-    const auto& sub = s.model();
-    wire::Envelope e;
-    auto* r = e.mutable_registration();
-    const std::int64_t proposal = coupling::proposal_ticks(s, scheme_options(), tps_);
-    r->set_stable_step_ticks(proposal);
-    r->set_stable_step_s(s.dt_s());
-    r->set_end_time_s(sub.controls.end_time_s);
-    r->set_end_time_ticks(static_cast<std::int64_t>(
-        std::llround(sub.controls.end_time_s * static_cast<double>(tps_))));
-    r->set_elements(elements_);
-    for (const auto t : checkpoints_->instants()) r->add_checkpoint_ticks(t);
-    r->set_lane_endpoint(lanes_.endpoint());
-    r->set_lane_public_key(lanes_.public_key());
-    scheme_->fill_register(*r);
-    return e;
   }
 
   /// link_->receive(timeout) in waits of at most 100 ms, checking the stop flag between them (the
@@ -258,16 +216,6 @@ class Daemon {
                                       "got a {}",
                                       o_.domain, wire::body_name(*m)));
     }
-  }
-
-  /// Both sides must run the same scheme: a `layer` daemon cannot serve a `paper` coordinator.
-  void check_scheme(const wire::Setup& setup) const {
-    if (setup.scheme() == o_.coupling) return;
-    throw ProtocolError(
-        "coordinator",
-        fmt::format("the coordinator runs the '{}' scheme, but domain '{}' was started for '{}': "
-                    "start crashlink-solver and crashlink-coordinator with the same --coupling",
-                    core::log_escape(setup.scheme()), o_.domain, o_.coupling));
   }
 
   /// The scheme's progress report (with the interface history rows), if it sends one.
@@ -369,24 +317,6 @@ class Daemon {
     rep->set_time_ticks(scheme_->time());
     scheme_->fill_bye(*rep);
     link_->send(bye);
-  }
-
-  /// Reports the failure to the coordinator, best effort (it may be the one that is gone). Before
-  /// the session exists, a short handshake is tried so that the run stops at once.
-  void tell(const Failure& f) {
-    try {
-      // (not for a stop on request: it must end within 1 s, and the coordinator has its own)
-      if (!link_ && !hash_.empty() && f.code != wire::ERROR_CODE_STOPPED) {
-        auto quick = o_.session;
-        quick.handshake_timeout =
-            std::min(quick.handshake_timeout, std::chrono::milliseconds{2000});
-        link_ = std::make_unique<transport::DaemonLink>(
-            o_.endpoint, transport::daemon_hello(o_.domain, hash_), quick);
-      }
-      if (link_ && link_->open()) link_->send_error(f.code, f.text);
-    } catch (const std::exception&) {
-      // Nobody to tell: the exit code and the message on stderr say it.
-    }
   }
 
   const DaemonOptions& o_;

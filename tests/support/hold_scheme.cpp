@@ -83,7 +83,6 @@ class HoldCoordinatorScheme final : public coordinator::CoordinatorScheme {
     return std::max<coupling::Tick>(latest_[static_cast<std::size_t>(k)], 0);
   }
   coupling::Tick step(int k) const override { return plan_.step[static_cast<std::size_t>(k)]; }
-  void finish() override {}
   void fill_result(coordinator::CoordinatorResult& /*r*/) const override {}
   double cpu_before() const override { return 0.0; }
 
@@ -160,8 +159,8 @@ void register_hold() {
         {"hold", partition::Scheme::Paper, daemon::make_paper_domain_scheme});
     coordinator::register_coordinator_scheme(
         {"hold",
-         [](const model::Model& m, const coordinator::CoordinatorOptions& o,
-            const std::string&) -> std::unique_ptr<coordinator::CoordinatorScheme> {
+         [](const model::Model& m, const coordinator::CoordinatorOptions& o)
+             -> std::unique_ptr<coordinator::CoordinatorScheme> {
            return std::make_unique<HoldCoordinatorScheme>(m, o);
          }});
     return true;
