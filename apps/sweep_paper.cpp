@@ -54,7 +54,7 @@ PaperSceneResult run_paper_scene(const model::Model& m, bool drift, const std::s
     cosim::PaperOptions o;
     o.ratio_p = static_cast<int>(ratio);
     o.step_safety = 0.9;
-    o.drift = drift ? coupling::paper::Drift::on : coupling::paper::Drift::off;
+    o.run.drift = drift;
     cosim::PaperRunner r(m, o);
     r.initialize();
     out.ratio = static_cast<double>(r.ratio());

@@ -3,7 +3,8 @@
 // (`crashlink run`, `crashlink-coordinator`) through the launcher into the coordinator, which sends
 // what the daemons need in each Setup (scheme, mode, variable steps, Options: checkpoint interval,
 // drift). It is checked once, by coordinator::validate (coordinator/coordinator_schemes.h), with
-// each scheme's own rules in that scheme.
+// each scheme's own rules in that scheme. The in-process runners (cosim::LayerNetwork,
+// cosim::PaperRunner) take the same struct.
 #include <cstdint>
 #include <string>
 

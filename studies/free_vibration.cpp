@@ -234,7 +234,7 @@ FreeVibrationResult run_paper_energy(const model::Model& m, double r, std::int64
     // own stable steps (C's divided by the ratio).
     o.ratio_p = std::max(1, static_cast<int>(std::floor(r + 1e-9)));
     o.step_safety = 0.9;
-    o.drift = drift ? coupling::paper::Drift::on : coupling::paper::Drift::off;
+    o.run.drift = drift;
     PaperRunner runner(m, o);
     runner.initialize();
     struct Count {  // the fine steps done, also when advance() throws

@@ -18,9 +18,9 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
   if (!(options_.step_safety > 0.0 && options_.step_safety <= 1.0))
     throw ModelError("layer network: step_safety must be in (0, 1], got " +
                      std::to_string(options_.step_safety));
-  if (options_.ticks_per_second < 1)
+  if (options_.run.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
-  if (options_.variable_steps && !options_.proposal_s.empty())
+  if (options_.run.variable_steps && !options_.proposal_s.empty())
     throw ModelError(
         "layer network: variable steps follow the solvers' own proposals (no proposal_s)");
   if (!options_.proposal_s.empty() && options_.proposal_s.size() != d_.solvers.size())
@@ -41,7 +41,7 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
 
 void LayerNetwork::build_steppers() {
   std::vector<Tick> proposal(d_.solvers.size());
-  const coupling::TickClock clock(options_.ticks_per_second);
+  const coupling::TickClock clock(options_.run.ticks_per_second);
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
     auto& s = *d_.solvers[k];
     s.initialize();
@@ -58,23 +58,23 @@ void LayerNetwork::build_steppers() {
   for (std::size_t i = 0; i < fine_of_.size(); ++i)
     links.emplace_back(static_cast<int>(coarse_of_[i]), static_cast<int>(fine_of_[i]));
   for (const auto& s : d_.solvers) names.push_back(s->domain_name());
-  plan_ = coupling::nested_steps(proposal, links, options_.common_step, names);
+  plan_ = coupling::nested_steps(proposal, links, options_.run.common_step, names);
   auto ports = layer_ports(d_);
   steppers_.clear();
   for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
     for (auto& p : ports[k])
       if (p.fine_side) p.partner_step = plan_.step[coarse_of_[p.index]];
     steppers_.push_back(std::make_unique<LayerStepper>(
-        *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.ticks_per_second,
-        !options_.variable_steps ? LayerSteps::Fixed
-        : options_.common_step   ? LayerSteps::VariableCommon
-                                 : LayerSteps::Variable));
+        *d_.solvers[k], std::move(ports[k]), plan_.step[k], options_.run.ticks_per_second,
+        !options_.run.variable_steps ? LayerSteps::Fixed
+        : options_.run.common_step   ? LayerSteps::VariableCommon
+                                     : LayerSteps::Variable));
   }
-  if (options_.variable_steps) {
+  if (options_.run.variable_steps) {
     for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);
   } else {  // every domain ends at the same instant, as the coordinator's Setup says
     const Tick end = coupling::aligned_end(plan_, d_.solvers.front()->model().controls.end_time_s,
-                                           options_.ticks_per_second);
+                                           options_.run.ticks_per_second);
     for (auto& st : steppers_) st->set_end_time(end);
   }
 }

@@ -6,7 +6,7 @@
 // round-off (they run the same steppers, only the messages travel over ZeroMQ), and the way
 // tests and sweeps run `split` and `multi` without processes.
 //
-//   LayerNetwork net(global, {.common_step = false});
+//   LayerNetwork net(global, {});  // multi; split: options.run.common_step = true
 //   net.initialize();
 //   net.run([&](std::size_t k) { ... net.solver(k) sampled at its instant ... });
 #include <cstddef>
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/state_archive.h"
+#include "coupling/coupling_config.h"
 #include "coupling/nested_steps.h"
 #include "coupling/ticks.h"
 #include "solver/cosim/layer_domains.h"
@@ -25,18 +26,19 @@
 namespace crashlink::cosim {
 
 struct LayerNetworkOptions {
-  bool common_step = false;  ///< `split`: every domain at the smallest step; else `multi`
+  /// How the domains couple: the configuration a run over processes has
+  /// (coupling/coupling_config.h), of which the network reads common_step (split: every domain at
+  /// the smallest step; multi by default here), variable_steps and ticks_per_second. Every domain
+  /// follows its own step proposal with variable_steps (layer_stepper.h "Steps"; multi: the
+  /// leaders take step_safety of theirs, LayerStepper::set_proposal_limits; split: all the least
+  /// proposal of all at every instant); proposal_s must then stay empty and plan() is not used.
+  coupling::CouplingConfig run{.scheme = "layer", .common_step = false};
   /// Margin on the initial stable steps (they shrink as the mesh deforms and bulk viscosity acts;
   /// a fixed step above a later proposal makes Solver::impose_step throw).
   double step_safety = 1.0;
   /// [solvers] optional proposals in seconds replacing the solvers' own (each still capped by
   /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
   std::vector<double> proposal_s;
-  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
-  /// Every domain follows its own step proposal (layer_stepper.h "Steps"; `multi`: the leaders
-  /// take step_safety of theirs, LayerStepper::set_proposal_limits; `split`: all the least
-  /// proposal of all at every instant); proposal_s must stay empty; plan() is then not used.
-  bool variable_steps = false;
 };
 
 class LayerNetwork {
@@ -69,7 +71,7 @@ class LayerNetwork {
   const LayerDomains& domains() const { return d_; }
   const partition::Decomposition& decomposition() const { return d_.dec; }
   double seconds(Tick n) const {
-    return static_cast<double>(n) / static_cast<double>(options_.ticks_per_second);
+    return static_cast<double>(n) / static_cast<double>(options_.run.ticks_per_second);
   }
   /// Sum of the energy accounts (each at its domain's current instant).
   integration::EnergyAccount energy() const { return sum_energies(d_, 0.0); }

@@ -46,7 +46,7 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
   for (const auto& itf : dec_.interfaces)
     if (itf.fine != domain_[0] || itf.coarse != domain_[1])
       throw ModelError("paper: the interfaces disagree on which domain is the fine one");
-  if (options_.ticks_per_second < 1) throw ModelError("paper: ticks_per_second must be >= 1");
+  if (options_.run.ticks_per_second < 1) throw ModelError("paper: ticks_per_second must be >= 1");
 
   const std::size_t ng = global.nodes.count();
   std::vector<double> partial_mass[2], partial_inertia[2];  // (the inertia: scratch)
@@ -123,7 +123,7 @@ coupling::Tick PaperRunner::to_ticks(double t_s) const {
   // coupling::TickClock::to_ticks' rule (round down, snap within 4 ulps of a whole tick).
   if (!std::isfinite(t_s) || !(t_s > 0.0))
     throw NumericalError("paper: step " + std::to_string(t_s) + " s is not positive");
-  const double x = t_s * static_cast<double>(options_.ticks_per_second);
+  const double x = t_s * static_cast<double>(options_.run.ticks_per_second);
   const double nearest = std::nearbyint(x);
   const double snap = 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, x);
   const double k = std::abs(x - nearest) <= snap ? nearest : std::floor(x);
@@ -167,7 +167,7 @@ void PaperRunner::initialize() {
   fine_steps_ = coarse_steps_ = 0;
   energy_ = integration::EnergyAccount{};
   ke_twice0_ = 0.0;
-  guard_ = paper::EnergyGuard(options_.guard_rise);
+  guard_ = paper::EnergyGuard(options_.run.guard_rise);
   drift_work_J_ = 0.0;
   gap_ = max_gap_ = PaperGap{};
   for (int s = 0; s < 2; ++s) {
@@ -202,7 +202,7 @@ void PaperRunner::check_finite(const std::vector<double>& a, int side, const cha
 void PaperRunner::correct(int side, const std::vector<double>& a_link,
                           const std::vector<double>& u_ref, double step_product) {
   // [11] on the non-reference side (u_ref == own u elsewhere: da = 0 there), a* = a_link + da.
-  paper::drift_correction(u_ref, u_[side], step_product, options_.drift, da_);
+  paper::drift_correction(u_ref, u_[side], step_product, drift(), da_);
   paper::add_drift(a_link, da_, a_star_);
   check_finite(a_star_, side, "corrected");
   auto& S = *solvers_[side];
@@ -265,7 +265,7 @@ void PaperRunner::unstable(const std::string& what) const {
   throw NumericalError(paper::unstable_message(
       fmt::format("at t = {:.6e} s (coarse step {}, fine step {})", seconds(std::max(tF_, tC_)),
                   coarse_steps_, fine_steps_),
-      what, options_.drift,
+      what, drift(),
       fmt::format("H/h = {} (h = {:.4e} s, H = {:.4e} s)", ratio(), fine_dt_s(), coarse_dt_s())));
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/coupling_config.h"
 #include "coupling/paper_coupling.h"
 #include "coupling/paper_guard.h"
 #include "coupling/ticks.h"
@@ -38,12 +39,12 @@ struct PaperOptions {
   /// C's proposal * ratio_q / ratio_p). Only whole ratios run (ratio_p a multiple of ratio_q).
   int ratio_p = 0, ratio_q = 1;
   double step_safety = 1.0;  ///< margin on the initial proposals for ratio_p, in (0, 1]
-  /// [11] on the non-reference side every step (the paper), or off (the study's S2).
-  coupling::paper::Drift drift = coupling::paper::Drift::on;
-  /// Guard: stop when the coupled energy rises this fraction of the peak energy above its running
-  /// minimum (0 or negative: no energy check; the non-finite check always runs).
-  double guard_rise = 0.05;
-  std::int64_t ticks_per_second = coupling::kDefaultTicksPerSecond;
+  /// How the domains couple: the configuration a run over processes has
+  /// (coupling/coupling_config.h), of which the runner reads drift ([11] on the non-reference
+  /// side every step, the paper; off: the study's S2), guard_rise (stop when the coupled energy
+  /// rises this fraction of the peak energy above its running minimum; 0 or negative: no energy
+  /// check, the non-finite check always runs) and ticks_per_second. Two domains, fixed steps.
+  coupling::CouplingConfig run{.scheme = "paper", .common_step = false};
 };
 
 /// One node coupled between the two domains: a link node (present in both with its partial
@@ -107,7 +108,7 @@ class PaperRunner {
   coupling::Tick coarse_time_ticks() const { return tC_; }
   coupling::Tick fine_time_ticks() const { return tF_; }
   double seconds(coupling::Tick n) const {
-    return static_cast<double>(n) / static_cast<double>(options_.ticks_per_second);
+    return static_cast<double>(n) / static_cast<double>(options_.run.ticks_per_second);
   }
   std::int64_t fine_steps() const { return fine_steps_; }
   std::int64_t coarse_steps() const { return coarse_steps_; }
@@ -137,6 +138,9 @@ class PaperRunner {
   std::vector<double> global_displacement() const;
 
  private:
+  coupling::paper::Drift drift() const {
+    return options_.run.drift ? coupling::paper::Drift::on : coupling::paper::Drift::off;
+  }
   coupling::Tick to_ticks(double t_s) const;
   void read_free(int side);
   void correct(int side, const std::vector<double>& a_link, const std::vector<double>& u_ref,

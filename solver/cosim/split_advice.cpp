@@ -47,7 +47,7 @@ SplitCandidate evaluate(const model::Model& global, std::vector<model::Domain> d
     o.step_safety = step_safety;
     LayerNetwork net(m, o);
     net.initialize();
-    const coupling::TickClock clock(o.ticks_per_second);
+    const coupling::TickClock clock(o.run.ticks_per_second);
     double cost = 0.0;
     for (std::size_t k = 0; k < net.size(); ++k) {
       const long long n = deformable_elements(net.solver(k).model());

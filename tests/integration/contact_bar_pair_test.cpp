@@ -145,7 +145,7 @@ BarPairResult run_multi(const BarPairSpec& spec, double* ratio) {
   const auto mass = crashlink::testing::lumped_mass(b.m);
   cosim::LayerNetworkOptions o;
   o.step_safety = 0.9;
-  o.variable_steps = true;  // each domain follows its own stable step (they shrink in contact)
+  o.run.variable_steps = true;  // each domain follows its own stable step (they shrink in contact)
   cosim::LayerNetwork net(b.m, o);
   net.initialize();
   const auto& d = net.domains();

@@ -196,7 +196,7 @@ TubeResult run_multi(const TubeSpec& spec) {
   const Tube tube = make_tube(spec);
   const auto w0 = std::chrono::steady_clock::now();
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   o.step_safety = 0.9;
   std::unique_ptr<cosim::LayerNetwork> net;
   net = std::make_unique<cosim::LayerNetwork>(tube.m, o);

@@ -66,7 +66,7 @@ Crush run_mono(const model::Model& m) {
 Crush run_multi(const model::Model& m) {
   Crush c;
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   o.step_safety = 0.9;
   cosim::LayerNetwork net(m, o);
   net.initialize();

@@ -80,7 +80,7 @@ Reference reference(const model::Model& m, const cosim::LayerNetworkOptions& o) 
     r.coupling_work_J.push_back(net.solver(k).energy().coupling_work_J);
     r.cycles_of.push_back(net.solver(k).cycle());
   }
-  if (o.common_step && !o.variable_steps) {
+  if (o.run.common_step && !o.run.variable_steps) {
     integration::Solver mono(m, "mono");
     const double h = net.seconds(net.plan().step[0]);
     mono.initialize();
@@ -233,7 +233,7 @@ void split_case(Scheme scheme, const std::string& label, const std::string& yaml
 
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;
-  o.common_step = true;
+  o.run.common_step = true;
   o.step_safety = 0.9;
   const Reference ref = reference(m, o);
   double worst_net = 0.0, worst_mono = 0.0;
@@ -296,7 +296,7 @@ static void multi_bar_case(Scheme scheme, bool lanes) {
 
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;
-  o.common_step = false;
+  o.run.common_step = false;
   o.proposal_s = {1e-6, 2e-6};  // solver order = domain order: fine, coarse
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 2u);
@@ -337,7 +337,7 @@ static void multi_bar_variable_case(Scheme scheme, bool lanes) {
   ASSERT_EQ(code, 0) << log;
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   const Reference ref = reference(m, o);
   expect_network_bits(out, m, ref, {"fine", "coarse"});
   const auto [link_work, owner_work] = interface_history(out, m, ref);
@@ -384,8 +384,8 @@ static void chain_case(Scheme scheme, bool variable, bool split = false) {
   ASSERT_EQ(code, 0) << log;
   const auto m = io::read_scenario(scenario);
   cosim::LayerNetworkOptions o;
-  o.variable_steps = variable;
-  o.common_step = split;
+  o.run.variable_steps = variable;
+  o.run.common_step = split;
   o.step_safety = 0.8;
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.cycles_of.size(), 3u);
@@ -437,7 +437,7 @@ INSTANTIATE_TEST_SUITE_P(Transports, LayerProcesses,
 TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged) {
   const auto m = io::parse_scenario(bar_yaml(1.0e-3), "bar.yaml");
   cosim::LayerNetworkOptions o;
-  o.common_step = false;
+  o.run.common_step = false;
   o.proposal_s = {1e-6, 2e-6};
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 2u);
@@ -457,7 +457,7 @@ TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged)
       if (p.fine_side) p.partner_step = ref.steps[coarse];
     }
     st.push_back(std::make_unique<cosim::LayerStepper>(*d.solvers[k], std::move(ports[k]),
-                                                       ref.steps[k], o.ticks_per_second));
+                                                       ref.steps[k], o.run.ticks_per_second));
   }
   std::int64_t early_displacements = 0, early_forces = 0, offers = 0;
   auto route = [&](std::size_t from) {

@@ -34,7 +34,7 @@ model::Model pulsed_chain() {
 
 cosim::LayerNetworkOptions variable() {
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   o.step_safety = 0.9;
   return o;
 }
@@ -96,7 +96,7 @@ TEST(LayerVariableCheckpoint, TheChainPausesTogetherAtTheLeadersFirstInstantAfte
       for (const auto& n : names) domains.push_back({n, {part.at(n)}});
       const auto m = pulsed_chain3(domains, 2e-3, 2e-4, -1e5);
       auto o = variable();
-      o.common_step = split;
+      o.run.common_step = split;
       cosim::LayerNetwork net(m, o);
       net.initialize();
       const std::size_t leader = index_of(net, "coarse");
@@ -160,7 +160,7 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
   other.step_safety = 0.8;
   expect_restore_refused(m, other, paths, "step safety of 0.9");
   auto split = variable();  // nor a split run
-  split.common_step = true;
+  split.run.common_step = true;
   expect_restore_refused(m, split, paths, "restart with --mode multi");
   cosim::LayerNetwork resumed(m, variable());
   resumed.restore(paths);

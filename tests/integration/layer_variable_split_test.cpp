@@ -21,8 +21,8 @@ using namespace crashlink::testing;
 TEST(LayerVariableSplit, ChainFollowsTheLeastProposalOfAllAsMonoDoes) {
   const auto m = pulsed_chain3({{"coarse", {0}}, {"mid", {1}}, {"fine", {2}}}, 1.5e-3, 1e-4, -4e7);
   cosim::LayerNetworkOptions o;
-  o.common_step = true;
-  o.variable_steps = true;
+  o.run.common_step = true;
+  o.run.variable_steps = true;
   cosim::LayerNetwork net(m, o);
   net.initialize();
   std::set<cosim::Tick> steps;

@@ -94,7 +94,7 @@ VariableRun variable_vs_mono(const model::Model& m, double fixed_safety = 0.0) {
     if (std::abs(m.nodes.x0[3 * g] - 1.0) < 1e-9) gi = g;
   const History mono = mono_history(m, gi);  // mono at its own steps
   cosim::LayerNetworkOptions o;
-  o.variable_steps = fixed_safety == 0.0;
+  o.run.variable_steps = fixed_safety == 0.0;
   if (fixed_safety > 0.0) o.step_safety = fixed_safety;
   cosim::LayerNetwork net(m, o);
   net.initialize();
@@ -210,7 +210,7 @@ TEST(LayerVariableSteps, FollowsAStableStepThatFallsWhereFixedStepsStop) {
   }
   {
     cosim::LayerNetworkOptions o;
-    o.variable_steps = true;
+    o.run.variable_steps = true;
     cosim::LayerNetwork net(m, o);
     net.initialize();
     EXPECT_TRUE(net.run());
@@ -225,7 +225,7 @@ TEST(LayerVariableSteps, ThreeDomainChainRuns) {
   const std::size_t gi = static_cast<std::size_t>(m.loads.back().nodes.front());
   const History mono = mono_history(m, gi);
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   cosim::LayerNetwork net(m, o);
   net.initialize();
   const auto& d = net.domains();
@@ -254,7 +254,7 @@ TEST(LayerVariableSteps, ThreeDomainChainRuns) {
 TEST(LayerVariableSteps, RefusesADomainWithTwoCoarserPartners) {
   const auto m = quadrants3();
   cosim::LayerNetworkOptions o;
-  o.variable_steps = true;
+  o.run.variable_steps = true;
   cosim::LayerNetwork net(m, o);
   try {
     net.initialize();
@@ -276,7 +276,7 @@ TEST(LayerVariableSteps, LeadersKeepTheStepSafetyOfTheirProposal) {
   const double safety[2] = {1.0, 0.8};
   for (int c = 0; c < 2; ++c) {
     cosim::LayerNetworkOptions o;
-    o.variable_steps = true;
+    o.run.variable_steps = true;
     o.step_safety = safety[c];
     cosim::LayerNetwork net(m, o);
     net.initialize();

@@ -21,7 +21,7 @@ struct NetworkVsMono {
 /// that step for `cycles` steps (cycles <= 0: as many as fit in the end time, less one).
 inline NetworkVsMono network_vs_mono(const model::Model& global, int cycles) {
   cosim::LayerNetworkOptions o;
-  o.common_step = true;
+  o.run.common_step = true;
   o.step_safety = 0.9;  // a fixed step: margin for the step's shrinking under load
   cosim::LayerNetwork net(global, o);
   net.initialize();

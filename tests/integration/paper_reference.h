@@ -22,7 +22,7 @@ inline std::unique_ptr<cosim::PaperRunner> reference(const model::Model& m, doub
                                                      std::int64_t coarse_steps,
                                                      std::string& stopped, bool drift = true) {
   cosim::PaperOptions o;
-  o.drift = drift ? coupling::paper::Drift::on : coupling::paper::Drift::off;
+  o.run.drift = drift;
   o.fine_dt_s = h;
   o.coarse_dt_s = H;
   auto r = std::make_unique<cosim::PaperRunner>(m, o);

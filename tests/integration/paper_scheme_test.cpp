@@ -263,7 +263,7 @@ Accuracy pulse_vs_mono(int r, coupling::paper::Drift drift = coupling::paper::Dr
   const auto& b = pc.b;
   const double unit = pc.unit, v0 = pc.v0;
   auto o = ratio(r);
-  o.drift = drift;
+  o.run.drift = drift == coupling::paper::Drift::on;
   cosim::PaperRunner pr(m, o);
   integration::Solver mono(m, "mono");
   pr.initialize();
@@ -563,7 +563,7 @@ ContactRun bars_contact(int r, coupling::paper::Drift drift, double t_end_over_c
   m.contacts.push_back(c);
   m.domains = {{"coarse", {0}}, {"fine", {1}}};
   auto o = ratio(r);
-  o.drift = drift;
+  o.run.drift = drift == coupling::paper::Drift::on;
   cosim::PaperRunner pr(m, o);
   integration::Solver mono(m, "mono");
   pr.initialize();
