@@ -174,16 +174,7 @@ void exchange_initial_forces(LayerDomains& dm) {
 
 integration::EnergyAccount sum_energies(const LayerDomains& d, double reference) {
   integration::EnergyAccount e;
-  for (const auto& s : d.solvers) {
-    const auto& x = s->energy();
-    e.kinetic_J += x.kinetic_J;
-    e.internal_J += x.internal_J;
-    e.hourglass_J += x.hourglass_J;
-    e.contact_J += x.contact_J;
-    e.external_work_J += x.external_work_J;
-    e.coupling_work_J += x.coupling_work_J;
-    e.initial_total_J += x.initial_total_J;
-  }
+  for (const auto& s : d.solvers) e.add_terms(s->energy());
   e.reference_J = reference;
   e.update_reference();
   return e;

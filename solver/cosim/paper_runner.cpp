@@ -228,16 +228,7 @@ void PaperRunner::correct(int side, const std::vector<double>& a_link,
 void PaperRunner::sample_energy() {
   // Both domains at T after begin_cycle(): their accounts are complete (solver.h).
   integration::EnergyAccount e;
-  for (const auto& s : solvers_) {
-    const auto& x = s->energy();
-    e.kinetic_J += x.kinetic_J;
-    e.internal_J += x.internal_J;
-    e.hourglass_J += x.hourglass_J;
-    e.contact_J += x.contact_J;
-    e.external_work_J += x.external_work_J;
-    e.coupling_work_J += x.coupling_work_J;
-    e.initial_total_J += x.initial_total_J;
-  }
+  for (const auto& s : solvers_) e.add_terms(s->energy());
   // Kinetic energy of the coupled nodes counted twice (M in both domains): drop the REFERENCE
   // side's, in the Solver's product form 1/2 M v^{n-1/2} . v^{n+1/2}. The non-reference presence
   // (fine side of a link, a copy) is the one [11] acts on: keeping its kinetic energy keeps an

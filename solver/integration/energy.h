@@ -33,6 +33,16 @@ struct EnergyAccount {
   }
   /// balance_J / reference_J (0 while nothing has energy yet).
   double balance_error() const { return reference_J > 0.0 ? balance_J() / reference_J : 0.0; }
+  /// Adds another domain's terms (not reference_J: the sum's own is taken afterwards).
+  void add_terms(const EnergyAccount& x) {
+    kinetic_J += x.kinetic_J;
+    internal_J += x.internal_J;
+    hourglass_J += x.hourglass_J;
+    contact_J += x.contact_J;
+    external_work_J += x.external_work_J;
+    coupling_work_J += x.coupling_work_J;
+    initial_total_J += x.initial_total_J;
+  }
   void update_reference() {
     reference_J = std::max({reference_J, std::abs(kinetic_J), std::abs(internal_J),
                             std::abs(initial_total_J + external_work_J), std::abs(external_work_J),
