@@ -36,12 +36,13 @@ std::vector<std::string> Admission::lane_endpoints() const {
   return lanes;
 }
 
-void Admission::run(const std::function<void()>& each_poll) {
+void Admission::run(const std::function<void()>& before_poll,
+                    const std::function<void()>& after_poll) {
   const auto& names = scheme_.cut().names;
   const auto deadline = Clock::now() + o_.join_timeout;
   std::size_t count = 0;
   while (count < names.size()) {
-    each_poll();
+    before_poll();
     const auto now = Clock::now();
     if (now >= deadline) {
       std::vector<std::string> absent, silent;
@@ -54,6 +55,7 @@ void Admission::run(const std::function<void()>& each_poll) {
     auto in = link_.poll(std::min<std::chrono::milliseconds>(
         100ms, std::chrono::ceil<std::chrono::milliseconds>(deadline - now)));
     drop_silent_unregistered();
+    after_poll();
     link_.check_alive();
     if (!in) continue;
     const int k = index_of(in->domain);

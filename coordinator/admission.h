@@ -1,6 +1,7 @@
 #pragma once
-// The coordinator's first phase (docs/processes.md "Handshake"): every domain of the cut joins and
-// registers within the join timeout, each Register checked by the scheme, its session then sealed.
+// The coordinator's first phase (docs/processes.md "The session"): every domain of the cut joins
+// and registers within the join timeout, each Register checked by the scheme, its session then
+// sealed.
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,10 +19,12 @@ class Admission {
   Admission(const CoordinatorOptions& o, const CoordinatorScheme& scheme,
             transport::CoordinatorLink& link);
 
-  /// Polls until every domain has registered; `each_poll` runs before every poll (the stop
-  /// request, the link's notices). Throws StopRun: the join timeout (naming the absent and the
-  /// silent domains), a Register the scheme refuses (exit 2), an Error, or any other message.
-  void run(const std::function<void()>& each_poll);
+  /// Polls until every domain has registered. `before_poll` runs first in every round (the stop
+  /// request), `after_poll` once the silent are dropped and before the message is handled (the
+  /// link's notices, logged before anything can throw). Throws StopRun: the join timeout (naming
+  /// the absent and the silent domains), a Register the scheme refuses (exit 2), an Error, or
+  /// any other message.
+  void run(const std::function<void()>& before_poll, const std::function<void()>& after_poll);
 
   /// Cut order; complete once run() returned.
   const std::vector<wire::Register>& registers() const { return regs_; }

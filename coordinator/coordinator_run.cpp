@@ -183,10 +183,7 @@ class Coordinator final : private CoordinatorPort {
   /// Every domain joins and registers (admission.h); then the Setups.
   void admit() {
     admission_ = std::make_unique<Admission>(o_, *scheme_, *link_);
-    admission_->run([this] {
-      check_stop_requested();
-      log_notices();
-    });
+    admission_->run([this] { check_stop_requested(); }, [this] { log_notices(); });
     wire::Options options;
     options.set_heartbeat_interval_ms(
         static_cast<std::uint32_t>(o_.session.heartbeat_interval.count()));

@@ -67,7 +67,8 @@ class CoordinatorScheme {
   virtual coupling::Tick reached(int k) const = 0;
   /// Domain k's planned step, ticks (0 before start()).
   virtual coupling::Tick step(int k) const = 0;
-  /// The scheme's figures in the result (routed vectors, lanes, reports, checkpoints).
+  /// The scheme's figures in the result (routed vectors, lanes, reports; the coordinator fills
+  /// the checkpoints' own).
   virtual void fill_result(CoordinatorResult& r) const = 0;
   /// The CPU time of the runs before the checkpoint resumed from, s.
   virtual double cpu_before() const = 0;

@@ -3,10 +3,10 @@
 // cut (layer_cut.h), the fixed steps (split: common, multi: nested) or the first of variable
 // ones, the lanes when every daemon offered one (docs/processes.md "Lanes"), the routing of
 // LayerDisplacement / LayerForce through the coordinator otherwise (coupling/layer_router.h),
-// the interface history rows of the fine sides' LayerReports, and the coordinator's checkpoints
-// (coordinator_checkpoints.h), behind CoordinatorScheme.
+// the interface history rows of the fine sides' LayerReports, and when the coordinator's
+// checkpoints (coordinator_checkpoints.h, the coordinator's) may be written, behind
+// CoordinatorScheme.
 #include <memory>
-#include <string>
 
 #include "coordinator/coordinator_scheme.h"
 #include "solver/model/model.h"

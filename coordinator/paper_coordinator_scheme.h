@@ -5,7 +5,6 @@
 // the history; its guard stops the run as "the coupling went unstable". No checkpoints, no
 // restart, no lanes, behind CoordinatorScheme.
 #include <memory>
-#include <string>
 
 #include "coordinator/coordinator_scheme.h"
 #include "solver/model/model.h"

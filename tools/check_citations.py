@@ -3,7 +3,7 @@
 
 In every tracked source, script and document:
   - `docs/<name>.md` names a file that exists;
-  - `docs/<name>.md "Section"` names a heading of that file that contains Section;
+  - `docs/<name>.md "Section"` names a heading of that file that contains Section as whole words;
   - `docs/design.md §N` / `§N.M` names a numbered section of docs/design.md;
   - the design card's old names (`DESIGN.md`, `DESIGN §`) are not cited: the design in the
     repository is docs/design.md (`../shared/DESIGN.md`, its history, may be named as such).
@@ -68,7 +68,10 @@ def main():
                     continue
                 if title:
                     hs = cache.setdefault(path, headings(path))
-                    if not any(title.lower() in h for h in hs):
+                    # the title as whole words of a heading ("Lanes" names "Lanes: the layer
+                    # vectors daemon to daemon"; "Handshake" does not name "... handshakes ...")
+                    word = re.compile(r"(?<!\w)" + re.escape(title.lower()) + r"(?!\w)")
+                    if not any(word.search(h) for h in hs):
                         bad.append(f"{rel}:{n}: docs/{name} has no heading \"{title}\"")
             for m in SECTION.finditer(line):
                 if m.group(1) not in sections:

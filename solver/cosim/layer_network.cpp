@@ -20,6 +20,9 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
                      std::to_string(options_.step_safety));
   if (options_.run.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
+  if (options_.run.scheme != "layer")
+    throw ModelError("layer network: it runs `layer`, not '" + options_.run.scheme +
+                     "' (cosim::PaperRunner runs `paper` in process)");
   if (options_.run.variable_steps && !options_.proposal_s.empty())
     throw ModelError(
         "layer network: variable steps follow the solvers' own proposals (no proposal_s)");

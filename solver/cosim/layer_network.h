@@ -32,6 +32,8 @@ struct LayerNetworkOptions {
   /// follows its own step proposal with variable_steps (layer_stepper.h "Steps"; multi: the
   /// leaders take step_safety of theirs, LayerStepper::set_proposal_limits; split: all the least
   /// proposal of all at every instant); proposal_s must then stay empty and plan() is not used.
+  /// scheme must be "layer" (ModelError otherwise); checkpoints are the caller's
+  /// (save_state/restore_state), lanes and restart the processes' (not read).
   coupling::CouplingConfig run{.scheme = "layer", .common_step = false};
   /// Margin on the initial stable steps (they shrink as the mesh deforms and bulk viscosity acts;
   /// a fixed step above a later proposal makes Solver::impose_step throw).

@@ -60,7 +60,7 @@ bool LayerStepper::forces_wait_for_holders() const {
 }
 
 Tick LayerStepper::choose_step() const {
-  if (common_) {  // split: the least proposal of all (header, "Variable common")
+  if (common_) {  // split: the least proposal of all (LayerSteps, layer_stepper.h)
     const Tick H = subtree_proposal();
     if (H == 0)
       throw ModelError("layer stepper '" + solver_.domain_name() +
@@ -68,8 +68,8 @@ Tick LayerStepper::choose_step() const {
                        "only?); set controls.dt_max");
     return H;
   }
-  // A leader's next step (header, "Steps"; coupling/step_policy.h): the holders' proposals come
-  // with g_A(t), one per partner.
+  // A leader's next step (LayerSteps, layer_stepper.h; coupling/step_policy.h): the holders'
+  // proposals come with g_A(t), one per partner.
   std::vector<coupling::HolderProposal> holders;
   std::vector<std::string> seen;
   for (std::size_t p = 0; p < ports_.size(); ++p) {

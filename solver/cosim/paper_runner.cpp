@@ -47,6 +47,12 @@ PaperRunner::PaperRunner(const model::Model& global, PaperOptions options)
     if (itf.fine != domain_[0] || itf.coarse != domain_[1])
       throw ModelError("paper: the interfaces disagree on which domain is the fine one");
   if (options_.run.ticks_per_second < 1) throw ModelError("paper: ticks_per_second must be >= 1");
+  if (options_.run.scheme != "paper" || options_.run.variable_steps)
+    throw ModelError("paper: this runner runs `paper` at fixed steps (run.scheme '" +
+                     options_.run.scheme + "', run.variable_steps " +
+                     (options_.run.variable_steps ? "true" : "false") +
+                     "); variable steps run over processes (crashlink run --coupling paper "
+                     "--variable-steps)");
 
   const std::size_t ng = global.nodes.count();
   std::vector<double> partial_mass[2], partial_inertia[2];  // (the inertia: scratch)

@@ -43,7 +43,9 @@ struct PaperOptions {
   /// (coupling/coupling_config.h), of which the runner reads drift ([11] on the non-reference
   /// side every step, the paper; off: the study's S2), guard_rise (stop when the coupled energy
   /// rises this fraction of the peak energy above its running minimum; 0 or negative: no energy
-  /// check, the non-finite check always runs) and ticks_per_second. Two domains, fixed steps.
+  /// check, the non-finite check always runs) and ticks_per_second; scheme must be "paper" and
+  /// variable_steps false (ModelError otherwise). Checkpoints, restart and lanes are the
+  /// processes' (not read). Two domains, fixed steps.
   coupling::CouplingConfig run{.scheme = "paper", .common_step = false};
 };
 

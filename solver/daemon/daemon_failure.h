@@ -5,13 +5,14 @@
 #include <memory>
 #include <string>
 
+#include "core/exit_codes.h"
 #include "proto/crashlink.pb.h"
 #include "transport/daemon_link.h"
 
 namespace crashlink::daemon {
 
 struct DaemonFailure {
-  int exit_code = 0;
+  int exit_code = kExitInternal;
   wire::ErrorCode code = wire::ERROR_CODE_INTERNAL;
   bool tell_coordinator = true;  ///< false when the coordinator is the one who stopped us
   std::string text;              ///< "<where>: <what>"

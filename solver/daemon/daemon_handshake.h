@@ -1,6 +1,6 @@
 #pragma once
-// What a daemon says and checks between its Hello and its run (docs/processes.md "Handshake"): the
-// Register it sends, and the check that the coordinator's Setup is for the same scheme.
+// What a daemon says and checks between its Hello and its run (docs/processes.md "The session"):
+// the Register it sends, and the check that the coordinator's Setup is for the same scheme.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/errors.h"
 #include "solver/integration/solver.h"
 #include "tests/unit/partition/partition_models.h"
 
@@ -248,6 +249,19 @@ TEST(LayerNetwork, AChainEndsTogetherWhateverTheEndTime) {
     EXPECT_LT(net.seconds(t - net.plan().base), end) << "end " << end;
     for (std::size_t k = 1; k < net.size(); ++k)
       EXPECT_EQ(net.stepper(k).time(), t) << "end " << end << ", domain " << k;
+  }
+}
+
+// The run's configuration names the scheme: a network asked to run another one refuses.
+TEST(LayerNetwork, RefusesAConfigurationForAnotherScheme) {
+  const auto m = chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}});
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "paper";
+  try {
+    cosim::LayerNetwork net(m, o);
+    FAIL() << "a `paper` configuration ran as `layer`";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("not 'paper'"), std::string::npos) << e.what();
   }
 }
 

@@ -162,6 +162,28 @@ TEST(PaperScheme, InitialVelocitiesNextToCoupledNodesKeepTheBalance) {
 }
 
 // (a) r = 1: the two domains at the same step; [8] at every step, [11] sees no gap.
+// The in-process runner is `paper` at fixed steps: a configuration for another scheme or with
+// variable steps is refused, not silently run otherwise.
+TEST(PaperScheme, RunnerRefusesWhatItDoesNotRun) {
+  Bar b;
+  b.r = 2.0;
+  const auto m = paper_bar(b);
+  for (const bool variable : {false, true}) {
+    auto o = ratio(2);
+    if (variable)
+      o.run.variable_steps = true;
+    else
+      o.run.scheme = "layer";
+    try {
+      cosim::PaperRunner pr(m, o);
+      FAIL() << (variable ? "variable steps" : "a `layer` configuration") << " ran";
+    } catch (const ModelError& e) {
+      EXPECT_NE(std::string(e.what()).find("runs `paper` at fixed steps"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(PaperScheme, RatioOneReproducesMono) {
   Bar b;
   b.r = 1.0;
