@@ -1,0 +1,300 @@
+#include "studies/stable_step_survey.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/errors.h"
+#include "solver/elements/hex8.h"
+#include "solver/elements/hex8_state.h"
+#include "solver/elements/shell_bt.h"
+#include "solver/model/mesh_generators.h"
+
+namespace crashlink::studies {
+
+namespace {
+
+using Eigen::Index;
+
+materials::Material steel() {
+  return {"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}};
+}
+
+/// Deterministic value in [-1, 1] for key k (splitmix64, as the plate generator's).
+double unit_noise(std::uint64_t k) {
+  k += 0x9E3779B97F4A7C15ULL;
+  k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  k = (k ^ (k >> 27)) * 0x94D049BB133111EBULL;
+  k ^= k >> 31;
+  return 2.0 * static_cast<double>(k >> 11) / static_cast<double>(1ULL << 53) - 1.0;
+}
+
+/// The linearised patch: K [dofs x dofs] (symmetrised), the lumped masses per dof, and the
+/// kernel's own estimate of the step.
+struct Linear {
+  Eigen::MatrixXd K;
+  std::vector<double> mass;  ///< [dofs] kg, or kg m^2 for the rotations of shells
+  int per_node = 3;
+  double dt_kernel_s = 0.0;
+};
+
+/// Shells: column j of K = (f, m) after one step of dt = 1e-9 s with a unit rate on dof j,
+/// divided by dt (exact for the kernel's linear rate form up to the O(dt) thickness change).
+Linear linearise_shell(const model::Part& part, const materials::Material& mat,
+                       const std::vector<double>& x) {
+  const std::size_t n = x.size() / 3, nd = 6 * n;
+  Linear L;
+  L.per_node = 6;
+  L.K = Eigen::MatrixXd::Zero(static_cast<Index>(nd), static_cast<Index>(nd));
+  std::vector<double> mass(n, 0.0), inertia(n, 0.0);
+  elements::shell_lumped_mass(part, mat, x.data(), mass.data(), inertia.data());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 6; ++c) L.mass.push_back(c < 3 ? mass[i] : inertia[i]);
+  const double dt = 1e-9;
+  elements::StepInfo step;
+  step.dt_s = dt;
+  step.bulk_viscosity = false;
+  std::vector<double> v(3 * n), w(3 * n), f(3 * n), mo(3 * n);
+  for (std::size_t j = 0; j < nd; ++j) {
+    auto st = elements::make_shell_state(part);
+    std::fill(v.begin(), v.end(), 0.0);
+    std::fill(w.begin(), w.end(), 0.0);
+    std::fill(f.begin(), f.end(), 0.0);
+    std::fill(mo.begin(), mo.end(), 0.0);
+    (j % 6 < 3 ? v : w)[3 * (j / 6) + j % 3] = 1.0;
+    const elements::NodalView nv{x.data(), v.data(), w.data(), f.data(), mo.data()};
+    L.dt_kernel_s = elements::shell_internal_forces(part, mat, st, nv, step).dt_stable_s;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < 3; ++k) {
+        L.K(static_cast<Index>(6 * i + k), static_cast<Index>(j)) = f[3 * i + k] / dt;
+        L.K(static_cast<Index>(6 * i + 3 + k), static_cast<Index>(j)) = mo[3 * i + k] / dt;
+      }
+  }
+  return L;
+}
+
+/// Hexahedra: the reference recorded at x0 (dt = 0), then one step of dt = 1e-9 s moving dof j
+/// by dt * vel with vel the patch size: column j = f / (dt vel).
+Linear linearise_hex(const model::Part& part, const materials::Material& mat,
+                     const std::vector<double>& x0) {
+  const std::size_t n = x0.size() / 3, nd = 3 * n;
+  Linear L;
+  L.per_node = 3;
+  L.K = Eigen::MatrixXd::Zero(static_cast<Index>(nd), static_cast<Index>(nd));
+  std::vector<double> mass(n, 0.0);
+  elements::hex8_lumped_mass(part, mat, x0.data(), mass.data());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) L.mass.push_back(mass[i]);
+  double size = 0.0;
+  for (const double c : x0) size = std::max(size, std::abs(c));
+  const double dt = 1e-9, vel = size;
+  std::vector<double> v(nd), f(nd), x(nd);
+  for (std::size_t j = 0; j < nd; ++j) {
+    auto st = elements::make_hex8_state(part);
+    elements::StepInfo step;
+    step.bulk_viscosity = false;
+    std::fill(v.begin(), v.end(), 0.0);
+    std::fill(f.begin(), f.end(), 0.0);
+    L.dt_kernel_s = elements::hex8_internal_forces(
+                        part, mat, st, {x0.data(), v.data(), nullptr, f.data(), nullptr}, step)
+                        .dt_stable_s;
+    v[j] = vel;
+    x = x0;
+    x[j] += dt * vel;
+    std::fill(f.begin(), f.end(), 0.0);
+    step.dt_s = dt;
+    elements::hex8_internal_forces(part, mat, st, {x.data(), v.data(), nullptr, f.data(), nullptr},
+                                   step);
+    for (std::size_t i = 0; i < nd; ++i)
+      L.K(static_cast<Index>(i), static_cast<Index>(j)) = f[i] / (dt * vel);
+  }
+  return L;
+}
+
+Linear linearise(const model::Part& part, const materials::Material& mat,
+                 const std::vector<double>& x) {
+  return part.kind == model::ElementKind::Hex8 ? linearise_hex(part, mat, x)
+                                               : linearise_shell(part, mat, x);
+}
+
+/// 2 / omega_max over the dofs of the nodes not held: omega_max^2 = the largest eigenvalue of
+/// M^-1/2 K_s M^-1/2, K_s = (K + K^T) / 2.
+double critical_step(const Linear& L, const std::vector<bool>& held) {
+  std::vector<Index> keep;
+  for (std::size_t d = 0; d < L.mass.size(); ++d)
+    if (!held[d / static_cast<std::size_t>(L.per_node)]) keep.push_back(static_cast<Index>(d));
+  const auto m = static_cast<Index>(keep.size());
+  Eigen::MatrixXd A(m, m);
+  for (Index a = 0; a < m; ++a)
+    for (Index b = 0; b < m; ++b) {
+      const Index i = keep[static_cast<std::size_t>(a)], j = keep[static_cast<std::size_t>(b)];
+      A(a, b) =
+          0.5 * (L.K(i, j) + L.K(j, i)) /
+          std::sqrt(L.mass[static_cast<std::size_t>(i)] * L.mass[static_cast<std::size_t>(j)]);
+    }
+  const double w2 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
+                        .eigenvalues()
+                        .maxCoeff();
+  return 2.0 / std::sqrt(w2);
+}
+
+std::array<double, 3> point(const std::vector<double>& x, std::int32_t i) {
+  const auto k = 3 * static_cast<std::size_t>(i);
+  return {x[k], x[k + 1], x[k + 2]};
+}
+
+std::array<double, 3> minus(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+double norm(const std::array<double, 3>& a) {
+  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+
+/// Area of the (possibly warped) quadrilateral a b c d: |(c - a) x (d - b)| / 2.
+double quad_area(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                 const std::array<double, 3>& c, const std::array<double, 3>& d) {
+  const auto p = minus(c, a), q = minus(d, b);
+  const std::array<double, 3> r{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2],
+                                p[0] * q[1] - p[1] * q[0]};
+  return 0.5 * norm(r);
+}
+
+/// LS-DYNA's default estimate for element e (see PatchSteps::dt_lsdyna_s).
+double lsdyna_step(const model::Part& part, const materials::Material& mat,
+                   const std::vector<double>& x, std::size_t e) {
+  const double E = mat.youngs_modulus_Pa, nu = mat.poisson_ratio, rho = mat.density_kg_m3;
+  if (part.kind == model::ElementKind::Shell4) {
+    std::array<std::array<double, 3>, 4> p;
+    for (std::size_t a = 0; a < 4; ++a) p[a] = point(x, part.connectivity[4 * e + a]);
+    double side = 0.0;
+    for (std::size_t a = 0; a < 4; ++a) side = std::max(side, norm(minus(p[(a + 1) % 4], p[a])));
+    const double c = std::sqrt(E / (rho * (1.0 - nu * nu)));
+    return quad_area(p[0], p[1], p[2], p[3]) / side / c;
+  }
+  std::array<std::array<double, 3>, 8> p;
+  std::vector<double> xe;
+  model::Part one = part;
+  one.connectivity = {0, 1, 2, 3, 4, 5, 6, 7};
+  one.element_id = {part.element_id[e]};
+  for (std::size_t a = 0; a < 8; ++a) {
+    p[a] = point(x, part.connectivity[8 * e + a]);
+    xe.insert(xe.end(), p[a].begin(), p[a].end());
+  }
+  materials::Material unit = mat;
+  unit.density_kg_m3 = 1.0;
+  std::vector<double> vm(8, 0.0);
+  elements::hex8_lumped_mass(one, unit, xe.data(), vm.data());  // rho = 1: sum = volume
+  double volume = 0.0;
+  for (const double v : vm) volume += v;
+  constexpr std::array<std::array<int, 4>, 6> kFaces{
+      {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+  double face = 0.0;
+  for (const auto& f : kFaces)
+    face = std::max(
+        face, quad_area(p[static_cast<std::size_t>(f[0])], p[static_cast<std::size_t>(f[1])],
+                        p[static_cast<std::size_t>(f[2])], p[static_cast<std::size_t>(f[3])]));
+  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), mu = E / (2.0 * (1.0 + nu));
+  return volume / face / std::sqrt((lambda + 2.0 * mu) / rho);
+}
+
+/// The patch as one part and its coordinates; held[i] for the boundary nodes when clamped.
+struct Patch {
+  model::Part part;
+  std::vector<double> x;
+  std::vector<bool> boundary;
+};
+
+Patch build(const PatchShape& s) {
+  model::Model m;
+  model::Part part;
+  part.name = "patch";
+  part.material = 0;
+  const double dx = s.size_m * s.aspect, dy = s.size_m;
+  if (s.kind == PatchKind::Quad) {
+    part.thickness_m = s.thickness_m;
+    part.through_thickness_points = 3;
+    model::PlateMesh plate;
+    plate.edge1_m = {s.n * dx, 0.0, 0.0};
+    plate.edge2_m = {0.0, s.n * dy, 0.0};
+    plate.divisions = {s.n, s.n};
+    plate.distort = s.distort;
+    model::generate_plate(m, part, plate);
+  } else {
+    model::BoxMesh box;
+    box.size_m = {s.n * dx, s.n * dy, s.n * dy};
+    box.divisions = {s.n, s.n, s.n};
+    part.kind = model::ElementKind::Hex8;
+    model::generate_box(m, part, box);
+  }
+  Patch p;
+  p.part = m.parts.front();
+  p.x = m.nodes.x0;
+  const std::size_t nn = p.x.size() / 3;
+  const std::array<double, 3> extent{s.n * dx, s.n * dy, s.kind == PatchKind::Hex ? s.n * dy : 0.0};
+  const double tol = 1e-9 * s.size_m;
+  for (std::size_t i = 0; i < nn; ++i) {
+    bool edge = false;
+    for (std::size_t c = 0; c < (s.kind == PatchKind::Hex ? 3u : 2u); ++c)
+      edge = edge || std::abs(p.x[3 * i + c]) < tol || std::abs(p.x[3 * i + c] - extent[c]) < tol;
+    p.boundary.push_back(edge);
+  }
+  if (s.kind == PatchKind::Hex && s.distort > 0.0) {  // the plate generator distorts its own
+    const double a = s.distort * std::min(dx, dy);
+    for (std::size_t i = 0; i < nn; ++i)
+      if (!p.boundary[i])
+        for (std::size_t c = 0; c < 3; ++c) p.x[3 * i + c] += a * unit_noise(3 * i + c);
+  }
+  return p;
+}
+
+}  // namespace
+
+std::string describe(const PatchShape& s) {
+  const bool quad = s.kind == PatchKind::Quad;
+  return fmt::format("{} {}x{}{} aspect {:g} distort {:g} {}", quad ? "quad" : "hex", s.n, s.n,
+                     quad ? "" : fmt::format("x{}", s.n), s.aspect, s.distort,
+                     s.clamped ? "clamped" : "free");
+}
+
+PatchSteps survey_patch(const PatchShape& s) {
+  if (s.n < 1 || !(s.aspect >= 1.0) || !(s.distort >= 0.0 && s.distort <= 0.4) || !(s.size_m > 0.0))
+    throw ModelError(
+        fmt::format("stable-step survey: {} is out of range (n >= 1, aspect >= 1, "
+                    "distort in [0, 0.4], size > 0)",
+                    describe(s)));
+  const auto mat = steel();
+  const Patch p = build(s);
+  const std::size_t per = s.kind == PatchKind::Quad ? 4 : 8;
+  const std::size_t ne = p.part.connectivity.size() / per;
+  PatchSteps out;
+  out.elements = static_cast<int>(ne);
+  const Linear whole = linearise(p.part, mat, p.x);
+  out.dt_kernel_s = whole.dt_kernel_s;
+  std::vector<bool> held = p.boundary;
+  if (!s.clamped) std::fill(held.begin(), held.end(), false);
+  out.dt_patch_s = critical_step(whole, held);
+  out.dt_element_s = out.dt_lsdyna_s = 1e300;
+  for (std::size_t e = 0; e < ne; ++e) {
+    model::Part one = p.part;
+    one.connectivity.clear();
+    std::vector<double> xe;
+    for (std::size_t a = 0; a < per; ++a) {
+      one.connectivity.push_back(static_cast<std::int32_t>(a));
+      const auto q = point(p.x, p.part.connectivity[per * e + a]);
+      xe.insert(xe.end(), q.begin(), q.end());
+    }
+    one.element_id = {p.part.element_id[e]};
+    const Linear el = linearise(one, mat, xe);
+    out.dt_element_s = std::min(out.dt_element_s, critical_step(el, std::vector<bool>(per, false)));
+    out.dt_lsdyna_s = std::min(out.dt_lsdyna_s, lsdyna_step(p.part, mat, p.x, e));
+  }
+  return out;
+}
+
+}  // namespace crashlink::studies

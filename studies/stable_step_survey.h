@@ -1,0 +1,46 @@
+#pragma once
+// How close an element's stable-step estimate comes to the step the mesh really allows: a patch
+// of n x n quads (Belytschko-Tsay shells) or n x n x n hexahedra at a given aspect ratio and
+// distortion, free or with its boundary nodes held, and per patch the kernel's own estimate
+// against 2/omega_max of the patch, where omega_max^2 is the largest eigenvalue of M^-1 K (K
+// assembled column by column from the force kernels themselves, M lumped as in a run). Beside
+// them two other element-local estimates: each element's own 2/omega_max,e (the element alone,
+// its own lumped mass: a lower bound of the patch's step by Irons' theorem, omega_max <=
+// max_e omega_max,e) and LS-DYNA's default lengths. Used by bench_stable_step
+// (docs/elements.md "Stable step survey").
+#include <string>
+
+namespace crashlink::studies {
+
+enum class PatchKind { Quad, Hex };
+
+struct PatchShape {
+  PatchKind kind = PatchKind::Quad;
+  int n = 5;                    ///< elements per edge
+  double size_m = 5e-3;         ///< element edge along y (and z) [m]
+  double aspect = 1.0;          ///< edge along x over edge along y (>= 1)
+  double distort = 0.0;         ///< interior nodes moved by up to this fraction of the smaller edge
+  bool clamped = false;         ///< every dof of the boundary nodes held
+  double thickness_m = 1.5e-3;  ///< quads
+};
+
+struct PatchSteps {
+  int elements = 0;
+  double dt_kernel_s = 0.0;   ///< min over elements of the kernel's estimate (KernelResult)
+  double dt_patch_s = 0.0;    ///< 2 / omega_max of the patch
+  double dt_element_s = 0.0;  ///< min over elements of the element's own 2 / omega_max,e
+  /// LS-DYNA's default: shells L = A / longest side, c = sqrt(E / (rho (1 - nu^2)));
+  /// solids L = V / largest face area, c = sqrt((lambda + 2 mu) / rho). dt = L / c, min over
+  /// elements.
+  double dt_lsdyna_s = 0.0;
+};
+
+/// Steel (7850 kg/m^3, 210 GPa, nu 0.3), elastic, bulk viscosity off (a damping, not part of K),
+/// default hourglass control. Throws ModelError for a shape out of range (n < 1, aspect < 1,
+/// distort outside [0, 0.4]).
+PatchSteps survey_patch(const PatchShape& shape);
+
+/// "quad 5x5 aspect 2 distort 0.2 free" and the like.
+std::string describe(const PatchShape& shape);
+
+}  // namespace crashlink::studies
