@@ -122,9 +122,9 @@ Linear linearise(const model::Part& part, const materials::Material& mat,
                                                : linearise_shell(part, mat, x);
 }
 
-/// 2 / omega_max over the dofs of the nodes not held: omega_max^2 = the largest eigenvalue of
-/// M^-1/2 K_s M^-1/2, K_s = (K + K^T) / 2.
-double critical_step(const Linear& L, const std::vector<bool>& held) {
+/// A = M^-1/2 K_s M^-1/2 over the dofs of the nodes not held, K_s = (K + K^T) / 2: its largest
+/// eigenvalue is omega_max^2.
+Eigen::MatrixXd scaled_operator(const Linear& L, const std::vector<bool>& held) {
   std::vector<Index> keep;
   for (std::size_t d = 0; d < L.mass.size(); ++d)
     if (!held[d / static_cast<std::size_t>(L.per_node)]) keep.push_back(static_cast<Index>(d));
@@ -137,10 +137,36 @@ double critical_step(const Linear& L, const std::vector<bool>& held) {
           0.5 * (L.K(i, j) + L.K(j, i)) /
           std::sqrt(L.mass[static_cast<std::size_t>(i)] * L.mass[static_cast<std::size_t>(j)]);
     }
+  return A;
+}
+
+/// 2 / omega_max over the dofs of the nodes not held.
+double critical_step(const Linear& L, const std::vector<bool>& held) {
+  const Eigen::MatrixXd A = scaled_operator(L, held);
   const double w2 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
                         .eigenvalues()
                         .maxCoeff();
   return 2.0 / std::sqrt(w2);
+}
+
+/// The power iteration's estimates of the step: after k iterations from a fixed pseudo-random
+/// start y_0, the Rayleigh quotient rho_k = y_k^T A y_k / y_k^T y_k (y_k = A^k y_0) never exceeds
+/// omega_max^2 (Courant-Fischer), so 2 / sqrt(rho_k) is at or ABOVE the critical step and falls
+/// towards it; entry i of the result is that ratio to 2 / omega_max after kPowerIterations[i].
+std::array<double, kPowerEstimates> power_ratios(const Eigen::MatrixXd& A, double dt_critical_s) {
+  Eigen::VectorXd y(A.rows());
+  for (Index i = 0; i < A.rows(); ++i) y(i) = unit_noise(static_cast<std::uint64_t>(i) + 7919);
+  std::array<double, kPowerEstimates> out{};
+  int done = 0;
+  for (std::size_t e = 0; e < kPowerEstimates; ++e) {
+    for (; done < kPowerIterations[e]; ++done) {
+      y = A * y;
+      y /= y.norm();
+    }
+    const double rho = y.dot(A * y) / y.squaredNorm();
+    out[e] = 2.0 / std::sqrt(rho) / dt_critical_s;
+  }
+  return out;
 }
 
 std::array<double, 3> point(const std::vector<double>& x, std::int32_t i) {
@@ -279,6 +305,7 @@ PatchSteps survey_patch(const PatchShape& s) {
   std::vector<bool> held = p.boundary;
   if (!s.clamped) std::fill(held.begin(), held.end(), false);
   out.dt_patch_s = critical_step(whole, held);
+  out.power_ratio = power_ratios(scaled_operator(whole, held), out.dt_patch_s);
   out.dt_element_s = out.dt_lsdyna_s = 1e300;
   for (std::size_t e = 0; e < ne; ++e) {
     model::Part one = p.part;

@@ -8,6 +8,8 @@
 // its own lumped mass: a lower bound of the patch's step by Irons' theorem, omega_max <=
 // max_e omega_max,e) and LS-DYNA's default lengths. Used by bench_stable_step
 // (docs/elements.md "Stable step survey").
+#include <array>
+#include <cstddef>
 #include <string>
 
 namespace crashlink::studies {
@@ -24,6 +26,10 @@ struct PatchShape {
   double thickness_m = 1.5e-3;  ///< quads
 };
 
+/// Iteration counts at which the power iteration's estimate is recorded (PatchSteps::power_ratio).
+constexpr std::size_t kPowerEstimates = 4;
+constexpr std::array<int, kPowerEstimates> kPowerIterations{5, 10, 30, 100};
+
 struct PatchSteps {
   int elements = 0;
   double dt_kernel_s = 0.0;   ///< min over elements of the kernel's estimate (KernelResult)
@@ -33,6 +39,9 @@ struct PatchSteps {
   /// solids L = V / largest face area, c = sqrt((lambda + 2 mu) / rho). dt = L / c, min over
   /// elements.
   double dt_lsdyna_s = 0.0;
+  /// A global estimate: 2 / sqrt(Rayleigh quotient) after kPowerIterations[i] iterations of the
+  /// power method on M^-1/2 K M^-1/2, over dt_patch_s (>= 1 always, falling towards 1).
+  std::array<double, kPowerEstimates> power_ratio{};
 };
 
 /// Steel (7850 kg/m^3, 210 GPa, nu 0.3), elastic, bulk viscosity off (a damping, not part of K),

@@ -49,6 +49,21 @@ TEST(StableStepSurvey, ElementBoundAndKernelNeverExceedThePatch) {
   }
 }
 
+// The power method's Rayleigh quotient never exceeds omega_max^2, so its step estimate is at or
+// above the patch's and falls towards it with the iterations.
+TEST(StableStepSurvey, PowerEstimateFallsTowardsThePatchFromAbove) {
+  for (const auto& s :
+       {shape(PatchKind::Quad, 3, 1.0, 0.3, true), shape(PatchKind::Hex, 2, 2.0, 0.2, false)}) {
+    const auto r = studies::survey_patch(s);
+    double previous = 1e300;
+    for (const double ratio : r.power_ratio) {
+      EXPECT_GE(ratio, 1.0 - 1e-9) << studies::describe(s);
+      EXPECT_LE(ratio, previous * (1.0 + 1e-12)) << studies::describe(s);
+      previous = ratio;
+    }
+  }
+}
+
 TEST(StableStepSurvey, AShapeOutOfRangeIsRefused) {
   EXPECT_THROW(studies::survey_patch(shape(PatchKind::Quad, 3, 1.0, 0.5, false)), ModelError);
   EXPECT_THROW(studies::survey_patch(shape(PatchKind::Hex, 3, 0.5, 0.0, false)), ModelError);
