@@ -5,7 +5,6 @@
 #include <fstream>
 #include <iterator>
 #include <string>
-#include <vector>
 
 #include "apps/cmd_compare.h"
 #include "apps/cmd_hic.h"
@@ -33,9 +32,7 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->capture_default_str();
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
-  std::vector<std::string> schemes;
-  for (const auto& scheme : coordinator::coordinator_schemes()) schemes.push_back(scheme.name);
-  add_coupling_option(*run, o.coupling, schemes,
+  add_coupling_option(*run, o.coupling, coordinator::coordinator_scheme_names(),
                       "split/multi: the coupling scheme (paper: Bourel 2005 [8]-[11], stable only "
                       "up to a step ratio of about 2; its guard stops it beyond, "
                       "docs/paper-scheme.md)");

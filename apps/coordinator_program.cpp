@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "apps/program_cli.h"
 #include "apps/session_flags.h"
@@ -62,9 +61,7 @@ int coordinator_program(int argc, char** argv) {
                "resume from the newest checkpoint in --out that every domain has (the daemons "
                "list theirs when they register)");
   std::string coupling = SharedDefaults::coupling;
-  std::vector<std::string> names;
-  for (const auto& scheme : coordinator::coordinator_schemes()) names.push_back(scheme.name);
-  add_coupling_option(app, coupling, names,
+  add_coupling_option(app, coupling, coordinator::coordinator_scheme_names(),
                       "the coupling scheme, every daemon's too (paper: Bourel 2005 [8]-[11], no "
                       "checkpoints)");
   bool no_drift = false;

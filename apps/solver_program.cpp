@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
-#include <vector>
 
 #include "apps/program_cli.h"
 #include "apps/session_flags.h"
@@ -44,9 +43,7 @@ int solver_program(int argc, char** argv) {
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
   std::string coupling = SharedDefaults::coupling;
-  std::vector<std::string> names;
-  for (const auto& scheme : daemon::domain_schemes()) names.push_back(scheme.name);
-  add_coupling_option(app, coupling, names,
+  add_coupling_option(app, coupling, daemon::domain_scheme_names(),
                       "the coupling scheme; the coordinator's must be the same");
   add_session_flags(app, session);
   try {

@@ -61,12 +61,8 @@ int main(int argc, char** argv) {
     for (const double aspect : {1.0, 2.0, 3.0, 5.0})
       for (const double distort : {0.0, 0.2, 0.4})
         for (const bool clamped : {false, true}) {
-          PatchShape s;
-          s.kind = k;
-          s.n = n;
-          s.aspect = aspect;
-          s.distort = distort;
-          s.clamped = clamped;
+          const PatchShape s{
+              .kind = k, .n = n, .aspect = aspect, .distort = distort, .clamped = clamped};
           const auto r = survey_patch(s);
           const double kr = r.dt_kernel_s / r.dt_patch_s, er = r.dt_element_s / r.dt_patch_s,
                        lr = r.dt_lsdyna_s / r.dt_patch_s;

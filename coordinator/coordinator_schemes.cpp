@@ -27,6 +27,10 @@ std::deque<CoordinatorSchemeEntry> coordinator_schemes() {
   return table().all();
 }
 
+std::vector<std::string> coordinator_scheme_names() {
+  return table().names();
+}
+
 const CoordinatorSchemeEntry& coordinator_scheme_named(std::string_view name) {
   return table().named(name);
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "coordinator/coordinator_scheme.h"
 #include "solver/model/model.h"
@@ -26,6 +27,8 @@ struct CoordinatorSchemeEntry {
 
 /// Every scheme, the built-in ones first (a deque: registering keeps the references valid).
 std::deque<CoordinatorSchemeEntry> coordinator_schemes();
+/// Every scheme's name, the built-in ones first.
+std::vector<std::string> coordinator_scheme_names();
 /// The scheme named `name`; InputError listing the names otherwise.
 const CoordinatorSchemeEntry& coordinator_scheme_named(std::string_view name);
 /// Adds a scheme (a test's); InputError if the name is taken.

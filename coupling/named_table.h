@@ -29,6 +29,14 @@ class NamedTable {
     return entries_;
   }
 
+  /// Every entry's name, in order (what a --coupling option accepts).
+  std::vector<std::string> names() const {
+    const std::scoped_lock lock(mutex_);
+    std::vector<std::string> out;
+    for (const auto& e : entries_) out.push_back(e.name);
+    return out;
+  }
+
   /// The entry named `name`; InputError listing the names otherwise.
   const Entry& named(std::string_view name) const {
     const std::scoped_lock lock(mutex_);

@@ -14,6 +14,7 @@
 #include "solver/elements/hex8_state.h"
 #include "solver/elements/shell_bt.h"
 #include "solver/model/mesh_generators.h"
+#include "solver/model/unit_noise.h"
 
 namespace crashlink::studies {
 
@@ -23,15 +24,6 @@ using Eigen::Index;
 
 materials::Material steel() {
   return {"steel", materials::MaterialKind::Elastic, 7850.0, 210e9, 0.3, {}};
-}
-
-/// Deterministic value in [-1, 1] for key k (splitmix64, as the plate generator's).
-double unit_noise(std::uint64_t k) {
-  k += 0x9E3779B97F4A7C15ULL;
-  k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  k = (k ^ (k >> 27)) * 0x94D049BB133111EBULL;
-  k ^= k >> 31;
-  return 2.0 * static_cast<double>(k >> 11) / static_cast<double>(1ULL << 53) - 1.0;
 }
 
 /// The linearised patch: K [dofs x dofs] (symmetrised), the lumped masses per dof, and the
@@ -155,7 +147,8 @@ double critical_step(const Linear& L, const std::vector<bool>& held) {
 /// towards it; entry i of the result is that ratio to 2 / omega_max after kPowerIterations[i].
 std::array<double, kPowerEstimates> power_ratios(const Eigen::MatrixXd& A, double dt_critical_s) {
   Eigen::VectorXd y(A.rows());
-  for (Index i = 0; i < A.rows(); ++i) y(i) = unit_noise(static_cast<std::uint64_t>(i) + 7919);
+  for (Index i = 0; i < A.rows(); ++i)
+    y(i) = model::unit_noise(static_cast<std::uint64_t>(i) + 7919);
   std::array<double, kPowerEstimates> out{};
   int done = 0;
   for (std::size_t e = 0; e < kPowerEstimates; ++e) {
@@ -274,7 +267,7 @@ Patch build(const PatchShape& s) {
     const double a = s.distort * std::min(dx, dy);
     for (std::size_t i = 0; i < nn; ++i)
       if (!p.boundary[i])
-        for (std::size_t c = 0; c < 3; ++c) p.x[3 * i + c] += a * unit_noise(3 * i + c);
+        for (std::size_t c = 0; c < 3; ++c) p.x[3 * i + c] += a * model::unit_noise(3 * i + c);
   }
   return p;
 }

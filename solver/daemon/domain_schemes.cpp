@@ -24,6 +24,10 @@ std::deque<DomainSchemeEntry> domain_schemes() {
   return table().all();
 }
 
+std::vector<std::string> domain_scheme_names() {
+  return table().names();
+}
+
 const DomainSchemeEntry& domain_scheme_named(std::string_view name) {
   return table().named(name);
 }

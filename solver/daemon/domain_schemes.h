@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "coupling/domain_scheme.h"
 #include "solver/partition/decomposition.h"
@@ -24,6 +25,8 @@ struct DomainSchemeEntry {
 
 /// Every scheme, the built-in ones first (a deque: registering keeps the references valid).
 std::deque<DomainSchemeEntry> domain_schemes();
+/// Every scheme's name, the built-in ones first.
+std::vector<std::string> domain_scheme_names();
 /// The scheme named `name`; InputError listing the names otherwise.
 const DomainSchemeEntry& domain_scheme_named(std::string_view name);
 /// Adds a scheme (a test's); InputError if the name is taken.

@@ -4,22 +4,9 @@
 
 #include "core/errors.h"
 #include "solver/model/mesh_generators.h"
+#include "solver/model/unit_noise.h"
 
 namespace crashlink::model {
-
-namespace {
-
-/// Deterministic value in [-1, 1] for integer key k (splitmix64 finaliser): the distortion is
-/// reproducible across runs and platforms.
-double unit_noise(std::uint64_t k) {
-  k += 0x9E3779B97F4A7C15ULL;
-  k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  k = (k ^ (k >> 27)) * 0x94D049BB133111EBULL;
-  k ^= k >> 31;
-  return 2.0 * static_cast<double>(k >> 11) / static_cast<double>(1ULL << 53) - 1.0;
-}
-
-}  // namespace
 
 int generate_plate(Model& m, Part part, const PlateMesh& plate) {
   const int n1 = plate.divisions[0], n2 = plate.divisions[1];

@@ -16,13 +16,7 @@ using studies::PatchShape;
 namespace {
 
 PatchShape shape(PatchKind kind, int n, double aspect, double distort, bool clamped) {
-  PatchShape s;
-  s.kind = kind;
-  s.n = n;
-  s.aspect = aspect;
-  s.distort = distort;
-  s.clamped = clamped;
-  return s;
+  return {.kind = kind, .n = n, .aspect = aspect, .distort = distort, .clamped = clamped};
 }
 
 }  // namespace
