@@ -17,6 +17,7 @@
 #include "solver/integration/mass_scaling.h"
 #include "solver/io/scenario_hash.h"
 #include "solver/io/scenario_reader.h"
+#include "solver/parallel/thread_team.h"
 #include "solver/run/mono_checkpoints.h"
 #include "solver/run/run_single.h"
 
@@ -44,6 +45,11 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_option("--transport", o.transport, "ipc | tcp | inproc")
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");
+  run->add_option("--threads", o.threads,
+                  "threads computing each solver's element forces (0: every core this process "
+                  "may use); the results are the same to the bit for every count")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   run->add_option("--join-timeout-ms", o.join_timeout_ms,
                   "split/multi: every daemon must have joined and registered within this "
                   "time, ms")
@@ -175,6 +181,7 @@ int run_run(const RunCommandOptions& o) {
   opt.checkpoint_interval_s = o.checkpoint_interval_s;
   opt.restart = !o.restart.empty();
   opt.scenario_hash = hash;
+  opt.threads = o.threads > 0 ? o.threads : parallel::available_cores();
   install_stop_handlers();
   opt.stop = &stop_flag();
   const auto summary = run::run_single_domain(model, opt);

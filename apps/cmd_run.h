@@ -33,7 +33,9 @@ struct RunCommandOptions {
   double checkpoint_interval_s = SharedDefaults::checkpoint_interval_s;
   /// resume the run in this folder from its newest complete checkpoint (--out).
   std::string restart;
-  bool no_lanes = false;        ///< CoordinatorOptions::lanes = false
+  bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
+  /// Threads per solver (0: every core this process may use; docs/threads.md).
+  int threads = 1;
   bool no_drift = false;        ///< `paper`: drift correction [11] off
   bool variable_steps = false;  ///< each domain follows its own step (docs/design.md §2.6)
   /// A keyword deck's unit system (deck/units.h); required for a deck, refused for YAML.

@@ -28,6 +28,7 @@
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/model/run_estimate.h"
+#include "solver/parallel/thread_team.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/energy_summary.h"
 
@@ -208,6 +209,7 @@ int run_coupled(const RunCommandOptions& o) {
   lo.session = o.session;
   lo.join_timeout_ms = o.join_timeout_ms;
   lo.step_safety = o.step_safety;
+  lo.threads = o.threads > 0 ? o.threads : parallel::available_cores();
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

@@ -174,6 +174,8 @@ class ProcessRun {
         a.push_back(fmt::format("{:.17g}", o_.step_safety));
         a.emplace_back("--coupling");
         a.push_back(o_.run.scheme);
+        a.emplace_back("--threads");
+        a.push_back(std::to_string(o_.threads));
         add(d, spawn(solver_exe, a));
       }
     }
@@ -327,6 +329,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
         d.session = o.session.options();
         d.in_process = true;
         d.step_safety = o.step_safety;
+        d.threads = o.threads;
         d.coupling = o.run.scheme;
         d.stop = &stop_flag();
         dr[k] = daemon::run_daemon(d);

@@ -33,6 +33,7 @@ struct LaunchOptions {
   SessionFlags session;
   int join_timeout_ms = SharedDefaults::join_timeout_ms;
   double step_safety = SharedDefaults::step_safety;  ///< to every daemon (--step-safety)
+  int threads = 1;  ///< to every daemon (--threads): each domain's solver threads
 };
 
 /// How one piece of the run ended.

@@ -12,6 +12,7 @@
 #include "core/exit_codes.h"
 #include "solver/daemon/daemon.h"
 #include "solver/daemon/domain_schemes.h"
+#include "solver/parallel/thread_team.h"
 
 namespace crashlink::apps {
 
@@ -42,6 +43,11 @@ int solver_program(int argc, char** argv) {
   app.add_option("--step-safety", o.step_safety, "factor in (0, 1] on the proposed step")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  app.add_option("--threads", o.threads,
+                 "threads computing this domain's element forces (0: every core this process "
+                 "may use); the results are the same to the bit for every count")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   std::string coupling = SharedDefaults::coupling;
   add_coupling_option(app, coupling, daemon::domain_scheme_names(),
                       "the coupling scheme; the coordinator's must be the same");
@@ -54,6 +60,7 @@ int solver_program(int argc, char** argv) {
   o.session = session.options();
   o.offer_lane = !no_lane;
   o.coupling = coupling;
+  if (o.threads == 0) o.threads = parallel::available_cores();
   install_stop_handlers();
   o.stop = &stop_flag();
   const auto r = daemon::run_daemon(o);

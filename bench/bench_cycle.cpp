@@ -4,7 +4,8 @@
 // bench_shell / bench_hex8 / bench_contact measure on their own.
 // Scenes: scenarios/head_impact.yaml (15 431 nodes, 14 172 elements, 3 contacts) and its CI
 // variant, after 2 000 warm-up cycles (the headform is on the hood by then: contacts active).
-// Counters: ns_per_cycle, ns_per_node (per cycle), nodes, elements.
+// Counters: ns_per_cycle, ns_per_node (per cycle), nodes, elements. The argument is the solver's
+// thread count (docs/threads.md); times are wall-clock (UseRealTime), CPU per cycle beside them.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -23,6 +24,7 @@ void BM_MonoCycle(benchmark::State& state, const std::string& file) {
   m->domains.clear();
   m->controls.end_time_s = 1.0;  // never finished inside the benchmark
   integration::Solver solver(*m, "mono");
+  solver.set_threads(static_cast<int>(state.range(0)));
   solver.initialize();
   for (int i = 0; i < 2000; ++i) {
     solver.begin_cycle();
@@ -44,12 +46,21 @@ void BM_MonoCycle(benchmark::State& state, const std::string& file) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["nodes"] = n;
   state.counters["elements"] = static_cast<double>(elements);
+  state.counters["threads"] = static_cast<double>(state.range(0));
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_MonoCycle, head_impact, std::string("head_impact.yaml"))
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MonoCycle, head_impact_small, std::string("head_impact_small.yaml"))
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

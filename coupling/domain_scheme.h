@@ -46,6 +46,7 @@ struct DomainSchemeOptions {
   std::string domain;        ///< the domain's name (messages)
   double step_safety = 1.0;  ///< factor on the solver's stable step in proposals
   double max_step_s = 0.0;   ///< > 0: caps the proposals
+  int threads = 1;           ///< the solver's (integration::Solver::set_threads)
 };
 
 class DomainScheme {

@@ -114,7 +114,7 @@ class Daemon {
 
   /// What the scheme is built with: the domain, the step safety and cap of its proposals.
   coupling::DomainSchemeOptions scheme_options() const {
-    return {o_.domain, o_.step_safety, o_.max_step_s};
+    return {o_.domain, o_.step_safety, o_.max_step_s, o_.threads};
   }
 
   double seconds(coupling::Tick n) const {

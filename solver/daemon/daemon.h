@@ -38,6 +38,8 @@ struct DaemonOptions {
   /// Run as a thread of a bigger process (crashlink run --transport inproc): CPU time is this
   /// thread's, not the process's.
   bool in_process = false;
+  /// Threads computing this domain's element forces (crashlink-solver --threads; >= 1).
+  int threads = 1;
   /// Set from outside (signal handler) to stop: checked every cycle; the coordinator is told.
   const std::atomic<bool>* stop = nullptr;
 };

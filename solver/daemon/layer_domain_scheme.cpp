@@ -20,7 +20,9 @@ class LayerDomainScheme final : public coupling::DomainScheme {
  public:
   LayerDomainScheme(const partition::Decomposition& dec, const model::Model& model,
                     coupling::DomainSchemeOptions o)
-      : o_(std::move(o)), dom_(cosim::build_layer_domain(dec, model, o_.domain)) {}
+      : o_(std::move(o)), dom_(cosim::build_layer_domain(dec, model, o_.domain)) {
+    dom_.solver->set_threads(o_.threads);
+  }
 
   integration::Solver& solver() override { return *dom_.solver; }
   const integration::Solver& solver() const override { return *dom_.solver; }

@@ -18,7 +18,9 @@ namespace {
 class PaperDomainScheme final : public coupling::DomainScheme {
  public:
   PaperDomainScheme(const partition::Decomposition& dec, coupling::DomainSchemeOptions o)
-      : o_(std::move(o)), port_(build_paper_port(dec, o_.domain)) {}
+      : o_(std::move(o)), port_(build_paper_port(dec, o_.domain)) {
+    port_.solver->set_threads(o_.threads);
+  }
 
   integration::Solver& solver() override { return *port_.solver; }
   const integration::Solver& solver() const override { return *port_.solver; }
@@ -54,6 +56,7 @@ class PaperDomainScheme final : public coupling::DomainScheme {
                                       o_.domain));
     step_ = setup.step_ticks();
     if (auto fresh = use_summed_masses(port_, setup, o_.domain)) {
+      fresh->set_threads(o_.threads);
       fresh->initialize();
       retired_ = std::move(port_.solver);  // what refers to it moves first (the recorder)
       port_.solver = std::move(fresh);

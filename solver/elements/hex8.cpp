@@ -613,9 +613,10 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
         res.dt_stable_s = dt_e[l];
         res.critical_element = static_cast<std::int64_t>(eid[l]);
       }
+      const std::int32_t* to = step.scatter ? step.scatter + 8 * eid[l] : nullptr;
       CRASHLINK_HEX8_UNROLL
       for (int I = 0; I < 8; ++I) {
-        double* fp = nv.f + node[I][l];
+        double* fp = to ? scatter_target(nv.f, nv.f_slot, to[I]) : nv.f + node[I][l];
         fp[0] += fl[0][I][l];
         fp[1] += fl[1][I][l];
         fp[2] += fl[2][I][l];

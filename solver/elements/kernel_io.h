@@ -19,6 +19,10 @@ struct NodalView {
   const double* omega = nullptr;  ///< [3n] angular velocities at t^{n+1/2} [rad/s] (shells)
   double* f = nullptr;            ///< [3n] internal force accumulator [N]: kernels add f_int
   double* m = nullptr;            ///< [3n] internal moment accumulator [N m] (shells)
+  /// Slot accumulators [3 slots] [N], [N m]: where StepInfo::scatter sends a corner's force and
+  /// moment instead of its node's (null without a scatter plan).
+  double* f_slot = nullptr;
+  double* m_slot = nullptr;
 };
 
 /// The step just taken and the options that shape the element response.
@@ -41,7 +45,20 @@ struct StepInfo {
   /// call (which records the reference state of every element).
   std::size_t first_element = 0;
   std::size_t end_element = std::numeric_limits<std::size_t>::max();
+  /// Null: each element adds its forces into its nodes' f (and m). Otherwise [k ne] (k corners
+  /// per element, element-major as the connectivity): corner c of element e adds into node
+  /// scatter[k e + c] when that is >= 0, into slot -1 - scatter[k e + c] of NodalView::f_slot
+  /// (m_slot) when < 0: threads that compute disjoint element ranges at once then never add
+  /// into the same value (integration::ElementChunks, docs/threads.md).
+  const std::int32_t* scatter = nullptr;
 };
+
+/// The force accumulator of corner target t of a scatter plan (StepInfo::scatter): node t's
+/// xyz in f when t >= 0, slot -1 - t's in f_slot otherwise.
+inline double* scatter_target(double* f, double* f_slot, std::int32_t t) {
+  return t >= 0 ? f + 3 * static_cast<std::size_t>(t)
+                : f_slot + 3 * static_cast<std::size_t>(-1 - t);
+}
 
 /// Element ranges (StepInfo::first_element) start at multiples of this: the shell kernel's lane
 /// count and a multiple of the hexahedron kernel's (static_asserts in shell_bt.h and hex8.cpp).

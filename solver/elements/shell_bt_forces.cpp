@@ -772,9 +772,12 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
 
     // ---- scatter-add, reductions (real lanes only) --------------------------------------------
     for (std::size_t l = 0; l < nl; ++l) {
+      const std::int32_t* to = step.scatter ? step.scatter + 4 * (b0 + l) : nullptr;
       for (int I = 0; I < 4; ++I) {
-        double* f = nv.f + 3 * static_cast<std::size_t>(nd[I][l]);
-        double* m = nv.m + 3 * static_cast<std::size_t>(nd[I][l]);
+        double* f = to ? scatter_target(nv.f, nv.f_slot, to[I])
+                       : nv.f + 3 * static_cast<std::size_t>(nd[I][l]);
+        double* m = to ? scatter_target(nv.m, nv.m_slot, to[I])
+                       : nv.m + 3 * static_cast<std::size_t>(nd[I][l]);
         f[0] += F[I][0][l];
         f[1] += F[I][1][l];
         f[2] += F[I][2][l];
@@ -797,7 +800,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
   res.internal_energy_increment_J = update ? e_int : 0.0;
   res.hourglass_energy_increment_J = update ? e_hg : 0.0;
   if constexpr (kDamped) {
-    st.damping_recorded = true;
+    if (record_beta) st.damping_recorded = true;  // not written by ranges run at once
     res.damping_energy_increment_J = update ? e_damp : 0.0;
   }
   return res;

@@ -1,5 +1,7 @@
 #include "solver/integration/solver.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -44,7 +46,7 @@ struct AccelerationArrays {
 /// m_coup everywhere (coupling_pass redoes the few nodes that carry coupling loads). Adding an
 /// exact zero changes no value, so the results are those of the full expression.
 template <bool kExt>
-void acceleration_pass(const AccelerationArrays& s) {
+void acceleration_pass(const AccelerationArrays& s, std::size_t i0, std::size_t i1) {
   const double* __restrict fe = s.f_ext;
   const double* __restrict fc = s.f_cont;
   const double* __restrict fi = s.f_int;
@@ -54,7 +56,7 @@ void acceleration_pass(const AccelerationArrays& s) {
   double* __restrict fl = s.f_load;
   double* __restrict a = s.a;
   double* __restrict al = s.alpha;
-  for (std::size_t i = 0; i < s.n; ++i) {
+  for (std::size_t i = i0; i < i1; ++i) {
     const double w = wm[i], wr = wi[i];
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
       double f = fc[k];
@@ -79,15 +81,15 @@ void coupling_pass(const AccelerationArrays& s, const std::vector<std::int32_t>&
   }
 }
 
-/// The F^n halves of the external and contact work (Solver::positions_and_work) in one pass
-/// with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass.
+/// The F^n halves of the external and contact work (Solver::positions_and_work) over dofs [k0,
+/// k1) in one pass with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass.
 template <bool kExt>
 void positions_pass(const double* __restrict x0, const double* __restrict u,
                     const double* __restrict du, const double* __restrict fe,
-                    const double* __restrict fc, double* __restrict x, std::size_t len,
-                    double& external, double& contact) {
+                    const double* __restrict fc, double* __restrict x, std::size_t k0,
+                    std::size_t k1, double& external, double& contact) {
   double ext = 0.0, cont = 0.0;  // each in index order
-  for (std::size_t k = 0; k < len; ++k) {
+  for (std::size_t k = k0; k < k1; ++k) {
     x[k] = x0[k] + u[k];
     if constexpr (kExt) ext += fe[k] * du[k];
     cont += fc[k] * du[k];
@@ -96,9 +98,11 @@ void positions_pass(const double* __restrict x0, const double* __restrict u,
   contact = cont;
 }
 
-double dot3n(const std::vector<double>& a, const std::vector<double>& b) {
+/// sum a[k] b[k] over dofs [k0, k1), in index order.
+double dot_range(const std::vector<double>& a, const std::vector<double>& b, std::size_t k0,
+                 std::size_t k1) {
   double s = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  for (std::size_t k = k0; k < k1; ++k) s += a[k] * b[k];
   return s;
 }
 
@@ -109,6 +113,9 @@ Solver::Solver(const model::Model& model, std::string domain_name)
   model::validate(model_);
   n_ = model_.nodes.count();
 }
+
+Solver::~Solver() = default;
+Solver::Solver(Solver&&) noexcept = default;
 
 void Solver::assemble_masses() {
   mass_.assign(n_, 0.0);
@@ -261,6 +268,7 @@ void Solver::initialize() {
       ++e;
     interior_end_[p] = e == ne ? ne : e / elements::kElementBatch * elements::kElementBatch;
   }
+  set_up_threads();
   const bool record = record_element_steps_;
   record_element_steps_ = record || !contacts_.empty();
   compute_forces(0.0);
@@ -277,54 +285,101 @@ void Solver::initialize() {
 
 void Solver::compute_forces(double dt, ElementSpan span) {
   if (span != ElementSpan::Rim) {
-    std::fill(f_int_.begin(), f_int_.end(), 0.0);
-    std::fill(m_int_.begin(), m_int_.end(), 0.0);
+    on_node_ranges([&](std::size_t i0, std::size_t i1) {
+      std::fill(f_int_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
+                f_int_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
+      std::fill(m_int_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
+                m_int_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
+    });
     dt_stable_ = std::numeric_limits<double>::infinity();
+    for (auto& rt : parts_) rt.last = {};
   }
-  const elements::NodalView nv{x_.data(), v_.data(), omega_.data(), f_int_.data(), m_int_.data()};
+  if (span == ElementSpan::All) {  // the initial call: every part in one call, on this thread
+    for (std::size_t p = 0; p < parts_.size(); ++p)
+      add_kernel_result(p, run_kernel(p, dt, 0, model_.parts[p].element_count(), nullptr));
+    return;
+  }
+  // The span's chunks, each thread its block of them, each chunk into its own result; then the
+  // shared nodes' slots (ElementChunks); then the results folded in chunk order: the same bits
+  // for any team size.
+  const int s = span == ElementSpan::Interior ? 0 : 1;
+  const auto& chunks = chunks_.chunks(s);
+  for (const auto& c : chunks) prepare_element_steps(c.part);
+  const auto run_chunks = [&](std::size_t k0, std::size_t k1) {
+    for (std::size_t k = k0; k < k1; ++k) {
+      const auto& c = chunks[k];
+      chunks_.clear_slots(c);
+      chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part));
+    }
+  };
+  if (team_) {
+    const auto& cut = chunk_cut_[s];
+    team_->on_each_thread([&](int t) { run_chunks(cut[t], cut[t + 1]); });
+    const std::size_t shared = chunks_.shared_nodes(s);
+    const auto parts = static_cast<std::size_t>(team_->size());
+    team_->on_each_thread([&](int t) {
+      const auto k = static_cast<std::size_t>(t);
+      chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f_int_.data(), m_int_.data());
+    });
+  } else {
+    run_chunks(0, chunks.size());
+  }
+  for (std::size_t k = 0; k < chunks.size(); ++k)
+    add_kernel_result(chunks[k].part, chunk_results_[k]);
+}
+
+void Solver::prepare_element_steps(std::size_t p) {
+  auto& rt = parts_[p];
+  const std::size_t ne = model_.parts[p].element_count();
+  if (record_element_steps_ && rt.element_dt_s.size() != ne) rt.element_dt_s.assign(ne, 0.0);
+}
+
+elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t first,
+                                          std::size_t end, const std::int32_t* scatter) {
+  const auto& part = model_.parts[p];
+  auto& rt = parts_[p];
+  const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
   const auto& c = model_.controls;
-  for (std::size_t p = 0; p < parts_.size(); ++p) {
-    const auto& part = model_.parts[p];
-    auto& rt = parts_[p];
-    const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
-    elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic,
-                            c.bulk_linear_in_expansion};
-    if (span == ElementSpan::Interior) step.end_element = interior_end_[p];
-    if (span == ElementSpan::Rim) step.first_element = interior_end_[p];
-    if (span != ElementSpan::Rim) rt.last = {};
-    if (step.first_element >= std::min(step.end_element, part.element_count())) continue;
-    if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
-      if (rt.element_dt_s.size() != part.element_count())
-        rt.element_dt_s.assign(part.element_count(), 0.0);
-      step.element_dt_s = rt.element_dt_s.data();
-    }
-    elements::KernelResult r;
-    if (auto* hs = std::get_if<elements::Hex8State>(&rt.state)) {
-      r = elements::hex8_internal_forces(part, mat, *hs, nv, step);
-    } else if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {
-      step.bulk_viscosity = c.bulk_viscosity && c.shell_bulk_viscosity;
-      r = elements::shell_internal_forces(part, mat, *ss, nv, step);
-    } else {
-      continue;
-    }
-    rt.internal_energy_J += r.internal_energy_increment_J;
-    rt.hourglass_energy_J += r.hourglass_energy_increment_J;
-    rt.damping_energy_J += r.damping_energy_increment_J;  // included in internal
-    energy_.internal_J += r.internal_energy_increment_J;
-    energy_.hourglass_J += r.hourglass_energy_increment_J;
-    // the part's call(s) of this cycle: energies summed, the smallest step
-    rt.last.internal_energy_increment_J += r.internal_energy_increment_J;
-    rt.last.hourglass_energy_increment_J += r.hourglass_energy_increment_J;
-    rt.last.damping_energy_increment_J += r.damping_energy_increment_J;
-    if (r.dt_stable_s < rt.last.dt_stable_s) {
-      rt.last.dt_stable_s = r.dt_stable_s;
-      rt.last.critical_element = r.critical_element;
-    }
-    if (r.dt_stable_s < dt_stable_) {
-      dt_stable_ = r.dt_stable_s;
-      critical_part_ = p;
-      critical_local_ = r.critical_element;
-    }
+  const elements::NodalView nv{x_.data(),     v_.data(),         omega_.data(),    f_int_.data(),
+                               m_int_.data(), chunks_.f_slots(), chunks_.m_slots()};
+  elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic,
+                          c.bulk_linear_in_expansion};
+  step.first_element = first;
+  step.end_element = end;
+  step.scatter = scatter;
+  if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
+    prepare_element_steps(p);
+    step.element_dt_s = rt.element_dt_s.data();
+  }
+  if (first >= std::min(end, part.element_count())) return {};
+  if (auto* hs = std::get_if<elements::Hex8State>(&rt.state))
+    return elements::hex8_internal_forces(part, mat, *hs, nv, step);
+  if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {
+    step.bulk_viscosity = c.bulk_viscosity && c.shell_bulk_viscosity;
+    return elements::shell_internal_forces(part, mat, *ss, nv, step);
+  }
+  return {};
+}
+
+void Solver::add_kernel_result(std::size_t p, const elements::KernelResult& r) {
+  auto& rt = parts_[p];
+  rt.internal_energy_J += r.internal_energy_increment_J;
+  rt.hourglass_energy_J += r.hourglass_energy_increment_J;
+  rt.damping_energy_J += r.damping_energy_increment_J;  // included in internal
+  energy_.internal_J += r.internal_energy_increment_J;
+  energy_.hourglass_J += r.hourglass_energy_increment_J;
+  // the part's calls of this cycle: energies summed, the smallest step (the first on a tie)
+  rt.last.internal_energy_increment_J += r.internal_energy_increment_J;
+  rt.last.hourglass_energy_increment_J += r.hourglass_energy_increment_J;
+  rt.last.damping_energy_increment_J += r.damping_energy_increment_J;
+  if (r.dt_stable_s < rt.last.dt_stable_s) {
+    rt.last.dt_stable_s = r.dt_stable_s;
+    rt.last.critical_element = r.critical_element;
+  }
+  if (r.dt_stable_s < dt_stable_) {
+    dt_stable_ = r.dt_stable_s;
+    critical_part_ = p;
+    critical_local_ = r.critical_element;
   }
 }
 
@@ -409,10 +464,12 @@ void Solver::compute_accelerations() {
                                   f_int_.data(),    m_coup_.data(),      m_int_.data(),
                                   inv_mass_.data(), inv_inertia_.data(), f_load_.data(),
                                   a_.data(),        alpha_.data(),       n_};
-  if (external_loads_)
-    acceleration_pass<true>(arrays);
-  else
-    acceleration_pass<false>(arrays);
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    if (external_loads_)
+      acceleration_pass<true>(arrays, i0, i1);
+    else
+      acceleration_pass<false>(arrays, i0, i1);
+  });
   coupling_pass(arrays, coupled_nodes_);
   const double* f_drive = f_load_.data();
   for (auto& b : bodies_)
@@ -420,7 +477,9 @@ void Solver::compute_accelerations() {
       gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2,
                         m_coup_.data(), m_int_.data());
   check_spot_welds();
-  zero_held(model_.fixed, a_.data(), alpha_.data(), 0, n_);
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    zero_held(model_.fixed, a_.data(), alpha_.data(), i0, i1);
+  });
 }
 
 double Solver::kinetic_energy() const {
@@ -451,20 +510,18 @@ double Solver::kinetic_energy_from(double node_sum) const {
 }
 
 double Solver::velocity_pass(double dt_mid) {
-  // Per block of nodes (in L1 for the second and third loops): v^{n-1/2} kept, v^{n+1/2} =
+  // Per tile of nodes (in L1 for the second and third loops): v^{n-1/2} kept, v^{n+1/2} =
   // v^{n-1/2} + dt^{n-1/2} a^n ([2]) (omega alike; vectorised), held dofs zeroed, then
   // m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in node order over the
-  // nodes kinetic_energy() counts: the same bits as those separate passes over all nodes.
-  constexpr std::size_t kBlock = 256;  // nodes
+  // nodes kinetic_energy() counts, per tile, the tiles' sums then in tile order (the same bits
+  // for every thread count; docs/threads.md).
   double* __restrict v = v_.data();
   double* __restrict vp = v_prev_.data();
   double* __restrict w = omega_.data();
   double* __restrict wp = omega_prev_.data();
   const double* __restrict a = a_.data();
   const double* __restrict al = alpha_.data();
-  double ke = 0.0;
-  for (std::size_t i0 = 0; i0 < n_; i0 += kBlock) {
-    const std::size_t i1 = std::min(n_, i0 + kBlock);
+  return sum_over_tiles([&](std::size_t i0, std::size_t i1) {
     for (std::size_t k = 3 * i0; k < 3 * i1; ++k) {
       vp[k] = v[k];
       v[k] += dt_mid * a[k];
@@ -472,9 +529,8 @@ double Solver::velocity_pass(double dt_mid) {
       w[k] += dt_mid * al[k];
     }
     zero_held(model_.fixed, v, w, i0, i1);
-    ke = kinetic_sum(i0, i1, ke);
-  }
-  return ke;
+    return kinetic_sum(i0, i1, 0.0);
+  });
 }
 
 GuardContext Solver::guard_context() const {
@@ -569,8 +625,11 @@ void Solver::end_cycle_positions() {
       ghost_reaction_moment_[3 * k + d] = ghost_reaction_moment(i);
     }
   // [2] for every node; the ghosts' values are provisional (apply_ghost_motion).
-  advance_displacement(u_.data(), du_.data(), dtheta_.data(), v_.data(), omega_.data(), dt,
-                       u_.size());
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    const std::size_t k = 3 * i0;
+    advance_displacement(u_.data() + k, du_.data() + k, dtheta_.data() + k, v_.data() + k,
+                         omega_.data() + k, dt, 3 * (i1 - i0));
+  });
   for (auto& rw : walls_) rw.travel_m += dt * rw.velocity_m_s;  // a moving wall's plane
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
@@ -616,10 +675,19 @@ Solver::StepWork Solver::positions_and_work() {
   StepWork w;
   const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(), *fe = f_ext_.data(),
                *fc = f_cont_.data();
-  if (external_loads_)
-    positions_pass<true>(x0, u, du, fe, fc, x_.data(), x_.size(), w.external, w.contact);
-  else
-    positions_pass<false>(x0, u, du, fe, fc, x_.data(), x_.size(), w.external, w.contact);
+  // per tile of nodes, the tiles' sums in tile order (velocity_pass)
+  double* x = x_.data();
+  double* contact = tile_sum_.data() + tile_sum_.size() / 2;
+  w.external = sum_over_tiles([&](std::size_t i0, std::size_t i1) {
+    double ext = 0.0;
+    if (external_loads_)
+      positions_pass<true>(x0, u, du, fe, fc, x, 3 * i0, 3 * i1, ext, contact[i0 / kNodeTile]);
+    else
+      positions_pass<false>(x0, u, du, fe, fc, x, 3 * i0, 3 * i1, ext, contact[i0 / kNodeTile]);
+    return ext;
+  });
+  w.contact = 0.0;
+  for (std::size_t t = 0; t < tiles(); ++t) w.contact += contact[t];
   // The coupling loads live on few nodes: their work in index order (the sums over all dofs,
   // which add exact zeros elsewhere), then cleared.
   if (!std::is_sorted(coupled_nodes_.begin(), coupled_nodes_.end()))
@@ -653,8 +721,14 @@ void Solver::end_cycle_compute() {
   interior_done_ = false;
   compute_contact_forces(dt);
   compute_external_forces(time_s_);
-  if (external_loads_) energy_.external_work_J += 0.5 * dot3n(f_ext_, du_);
-  if (!contacts_.empty()) energy_.contact_J -= 0.5 * dot3n(f_cont_, du_);
+  if (external_loads_)
+    energy_.external_work_J += 0.5 * sum_over_tiles([&](std::size_t i0, std::size_t i1) {
+                                 return dot_range(f_ext_, du_, 3 * i0, 3 * i1);
+                               });
+  if (!contacts_.empty())
+    energy_.contact_J -= 0.5 * sum_over_tiles([&](std::size_t i0, std::size_t i1) {
+                           return dot_range(f_cont_, du_, 3 * i0, 3 * i1);
+                         });
   energy_.coupling_work_J += ghost_reaction_work(0.5);
 }
 

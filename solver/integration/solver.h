@@ -8,7 +8,9 @@
 //   end_cycle():    u^{n+1} = u^n + dt^n v^{n+1/2}, t^{n+1}, element forces f_int(u^{n+1}),
 //                   external forces, a^{n+1} = M^{-1}(f_ext - f_int) ([1]), next stable step.
 // Run loop: initialize(); for (;;) { begin_cycle(); sample(); if (finished()) break; end_cycle(); }
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -18,10 +20,12 @@
 #include "solver/elements/hex8.h"
 #include "solver/elements/kernel_io.h"
 #include "solver/elements/shell_bt.h"
+#include "solver/integration/element_chunks.h"
 #include "solver/integration/energy.h"
 #include "solver/integration/guard.h"
 #include "solver/integration/rigid_body.h"
 #include "solver/model/model.h"
+#include "solver/parallel/thread_team.h"
 
 namespace crashlink::integration {
 
@@ -49,6 +53,15 @@ class Solver {
  public:
   /// The model must outlive the solver. Validates it (ModelError on inconsistency).
   explicit Solver(const model::Model& model, std::string domain_name = "model");
+  ~Solver();
+  Solver(Solver&&) noexcept;
+
+  /// Before initialize(): the threads that compute this domain's element forces and nodal passes
+  /// (1, the default: the calling thread alone). Every result is the same to the bit for every
+  /// count: fixed element chunks assembled in one order, fixed node tiles summed in one order
+  /// (docs/threads.md).
+  void set_threads(int threads);
+  int threads() const { return threads_; }
 
   /// t = 0: masses, rigid bodies, initial velocities, f^0, a^0 and the first stable step.
   void initialize();
@@ -352,6 +365,51 @@ class Solver {
   bool positions_done_ = false;  // end_cycle_positions() done, end_cycle_compute() not yet
   bool interior_done_ = false;   // end_cycle_interior_forces() done, end_cycle_compute() not yet
   std::vector<std::size_t> interior_end_;  // [parts] interior_elements()
+  // ---- threads (solver_threads.cpp, docs/threads.md) ----
+  /// Nodes per tile: the nodal passes' unit, and their sums' (one partial sum per tile, added in
+  /// tile order). Each thread's node range is whole tiles.
+  static constexpr std::size_t kNodeTile = 256;
+  int threads_ = 1;
+  std::unique_ptr<parallel::ThreadTeam> team_;  // threads_ > 1
+  ElementChunks chunks_;
+  std::vector<elements::KernelResult> chunk_results_;  // [chunks of the larger span]
+  std::vector<std::size_t> chunk_cut_[2];              // [threads + 1]: thread t's chunks of span s
+  std::vector<std::size_t> node_cut_;  // [threads + 1]: thread t's nodes (whole tiles)
+  std::vector<double> tile_sum_;       // [2 tiles] partial sums
+  /// initialize(): the chunks, the team, the cuts (after interior_end_).
+  void set_up_threads();
+  std::size_t tiles() const { return (n_ + kNodeTile - 1) / kNodeTile; }
+  /// f(i0, i1) over every thread's node range, at once.
+  template <class F>
+  void on_node_ranges(F&& f) {
+    if (!team_) {
+      f(std::size_t{0}, n_);
+      return;
+    }
+    team_->on_each_thread([&](int t) {
+      const auto k = static_cast<std::size_t>(t);
+      f(node_cut_[k], node_cut_[k + 1]);
+    });
+  }
+  /// f(i0, i1) -> the sum over tile [i0, i1), for every tile (each thread its own); the tiles'
+  /// sums added in tile order.
+  template <class F>
+  double sum_over_tiles(F&& f) {
+    double* sums = tile_sum_.data();
+    on_node_ranges([&](std::size_t i0, std::size_t i1) {
+      for (std::size_t b = i0; b < i1; b += kNodeTile)
+        sums[b / kNodeTile] = f(b, std::min(i1, b + kNodeTile));
+    });
+    double s = 0.0;
+    for (std::size_t t = 0; t < tiles(); ++t) s += sums[t];
+    return s;
+  }
+  /// Part p's kernel over elements [first, end) with the scatter plan (null: into the nodes).
+  elements::KernelResult run_kernel(std::size_t p, double dt, std::size_t first, std::size_t end,
+                                    const std::int32_t* scatter);
+  /// A kernel call's energies and stable step into part p's and the domain's.
+  void add_kernel_result(std::size_t p, const elements::KernelResult& r);
+  void prepare_element_steps(std::size_t p);
   // Within a cycle, for apply_ghost_motion(): the ghosts' u^n and their reaction at t^n,
   // R = f_int - f_ext - f_cont - f_coup and m_int - m_coup [3 * ghosts] (the element forces
   // at t^n are gone once the interior ones at t^{n+1} are computed).

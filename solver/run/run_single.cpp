@@ -38,6 +38,8 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   sum.result_h5 = writer.h5_path();
   sum.result_xdmf = writer.xdmf_path();
   integration::Solver solver(model, options.domain_name);
+  solver.set_threads(options.threads);
+  sum.threads = options.threads;
   DomainRecorder recorder(writer, solver);
   double cpu_before = 0.0;  // of the runs before the checkpoint restarted from
   Progress progress(stderr, model.controls.end_time_s, options.progress);
@@ -104,7 +106,8 @@ void print_summary(std::FILE* out, const RunSummary& s) {
   std::fprintf(out, "%-12s %10lld %10lld %12.4e %10.3f %14.1f\n", s.domain.c_str(),
                static_cast<long long>(s.elements), static_cast<long long>(s.cycles), s.dt_min_s,
                s.cpu_seconds, s.ns_per_element_cycle());
-  std::fprintf(out, "coordinator: none (one domain); wall %.3f s\n", s.wall_seconds);
+  std::fprintf(out, "coordinator: none (one domain); wall %.3f s; %d thread%s\n", s.wall_seconds,
+               s.threads, s.threads == 1 ? "" : "s");
   const auto& e = s.energy;
   std::fprintf(out,
                "energy [J]: initial %.6g  kinetic %.6g  internal %.6g  hourglass %.6g  contact "

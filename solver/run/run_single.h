@@ -17,6 +17,8 @@ struct RunOptions {
   std::string out_dir = "out";
   bool progress = true;  ///< progress line on stderr
   std::string domain_name = "model";
+  /// Threads computing the element forces (integration::Solver::set_threads; >= 1).
+  int threads = 1;
   /// Polled every cycle (SIGINT / SIGTERM handler's flag); set: the run stops there, flushes
   /// and closes its file, and comes back with stopped = true.
   const std::atomic<bool>* stop = nullptr;
@@ -32,6 +34,7 @@ struct RunSummary {
   std::string domain;
   std::int64_t cycles = 0;
   std::int64_t elements = 0;
+  int threads = 1;  ///< of the solver (cpu_seconds is theirs summed)
   double end_time_s = 0.0;
   double dt_min_s = 0.0;
   double cpu_seconds = 0.0;  ///< with a restart, that of the runs before the checkpoint too

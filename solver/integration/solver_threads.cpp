@@ -1,0 +1,51 @@
+// The solver's threads (solver.h, docs/threads.md): the element chunks, the team, and which
+// chunks and nodes each thread takes.
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "solver/integration/solver.h"
+
+namespace crashlink::integration {
+
+void Solver::set_threads(int threads) {
+  if (threads < 1 || threads > 1024)
+    throw ModelError(fmt::format("{}: {} threads asked for; a solver runs on 1 to 1024 threads",
+                                 domain_, threads));
+  threads_ = threads;
+}
+
+void Solver::set_up_threads() {
+  std::vector<std::uint8_t> deformable(parts_.size());
+  for (std::size_t p = 0; p < parts_.size(); ++p)
+    deformable[p] = !std::holds_alternative<std::monostate>(parts_[p].state);
+  chunks_.build(model_, interior_end_, deformable, threads_ > 1);
+  chunk_results_.assign(std::max(chunks_.chunks(0).size(), chunks_.chunks(1).size()), {});
+  tile_sum_.assign(2 * tiles(), 0.0);
+  team_.reset();
+  const auto T = static_cast<std::size_t>(threads_);
+  // Thread t takes whole tiles [t n / T, (t + 1) n / T) of the nodes and, of each span, the run
+  // of chunks whose elements come closest to the t-th T-th of the span's elements: a static cut,
+  // so that a thread finds in its core's cache what it wrote the cycle before.
+  node_cut_.assign(T + 1, n_);
+  for (std::size_t t = 0; t < T; ++t) node_cut_[t] = std::min(n_, tiles() * t / T * kNodeTile);
+  for (int s = 0; s < 2; ++s) {
+    const auto& chunks = chunks_.chunks(s);
+    std::size_t total = 0;
+    for (const auto& c : chunks) total += c.end - c.first;
+    auto& cut = chunk_cut_[s];
+    cut.assign(T + 1, chunks.size());
+    cut[0] = 0;
+    std::size_t k = 0, done = 0;
+    for (std::size_t t = 1; t < T; ++t) {
+      while (k < chunks.size() && 2 * (done + (chunks[k].end - chunks[k].first)) <=
+                                      2 * total * t / T + (chunks[k].end - chunks[k].first)) {
+        done += chunks[k].end - chunks[k].first;
+        ++k;
+      }
+      cut[t] = k;
+    }
+  }
+  if (threads_ > 1) team_ = std::make_unique<parallel::ThreadTeam>(threads_);
+}
+
+}  // namespace crashlink::integration
