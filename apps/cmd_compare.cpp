@@ -99,11 +99,12 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   // Columns: the reference's domains, the run's domains, coordinator, total.
   std::vector<std::string> head{"", "reference"};
   std::vector<std::string> elements{"elements", ""}, step{"critical step [s]", ""},
-      cycles{"cycles", ""}, cpu{"CPU [s]", ""};
+      cycles{"cycles", ""}, cpu{"CPU [s]", ""}, threads{"threads", ""};
   auto add = [&](const io::DomainTiming& d, bool first_of_ref) {
     if (!first_of_ref) head.push_back(d.name);
     const std::size_t i = first_of_ref ? 1 : head.size() - 1;
-    for (auto* row : {&elements, &step, &cycles, &cpu}) row->resize(head.size());
+    for (auto* row : {&elements, &step, &cycles, &cpu, &threads}) row->resize(head.size());
+    threads[i] = fmt::format("{}", d.threads);
     elements[i] = fmt::format("{}", d.elements);
     step[i] = fmt::format("{:.4g}", d.dt_min_s);
     cycles[i] = fmt::format("{}", d.cycles);
@@ -118,20 +119,29 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   const std::size_t first_run_column = head.size();
   for (const auto& d : run.domains) add(d, false);
   head.push_back("coordinator");
-  for (auto* row : {&elements, &step, &cycles, &cpu}) row->resize(head.size(), "-");
+  for (auto* row : {&elements, &step, &cycles, &cpu, &threads}) row->resize(head.size(), "-");
   cpu.back() = fmt::format("{:.2f}", run.coordinator_cpu_seconds);
   head.push_back("total");
   elements.push_back(fmt::format("{}", elements_of(run)));
   step.push_back("-");
   cycles.push_back("-");
   cpu.push_back(fmt::format("{:.2f}", c.cpu_run_s));
+  std::int64_t run_threads = 0, ref_threads = 0;
+  for (const auto& d : run.domains) run_threads += d.threads;
+  for (const auto& d : ref.domains) ref_threads += d.threads;
+  threads.push_back(fmt::format("{}", run_threads));
+  // the threads row only when some solver ran on more than one (the paper's table has none)
+  std::vector<const std::vector<std::string>*> rows{&head, &elements, &step, &cycles, &cpu};
+  if (run_threads > static_cast<std::int64_t>(run.domains.size()) ||
+      ref_threads > static_cast<std::int64_t>(ref.domains.size()))
+    rows.push_back(&threads);
 
   std::fprintf(out, "crashlink compare: reference %s\n                   run       %s\n\n",
                options.reference.c_str(), options.run.c_str());
   std::vector<std::size_t> width(head.size(), 0);
-  for (const auto* row : {&head, &elements, &step, &cycles, &cpu})
+  for (const auto* row : rows)
     for (std::size_t i = 0; i < row->size(); ++i) width[i] = std::max(width[i], (*row)[i].size());
-  for (const auto* row : {&head, &elements, &step, &cycles, &cpu}) {
+  for (const auto* row : rows) {
     std::string line;
     for (std::size_t i = 0; i < row->size(); ++i) {
       if (i == first_run_column) line.append(" |");
@@ -147,6 +157,15 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
                c.cpu_reference_s, c.cpu_run_s, c.coordinator_cpu_s, 100.0 * c.coordinator_share,
                c.gain, c.ideal_gain, c.ideal_gain > 0.0 ? 100.0 * c.gain / c.ideal_gain : 0.0,
                c.wall_reference_s, c.wall_run_s, c.wall_gain);
+  // The fair clock (issue 24): mono on as many threads as the coupled run's solvers in all.
+  std::fprintf(
+      out, "cores: reference %lld thread%s, run %lld solver thread%s%s\n",
+      static_cast<long long>(ref_threads), ref_threads == 1 ? "" : "s",
+      static_cast<long long>(run_threads), run_threads == 1 ? "" : "s",
+      ref_threads == run_threads
+          ? ": the wall-clock gain is on equal cores"
+          : fmt::format(" (for the gain on equal cores: --reference-threads {})", run_threads)
+                .c_str());
 
   const io::ResultReader ref_reader(options.reference), run_reader(options.run);
   const std::string probe =

@@ -46,8 +46,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->check(CLI::IsMember({"ipc", "tcp", "inproc"}));
   run->add_flag("--quiet", o.quiet, "no progress display");
   run->add_option("--threads", o.threads,
-                  "threads computing each solver's element forces (0: every core this process "
-                  "may use); the results are the same to the bit for every count")
+                  "threads computing each solver's element forces and nodal passes (0: every "
+                  "core this process may use, shared out among the daemons in split/multi); the "
+                  "results are the same to the bit for every count")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   run->add_option("--join-timeout-ms", o.join_timeout_ms,
@@ -64,6 +65,11 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
                   "split/multi: also run this mode (mono) into OUT/reference and print the "
                   "comparison table (crashlink compare)")
       ->check(CLI::IsMember({"mono"}));
+  run->add_option("--reference-threads", o.reference_threads,
+                  "--reference mono: the reference's threads (0: every core this process may "
+                  "use, the fair wall-clock comparison with a coupled run on as many cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   run->add_option("--checkpoint-interval", o.checkpoint_interval_s,
                   "every process (mono: the run) writes a checkpoint every this much simulated "
                   "time, s (split/multi: rounded to a multiple of every domain's step; mono: at "
@@ -152,6 +158,7 @@ int run_run(const RunCommandOptions& o) {
     RunCommandOptions ref = coupled;
     ref.mode = o.reference;
     ref.out = o.out + "/reference";
+    ref.threads = o.reference_threads;
     std::printf("\n");
     if (const int rc = run_run(ref); rc != 0) return rc;
     std::printf("\n");

@@ -36,6 +36,9 @@ struct RunCommandOptions {
   bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
   /// Threads per solver (0: every core this process may use; docs/threads.md).
   int threads = 1;
+  /// --reference mono: the reference's threads (0: every core this process may use; the fair
+  /// wall-clock comparison runs it on as many cores as the coupled run uses).
+  int reference_threads = 1;
   bool no_drift = false;        ///< `paper`: drift correction [11] off
   bool variable_steps = false;  ///< each domain follows its own step (docs/design.md §2.6)
   /// A keyword deck's unit system (deck/units.h); required for a deck, refused for YAML.

@@ -209,7 +209,11 @@ int run_coupled(const RunCommandOptions& o) {
   lo.session = o.session;
   lo.join_timeout_ms = o.join_timeout_ms;
   lo.step_safety = o.step_safety;
-  lo.threads = o.threads > 0 ? o.threads : parallel::available_cores();
+  // --threads 0: this machine's cores shared out evenly among the daemons started on it (the
+  // coordinator mostly sleeps), at least one each.
+  lo.threads = o.threads > 0 ? o.threads
+                             : std::max(1, parallel::available_cores() /
+                                               std::max(1, static_cast<int>(domains.size())));
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

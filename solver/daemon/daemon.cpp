@@ -85,7 +85,12 @@ class Daemon {
  private:
   integration::Solver* solver() const { return scheme_ ? &scheme_->solver() : nullptr; }
 
-  double cpu_seconds() const { return run::cpu_seconds(o_.in_process); }
+  /// In process, this thread's clock plus the solver's worker threads' (their CPU since they
+  /// started, after cpu0_ was read).
+  double cpu_seconds() const {
+    const double team = o_.in_process && solver() ? solver()->team_cpu_seconds() : 0.0;
+    return run::cpu_seconds(o_.in_process) + team;
+  }
 
   /// CPU of this run, plus that of the run(s) before the checkpoint it restarted from.
   double run_cpu_seconds() const { return cpu_before_ + cpu_seconds() - cpu0_; }

@@ -58,8 +58,9 @@ void DomainOutput::close_after_failure(double wall_s, double cpu_s,
 
 /// The domain's timing and the spot welds that let go in it (gathered into result.h5).
 void DomainOutput::write_timing(double wall_s, double cpu_s, std::int64_t elements) {
-  writer_.write_timing(wall_s, 0.0,
-                       {{domain_, cpu_s, solver_->cycle(), solver_->dt_min_s(), elements}});
+  writer_.write_timing(
+      wall_s, 0.0,
+      {{domain_, cpu_s, solver_->cycle(), solver_->dt_min_s(), elements, solver_->threads()}});
   std::vector<io::SpotWeldFailure> welds;
   for (const auto& w : solver_->weld_failures())
     welds.push_back({w.name, w.time_s, w.normal_N, w.shear_N});

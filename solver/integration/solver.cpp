@@ -312,15 +312,18 @@ void Solver::compute_forces(double dt, ElementSpan span) {
       chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part));
     }
   };
+  if (chunks.empty()) return;  // a span without elements (mono's rim): no loop to wake for
   if (team_) {
     const auto& cut = chunk_cut_[s];
     team_->on_each_thread([&](int t) { run_chunks(cut[t], cut[t + 1]); });
     const std::size_t shared = chunks_.shared_nodes(s);
     const auto parts = static_cast<std::size_t>(team_->size());
-    team_->on_each_thread([&](int t) {
-      const auto k = static_cast<std::size_t>(t);
-      chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f_int_.data(), m_int_.data());
-    });
+    if (shared > 0)
+      team_->on_each_thread([&](int t) {
+        const auto k = static_cast<std::size_t>(t);
+        chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f_int_.data(),
+                       m_int_.data());
+      });
   } else {
     run_chunks(0, chunks.size());
   }
@@ -483,8 +486,12 @@ void Solver::compute_accelerations() {
 }
 
 double Solver::kinetic_energy() const {
-  // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h)
-  return kinetic_energy_from(kinetic_sum(0, n_, 0.0));
+  // KE^n = 1/2 sum m v^{n-1/2} . v^{n+1/2} (see energy.h), per node tile and then over tiles in
+  // order, as velocity_pass sums it: the same bits on either path and for every thread count.
+  double sum = 0.0;
+  for (std::size_t b = 0; b < n_; b += kNodeTile)
+    sum += kinetic_sum(b, std::min(n_, b + kNodeTile), 0.0);
+  return kinetic_energy_from(sum);
 }
 
 double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {

@@ -62,6 +62,9 @@ class Solver {
   /// (docs/threads.md).
   void set_threads(int threads);
   int threads() const { return threads_; }
+  /// CPU seconds of the team's worker threads (0 with one thread): what a solver running as a
+  /// thread of a bigger process adds to its own thread's clock.
+  double team_cpu_seconds() const;
 
   /// t = 0: masses, rigid bodies, initial velocities, f^0, a^0 and the first stable step.
   void initialize();

@@ -8,10 +8,18 @@
 namespace crashlink::integration {
 
 void Solver::set_threads(int threads) {
+  if (team_ || !chunk_results_.empty())
+    throw ModelError(
+        fmt::format("{}: set_threads({}) after initialize(): the team is made there; set it before",
+                    domain_, threads));
   if (threads < 1 || threads > 1024)
     throw ModelError(fmt::format("{}: {} threads asked for; a solver runs on 1 to 1024 threads",
                                  domain_, threads));
   threads_ = threads;
+}
+
+double Solver::team_cpu_seconds() const {
+  return team_ ? team_->workers_cpu_seconds() : 0.0;
 }
 
 void Solver::set_up_threads() {

@@ -444,6 +444,7 @@ TimingData ResultReader::timing() const {
     d.cycles = read_number_attribute<std::int64_t>(dat, "cycles", H5T_NATIVE_INT64).value_or(0);
     d.dt_min_s = read_number_attribute<double>(dat, "dt_min", H5T_NATIVE_DOUBLE).value_or(0);
     d.elements = read_number_attribute<std::int64_t>(dat, "elements", H5T_NATIVE_INT64).value_or(0);
+    d.threads = read_number_attribute<std::int64_t>(dat, "threads", H5T_NATIVE_INT64).value_or(1);
     t.domains.push_back(std::move(d));
   }
   return t;

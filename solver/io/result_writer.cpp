@@ -612,6 +612,7 @@ void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seco
     write_attribute(dat, "cycles", d.cycles);
     write_attribute(dat, "dt_min", d.dt_min_s);
     write_attribute(dat, "elements", d.elements);
+    write_attribute(dat, "threads", d.threads);
   }
   w.flush_file();
 }

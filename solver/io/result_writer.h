@@ -68,6 +68,7 @@ struct DomainTiming {
   std::int64_t cycles = 0;
   double dt_min_s = 0.0;
   std::int64_t elements = 0;
+  std::int64_t threads = 1;  ///< the solver's threads (cpu_seconds is theirs summed)
 };
 
 /// A spot weld that let go (integration::WeldFailure): /events/spot_weld_failures/<k> with the

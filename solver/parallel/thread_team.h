@@ -23,10 +23,11 @@ namespace crashlink::parallel {
 /// thread that built the team.
 class ThreadTeam {
  public:
-  /// How long a waiting thread spins before it sleeps on the futex [ns]: longer than most serial
-  /// stretches between two loops of a cycle, far shorter than a time slice. No spin when the team
-  /// has more threads than the process has cores.
-  static constexpr std::int64_t kSpinNs = 20000;
+  /// The longest a waiting thread spins before it sleeps on the futex [ns]: longer than most
+  /// serial stretches between two loops of a cycle, far shorter than a time slice (measured in
+  /// docs/threads.md). Adapted per wait; none when the team has more threads than the process
+  /// has cores.
+  static constexpr std::int64_t kSpinNs = 100000;
 
   explicit ThreadTeam(int threads);
   ~ThreadTeam();
@@ -34,6 +35,9 @@ class ThreadTeam {
   ThreadTeam& operator=(const ThreadTeam&) = delete;
 
   int size() const { return static_cast<int>(workers_.size()) + 1; }
+  /// CPU seconds the workers have used since they started (not the caller's: its thread's own
+  /// clock has it), for a solver that runs as a thread of a bigger process.
+  double workers_cpu_seconds();
 
   template <class F>
   void for_each(std::size_t count, F&& f) {
@@ -57,6 +61,7 @@ class ThreadTeam {
   void work_loop(std::size_t index);
   void take_tasks();
   void call(std::size_t task);
+  void stop_workers();
 
   std::vector<std::thread> workers_;
   TaskFn fn_ = nullptr;
@@ -66,8 +71,11 @@ class ThreadTeam {
   std::atomic<std::size_t> next_{0};  ///< the next task to hand out
   std::atomic<std::uint64_t> generation_{0};  ///< bumped per loop and to stop
   std::atomic<bool> stop_{false};
-  std::atomic<int> running_{0};  ///< workers still in the current loop
-  std::int64_t spin_ns_ = 0;     ///< how long a waiting thread spins before it sleeps
+  std::atomic<int> workers_asleep_{0};  ///< workers sleeping on generation_
+  std::atomic<int> caller_asleep_{0};   ///< 1 while the caller sleeps on running_
+  std::atomic<int> running_{0};         ///< workers still in the current loop
+  std::int64_t spin_ns_ = 0;            ///< the longest a waiting thread spins before it sleeps
+  std::int64_t caller_spin_ns_ = 0;     ///< the caller's spin now (adapted per wait)
   std::mutex error_mutex_;
   std::exception_ptr error_;
 };

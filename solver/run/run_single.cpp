@@ -93,9 +93,9 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   }
   sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
-  writer.write_timing(
-      sum.wall_seconds, 0.0,
-      {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s, sum.elements}});
+  writer.write_timing(sum.wall_seconds, 0.0,
+                      {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s,
+                        sum.elements, options.threads}});
   writer.close();
   return sum;
 }
