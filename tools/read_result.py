@@ -70,6 +70,7 @@ class Result:
                 "cycles": int(g.attrs["cycles"]),
                 "dt_min": float(g.attrs["dt_min"]),
                 "elements": int(g.attrs["elements"]),
+                "threads": int(g.attrs.get("threads", 1)),
             }
         return out
 
