@@ -51,23 +51,10 @@ long allocations_per_run(const model::Model& m, int threads, int warm, int cycle
   return g_allocations.load() - before;
 }
 
+/// A 20 x 20 x 5 steel block clamped at x = 0, thrown at 5 m/s along z.
 model::Model block() {
-  model::Model m;
-  m.name = "block";
-  m.materials.push_back(crashlink::testing::steel());
-  model::Part p;
-  p.name = "block";
-  p.material = 0;
-  model::generate_box(m, p, {{0.0, 0.0, 0.0}, {0.2, 0.1, 0.05}, {20, 20, 5}});
-  crashlink::testing::fix(
-      m, crashlink::testing::nodes_where(m, [](const Vec3& x) { return x[0] < 1e-9; }), 7);
-  model::InitialVelocity iv;
-  for (std::size_t i = 0; i < m.nodes.count(); ++i)
-    iv.nodes.push_back(static_cast<std::int32_t>(i));
-  iv.velocity_m_s = {0.0, 0.0, 5.0};
-  m.initial_velocities.push_back(iv);
-  m.controls.end_time_s = 1.0;
-  return m;
+  return crashlink::testing::clamped_moving_block({0.0, 0.0, 0.0}, {0.2, 0.1, 0.05}, {20, 20, 5},
+                                                  {0.0, 0.0, 5.0}, {});
 }
 
 }  // namespace

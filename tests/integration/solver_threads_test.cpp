@@ -83,24 +83,11 @@ model::Model sphere_on_plate() {
   return b.m;
 }
 
-/// A 30 x 20 x 6 steel block clamped at x = 0, spinning about x at 200 rad/s.
+/// A 30 x 20 x 6 steel block clamped at x = 0, spinning about the x axis (y = z = 0) at
+/// 200 rad/s.
 model::Model twisted_block() {
-  model::Model m;
-  m.name = "twisted block";
-  m.materials.push_back(crashlink::testing::steel());
-  model::Part p;
-  p.name = "block";
-  p.material = 0;
-  model::generate_box(m, p, {{0.0, -0.1, -0.03}, {0.3, 0.2, 0.06}, {30, 20, 6}});
-  crashlink::testing::fix(
-      m, crashlink::testing::nodes_where(m, [](const Vec3& x) { return x[0] < 1e-9; }), 7);
-  model::InitialVelocity iv;
-  for (std::size_t i = 0; i < m.nodes.count(); ++i)
-    iv.nodes.push_back(static_cast<std::int32_t>(i));
-  iv.angular_velocity_rad_s = {200.0, 0.0, 0.0};
-  m.initial_velocities.push_back(iv);
-  m.controls.end_time_s = 1.0;
-  return m;
+  return crashlink::testing::clamped_moving_block({0.0, -0.1, -0.03}, {0.3, 0.2, 0.06}, {30, 20, 6},
+                                                  {}, {200.0, 0.0, 0.0});
 }
 
 }  // namespace

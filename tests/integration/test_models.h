@@ -1,6 +1,8 @@
 #pragma once
 // Small models built in code for the physics acceptance tests (no scenario file needed).
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -80,6 +82,31 @@ inline model::Model hex_cantilever(double length, double width, double thickness
   p.material = 0;
   model::generate_box(m, p, {{0.0, 0.0, 0.0}, {length, width, thickness}, {nx, ny, nz}});
   fix(m, nodes_where(m, [](const Vec3& x) { return x[0] < 1e-9; }), 7);
+  return m;
+}
+
+/// A steel hex block (origin, size, divisions) clamped at its face x = origin_x, every node
+/// started with velocity v + omega x (x - centre): the threads tests' scene (solver_threads_test,
+/// solver_threads_alloc_test).
+inline model::Model clamped_moving_block(const Vec3& origin, const Vec3& size,
+                                         std::array<int, 3> divisions, const Vec3& velocity,
+                                         const Vec3& omega, const Vec3& centre = {}) {
+  model::Model m;
+  m.name = "clamped moving block";
+  m.materials.push_back(steel());
+  model::Part p;
+  p.name = "block";
+  p.material = 0;
+  model::generate_box(m, p, {origin, size, divisions});
+  fix(m, nodes_where(m, [&](const Vec3& x) { return x[0] < origin[0] + 1e-9; }), 7);
+  model::InitialVelocity iv;
+  for (std::size_t i = 0; i < m.nodes.count(); ++i)
+    iv.nodes.push_back(static_cast<std::int32_t>(i));
+  iv.velocity_m_s = velocity;
+  iv.angular_velocity_rad_s = omega;
+  iv.centre_m = centre;
+  m.initial_velocities.push_back(iv);
+  m.controls.end_time_s = 1.0;
   return m;
 }
 
