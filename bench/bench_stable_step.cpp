@@ -4,7 +4,7 @@
 // 2/omega_max and each estimate's ratio to it: the kernel's (what runs use), the element's own
 // eigenvalue bound, LS-DYNA's default lengths; and a global estimate, the power method on the
 // patch's M^-1 K after 10 and 30 iterations. A ratio above 1 is an unstable estimate.
-//   bench_stable_step [--n N] [--kind quad|hex|both]
+//   bench_stable_step [--n N] [--kind quad|hex|both] [--vibrate CYCLES]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -20,7 +20,8 @@ namespace {
 
 int usage(const char* what) {
   std::fprintf(stderr,
-               "bench_stable_step: %s\nusage: bench_stable_step [--n N] [--kind quad|hex|both]\n",
+               "bench_stable_step: %s\nusage: bench_stable_step [--n N] [--kind quad|hex|both] "
+               "[--vibrate CYCLES]\n",
                what);
   return 2;
 }
@@ -31,11 +32,15 @@ int main(int argc, char** argv) {
   using namespace crashlink::studies;
   int n = 5;
   std::string kind = "both";
+  long long vibrate = 0;  // > 0: also a free vibration of this many cycles at dt_scale 1.0
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n" && i + 1 < argc) {
       n = std::atoi(argv[++i]);
       if (n < 1 || n > 12) return usage("--n must be in [1, 12]");
+    } else if (a == "--vibrate" && i + 1 < argc) {
+      vibrate = std::atoll(argv[++i]);
+      if (vibrate < 2) return usage("--vibrate takes a cycle count >= 2");
     } else if (a == "--kind" && i + 1 < argc) {
       kind = argv[++i];
       if (kind != "quad" && kind != "hex" && kind != "both")
@@ -47,8 +52,8 @@ int main(int argc, char** argv) {
   std::vector<PatchKind> kinds;
   if (kind != "hex") kinds.push_back(PatchKind::Quad);
   if (kind != "quad") kinds.push_back(PatchKind::Hex);
-  std::printf("%-42s %9s %11s %7s %7s %7s %7s %7s\n", "patch", "elements", "2/w_max s", "kernel",
-              "element", "lsdyna", "pow10", "pow30");
+  std::printf("%-42s %9s %11s %7s %7s %7s %7s %7s %7s\n", "patch", "elements", "2/w_max s",
+              "kernel", "element", "lsdyna", "pow10", "pow30", "global");
   struct Range {
     double lo = 1e300, hi = 0.0;
     void add(double r) {
@@ -66,8 +71,19 @@ int main(int argc, char** argv) {
           const auto r = survey_patch(s);
           const double kr = r.dt_kernel_s / r.dt_patch_s, er = r.dt_element_s / r.dt_patch_s,
                        lr = r.dt_lsdyna_s / r.dt_patch_s;
-          std::printf("%-42s %9d %11.4e %7.3f %7.3f %7.3f %7.3f %7.3f\n", describe(s).c_str(),
-                      r.elements, r.dt_patch_s, kr, er, lr, r.power_ratio[1], r.power_ratio[2]);
+          const double gr = r.dt_global_s / r.dt_patch_s;
+          if (vibrate > 0) {
+            const auto v = vibrate_patch(s, vibrate);
+            std::printf(
+                "%-42s vibration: %lld cycles of %.4e s, E_max/E_1 %.4f, E_end/E_1 %.4f%s\n",
+                describe(s).c_str(), static_cast<long long>(v.cycles), v.dt_first_s,
+                v.e_max_J / v.e0_J, v.e_end_J / v.e0_J,
+                v.error.empty() ? "" : (" STOPPED: " + v.error).c_str());
+            ranges[(k == PatchKind::Quad ? "quad" : "hex") + std::string(" E_max/E_1")].add(
+                v.e_max_J / v.e0_J);
+          }
+          std::printf("%-42s %9d %11.4e %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n", describe(s).c_str(),
+                      r.elements, r.dt_patch_s, kr, er, lr, r.power_ratio[1], r.power_ratio[2], gr);
           std::fflush(stdout);
           const std::string name = k == PatchKind::Quad ? "quad" : "hex";
           ranges[name + " kernel"].add(kr);
@@ -76,6 +92,7 @@ int main(int argc, char** argv) {
           ranges[name + " power 10"].add(r.power_ratio[1]);
           ranges[name + " power 30"].add(r.power_ratio[2]);
           ranges[name + " power 100"].add(r.power_ratio[3]);
+          ranges[name + " global"].add(gr);
         }
   std::printf("\nratio to the patch's 2/omega_max (1: the largest stable step; > 1: unstable)\n");
   for (const auto& [name, r] : ranges)

@@ -13,6 +13,7 @@
 #include "solver/elements/hex8.h"
 #include "solver/elements/hex8_state.h"
 #include "solver/elements/shell_bt.h"
+#include "solver/integration/solver.h"
 #include "solver/model/mesh_generators.h"
 #include "solver/model/unit_noise.h"
 
@@ -224,6 +225,7 @@ double lsdyna_step(const model::Part& part, const materials::Material& mat,
 
 /// The patch as one part and its coordinates; held[i] for the boundary nodes when clamped.
 struct Patch {
+  model::Model model;  ///< the patch as a model (nodes at x), for the solver
   model::Part part;
   std::vector<double> x;
   std::vector<bool> boundary;
@@ -269,10 +271,77 @@ Patch build(const PatchShape& s) {
       if (!p.boundary[i])
         for (std::size_t c = 0; c < 3; ++c) p.x[3 * i + c] += a * model::unit_noise(3 * i + c);
   }
+  m.nodes.x0 = p.x;
+  p.model = std::move(m);
   return p;
 }
 
+/// The patch as a model for the solver: the global stable step on, the held boundary as the
+/// survey's, bulk viscosity off.
+model::Model patch_model(const Patch& p, const materials::Material& mat, bool clamped) {
+  model::Model m = p.model;
+  m.materials = {mat};
+  m.parts.front().material = 0;
+  m.controls.end_time_s = 1.0;
+  m.controls.bulk_viscosity = false;
+  m.controls.global_stable_step = true;
+  m.fixed.assign(m.nodes.count(), 0);
+  if (clamped)
+    for (std::size_t i = 0; i < p.boundary.size(); ++i)
+      if (p.boundary[i]) m.fixed[i] = 63;  // every translation and rotation
+  return m;
+}
+
+double solver_global_step(const Patch& p, const materials::Material& mat, bool clamped) {
+  const model::Model m = patch_model(p, mat, clamped);
+  integration::Solver solver(m, "patch");
+  solver.initialize();
+  return solver.dt_stable_s();
+}
+
+void check_shape(const PatchShape& s) {
+  if (s.n < 1 || !(s.aspect >= 1.0) || !(s.distort >= 0.0 && s.distort <= 0.4) || !(s.size_m > 0.0))
+    throw ModelError(
+        fmt::format("stable-step survey: {} is out of range (n >= 1, aspect >= 1, "
+                    "distort in [0, 0.4], size > 0)",
+                    describe(s)));
+}
+
 }  // namespace
+
+PatchVibration vibrate_patch(const PatchShape& s, std::int64_t cycles, double dt_scale) {
+  check_shape(s);
+  const Patch p = build(s);
+  model::Model m = patch_model(p, steel(), s.clamped);
+  m.controls.dt_scale = dt_scale;
+  m.controls.end_time_s = 1.0;  // never reached: the loop counts cycles
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+    if (s.clamped && p.boundary[i]) continue;
+    model::InitialVelocity iv;
+    iv.nodes = {static_cast<std::int32_t>(i)};
+    for (std::size_t c = 0; c < 3; ++c) iv.velocity_m_s[c] = 1e-3 * model::unit_noise(3 * i + c);
+    m.initial_velocities.push_back(iv);
+  }
+  PatchVibration out;
+  try {
+    integration::Solver solver(m, "patch");
+    solver.initialize();
+    out.dt_first_s = solver.dt_s();
+    for (std::int64_t k = 0; k < cycles; ++k) {
+      solver.begin_cycle();
+      const auto& e = solver.energy();
+      const double total = e.kinetic_J + e.internal_J + e.hourglass_J;
+      if (k == 1) out.e0_J = total;
+      out.e_max_J = std::max(out.e_max_J, total);
+      out.e_end_J = total;
+      solver.end_cycle();
+      out.cycles = k + 1;
+    }
+  } catch (const Error& e) {
+    out.error = e.what();
+  }
+  return out;
+}
 
 std::string describe(const PatchShape& s) {
   const bool quad = s.kind == PatchKind::Quad;
@@ -282,11 +351,7 @@ std::string describe(const PatchShape& s) {
 }
 
 PatchSteps survey_patch(const PatchShape& s) {
-  if (s.n < 1 || !(s.aspect >= 1.0) || !(s.distort >= 0.0 && s.distort <= 0.4) || !(s.size_m > 0.0))
-    throw ModelError(
-        fmt::format("stable-step survey: {} is out of range (n >= 1, aspect >= 1, "
-                    "distort in [0, 0.4], size > 0)",
-                    describe(s)));
+  check_shape(s);
   const auto mat = steel();
   const Patch p = build(s);
   const std::size_t per = s.kind == PatchKind::Quad ? 4 : 8;
@@ -299,6 +364,7 @@ PatchSteps survey_patch(const PatchShape& s) {
   if (!s.clamped) std::fill(held.begin(), held.end(), false);
   out.dt_patch_s = critical_step(whole, held);
   out.power_ratio = power_ratios(scaled_operator(whole, held), out.dt_patch_s);
+  out.dt_global_s = solver_global_step(p, mat, s.clamped);
   out.dt_element_s = out.dt_lsdyna_s = 1e300;
   for (std::size_t e = 0; e < ne; ++e) {
     model::Part one = p.part;

@@ -10,6 +10,7 @@
 // (docs/elements.md "Stable step survey").
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace crashlink::studies {
@@ -42,12 +43,29 @@ struct PatchSteps {
   /// A global estimate: 2 / sqrt(Rayleigh quotient) after kPowerIterations[i] iterations of the
   /// power method on M^-1/2 K M^-1/2, over dt_patch_s (>= 1 always, falling towards 1).
   std::array<double, kPowerEstimates> power_ratio{};
+  /// The solver's stable step with Controls::global_stable_step (Lanczos on M^-1 K, kSafety
+  /// included: integration/global_step.h) [s].
+  double dt_global_s = 0.0;
 };
 
 /// Steel (7850 kg/m^3, 210 GPa, nu 0.3), elastic, bulk viscosity off (a damping, not part of K),
 /// default hourglass control. Throws ModelError for a shape out of range (n < 1, aspect < 1,
 /// distort outside [0, 0.4]).
 PatchSteps survey_patch(const PatchShape& shape);
+
+/// Free vibration of the patch (dt_scale 1.0 by default) with the global stable step: every free
+/// node set moving at a pseudo-random velocity of about 1 mm/s (all modes excited, the strains
+/// ~1e-7: linear), bulk viscosity off, no damping; the energies sampled every cycle.
+struct PatchVibration {
+  std::int64_t cycles = 0;
+  double dt_first_s = 0.0;  ///< the first step
+  double e0_J = 0.0;        ///< total energy (kinetic + internal + hourglass) after cycle 1
+  double e_max_J = 0.0;     ///< its largest value over the run
+  double e_end_J = 0.0;     ///< at the end
+  std::string error;        ///< non-empty: the run stopped (the solver's message)
+};
+/// dt_scale may exceed 1 here (a step above the estimate, to show what instability looks like).
+PatchVibration vibrate_patch(const PatchShape& shape, std::int64_t cycles, double dt_scale = 1.0);
 
 /// "quad 5x5 aspect 2 distort 0.2 free" and the like.
 std::string describe(const PatchShape& shape);

@@ -154,6 +154,7 @@ std::string Composer::scenario(const std::string& deck_name) const {
   if (c.energy_tolerance != defaults.energy_tolerance)
     controls += fmt::format("  energy_tolerance: {}\n", c.energy_tolerance);
   if (c.bulk_linear_in_expansion) controls += "  bulk_viscosity: {linear_in_expansion: true}\n";
+  if (c.global_stable_step) controls += "  stable_step: global\n";
   if (controls.empty() && m_.domains.empty()) return {};
   std::string y = fmt::format(
       "# Written by crashlink export with {0}: the deck holds the model; this scenario adds what "

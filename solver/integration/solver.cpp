@@ -270,9 +270,10 @@ void Solver::initialize() {
   }
   set_up_threads();
   const bool record = record_element_steps_;
-  record_element_steps_ = record || !contacts_.empty();
+  record_element_steps_ = record || !contacts_.empty() || model_.controls.global_stable_step;
   compute_forces(0.0);
-  record_element_steps_ = record;
+  record_element_steps_ = record || model_.controls.global_stable_step;
+  set_up_global_step();
   set_contact_step_references();
   compute_contact_forces(0.0);
   compute_external_forces(0.0);
@@ -293,26 +294,47 @@ void Solver::compute_forces(double dt, ElementSpan span) {
     });
     dt_stable_ = std::numeric_limits<double>::infinity();
     for (auto& rt : parts_) rt.last = {};
+    global_.ratio = std::numeric_limits<double>::infinity();
+    global_.ratio_element = -1;
   }
   if (span == ElementSpan::All) {  // the initial call: every part in one call, on this thread
     for (std::size_t p = 0; p < parts_.size(); ++p)
       add_kernel_result(p, run_kernel(p, dt, 0, model_.parts[p].element_count(), nullptr));
     return;
   }
-  // The span's chunks, each thread its block of them, each chunk into its own result; then the
-  // shared nodes' slots (ElementChunks); then the results folded in chunk order: the same bits
-  // for any team size.
   const int s = span == ElementSpan::Interior ? 0 : 1;
   const auto& chunks = chunks_.chunks(s);
+  if (chunks.empty()) return;  // a span without elements (mono's rim): no loop to wake for
+  run_span(s, dt, false, f_int_.data(), m_int_.data());
+  for (std::size_t k = 0; k < chunks.size(); ++k)
+    add_kernel_result(chunks[k].part, chunk_results_[k]);
+  if (global_.on) {  // the smallest element ratio of the span, the first on a tie
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+      if (global_.chunk_ratio[k] < global_.ratio) {
+        global_.ratio = global_.chunk_ratio[k];
+        global_.ratio_part = chunks[k].part;
+        global_.ratio_element = global_.chunk_element[k];
+      }
+  }
+}
+
+void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
+  // The span's chunks, each thread its block of them, each chunk into its own result; then the
+  // shared nodes' slots (ElementChunks); then the results folded in chunk order by the caller:
+  // the same bits for any team size.
+  const auto& chunks = chunks_.chunks(s);
   for (const auto& c : chunks) prepare_element_steps(c.part);
+  const bool ratio = global_.on && !probe;
   const auto run_chunks = [&](std::size_t k0, std::size_t k1) {
     for (std::size_t k = k0; k < k1; ++k) {
       const auto& c = chunks[k];
       chunks_.clear_slots(c);
-      chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part));
+      chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe);
+      if (ratio)
+        global_.chunk_ratio[k] = element_ratio(c.part, c.first, c.end, global_.chunk_element[k]);
     }
   };
-  if (chunks.empty()) return;  // a span without elements (mono's rim): no loop to wake for
+  if (chunks.empty()) return;
   if (team_) {
     const auto& cut = chunk_cut_[s];
     team_->on_each_thread([&](int t) { run_chunks(cut[t], cut[t + 1]); });
@@ -321,14 +343,11 @@ void Solver::compute_forces(double dt, ElementSpan span) {
     if (shared > 0)
       team_->on_each_thread([&](int t) {
         const auto k = static_cast<std::size_t>(t);
-        chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f_int_.data(),
-                       m_int_.data());
+        chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f, m);
       });
   } else {
     run_chunks(0, chunks.size());
   }
-  for (std::size_t k = 0; k < chunks.size(); ++k)
-    add_kernel_result(chunks[k].part, chunk_results_[k]);
 }
 
 void Solver::prepare_element_steps(std::size_t p) {
@@ -338,27 +357,36 @@ void Solver::prepare_element_steps(std::size_t p) {
 }
 
 elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t first,
-                                          std::size_t end, const std::int32_t* scatter) {
+                                          std::size_t end, const std::int32_t* scatter,
+                                          bool probe) {
   const auto& part = model_.parts[p];
   auto& rt = parts_[p];
   const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
   const auto& c = model_.controls;
-  const elements::NodalView nv{x_.data(),     v_.data(),         omega_.data(),    f_int_.data(),
-                               m_int_.data(), chunks_.f_slots(), chunks_.m_slots()};
-  elements::StepInfo step{dt, c.bulk_viscosity, c.bulk_q_linear, c.bulk_q_quadratic,
+  // probe: the global step's product K y (refresh_global_step), on zero-stress histories
+  const elements::NodalView nv =
+      probe ? elements::NodalView{x_.data(),        global_.v.data(), global_.w.data(),
+                                  global_.f.data(), global_.m.data(), chunks_.f_slots(),
+                                  chunks_.m_slots()}
+            : elements::NodalView{x_.data(),     v_.data(),         omega_.data(),    f_int_.data(),
+                                  m_int_.data(), chunks_.f_slots(), chunks_.m_slots()};
+  auto& state = probe ? global_.probe_states[p] : rt.state;
+  elements::StepInfo step{dt, c.bulk_viscosity && !probe, c.bulk_q_linear, c.bulk_q_quadratic,
                           c.bulk_linear_in_expansion};
   step.first_element = first;
   step.end_element = end;
   step.scatter = scatter;
-  if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
+  if (probe) {
+    step.element_dt_s = global_.probe_dt[p].data();
+  } else if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {
     prepare_element_steps(p);
     step.element_dt_s = rt.element_dt_s.data();
   }
   if (first >= std::min(end, part.element_count())) return {};
-  if (auto* hs = std::get_if<elements::Hex8State>(&rt.state))
+  if (auto* hs = std::get_if<elements::Hex8State>(&state))
     return elements::hex8_internal_forces(part, mat, *hs, nv, step);
-  if (auto* ss = std::get_if<elements::ShellState>(&rt.state)) {
-    step.bulk_viscosity = c.bulk_viscosity && c.shell_bulk_viscosity;
+  if (auto* ss = std::get_if<elements::ShellState>(&state)) {
+    step.bulk_viscosity = step.bulk_viscosity && c.shell_bulk_viscosity;
     return elements::shell_internal_forces(part, mat, *ss, nv, step);
   }
   return {};
@@ -724,6 +752,7 @@ void Solver::end_cycle_compute() {
   if (!interior_done_) compute_forces(dt, ElementSpan::Interior);
   apply_ghost_motion();
   compute_forces(dt, ElementSpan::Rim);
+  apply_global_step();
   positions_done_ = false;
   interior_done_ = false;
   compute_contact_forces(dt);

@@ -22,6 +22,7 @@
 #include "solver/elements/shell_bt.h"
 #include "solver/integration/element_chunks.h"
 #include "solver/integration/energy.h"
+#include "solver/integration/global_step.h"
 #include "solver/integration/guard.h"
 #include "solver/integration/rigid_body.h"
 #include "solver/model/model.h"
@@ -200,6 +201,8 @@ class Solver {
   /// The spot welds that have failed so far (name, time, forces at failure).
   const std::vector<WeldFailure>& weld_failures() const { return weld_failures_; }
   const std::vector<PartRuntime>& parts() const { return parts_; }
+  /// The global stable step's state (Controls::global_stable_step; .on false otherwise).
+  const GlobalStep& global_step() const { return global_; }
   /// Keep every element's stable step in PartRuntime::element_dt_s (from the next force
   /// computation: call before initialize() for the initial steps). For analysis (`advise`).
   void record_element_steps(bool on) { record_element_steps_ = on; }
@@ -407,9 +410,28 @@ class Solver {
     for (std::size_t t = 0; t < tiles(); ++t) s += sums[t];
     return s;
   }
-  /// Part p's kernel over elements [first, end) with the scatter plan (null: into the nodes).
+  /// Part p's kernel over elements [first, end) with the scatter plan (null: into the nodes);
+  /// probe: on the global step's zero-stress histories and rates (global_), no bulk viscosity.
   elements::KernelResult run_kernel(std::size_t p, double dt, std::size_t first, std::size_t end,
-                                    const std::int32_t* scatter);
+                                    const std::int32_t* scatter, bool probe = false);
+  /// The chunks of span s (0 interior, 1 rim) on the team, their shared nodes' slots replayed
+  /// into f and m; chunk_results_ holds each chunk's result for the caller to fold in order.
+  void run_span(int s, double dt, bool probe, double* f, double* m);
+  // ---- global stable step (solver_global_step.cpp, Controls::global_stable_step) ----
+  GlobalStep global_;
+  /// initialize(): the probe's arrays and histories, the first estimate.
+  void set_up_global_step();
+  /// A new estimate of omega_max^2 by `steps` Lanczos steps, and the element steps it goes with.
+  void refresh_global_step(int steps);
+  /// out = M^-1/2 K M^-1/2 z over [6n] (translations, then rotations), K at the current x.
+  void global_product(const double* z, double* out);
+  /// After the element forces of a cycle: refresh when due, then dt_stable_ = max(dt_stable_,
+  /// dt_global x min(1, ratio)).
+  void apply_global_step();
+  /// min over elements [first, end) of part p of element_dt_s / its step at the last refresh,
+  /// and its element (the first on a tie).
+  double element_ratio(std::size_t p, std::size_t first, std::size_t end,
+                       std::int64_t& where) const;
   /// A kernel call's energies and stable step into part p's and the domain's.
   void add_kernel_result(std::size_t p, const elements::KernelResult& r);
   void prepare_element_steps(std::size_t p);

@@ -125,6 +125,22 @@ void Solver::visit_state(V& v, Self& s) {
     v.num(fmt::format("wall{}.travel", k), s.walls_[k].travel_m);
     v.num(fmt::format("wall{}.velocity", k), s.walls_[k].velocity_m_s);
   }
+  if (s.global_.on) {  // the global stable step (checkpoints of runs without it keep their layout)
+    auto& g = s.global_;
+    std::vector<double> ritz = g.lanczos.vector();
+    v.sized("global.lanczos_vector", ritz);
+    if constexpr (V::loading) g.lanczos.set_vector(ritz);
+    for (std::size_t p = 0; p < g.ref_inv.size(); ++p)
+      v.sized(fmt::format("global.ref_inv{}", p), g.ref_inv[p]);
+    v.num("global.dt_global", g.dt_global_s);
+    v.num("global.probe_dt", g.probe_dt_s);
+    v.num("global.ratio", g.ratio);
+    v.num("global.ratio_at_refresh", g.ratio_at_refresh);
+    v.integer("global.ratio_part", g.ratio_part);
+    v.integer("global.ratio_element", g.ratio_element);
+    v.integer("global.refresh_cycle", g.refresh_cycle);
+    v.flag("global.binds", g.binds);
+  }
   v.pod("energy", s.energy_);
   v.num("time_s", s.time_s_);
   v.integer("cycle", s.cycle_);

@@ -58,6 +58,17 @@ void Solver::propose_step() {
 }
 
 std::string Solver::critical_element() const {
+  if (global_.binds) {
+    const auto& g = global_;
+    std::string where = "its refresh";
+    if (g.ratio < 1.0 && g.ratio_element >= 0 && g.ratio_part < model_.parts.size()) {
+      const auto& p = model_.parts[g.ratio_part];
+      where = fmt::format("part '{}' element {} (x {:.3f})", p.name,
+                          p.element_id[static_cast<std::size_t>(g.ratio_element)], g.ratio);
+    }
+    return fmt::format("the mesh's highest frequency (global estimate {:.6e} s, scaled by {})",
+                       g.dt_global_s, where);
+  }
   if (critical_local_ < 0 && critical_part_ == model_.parts.size()) {
     const auto k = static_cast<std::size_t>(-1 - critical_local_);
     return fmt::format("the penalty springs of contact '{}'", model_.contacts[k].name);

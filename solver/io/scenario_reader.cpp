@@ -49,7 +49,7 @@ std::vector<std::int32_t> ScenarioBuild::part_nodes(int p) const {
 void read_controls(const YamlNode& c, model::Controls& out, bool end_time_required) {
   c.expect_keys({"end_time", "dt_scale", "dt_max", "history_interval", "field_interval",
                  "bulk_viscosity", "energy_tolerance", "gravity", "plausibility_checks",
-                 "mass_scaling_dt"});
+                 "mass_scaling_dt", "stable_step"});
   if (end_time_required)
     out.end_time_s = c.required("end_time", "simulated time in s, e.g. 0.01").positive();
   else if (auto v = c.optional("end_time"))
@@ -78,6 +78,10 @@ void read_controls(const YamlNode& c, model::Controls& out, bool end_time_requir
   // a deck's DT2MS < 0): applied once the model is built.
   out.mass_scaling_dt_s = c.non_negative_or("mass_scaling_dt", out.mass_scaling_dt_s);
   out.gravity_m_s2 = c.vec3_or("gravity", out.gravity_m_s2);
+  // `element`: each element's own estimate; `global`: the mesh's highest frequency, by Lanczos
+  // on M^-1 K (integration/global_step.h).
+  if (auto v = c.optional("stable_step"))
+    out.global_stable_step = v->choice({"element", "global"}) == "global";
 }
 
 namespace {

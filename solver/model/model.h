@@ -249,6 +249,9 @@ struct Controls {
   /// integration::apply_mass_scaling): every deformable element whose stable step (no safety
   /// factor) is below this gets the density that brings it there [s]; 0: none.
   double mass_scaling_dt_s = 0.0;
+  /// The stable step from the assembled mesh's highest frequency (integration::GlobalStep,
+  /// docs/elements.md "Global stable step") instead of each element's own estimate alone.
+  bool global_stable_step = false;
 };
 
 /// A subdomain of the decomposition (docs/decomposition.md, docs/design.md §2.7): the parts it

@@ -107,6 +107,16 @@ TEST(SolverThreads, HexBlockIsTheSameToTheBitOn1To4Threads) {
   for (int t = 2; t <= 4; ++t) expect_same(one, run(m, t, 300), t);
 }
 
+// The global stable step (Controls::global_stable_step): its products run on the team, its
+// Lanczos sums in index order; 400 cycles take two refreshes.
+TEST(SolverThreads, GlobalStableStepIsTheSameToTheBitOn1To3Threads) {
+  auto m = sphere_on_plate();
+  m.controls.global_stable_step = true;
+  const auto one = run(m, 1, 400);
+  ASSERT_GT(one.energies[3], 0.0) << "no contact energy: the sphere never landed";
+  for (int t = 2; t <= 3; ++t) expect_same(one, run(m, t, 400), t);
+}
+
 TEST(SolverThreads, ChunksSplitTheElementsAndShareTheBoundaryNodes) {
   // The plate: 10 000 shells in 20 chunks of 512 (the last short); the nodes of the rows where
   // two chunks meet are shared, the others not; the rigid sphere has no chunks.

@@ -1,0 +1,190 @@
+// The global stable step (Controls::global_stable_step): the assembled mesh's highest frequency
+// instead of each element's alone (docs/elements.md "Global stable step").
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/integration/solver.h"
+
+namespace crashlink::integration {
+
+namespace {
+
+/// A copy of a part's history with every stress, hourglass force, viscous pressure and damping
+/// coefficient zero: the kernels' response to a small rate on it is the elastic stiffness at
+/// the current configuration (the material's moduli, no plastic flow: crash codes size the step
+/// on the elastic wave speed too).
+void zero_history(GlobalStep::State& probe, const GlobalStep::State& run) {
+  const auto zero = [](std::vector<double>& a) { std::fill(a.begin(), a.end(), 0.0); };
+  if (auto* h = std::get_if<elements::Hex8State>(&probe)) {
+    zero(h->stress);
+    zero(h->eps_p);
+    zero(h->hourglass_force);
+    zero(h->bulk_q_Pa);
+    zero(h->damping_beta_s);
+    zero(h->damping_stress_Pa);
+  } else if (auto* s = std::get_if<elements::ShellState>(&probe)) {
+    zero(s->sigma_Pa);
+    zero(s->eps_p);
+    zero(s->resultant_Pa);
+    zero(s->shear_Pa);
+    zero(s->bulk_q_Pa);
+    zero(s->hourglass);
+    zero(s->damping_beta_s);
+    zero(s->damping_stress_Pa);
+    s->thickness_m = std::get<elements::ShellState>(run).thickness_m;  // same size: no allocation
+  }
+}
+
+}  // namespace
+
+void Solver::set_up_global_step() {
+  global_ = GlobalStep{};
+  if (!model_.controls.global_stable_step) return;
+  auto& g = global_;
+  g.on = true;
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    g.probe_states.push_back(parts_[p].state);  // after the initial call: reference recorded
+    if (auto* h = std::get_if<elements::Hex8State>(&g.probe_states.back()))
+      h->reference_recorded = true;
+    if (auto* s = std::get_if<elements::ShellState>(&g.probe_states.back()))
+      s->damping_recorded = true;
+    const std::size_t ne = std::holds_alternative<std::monostate>(parts_[p].state)
+                               ? 0
+                               : model_.parts[p].element_count();
+    g.probe_dt.emplace_back(ne, 0.0);
+    g.ref_inv.emplace_back(ne, 0.0);
+  }
+  g.inv_sqrt_mass.assign(6 * n_, 0.0);
+  g.v.assign(3 * n_, 0.0);
+  g.w.assign(3 * n_, 0.0);
+  g.f.assign(3 * n_, 0.0);
+  g.m.assign(3 * n_, 0.0);
+  g.chunk_ratio.assign(std::max(chunks_.chunks(0).size(), chunks_.chunks(1).size()), 1.0);
+  g.chunk_element.assign(g.chunk_ratio.size(), -1);
+  g.lanczos.reset(6 * n_, GlobalStep::kInitialSteps);
+  refresh_global_step(GlobalStep::kInitialSteps);
+  g.binds = false;
+  const double dt = g.dt_global_s * std::min(1.0, g.ratio);
+  if (std::isfinite(dt) && dt > dt_stable_) {
+    dt_stable_ = dt;
+    g.binds = true;
+  }
+}
+
+void Solver::global_product(const double* z, double* out) {
+  auto& g = global_;
+  const double* isq = g.inv_sqrt_mass.data();
+  const std::size_t n3 = 3 * n_;
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    for (std::size_t k = 3 * i0; k < 3 * i1; ++k) {
+      g.v[k] = z[k] * isq[k];
+      g.w[k] = z[n3 + k] * isq[n3 + k];
+      g.f[k] = 0.0;
+      g.m[k] = 0.0;
+    }
+  });
+  for (std::size_t p = 0; p < parts_.size(); ++p) zero_history(g.probe_states[p], parts_[p].state);
+  for (int s = 0; s < 2; ++s) run_span(s, g.probe_dt_s, true, g.f.data(), g.m.data());
+  const double inv_dt = 1.0 / g.probe_dt_s;
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    for (std::size_t k = 3 * i0; k < 3 * i1; ++k) {
+      out[k] = g.f[k] * inv_dt * isq[k];
+      out[n3 + k] = g.m[k] * inv_dt * isq[n3 + k];
+    }
+  });
+  ++g.products;
+}
+
+// The central-difference scheme [2] is stable for dt <= 2 / omega_max, omega_max^2 the largest
+// eigenvalue of M^-1 K (Belytschko, Liu, Moran 2000, §6.3.1); element-by-element estimates bound
+// omega_max from above by max_e omega_e (Irons' theorem, ibid. §6.3.3) and so give away what the
+// assembly's shared nodal masses allow: 0.40-0.98 of 2/omega_max on shell patches and 0.38-0.79 on
+// hexahedra (docs/elements.md "Stable step survey"). Abaqus/Explicit's "global estimator" takes
+// omega_max of the whole mesh instead; so does this, by the Lanczos process on the symmetric
+// A = M^-1/2 K M^-1/2 (held, prescribed, rigid and ghost dofs removed), each product A z one
+// kernel pass on zero-stress histories with the rates M^-1/2 z over a tiny step
+// (global_product). The largest Ritz value theta is <= omega_max^2 and its residual r bounds
+// the distance to an eigenvalue, so dt_global = kSafety 2 / sqrt(theta + r).
+// Between refreshes the mesh moves: with the nodal masses fixed, y^T K y can grow by no more
+// than the largest factor by which an element's own omega_e^2 grew, so dt_global scales with
+// min_e dt_e(now) / dt_e(refresh) (element_ratio), and that ratio also carries what the element
+// estimate gives away to bulk viscosity and damping, which the elastic probe leaves out.
+void Solver::refresh_global_step(int steps) {
+  auto& g = global_;
+  // Free dofs and their masses (a spot weld's release or a new prescribed motion changes them).
+  const std::size_t n3 = 3 * n_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    const std::uint8_t held = model_.fixed.empty() ? 0 : model_.fixed[i];
+    for (std::size_t d = 0; d < 3; ++d) {
+      g.inv_sqrt_mass[3 * i + d] = (held & (1u << d)) ? 0.0 : std::sqrt(inv_mass_[i]);
+      g.inv_sqrt_mass[n3 + 3 * i + d] = (held & (8u << d)) ? 0.0 : std::sqrt(inv_inertia_[i]);
+    }
+  }
+  for (const auto& pd : prescribed_) g.inv_sqrt_mass[(pd.rotational ? n3 : 0) + pd.index] = 0.0;
+  double least = std::numeric_limits<double>::infinity();
+  for (const auto& rt : parts_) least = std::min(least, rt.last.dt_stable_s);
+  if (!std::isfinite(least) || !(least > 0.0)) {  // only rigid parts: nothing to estimate
+    g.dt_global_s = std::numeric_limits<double>::infinity();
+    return;
+  }
+  g.probe_dt_s = GlobalStep::kProbeStep * least;
+  g.last = g.lanczos.run(steps, [&](const double* z, double* out) { global_product(z, out); });
+  const double w2 = g.last.theta + g.last.residual;
+  g.dt_global_s = w2 > 0.0 ? GlobalStep::kSafety * 2.0 / std::sqrt(w2)
+                           : std::numeric_limits<double>::infinity();
+  // The element steps the estimate goes with (the last product's: the same configuration).
+  for (std::size_t p = 0; p < parts_.size(); ++p)
+    for (std::size_t e = 0; e < g.ref_inv[p].size(); ++e)
+      g.ref_inv[p][e] = g.probe_dt[p][e] > 0.0 ? 1.0 / g.probe_dt[p][e] : 0.0;
+  g.ratio = std::numeric_limits<double>::infinity();
+  g.ratio_element = -1;
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    if (parts_[p].element_dt_s.size() != g.ref_inv[p].size()) continue;
+    std::int64_t where = -1;
+    const double r = element_ratio(p, 0, g.ref_inv[p].size(), where);
+    if (r < g.ratio) {
+      g.ratio = r;
+      g.ratio_part = p;
+      g.ratio_element = where;
+    }
+  }
+  g.ratio_at_refresh = g.ratio;
+  g.refresh_cycle = cycle_;
+  ++g.refreshes;
+}
+
+double Solver::element_ratio(std::size_t p, std::size_t first, std::size_t end,
+                             std::int64_t& where) const {
+  const auto& dt = parts_[p].element_dt_s;
+  const auto& inv = global_.ref_inv[p];
+  end = std::min(end, inv.size());
+  double least = std::numeric_limits<double>::infinity();
+  where = -1;
+  for (std::size_t e = first; e < end; ++e) {
+    const double r = dt[e] * inv[e];
+    if (r < least) {
+      least = r;
+      where = static_cast<std::int64_t>(e);
+    }
+  }
+  return least;
+}
+
+void Solver::apply_global_step() {
+  auto& g = global_;
+  if (!g.on) return;
+  if (cycle_ - g.refresh_cycle >= GlobalStep::kRefreshCycles ||
+      g.ratio < GlobalStep::kRefreshDrop * g.ratio_at_refresh)
+    refresh_global_step(GlobalStep::kRefreshSteps);
+  g.binds = false;
+  const double dt = g.dt_global_s * std::min(1.0, g.ratio);
+  if (std::isfinite(dt) && dt > dt_stable_) {
+    dt_stable_ = dt;
+    g.binds = true;
+  }
+}
+
+}  // namespace crashlink::integration
