@@ -6,7 +6,8 @@ pkgs=(build-essential cmake ninja-build pkg-config
       libyaml-cpp-dev libcli11-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev clang-format
       python3 python3-numpy python3-matplotlib python3-h5py
-      iproute2)
+      iproute2
+      slurmctld slurmd slurm-client munge)  # tests/slurm: a single-node Slurm (docs/slurm.md)
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
