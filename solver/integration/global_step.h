@@ -19,8 +19,13 @@ struct GlobalStep {
   /// converged to better than 1 % in every patch of the survey; this keeps the step under the
   /// mesh's own 2 / omega_max with a margin for the drift between refreshes.
   static constexpr double kSafety = 0.95;
-  static constexpr int kInitialSteps = 32;  ///< Lanczos steps of the first estimate
-  static constexpr int kRefreshSteps = 8;   ///< of each later one, from the last Ritz vector
+  /// Lanczos steps of one run (the basis it keeps: kSteps + 1 vectors of 6 doubles per node).
+  static constexpr int kSteps = 8;
+  /// Runs of a full estimate, each from the last one's Ritz vector (explicit restarts), the
+  /// first from the fixed pseudo-random vector: at t = 0 and every kFullEvery-th refresh.
+  static constexpr int kInitialRuns = 8;
+  static constexpr int kFullRuns = 4;
+  static constexpr std::int64_t kFullEvery = 8;
   static constexpr std::int64_t kRefreshCycles = 200;  ///< cycles between estimates at most
   /// A refresh also comes when the smallest element ratio falls below this fraction of its value
   /// just after the last one (a mesh that deforms fast).

@@ -466,6 +466,7 @@ void Solver::compute_contact_forces(double dt) {
     const double bound = share * contact_steps_[k].dt_stable_s;
     if (bound < dt_stable_) {
       dt_stable_ = bound;
+      global_.binds = false;
       critical_part_ = model_.parts.size();  // "no element": reported as the contact
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }

@@ -421,8 +421,9 @@ class Solver {
   GlobalStep global_;
   /// initialize(): the probe's arrays and histories, the first estimate.
   void set_up_global_step();
-  /// A new estimate of omega_max^2 by `steps` Lanczos steps, and the element steps it goes with.
-  void refresh_global_step(int steps);
+  /// A new estimate of omega_max^2 by `runs` Lanczos runs (a full estimate: its own count), and
+  /// the element steps it goes with.
+  void refresh_global_step(int runs);
   /// out = M^-1/2 K M^-1/2 z over [6n] (translations, then rotations), K at the current x.
   void global_product(const double* z, double* out);
   /// After the element forces of a cycle: refresh when due, then dt_stable_ = max(dt_stable_,

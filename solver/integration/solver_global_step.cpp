@@ -64,8 +64,8 @@ void Solver::set_up_global_step() {
   g.m.assign(3 * n_, 0.0);
   g.chunk_ratio.assign(std::max(chunks_.chunks(0).size(), chunks_.chunks(1).size()), 1.0);
   g.chunk_element.assign(g.chunk_ratio.size(), -1);
-  g.lanczos.reset(6 * n_, GlobalStep::kInitialSteps);
-  refresh_global_step(GlobalStep::kInitialSteps);
+  g.lanczos.reset(6 * n_, GlobalStep::kSteps);
+  refresh_global_step(GlobalStep::kInitialRuns);
   g.binds = false;
   const double dt = g.dt_global_s * std::min(1.0, g.ratio);
   if (std::isfinite(dt) && dt > dt_stable_) {
@@ -104,23 +104,47 @@ void Solver::global_product(const double* z, double* out) {
 // assembly's shared nodal masses allow: 0.40-0.98 of 2/omega_max on shell patches and 0.38-0.79 on
 // hexahedra (docs/elements.md "Stable step survey"). Abaqus/Explicit's "global estimator" takes
 // omega_max of the whole mesh instead; so does this, by the Lanczos process on the symmetric
-// A = M^-1/2 K M^-1/2 (held, prescribed, rigid and ghost dofs removed), each product A z one
-// kernel pass on zero-stress histories with the rates M^-1/2 z over a tiny step
-// (global_product). The largest Ritz value theta is <= omega_max^2 and its residual r bounds
-// the distance to an eigenvalue, so dt_global = kSafety 2 / sqrt(theta + r).
-// Between refreshes the mesh moves: with the nodal masses fixed, y^T K y can grow by no more
-// than the largest factor by which an element's own omega_e^2 grew, so dt_global scales with
-// min_e dt_e(now) / dt_e(refresh) (element_ratio), and that ratio also carries what the element
-// estimate gives away to bulk viscosity and damping, which the elastic probe leaves out.
-void Solver::refresh_global_step(int steps) {
+// A = M^-1/2 K M^-1/2 (held, prescribed and rigid dofs removed), each product A z one kernel
+// pass on zero-stress histories with the rates M^-1/2 z over a tiny step (global_product). M
+// is the domain's own lumped mass, without the coupling's summed masses, and its ghost nodes
+// take part with it: each domain of a cut model is then a sub-assembly, whose omega_max bounds
+// the whole mesh's share there from above (Irons' argument). The largest Ritz value theta is
+// <= omega_max^2; theta + r (r the residual of its Ritz vector) is the estimate, an upper bound
+// only once theta has converged to the top, which the survey's patches show (docs/elements.md
+// "Global stable step") and kSafety covers beyond.
+// Between refreshes the mesh moves: dt_global is scaled by min_e dt_e(now) / dt_e(refresh)
+// (element_ratio), a heuristic (an element's own omega_e bounds its stiffness's growth only up
+// to a rotation of its stiff directions) that also carries what the element estimate gives
+// away to bulk viscosity and damping, which the elastic probe leaves out. A warm refresh (one
+// run from the last Ritz vector) may lower the step but not raise it above the last one so
+// scaled; every kFullEvery-th refresh is a full estimate from the pseudo-random vector, which
+// may. Runs of kSteps restarted from each other keep the basis at kSteps + 1 vectors.
+void Solver::refresh_global_step(int runs) {
   auto& g = global_;
-  // Free dofs and their masses (a spot weld's release or a new prescribed motion changes them).
+  const bool cold = g.refreshes % GlobalStep::kFullEvery == 0;  // the first one too
+  if (cold && g.refreshes > 0) runs = GlobalStep::kFullRuns;
+  const double step_now = g.dt_global_s * std::min(1.0, g.ratio);  // what the last one gives now
+  // Free dofs and the domain's own lumped masses (assemble_masses without the coupling's
+  // overrides; g.f and g.m as scratch before the products), every time: a spot weld's release or
+  // a new prescribed motion changes which dofs are free.
   const std::size_t n3 = 3 * n_;
+  std::fill(g.f.begin(), g.f.end(), 0.0);
+  std::fill(g.m.begin(), g.m.end(), 0.0);
+  for (const auto& p : model_.parts) {
+    const auto& mat = model_.materials[static_cast<std::size_t>(p.material)];
+    if (p.kind == model::ElementKind::Hex8)
+      elements::hex8_lumped_mass(p, mat, model_.nodes.x0.data(), g.f.data());
+    else
+      elements::shell_lumped_mass(p, mat, model_.nodes.x0.data(), g.f.data(), g.m.data());
+  }
   for (std::size_t i = 0; i < n_; ++i) {
     const std::uint8_t held = model_.fixed.empty() ? 0 : model_.fixed[i];
+    const bool rigid = rigid_node_[i] != 0;
+    const double im = !rigid && g.f[i] > 0.0 ? std::sqrt(1.0 / g.f[i]) : 0.0;
+    const double ii = !rigid && g.m[i] > 0.0 ? std::sqrt(1.0 / g.m[i]) : 0.0;
     for (std::size_t d = 0; d < 3; ++d) {
-      g.inv_sqrt_mass[3 * i + d] = (held & (1u << d)) ? 0.0 : std::sqrt(inv_mass_[i]);
-      g.inv_sqrt_mass[n3 + 3 * i + d] = (held & (8u << d)) ? 0.0 : std::sqrt(inv_inertia_[i]);
+      g.inv_sqrt_mass[3 * i + d] = (held & (1u << d)) ? 0.0 : im;
+      g.inv_sqrt_mass[n3 + 3 * i + d] = (held & (8u << d)) ? 0.0 : ii;
     }
   }
   for (const auto& pd : prescribed_) g.inv_sqrt_mass[(pd.rotational ? n3 : 0) + pd.index] = 0.0;
@@ -128,13 +152,17 @@ void Solver::refresh_global_step(int steps) {
   for (const auto& rt : parts_) least = std::min(least, rt.last.dt_stable_s);
   if (!std::isfinite(least) || !(least > 0.0)) {  // only rigid parts: nothing to estimate
     g.dt_global_s = std::numeric_limits<double>::infinity();
+    g.refresh_cycle = cycle_;
     return;
   }
   g.probe_dt_s = GlobalStep::kProbeStep * least;
-  g.last = g.lanczos.run(steps, [&](const double* z, double* out) { global_product(z, out); });
+  if (cold) g.lanczos.forget();
+  for (int r = 0; r < runs; ++r)
+    g.last = g.lanczos.run(GlobalStep::kSteps,
+                           [&](const double* z, double* out) { global_product(z, out); });
   const double w2 = g.last.theta + g.last.residual;
-  g.dt_global_s = w2 > 0.0 ? GlobalStep::kSafety * 2.0 / std::sqrt(w2)
-                           : std::numeric_limits<double>::infinity();
+  double fresh = w2 > 0.0 ? GlobalStep::kSafety * 2.0 / std::sqrt(w2)
+                          : std::numeric_limits<double>::infinity();
   // The element steps the estimate goes with (the last product's: the same configuration).
   for (std::size_t p = 0; p < parts_.size(); ++p)
     for (std::size_t e = 0; e < g.ref_inv[p].size(); ++e)
@@ -151,6 +179,14 @@ void Solver::refresh_global_step(int steps) {
       g.ratio_element = where;
     }
   }
+  // A warm estimate never raises the step above what the last one gives now (the new ratio, to
+  // the new reference steps, carries bulk viscosity and damping alone).
+  if (!cold) fresh = std::min(fresh, step_now / std::min(1.0, g.ratio));
+  // A change within kHysteresis is not taken: each change of step in a vibrating mesh moves its
+  // energy a little (measured: 1.3 % over 1e5 steps of a patch when every estimate was taken),
+  // and the factor kSafety leaves room for it.
+  constexpr double kHysteresis = 0.01;
+  if (!(std::abs(fresh / g.dt_global_s - 1.0) <= kHysteresis)) g.dt_global_s = fresh;
   g.ratio_at_refresh = g.ratio;
   g.refresh_cycle = cycle_;
   ++g.refreshes;
@@ -178,7 +214,7 @@ void Solver::apply_global_step() {
   if (!g.on) return;
   if (cycle_ - g.refresh_cycle >= GlobalStep::kRefreshCycles ||
       g.ratio < GlobalStep::kRefreshDrop * g.ratio_at_refresh)
-    refresh_global_step(GlobalStep::kRefreshSteps);
+    refresh_global_step(1);
   g.binds = false;
   const double dt = g.dt_global_s * std::min(1.0, g.ratio);
   if (std::isfinite(dt) && dt > dt_stable_) {

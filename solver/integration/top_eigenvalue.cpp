@@ -12,6 +12,9 @@ namespace crashlink::integration {
 
 namespace {
 
+/// The pseudo-random vector's share in a warm start (norm relative to the Ritz vector's).
+constexpr double kWarmNoise = 0.05;
+
 double dot(const double* a, const double* b, std::size_t m) {
   double s = 0.0;
   for (std::size_t i = 0; i < m; ++i) s += a[i] * b[i];
@@ -70,7 +73,11 @@ void TopEigenvalue::reset(std::size_t m, int max_steps) {
   max_steps_ = max_steps;
   basis_.assign(static_cast<std::size_t>(max_steps + 1) * m, 0.0);
   start_.resize(m);
-  for (std::size_t i = 0; i < m; ++i) start_[i] = model::unit_noise(i + 7919);
+  forget();
+}
+
+void TopEigenvalue::forget() {
+  for (std::size_t i = 0; i < m_; ++i) start_[i] = model::unit_noise(i + 7919);
 }
 
 void TopEigenvalue::begin() {
@@ -79,8 +86,18 @@ void TopEigenvalue::begin() {
     for (std::size_t i = 0; i < m_; ++i) start_[i] = model::unit_noise(i + 7919);
     norm = std::sqrt(dot(start_.data(), start_.data(), m_));
   }
-  const double inv = 1.0 / norm;
-  for (std::size_t i = 0; i < m_; ++i) basis_[i] = start_[i] * inv;
+  // A warm start keeps a little of the fixed pseudo-random vector: a mode that has become the
+  // highest since the last run, far from where the last Ritz vector lives, still has a share
+  // for the Krylov space to amplify (a cold start is that vector alone).
+  double noise = 0.0;
+  for (std::size_t i = 0; i < m_; ++i) {
+    const double r = model::unit_noise(i + 7919);
+    noise += r * r;
+  }
+  const double a = 1.0 / norm, b = noise > 0.0 ? kWarmNoise / std::sqrt(noise) : 0.0;
+  for (std::size_t i = 0; i < m_; ++i) basis_[i] = start_[i] * a + b * model::unit_noise(i + 7919);
+  const double renorm = 1.0 / std::sqrt(dot(basis_.data(), basis_.data(), m_));
+  for (std::size_t i = 0; i < m_; ++i) basis_[i] *= renorm;
   beta_[0] = 0.0;
 }
 
@@ -120,7 +137,7 @@ TopEigenvalue::Estimate TopEigenvalue::finish(int k) {
       lo = mid;
   }
   e.theta = hi;
-  // Its eigenvector s by inverse iteration on T - theta I (two solves from a flat start).
+  // Its eigenvector s by inverse iteration on T - theta I (three solves from a flat start).
   std::array<double, kMaxSteps> s{};
   for (int i = 0; i < k; ++i) s[static_cast<std::size_t>(i)] = 1.0;
   for (int it = 0; it < 3; ++it) {

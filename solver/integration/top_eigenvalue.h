@@ -32,6 +32,9 @@ class TopEigenvalue {
   template <class Apply>
   Estimate run(int steps, Apply&& apply);
 
+  /// The next run starts from the fixed pseudo-random vector alone (a cold start).
+  void forget();
+
   /// The Ritz vector of the last run ([m], norm 1; the fixed start before any run).
   const std::vector<double>& vector() const { return start_; }
   /// Replaces it (a checkpoint's); size m.

@@ -74,8 +74,11 @@ TEST_P(StopRequest, EveryProcessStopsAtOnceWithItsFileReadable) {
               took_s, c.signal);
   EXPECT_EQ(exit_code(*status), crashlink::kExitStopped) << run.output();
   EXPECT_NE(run.output().find("stopped on request"), std::string::npos) << run.output();
-  // 1 s asked; the margin is for a machine whose two cores are busy with other tests
-  EXPECT_LT(took_s, 2.0) << run.output();
+  // 1 s asked, 38-79 ms measured on a quiet machine. The bound includes flushing three files
+  // and gathering a fourth, and a flush took over 1 s with both cores busy: 2.36 s was seen
+  // once with two CPU hogs beside the suite (2026-11-27). The launcher that held the request
+  // (7.5 s before issue 20) still fails it.
+  EXPECT_LT(took_s, 4.0) << run.output();
 
   // what was written is readable, up to the stop and not beyond the end
   const fs::path result = dir / "out" / "result.h5";
