@@ -47,10 +47,16 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
   run->add_flag("--quiet", o.quiet, "no progress display");
   run->add_option("--threads", o.threads,
                   "threads computing each solver's element forces and nodal passes (0: every "
-                  "core this process may use, shared out among the daemons in split/multi); the "
-                  "results are the same to the bit for every count")
+                  "core this process may use; in split/multi shared out among the daemons by "
+                  "their work, elements / stable step); the results are the same to the bit for "
+                  "every count")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
+  run->add_option("--domain-threads", o.domain_threads,
+                  "split/multi: NAME=N, the threads of domain NAME's solver (repeat, or "
+                  "comma-separated); the domains not named take --threads, and with --threads 0 "
+                  "the cores left are shared out by each domain's work (elements / stable step)")
+      ->delimiter(',');
   run->add_option("--join-timeout-ms", o.join_timeout_ms,
                   "split/multi: every daemon must have joined and registered within this "
                   "time, ms")

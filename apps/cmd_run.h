@@ -36,6 +36,8 @@ struct RunCommandOptions {
   bool no_lanes = false;  ///< CoordinatorOptions::lanes = false
   /// Threads per solver (0: every core this process may use; docs/threads.md).
   int threads = 1;
+  /// split/multi: NAME=N per domain (--domain-threads), before --threads.
+  std::vector<std::string> domain_threads;
   /// --reference mono: the reference's threads (0: every core this process may use; the fair
   /// wall-clock comparison runs it on as many cores as the coupled run uses).
   int reference_threads = 1;

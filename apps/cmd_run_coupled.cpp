@@ -28,6 +28,7 @@
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/model/run_estimate.h"
+#include "solver/parallel/thread_shares.h"
 #include "solver/parallel/thread_team.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/energy_summary.h"
@@ -74,17 +75,17 @@ Gathered gather(const model::Model& model, const partition::Decomposition& dec,
 }
 
 void print_timing(std::FILE* f, const TimingRecord& t, const LaunchResult& lr) {
-  std::fprintf(f, "\n%-12s %10s %10s %12s %10s %14s\n", "domain", "elements", "cycles",
-               "dt_min [s]", "CPU [s]", "ns/elem/cycle");
+  std::fprintf(f, "\n%-12s %10s %10s %12s %10s %14s %8s\n", "domain", "elements", "cycles",
+               "dt_min [s]", "CPU [s]", "ns/elem/cycle", "threads");
   double sum_cpu = t.coordinator_cpu_seconds;
   for (const auto& d : t.domains) {
     const double ns = d.elements > 0 && d.cycles > 0
                           ? 1e9 * d.cpu_seconds /
                                 (static_cast<double>(d.elements) * static_cast<double>(d.cycles))
                           : 0.0;
-    std::fprintf(f, "%-12s %10lld %10lld %12.4e %10.3f %14.1f\n", d.name.c_str(),
+    std::fprintf(f, "%-12s %10lld %10lld %12.4e %10.3f %14.1f %8lld\n", d.name.c_str(),
                  static_cast<long long>(d.elements), static_cast<long long>(d.cycles), d.dt_min_s,
-                 d.cpu_seconds, ns);
+                 d.cpu_seconds, ns, static_cast<long long>(d.threads));
     sum_cpu += d.cpu_seconds;
   }
   double coordinator_cpu = t.coordinator_cpu_seconds;
@@ -139,6 +140,58 @@ void print_energy(std::FILE* f, const model::Model& model, const std::string& h5
   } catch (const std::exception& x) {
     std::fprintf(f, "energy: %s could not be read: %s\n", h5.c_str(), x.what());
   }
+}
+
+/// Threads per launched domain: --domain-threads NAME=N first; the others --threads, or with
+/// --threads 0 the cores not given by name shared out by work, elements over the domain's stable
+/// step as cut (parallel::share_threads: a coupled step waits for its slowest domain).
+std::vector<int> domain_threads(const RunCommandOptions& o, const partition::Decomposition& dec,
+                                const std::vector<std::string>& domains) {
+  std::vector<int> out(domains.size(), 0);
+  int given = 0;
+  for (const auto& spec : o.domain_threads) {
+    const auto eq = spec.find('=');
+    const std::string name = spec.substr(0, eq);
+    int n = 0;
+    std::size_t used = 0;
+    try {
+      if (eq != std::string::npos) n = std::stoi(spec.substr(eq + 1), &used);
+    } catch (const std::exception&) {
+      n = 0;
+    }
+    if (eq == std::string::npos || used != spec.size() - eq - 1 || n < 1 || n > 1024)
+      throw InputError(
+          fmt::format("--domain-threads '{}': expected NAME=N with N in [1, 1024], e.g. {}=2", spec,
+                      domains.empty() ? std::string("wiper") : domains.front()));
+    const auto it = std::find(domains.begin(), domains.end(), name);
+    if (it == domains.end())
+      throw InputError(
+          fmt::format("--domain-threads '{}': this run has no domain '{}'; its "
+                      "domains: '{}'",
+                      spec, name, fmt::join(domains, "', '")));
+    auto& t = out[static_cast<std::size_t>(it - domains.begin())];
+    given += n - t;
+    t = n;
+  }
+  std::vector<std::size_t> rest;
+  std::vector<double> work;
+  for (std::size_t k = 0; k < domains.size(); ++k) {
+    if (out[k] > 0) continue;
+    if (o.threads > 0) {
+      out[k] = o.threads;
+      continue;
+    }
+    double w = 0.0;
+    for (std::size_t i = 0; i < dec.domains.size(); ++i)
+      if (dec.domains[i].name == domains[k] && i < dec.domain_dt_s.size() &&
+          dec.domain_dt_s[i] > 0.0)
+        w = static_cast<double>(dec.domains[i].model.element_count()) / dec.domain_dt_s[i];
+    rest.push_back(k);
+    work.push_back(w);
+  }
+  const auto shares = parallel::share_threads(work, parallel::available_cores() - given);
+  for (std::size_t j = 0; j < rest.size(); ++j) out[rest[j]] = shares[j];
+  return out;
 }
 
 }  // namespace
@@ -209,11 +262,16 @@ int run_coupled(const RunCommandOptions& o) {
   lo.session = o.session;
   lo.join_timeout_ms = o.join_timeout_ms;
   lo.step_safety = o.step_safety;
-  // --threads 0: this machine's cores shared out evenly among the daemons started on it (the
-  // coordinator mostly sleeps), at least one each.
-  lo.threads = o.threads > 0 ? o.threads
-                             : std::max(1, parallel::available_cores() /
-                                               std::max(1, static_cast<int>(domains.size())));
+  lo.threads = std::max(1, o.threads);
+  lo.domain_threads = domain_threads(o, dec, domains);
+  std::printf("crashlink run: threads per domain:");
+  for (std::size_t k = 0; k < domains.size(); ++k)
+    std::printf(" %s %d", domains[k].c_str(), lo.threads_of(k));
+  std::printf("%s\n", o.threads == 0 ? fmt::format(" ({} cores, by work: elements / stable step)",
+                                                   parallel::available_cores())
+                                           .c_str()
+                                     : "");
+  std::fflush(stdout);
   const LaunchResult lr = launch_local(lo, domains);
 
   const Gathered gathered = gather(model, dec, o.out);

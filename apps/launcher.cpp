@@ -166,7 +166,8 @@ class ProcessRun {
     LaunchResult r;
     r.endpoint = await_endpoint(endpoint_file);
     if (!r.endpoint.empty()) {
-      for (const auto& d : domains_) {
+      for (std::size_t k = 0; k < domains_.size(); ++k) {
+        const auto& d = domains_[k];
         std::vector<std::string> a{"--connect",  r.endpoint, "--domain", d,
                                    "--scenario", scenario,   "--out",    out.string()};
         for (const auto& s : o_.session.arguments()) a.push_back(s);
@@ -175,7 +176,7 @@ class ProcessRun {
         a.emplace_back("--coupling");
         a.push_back(o_.run.scheme);
         a.emplace_back("--threads");
-        a.push_back(std::to_string(o_.threads));
+        a.push_back(std::to_string(o_.threads_of(k)));
         add(d, spawn(solver_exe, a));
       }
     }
@@ -329,7 +330,7 @@ LaunchResult run_threads(const LaunchOptions& o, const std::vector<std::string>&
         d.session = o.session.options();
         d.in_process = true;
         d.step_safety = o.step_safety;
-        d.threads = o.threads;
+        d.threads = o.threads_of(k);
         d.coupling = o.run.scheme;
         d.stop = &stop_flag();
         dr[k] = daemon::run_daemon(d);

@@ -34,6 +34,12 @@ struct LaunchOptions {
   int join_timeout_ms = SharedDefaults::join_timeout_ms;
   double step_safety = SharedDefaults::step_safety;  ///< to every daemon (--step-safety)
   int threads = 1;  ///< to every daemon (--threads): each domain's solver threads
+  /// Per domain, in the order of the launch's domains (empty: `threads` for every one).
+  std::vector<int> domain_threads;
+  /// The threads of the k-th domain of the launch.
+  int threads_of(std::size_t k) const {
+    return k < domain_threads.size() ? domain_threads[k] : threads;
+  }
 };
 
 /// How one piece of the run ended.

@@ -2,6 +2,7 @@
 // bit (histories, probes, contacts, field states), in mono and with every daemon of a coupled run
 // on N threads (multi over ipc, split), on the CI head-impact scene cut at 4 ms.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,36 @@ TEST(ThreadsOverProcesses, MultiWith2ThreadsPerDaemonIsTheRunOf1) {
 
 TEST(ThreadsOverProcesses, SplitWith2ThreadsPerDaemonIsTheRunOf1) {
   crashlink::testing::expect_same_results(run("split", 1), run("split", 2));
+}
+
+// --domain-threads: the wiper's daemon on 2 threads, the body's on 1 (--threads), the run the
+// same to the bit; the summary's threads column says which daemon ran on what. A name that is no
+// domain of the run is a usage error naming the domains.
+TEST(ThreadsOverProcesses, ThreadsNamedPerDomainReachTheirDaemons) {
+  const fs::path out = fresh_dir("threads_named");
+  int status = -1;
+  const std::string log = crashlink::testing::run_command(
+      bin("crashlink") + " run " + scenario() +
+          " --mode multi --quiet --threads 1 --domain-threads wiper=2 --out " + out.string(),
+      status);
+  ASSERT_EQ(status, 0) << log;
+  EXPECT_NE(log.find("threads per domain: wiper 2 body 1"), std::string::npos) << log;
+  crashlink::testing::expect_same_results(run("multi", 1), (out / "result.h5").string());
+  const auto row = [&](const std::string& domain) {
+    const auto at = log.find("\n" + domain + " ");
+    return at == std::string::npos ? std::string()
+                                   : log.substr(at + 1, log.find('\n', at + 1) - at - 1);
+  };
+  EXPECT_EQ(row("wiper").substr(row("wiper").find_last_not_of(' ')), "2") << log;
+  EXPECT_EQ(row("body").substr(row("body").find_last_not_of(' ')), "1") << log;
+  const std::string bad = crashlink::testing::run_command(
+      bin("crashlink") + " run " + scenario() + " --mode multi --domain-threads bonnet=2 --out " +
+          (out / "bad").string(),
+      status);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << status << "\n" << bad;
+  EXPECT_NE(bad.find("this run has no domain 'bonnet'; its domains: 'wiper', 'body'"),
+            std::string::npos)
+      << bad;
 }
 
 TEST(ThreadsOverProcesses, TheFairClockRunsMonoOnTheCoupledRunsCores) {
