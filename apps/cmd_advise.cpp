@@ -54,6 +54,11 @@ CLI::App* add_advise_command(CLI::App& app, AdviseOptions& options) {
                   "the coupled run's factor on the domains' initial steps")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  cmd->add_option("--domains", options.domains,
+                  "cuts into this many domains (2: the two-domain splits; N > 2: the parts in "
+                  "increasing step cut into N consecutive groups, nested steps; you pick N)")
+      ->check(CLI::Range(2, 8))
+      ->capture_default_str();
   cmd->add_option("--process-sample", options.process_sample,
                   "also time the scenario's own split over processes (mono and multi to F and 2F "
                   "of the end time; the gain from the differences), F in (0, 0.5]")
@@ -82,7 +87,7 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
     units = d.units;
     return std::move(d.model);
   }();
-  const auto a = cosim::advise_split(model, options.step_safety);
+  const auto a = cosim::advise_split(model, options.step_safety, 40, options.domains);
   std::fprintf(out, "crashlink advise: %s (%zu elements, %lld deformable)\n\n", model.name.c_str(),
                model.element_count(), a.deformable_elements);
   double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
@@ -125,17 +130,27 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
     }
     return fmt::format("predicted gain {:.3f} ({}){}", c.predicted_gain, s, sampled);
   };
+  // The parts of every domain of a cut but the coarsest (which holds the rest).
+  auto groups = [&](const cosim::SplitCandidate& c) {
+    std::string s;
+    for (std::size_t k = 0; k + 1 < c.domains.size(); ++k) {
+      std::string parts;
+      for (int p : c.domains[k].parts)
+        parts.append((parts.empty() ? "" : ", ") + model.parts[static_cast<std::size_t>(p)].name);
+      s.append(fmt::format("{}{} = [{}]", k ? " | " : "", c.domains[k].name, parts));
+    }
+    return s;
+  };
   std::fprintf(
       out,
-      "two-domain splits (set up as `multi` runs them: `layer` cut, step safety %.3g, nested "
+      "%s splits (set up as `multi` runs them: `layer` cut, step safety %.3g, nested "
       "steps; gain = element-cycles of mono / of the split):\n",
+      options.domains == 2 ? "two-domain" : fmt::format("{}-domain", options.domains).c_str(),
       options.step_safety);
   for (std::size_t i = 0; i < a.candidates.size(); ++i) {
     const auto& c = a.candidates[i];
-    std::string parts;
-    for (const auto& n : c.fine_parts) parts.append(parts.empty() ? n : ", " + n);
-    std::fprintf(out, "%s fine = [%s]: %s\n", static_cast<int>(i) == a.best ? "*" : " ",
-                 parts.c_str(), describe(c).c_str());
+    std::fprintf(out, "%s %s: %s\n", static_cast<int>(i) == a.best ? "*" : " ", groups(c).c_str(),
+                 describe(c).c_str());
   }
   if (a.has_scenario_split) {
     std::fprintf(out, "\nthe scenario's own domains: %s\n", describe(a.scenario).c_str());
@@ -149,12 +164,12 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
         return fmt::format("{}", part_ids[p]);
       return n;
     };
-    std::string fine, coarse;
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
-      const bool is_fine = std::find(b.fine_parts.begin(), b.fine_parts.end(),
-                                     model.parts[p].name) != b.fine_parts.end();
-      std::string& list = is_fine ? fine : coarse;
-      list.append(list.empty() ? ref(p) : ", " + ref(p));
+    std::string block;
+    for (const auto& d : b.domains) {
+      std::string list;
+      for (int p : d.parts)
+        list.append((list.empty() ? "" : ", ") + ref(static_cast<std::size_t>(p)));
+      block.append(fmt::format("  {}: {{parts: [{}]}}\n", d.name, list));
     }
     const std::string head =
         deck ? fmt::format(
@@ -164,11 +179,23 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
              : std::string("in the scenario:\n");
     std::fprintf(out,
                  "\nbest: predicted gain %.3f from element counts and steps, %.3f from the timed "
-                 "sample (neither counts the coordinator's share); %sdomains:\n  "
-                 "fine: {parts: [%s]}\n  coarse: {parts: [%s]}\n",
-                 b.predicted_gain, b.sampled_gain, head.c_str(), fine.c_str(), coarse.c_str());
+                 "sample (neither counts the coordinator's share); %sdomains:\n%s",
+                 b.predicted_gain, b.sampled_gain, head.c_str(), block.c_str());
   } else {
-    std::fprintf(out, "\nno two-domain split is possible or useful for this model\n");
+    std::fprintf(out, "\nno %d-domain split is possible or useful for this model\n",
+                 options.domains);
+  }
+  if (options.domains > 2) {  // against the best of two, which needs no more processes
+    const auto two = cosim::advise_split(model, options.step_safety, 0, 2);
+    if (two.best >= 0) {
+      const auto& t = two.candidates[static_cast<std::size_t>(two.best)];
+      const bool better =
+          a.best < 0 ||
+          t.predicted_gain > a.candidates[static_cast<std::size_t>(a.best)].predicted_gain;
+      std::fprintf(out, "\nthe best two-domain split for comparison: %s, predicted gain %.3f%s\n",
+                   groups(t).c_str(), t.predicted_gain,
+                   better ? ": fewer domains pay more here (`--domains 2`)" : "");
+    }
   }
   if (options.process_sample > 0.0) {
     std::fflush(out);

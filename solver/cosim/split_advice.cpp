@@ -1,6 +1,9 @@
 #include "solver/cosim/split_advice.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <limits>
 
@@ -40,6 +43,7 @@ SplitCandidate evaluate(const model::Model& global, std::vector<model::Domain> d
   SplitCandidate c;
   for (int p : domains.front().parts)
     c.fine_parts.push_back(global.parts[static_cast<std::size_t>(p)].name);
+  c.domains = domains;
   model::Model m = global;
   m.domains = std::move(domains);
   try {
@@ -153,7 +157,103 @@ StepSurvey survey_steps(const model::Model& g) {
   return a;
 }
 
-SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_base_periods) {
+std::vector<std::string> cut_domain_names(int domains) {
+  std::vector<std::string> out{"fine"};
+  for (int k = 1; k + 1 < domains; ++k)
+    out.push_back(domains == 3 ? std::string("middle") : fmt::format("middle{}", k));
+  if (domains >= 2) out.push_back("coarse");
+  return out;
+}
+
+namespace {
+
+/// Every increasing choice of `take` positions out of `from`, in lexicographic order.
+void choose(const std::vector<std::size_t>& from, std::size_t take, std::size_t start,
+            std::vector<std::size_t>& picked, std::vector<std::vector<std::size_t>>& out) {
+  if (picked.size() == take) {
+    out.push_back(picked);
+    return;
+  }
+  for (std::size_t i = start; i < from.size(); ++i) {
+    picked.push_back(from[i]);
+    choose(from, take, i + 1, picked, out);
+    picked.pop_back();
+  }
+}
+
+double binomial(std::size_t n, std::size_t k) {
+  double b = 1.0;
+  for (std::size_t i = 1; i <= k; ++i) b *= static_cast<double>(n - k + i) / static_cast<double>(i);
+  return b;
+}
+
+}  // namespace
+
+SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_base_periods,
+                         int domain_count) {
+  if (domain_count >= 3) {
+    SplitAdvice a;
+    static_cast<StepSurvey&>(a) = survey_steps(g);
+    if (a.deformable_elements == 0) return a;
+    const double mono_cost = static_cast<double>(a.deformable_elements) / a.dt_mono_s;
+    std::vector<int> order;
+    for (std::size_t p = 0; p < g.parts.size(); ++p)
+      if (!a.parts[p].rigid) order.push_back(static_cast<int>(p));
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+      return a.parts[static_cast<std::size_t>(x)].min_s <
+             a.parts[static_cast<std::size_t>(y)].min_s;
+    });
+    const auto n = static_cast<std::size_t>(domain_count);
+    if (order.size() < n) return a;  // fewer deformable parts than domains: no cut
+    // Cut positions 1..P-1 (before order[i]); past kMaxCuts cuts, the largest gaps only.
+    std::vector<std::size_t> positions;
+    for (std::size_t i = 1; i < order.size(); ++i) positions.push_back(i);
+    const auto gap = [&](std::size_t i) {
+      return std::log(a.parts[static_cast<std::size_t>(order[i])].min_s /
+                      a.parts[static_cast<std::size_t>(order[i - 1])].min_s);
+    };
+    while (positions.size() > n - 1 &&
+           binomial(positions.size(), n - 1) > static_cast<double>(kMaxCuts)) {
+      const auto smallest =
+          std::min_element(positions.begin(), positions.end(),
+                           [&](std::size_t x, std::size_t y) { return gap(x) < gap(y); });
+      positions.erase(smallest);
+    }
+    std::vector<std::vector<std::size_t>> cuts;
+    std::vector<std::size_t> picked;
+    choose(positions, n - 1, 0, picked, cuts);
+    const auto names = cut_domain_names(domain_count);
+    for (const auto& cut : cuts) {
+      std::vector<model::Domain> domains;
+      for (std::size_t k = 0; k < n; ++k) domains.push_back({names[k], {}});
+      std::vector<std::size_t> group(g.parts.size(), n - 1);  // rigid parts: the coarsest
+      for (std::size_t i = 0, k = 0; i < order.size(); ++i) {
+        while (k < cut.size() && i >= cut[k]) ++k;
+        group[static_cast<std::size_t>(order[i])] = k;
+      }
+      for (std::size_t p = 0; p < g.parts.size(); ++p)
+        domains[group[p]].parts.push_back(static_cast<int>(p));
+      a.candidates.push_back(evaluate(g, domains, mono_cost, step_safety));
+    }
+    for (std::size_t i = 0; i < a.candidates.size(); ++i) {
+      const auto& c = a.candidates[i];
+      if (c.refused.empty() &&
+          (a.best < 0 ||
+           c.predicted_gain > a.candidates[static_cast<std::size_t>(a.best)].predicted_gain))
+        a.best = static_cast<int>(i);
+    }
+    if (g.domains.size() >= 2) {
+      a.has_scenario_split = true;
+      a.scenario = evaluate(g, g.domains, mono_cost, step_safety);
+      if (sample_base_periods > 0 && a.scenario.refused.empty())
+        sample_gain(g, g.domains, step_safety, sample_base_periods, a.scenario);
+    }
+    if (sample_base_periods > 0 && a.best >= 0) {
+      auto& b = a.candidates[static_cast<std::size_t>(a.best)];
+      sample_gain(g, b.domains, step_safety, sample_base_periods, b);
+    }
+    return a;
+  }
   SplitAdvice a;
   static_cast<StepSurvey&>(a) = survey_steps(g);
   if (a.deformable_elements == 0) return a;

@@ -1,8 +1,8 @@
 #pragma once
-// Which split into two domains pays (`crashlink advise`; the paper's conclusion: "the choice of
-// decomposition is decisive"), from the scenario alone, before any run: every part's element steps
-// (survey_steps), then each threshold split with its predicted CPU gain and, for the best split
-// and the scenario's own, the gain measured on a timed sample (advise_split).
+// Which split into two (or N) domains pays (`crashlink advise`; the paper's conclusion: "the choice
+// of decomposition is decisive"), from the scenario alone, before any run: every part's element
+// steps (survey_steps), then each threshold split with its predicted CPU gain and, for the best
+// split and the scenario's own, the gain measured on a timed sample (advise_split).
 #include <string>
 #include <vector>
 
@@ -33,6 +33,7 @@ StepSurvey survey_steps(const model::Model& global);
 
 struct SplitCandidate {
   std::vector<std::string> fine_parts;  ///< the fine domain's parts (as written); rest: coarse
+  std::vector<model::Domain> domains;   ///< the cut, finest first (part indices of the model)
   std::vector<std::string> domain_names;
   std::vector<long long> deformable_elements;  ///< [domains] after the cut (moved ones included)
   std::vector<double> dt_s;                    ///< [domains] planned step of the run [s]
@@ -65,7 +66,17 @@ struct SplitAdvice : StepSurvey {
 /// hex/shell cost difference, the coupling's own work.
 /// step_safety: the coupled run's factor on the domains' initial steps (`--step-safety`);
 /// sample_base_periods: length of the timed sample in coarse steps (0: no sample).
+/// domains > 2: the same for cuts into that many domains, finest first ("fine", "middle" or
+/// "middle1", "middle2", ..., "coarse"): the deformable parts in increasing minimum step cut into
+/// `domains` consecutive groups, the rigid ones with the coarsest; every such cut (C(P-1, N-1)
+/// of P parts), or, past kMaxCuts, those whose cuts sit at the largest gaps in log(min step).
 SplitAdvice advise_split(const model::Model& global, double step_safety,
-                         int sample_base_periods = 40);
+                         int sample_base_periods = 40, int domains = 2);
+
+/// The most cuts advise_split evaluates (each is a LayerNetwork set up as a run).
+inline constexpr std::size_t kMaxCuts = 200;
+
+/// Domain names of an N-domain cut, finest first.
+std::vector<std::string> cut_domain_names(int domains);
 
 }  // namespace crashlink::cosim

@@ -12,6 +12,7 @@
 
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
+#include "solver/io/scenario_reader.h"
 #include "tests/integration/shell_command.h"
 #include "tests/unit/partition/partition_models.h"
 
@@ -108,4 +109,58 @@ TEST(SplitAdvice, ProcessSampleTimesTheRealSplit) {
   EXPECT_GT(gain, 0.0) << out;
   const std::string bad = run_command(cmd + " --process-sample 0.7", status);
   EXPECT_NE(status, 0) << bad;
+}
+
+// --domains 3 on a bar whose parts' steps sit on three levels (2.5, 5 and 10 mm elements:
+// scenarios/bar_three_levels.yaml): the one cut into three consecutive groups is the parts in
+// step order, planned with nested steps 1 : 2 : 4, predicted gain
+// (3 N / dt_mono) / sum_k (N_k / dt_k) over 1.3; the command prints the three-domain block.
+TEST(SplitAdvice, ThreeDomainsFollowTheThreeStepLevels) {
+  const auto m =
+      io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/bar_three_levels.yaml");
+  const auto a = cosim::advise_split(m, 0.9, 0, 3);
+  ASSERT_EQ(a.candidates.size(), 1u);  // C(2, 2): three parts, two cut positions
+  ASSERT_EQ(a.best, 0);
+  const auto& c = a.candidates[0];
+  ASSERT_TRUE(c.refused.empty()) << c.refused;
+  ASSERT_EQ(c.domain_names, (std::vector<std::string>{"fine", "middle", "coarse"}));
+  EXPECT_NEAR(c.dt_s[1] / c.dt_s[0], 2.0, 1e-9);
+  EXPECT_NEAR(c.dt_s[2] / c.dt_s[1], 2.0, 1e-9);
+  double cost = 0.0;
+  for (std::size_t k = 0; k < 3; ++k)
+    cost += static_cast<double>(c.deformable_elements[k]) / c.dt_s[k];
+  EXPECT_NEAR(c.predicted_gain, static_cast<double>(a.deformable_elements) / a.dt_mono_s / cost,
+              1e-12);
+  EXPECT_GT(c.predicted_gain, 1.3);
+  int status = -1;
+  const std::string out =
+      run_command(std::string(CRASHLINK_BINARY_DIR) + "/apps/crashlink advise " +
+                      CRASHLINK_SOURCE_DIR + "/scenarios/bar_three_levels.yaml --domains 3",
+                  status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("3-domain splits"), std::string::npos) << out;
+  EXPECT_NE(out.find("* fine = [fine_bar] | middle = [middle_bar]: predicted gain"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("domains:\n  fine: {parts: [fine_bar]}\n  middle: {parts: [middle_bar]}\n  "
+                     "coarse: {parts: [coarse_bar]}\n"),
+            std::string::npos)
+      << out;
+}
+
+// More parts than cut positions allow: the head-impact CI scene's six deformable parts in three
+// domains, C(5, 2) = 10 cuts, every one evaluated or refused with the reason; the best keeps the
+// wiper's parts finest.
+TEST(SplitAdvice, ThreeDomainsOnTheHeadImpactSceneTryEveryCut) {
+  const auto m =
+      io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/head_impact_small.yaml");
+  const auto a = cosim::advise_split(m, 0.9, 0, 3);
+  EXPECT_EQ(a.candidates.size(), 10u);
+  for (const auto& c : a.candidates) {
+    ASSERT_EQ(c.domains.size(), 3u);
+    EXPECT_TRUE(c.refused.empty() || c.predicted_gain == 0.0);
+  }
+  ASSERT_GE(a.best, 0);
+  const auto& b = a.candidates[static_cast<std::size_t>(a.best)];
+  EXPECT_NE(std::find(b.fine_parts.begin(), b.fine_parts.end(), "wiper_bar"), b.fine_parts.end());
 }
