@@ -182,8 +182,9 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
                  "sample (neither counts the coordinator's share); %sdomains:\n%s",
                  b.predicted_gain, b.sampled_gain, head.c_str(), block.c_str());
   } else {
-    std::fprintf(out, "\nno %d-domain split is possible or useful for this model\n",
-                 options.domains);
+    std::fprintf(
+        out, "\nno %s split is possible or useful for this model\n",
+        options.domains == 2 ? "two-domain" : fmt::format("{}-domain", options.domains).c_str());
   }
   if (options.domains > 2) {  // against the best of two, which needs no more processes
     const auto two = cosim::advise_split(model, options.step_safety, 0, 2);

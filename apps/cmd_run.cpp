@@ -165,6 +165,7 @@ int run_run(const RunCommandOptions& o) {
     ref.mode = o.reference;
     ref.out = o.out + "/reference";
     ref.threads = o.reference_threads;
+    ref.domain_threads.clear();
     std::printf("\n");
     if (const int rc = run_run(ref); rc != 0) return rc;
     std::printf("\n");
@@ -181,6 +182,11 @@ int run_run(const RunCommandOptions& o) {
     return run_coupled(r);
   }
   if (o.mode != "mono") return run_coupled(o);
+  if (!o.domain_threads.empty())
+    throw InputError(fmt::format(
+        "run: --domain-threads '{}' names the domains of a split or multi run; mono is one "
+        "domain: use --threads",
+        fmt::join(o.domain_threads, ",")));
   const std::string out = o.restart.empty() ? o.out : o.restart;
   std::string hash;
   const auto model = read_input(o, hash);

@@ -3,6 +3,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -154,8 +155,10 @@ std::vector<int> domain_threads(const RunCommandOptions& o, const partition::Dec
     const std::string name = spec.substr(0, eq);
     int n = 0;
     std::size_t used = 0;
-    try {
-      if (eq != std::string::npos) n = std::stoi(spec.substr(eq + 1), &used);
+    try {  // digits only: no sign, no blank
+      if (eq != std::string::npos && eq + 1 < spec.size() &&
+          std::isdigit(static_cast<unsigned char>(spec[eq + 1])))
+        n = std::stoi(spec.substr(eq + 1), &used);
     } catch (const std::exception&) {
       n = 0;
     }
@@ -170,7 +173,8 @@ std::vector<int> domain_threads(const RunCommandOptions& o, const partition::Dec
                       "domains: '{}'",
                       spec, name, fmt::join(domains, "', '")));
     auto& t = out[static_cast<std::size_t>(it - domains.begin())];
-    given += n - t;
+    if (t > 0) throw InputError(fmt::format("--domain-threads: domain '{}' is named twice", name));
+    given += n;
     t = n;
   }
   std::vector<std::size_t> rest;
@@ -181,16 +185,28 @@ std::vector<int> domain_threads(const RunCommandOptions& o, const partition::Dec
       out[k] = o.threads;
       continue;
     }
+    // multi: elements x cycles ~ elements / own step; split: one common step, elements alone
     double w = 0.0;
     for (std::size_t i = 0; i < dec.domains.size(); ++i)
       if (dec.domains[i].name == domains[k] && i < dec.domain_dt_s.size() &&
           dec.domain_dt_s[i] > 0.0)
-        w = static_cast<double>(dec.domains[i].model.element_count()) / dec.domain_dt_s[i];
+        w = static_cast<double>(dec.domains[i].model.element_count()) /
+            (o.mode == "split" ? 1.0 : dec.domain_dt_s[i]);
     rest.push_back(k);
     work.push_back(w);
   }
-  const auto shares = parallel::share_threads(work, parallel::available_cores() - given);
+  if (std::all_of(work.begin(), work.end(), [](double w) { return !(w > 0.0); }))
+    std::fill(work.begin(), work.end(), 1.0);  // nothing to weigh by: evenly
+  const int cores = parallel::available_cores();
+  const auto shares = parallel::share_threads(work, cores - given);
   for (std::size_t j = 0; j < rest.size(); ++j) out[rest[j]] = shares[j];
+  int total = 0;
+  for (const int t : out) total += t;
+  if (total > cores)
+    std::fprintf(stderr,
+                 "crashlink run: warning: %d solver threads on %d cores: the daemons will "
+                 "share cores and wait for each other (--threads, --domain-threads)\n",
+                 total, cores);
   return out;
 }
 
@@ -267,10 +283,12 @@ int run_coupled(const RunCommandOptions& o) {
   std::printf("crashlink run: threads per domain:");
   for (std::size_t k = 0; k < domains.size(); ++k)
     std::printf(" %s %d", domains[k].c_str(), lo.threads_of(k));
-  std::printf("%s\n", o.threads == 0 ? fmt::format(" ({} cores, by work: elements / stable step)",
-                                                   parallel::available_cores())
-                                           .c_str()
-                                     : "");
+  const bool by_work = o.threads == 0 && o.domain_threads.size() < domains.size();
+  std::printf("%s\n", by_work ? fmt::format(" ({} cores, the rest by work: {})",
+                                            parallel::available_cores(),
+                                            o.mode == "split" ? "elements" : "elements / step")
+                                    .c_str()
+                              : "");
   std::fflush(stdout);
   const LaunchResult lr = launch_local(lo, domains);
 

@@ -32,7 +32,7 @@ struct StepSurvey {
 StepSurvey survey_steps(const model::Model& global);
 
 struct SplitCandidate {
-  std::vector<std::string> fine_parts;  ///< the fine domain's parts (as written); rest: coarse
+  std::vector<std::string> fine_parts;  ///< the finest domain's parts (as written)
   std::vector<model::Domain> domains;   ///< the cut, finest first (part indices of the model)
   std::vector<std::string> domain_names;
   std::vector<long long> deformable_elements;  ///< [domains] after the cut (moved ones included)

@@ -149,8 +149,8 @@ TEST(SplitAdvice, ThreeDomainsFollowTheThreeStepLevels) {
 }
 
 // More parts than cut positions allow: the head-impact CI scene's six deformable parts in three
-// domains, C(5, 2) = 10 cuts, every one evaluated or refused with the reason; the best keeps the
-// wiper's parts finest.
+// domains, C(5, 2) = 10 cuts, every one evaluated (a positive gain) or refused with the reason; the
+// best keeps the wiper's parts finest.
 TEST(SplitAdvice, ThreeDomainsOnTheHeadImpactSceneTryEveryCut) {
   const auto m =
       io::read_scenario(std::string(CRASHLINK_SOURCE_DIR) + "/scenarios/head_impact_small.yaml");
@@ -158,7 +158,9 @@ TEST(SplitAdvice, ThreeDomainsOnTheHeadImpactSceneTryEveryCut) {
   EXPECT_EQ(a.candidates.size(), 10u);
   for (const auto& c : a.candidates) {
     ASSERT_EQ(c.domains.size(), 3u);
-    EXPECT_TRUE(c.refused.empty() || c.predicted_gain == 0.0);
+    if (c.refused.empty()) {
+      EXPECT_GT(c.predicted_gain, 0.0);
+    }
   }
   ASSERT_GE(a.best, 0);
   const auto& b = a.candidates[static_cast<std::size_t>(a.best)];

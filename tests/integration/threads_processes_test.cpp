@@ -81,8 +81,10 @@ TEST(ThreadsOverProcesses, ThreadsNamedPerDomainReachTheirDaemons) {
     return at == std::string::npos ? std::string()
                                    : log.substr(at + 1, log.find('\n', at + 1) - at - 1);
   };
-  EXPECT_EQ(row("wiper").substr(row("wiper").find_last_not_of(' ')), "2") << log;
-  EXPECT_EQ(row("body").substr(row("body").find_last_not_of(' ')), "1") << log;
+  ASSERT_FALSE(row("wiper").empty()) << log;
+  ASSERT_FALSE(row("body").empty()) << log;
+  EXPECT_EQ(row("wiper").back(), '2') << log;
+  EXPECT_EQ(row("body").back(), '1') << log;
   const std::string bad = crashlink::testing::run_command(
       bin("crashlink") + " run " + scenario() + " --mode multi --domain-threads bonnet=2 --out " +
           (out / "bad").string(),
@@ -91,6 +93,16 @@ TEST(ThreadsOverProcesses, ThreadsNamedPerDomainReachTheirDaemons) {
   EXPECT_NE(bad.find("this run has no domain 'bonnet'; its domains: 'wiper', 'body'"),
             std::string::npos)
       << bad;
+  // mono has no domains to name; a sign or a blank is not a count
+  for (const char* args :
+       {" --mode mono --domain-threads wiper=2", " --mode multi --domain-threads wiper=+2",
+        " --mode multi --domain-threads wiper=2,wiper=1"}) {
+    const std::string refused = crashlink::testing::run_command(
+        bin("crashlink") + " run " + scenario() + args + " --out " + (out / "refused").string(),
+        status);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << args << "\n" << refused;
+    EXPECT_NE(refused.find("--domain-threads"), std::string::npos) << refused;
+  }
 }
 
 TEST(ThreadsOverProcesses, TheFairClockRunsMonoOnTheCoupledRunsCores) {
