@@ -191,21 +191,21 @@ double binomial(std::size_t n, std::size_t k) {
 
 SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_base_periods,
                          int domain_count) {
-  if (domain_count >= 3) {
-    SplitAdvice a;
-    static_cast<StepSurvey&>(a) = survey_steps(g);
-    if (a.deformable_elements == 0) return a;
-    const double mono_cost = static_cast<double>(a.deformable_elements) / a.dt_mono_s;
-    std::vector<int> order;
-    for (std::size_t p = 0; p < g.parts.size(); ++p)
-      if (!a.parts[p].rigid) order.push_back(static_cast<int>(p));
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-      return a.parts[static_cast<std::size_t>(x)].min_s <
-             a.parts[static_cast<std::size_t>(y)].min_s;
-    });
-    const auto n = static_cast<std::size_t>(domain_count);
-    if (order.size() < n) return a;  // fewer deformable parts than domains: no cut
-    // Cut positions 1..P-1 (before order[i]); past kMaxCuts cuts, the largest gaps only.
+  SplitAdvice a;
+  static_cast<StepSurvey&>(a) = survey_steps(g);
+  if (a.deformable_elements == 0) return a;
+  const double mono_cost = static_cast<double>(a.deformable_elements) / a.dt_mono_s;
+  // The deformable parts in increasing minimum step; a cut at position i puts order[i] and the
+  // parts after it in the next domain.
+  std::vector<int> order;
+  for (std::size_t p = 0; p < g.parts.size(); ++p)
+    if (!a.parts[p].rigid) order.push_back(static_cast<int>(p));
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return a.parts[static_cast<std::size_t>(x)].min_s < a.parts[static_cast<std::size_t>(y)].min_s;
+  });
+  const auto n = static_cast<std::size_t>(std::max(domain_count, 2));
+  if (order.size() >= n) {  // fewer deformable parts than domains: no cut
+    // Cut positions 1..P-1; past kMaxCuts cuts, those at the largest gaps of log(min step).
     std::vector<std::size_t> positions;
     for (std::size_t i = 1; i < order.size(); ++i) positions.push_back(i);
     const auto gap = [&](std::size_t i) {
@@ -222,7 +222,7 @@ SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_b
     std::vector<std::vector<std::size_t>> cuts;
     std::vector<std::size_t> picked;
     choose(positions, n - 1, 0, picked, cuts);
-    const auto names = cut_domain_names(domain_count);
+    const auto names = cut_domain_names(static_cast<int>(n));
     for (const auto& cut : cuts) {
       std::vector<model::Domain> domains;
       for (std::size_t k = 0; k < n; ++k) domains.push_back({names[k], {}});
@@ -235,44 +235,6 @@ SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_b
         domains[group[p]].parts.push_back(static_cast<int>(p));
       a.candidates.push_back(evaluate(g, domains, mono_cost, step_safety));
     }
-    for (std::size_t i = 0; i < a.candidates.size(); ++i) {
-      const auto& c = a.candidates[i];
-      if (c.refused.empty() &&
-          (a.best < 0 ||
-           c.predicted_gain > a.candidates[static_cast<std::size_t>(a.best)].predicted_gain))
-        a.best = static_cast<int>(i);
-    }
-    if (g.domains.size() >= 2) {
-      a.has_scenario_split = true;
-      a.scenario = evaluate(g, g.domains, mono_cost, step_safety);
-      if (sample_base_periods > 0 && a.scenario.refused.empty())
-        sample_gain(g, g.domains, step_safety, sample_base_periods, a.scenario);
-    }
-    if (sample_base_periods > 0 && a.best >= 0) {
-      auto& b = a.candidates[static_cast<std::size_t>(a.best)];
-      sample_gain(g, b.domains, step_safety, sample_base_periods, b);
-    }
-    return a;
-  }
-  SplitAdvice a;
-  static_cast<StepSurvey&>(a) = survey_steps(g);
-  if (a.deformable_elements == 0) return a;
-  const double mono_cost = static_cast<double>(a.deformable_elements) / a.dt_mono_s;
-
-  // Thresholds: the fine domain takes the k deformable parts of smallest minimum step.
-  std::vector<int> order;
-  for (std::size_t p = 0; p < g.parts.size(); ++p)
-    if (!a.parts[p].rigid) order.push_back(static_cast<int>(p));
-  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    return a.parts[static_cast<std::size_t>(x)].min_s < a.parts[static_cast<std::size_t>(y)].min_s;
-  });
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    model::Domain fine{"fine", {}}, coarse{"coarse", {}};
-    std::vector<char> in_fine(g.parts.size(), 0);
-    for (std::size_t i = 0; i < k; ++i) in_fine[static_cast<std::size_t>(order[i])] = 1;
-    for (std::size_t p = 0; p < g.parts.size(); ++p)
-      (in_fine[p] ? fine : coarse).parts.push_back(static_cast<int>(p));
-    a.candidates.push_back(evaluate(g, {fine, coarse}, mono_cost, step_safety));
   }
   for (std::size_t i = 0; i < a.candidates.size(); ++i) {
     const auto& c = a.candidates[i];
@@ -281,7 +243,6 @@ SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_b
          c.predicted_gain > a.candidates[static_cast<std::size_t>(a.best)].predicted_gain))
       a.best = static_cast<int>(i);
   }
-  std::vector<std::vector<model::Domain>> candidate_domains;
   if (g.domains.size() >= 2) {
     a.has_scenario_split = true;
     a.scenario = evaluate(g, g.domains, mono_cost, step_safety);
@@ -290,13 +251,7 @@ SplitAdvice advise_split(const model::Model& g, double step_safety, int sample_b
   }
   if (sample_base_periods > 0 && a.best >= 0) {
     auto& b = a.candidates[static_cast<std::size_t>(a.best)];
-    model::Domain fine{"fine", {}}, coarse{"coarse", {}};
-    for (std::size_t p = 0; p < g.parts.size(); ++p) {
-      const bool is_fine = std::find(b.fine_parts.begin(), b.fine_parts.end(), g.parts[p].name) !=
-                           b.fine_parts.end();
-      (is_fine ? fine : coarse).parts.push_back(static_cast<int>(p));
-    }
-    sample_gain(g, {fine, coarse}, step_safety, sample_base_periods, b);
+    sample_gain(g, b.domains, step_safety, sample_base_periods, b);
   }
   return a;
 }

@@ -68,8 +68,9 @@ struct SplitAdvice : StepSurvey {
 /// sample_base_periods: length of the timed sample in coarse steps (0: no sample).
 /// domains > 2: the same for cuts into that many domains, finest first ("fine", "middle" or
 /// "middle1", "middle2", ..., "coarse"): the deformable parts in increasing minimum step cut into
-/// `domains` consecutive groups, the rigid ones with the coarsest; every such cut (C(P-1, N-1)
-/// of P parts), or, past kMaxCuts, those whose cuts sit at the largest gaps in log(min step).
+/// `domains` consecutive groups, the rigid ones with the coarsest (2: the thresholds above);
+/// every such cut (C(P-1, N-1) of P parts), or, past kMaxCuts, those whose cuts sit at the
+/// largest gaps in log(min step).
 SplitAdvice advise_split(const model::Model& global, double step_safety,
                          int sample_base_periods = 40, int domains = 2);
 
