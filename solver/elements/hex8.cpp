@@ -42,9 +42,10 @@ inline vd lmax_sym3_squared(const vd& m00, const vd& m11, const vd& m22, const v
 /// Software prefetch (the kernel streams 19 history arrays, the connectivity and three nodal
 /// arrays, more streams than the hardware prefetchers follow): the history and connectivity
 /// kPrefetchHistory elements ahead (one cache line of each array per 8 elements), the nodes of
-/// one element kPrefetchNodes elements ahead. A macro, not a function: GCC finds a function
-/// made of prefetches free of side effects and deletes its calls.
-constexpr std::size_t kPrefetchHistory = 128, kPrefetchNodes = 16;
+/// one element kPrefetchNodes elements ahead (8: about 2 % faster than 16 in bench_hex8, 4: 4 %
+/// slower). A macro, not a function: GCC finds a function made of prefetches free of side
+/// effects and deletes its calls.
+constexpr std::size_t kPrefetchHistory = 128, kPrefetchNodes = 8;
 #if defined(__GNUC__)
 #define CRASHLINK_HEX8_PREFETCH(p, write) __builtin_prefetch((p), (write))
 #else
