@@ -48,7 +48,11 @@ herr_t collect(hid_t group, const char* name, const H5L_info_t*, void* data) {
   read_attribute(g, "dt_min", H5T_NATIVE_DOUBLE, d.dt_min_s);
   read_attribute(g, "cycles", H5T_NATIVE_INT64, d.cycles);
   read_attribute(g, "elements", H5T_NATIVE_INT64, d.elements);
-  read_attribute(g, "threads", H5T_NATIVE_INT64, d.threads);  // absent: 1
+  read_attribute(g, "threads", H5T_NATIVE_INT64, d.threads);                   // absent: 1
+  read_attribute(g, "contact_seconds", H5T_NATIVE_DOUBLE, d.contact_seconds);  // absent: 0
+  read_attribute(g, "contact_node_cycles", H5T_NATIVE_INT64, d.contact_node_cycles);
+  read_attribute(g, "peak_rss_bytes", H5T_NATIVE_INT64, d.peak_rss_bytes);
+  read_attribute(g, "setup_cpu_seconds", H5T_NATIVE_DOUBLE, d.setup_cpu_seconds);
   H5Gclose(g);
   record.domains.push_back(std::move(d));
   return 0;

@@ -5,7 +5,7 @@ pkgs=(build-essential cmake ninja-build pkg-config
       libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler libeigen3-dev libhdf5-dev
       libyaml-cpp-dev libcli11-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev clang-format
-      python3 python3-numpy python3-matplotlib python3-h5py
+      python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
       iproute2
       slurmctld slurmd slurm-client munge)  # tests/slurm: a single-node Slurm (docs/slurm.md)
 SUDO=""

@@ -157,6 +157,11 @@ std::vector<std::int32_t> ContactInterface::nodes() const {
 std::size_t ContactInterface::pass_count() const {
   return impl_->passes.size();
 }
+std::size_t ContactInterface::slave_node_count() const {
+  std::size_t n = 0;
+  for (const auto& p : impl_->passes) n += p.node_count();
+  return n;
+}
 
 /// Energy: ContactStep::energy_J = -sum over steps of 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) over
 /// the forces this interface applied (the trapezoid rule of the solver's work terms, energy.h),

@@ -62,6 +62,9 @@ class ContactInterface {
   std::vector<std::int32_t> nodes() const;
   /// 1 (node-to-surface, single-surface, or two-pass without slave faces) or 2.
   std::size_t pass_count() const;
+  /// The slave nodes tested per cycle, summed over the passes (a two-pass contact counts both
+  /// sides): the denominator of the contact cost per slave node-cycle (Solver::cost()).
+  std::size_t slave_node_count() const;
 
  private:
   struct Impl;

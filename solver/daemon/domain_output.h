@@ -24,6 +24,8 @@ class DomainOutput {
   void sample() { recorder_->sample(); }
   run::DomainRecorder& recorder() { return *recorder_; }
   const std::string& h5_path() const { return h5_path_; }
+  /// The daemon's CPU before its first cycle, s (/timing setup_cpu_seconds).
+  void set_setup_cpu(double cpu_s) { setup_cpu_s_ = cpu_s; }
 
   /// Timing (wall_s of the daemon, cpu_s of this domain) and welds, then closes the file.
   void finish(double wall_s, double cpu_s, std::int64_t elements);
@@ -38,6 +40,7 @@ class DomainOutput {
   io::ResultWriter writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::string h5_path_;
+  double setup_cpu_s_ = 0.0;
 };
 
 /// CRASHLINK_INJECT_INTERNAL_ERROR=DOMAIN:CYCLE makes that domain throw an unexpected exception at

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -461,8 +462,10 @@ void Solver::compute_contact_forces(double dt) {
   // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up.
   const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
+  const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());
+    contact_cost_.node_cycles += static_cast<std::int64_t>(contacts_[k].slave_node_count());
     const double bound = share * contact_steps_[k].dt_stable_s;
     if (bound < dt_stable_) {
       dt_stable_ = bound;
@@ -471,6 +474,8 @@ void Solver::compute_contact_forces(double dt) {
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }
   }
+  contact_cost_.seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void Solver::compute_external_forces(double t) {

@@ -213,6 +213,13 @@ class Solver {
   /// Contact interfaces (model.contacts order) and their last step (resultant force on the slave
   /// side at t^n).
   const std::vector<contact::ContactStep>& contact_steps() const { return contact_steps_; }
+  /// What the contacts have cost so far: wall seconds in their search and forces, and the slave
+  /// nodes they tested summed over the cycles (the scale benchmark's ns per slave node-cycle).
+  struct ContactCost {
+    double seconds = 0.0;
+    std::int64_t node_cycles = 0;
+  };
+  const ContactCost& contact_cost() const { return contact_cost_; }
   /// Rigid wall k (model.rigid_walls[k]): its force on the nodes it stops at this cycle, summed
   /// over them [N] (along its normal), and the work it has done on them since t = 0 [J] (< 0:
   /// kinetic energy it took).
@@ -312,6 +319,7 @@ class Solver {
   std::vector<WeldFailure> weld_failures_;  ///< spot welds that let go, in order
   std::vector<contact::ContactInterface> contacts_;
   std::vector<contact::ContactStep> contact_steps_;
+  ContactCost contact_cost_;
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
   struct PrescribedDof {

@@ -445,6 +445,15 @@ TimingData ResultReader::timing() const {
     d.dt_min_s = read_number_attribute<double>(dat, "dt_min", H5T_NATIVE_DOUBLE).value_or(0);
     d.elements = read_number_attribute<std::int64_t>(dat, "elements", H5T_NATIVE_INT64).value_or(0);
     d.threads = read_number_attribute<std::int64_t>(dat, "threads", H5T_NATIVE_INT64).value_or(1);
+    d.contact_seconds =
+        read_number_attribute<double>(dat, "contact_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+    d.contact_node_cycles =
+        read_number_attribute<std::int64_t>(dat, "contact_node_cycles", H5T_NATIVE_INT64)
+            .value_or(0);
+    d.peak_rss_bytes =
+        read_number_attribute<std::int64_t>(dat, "peak_rss_bytes", H5T_NATIVE_INT64).value_or(0);
+    d.setup_cpu_seconds =
+        read_number_attribute<double>(dat, "setup_cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
     t.domains.push_back(std::move(d));
   }
   return t;

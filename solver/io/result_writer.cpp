@@ -613,6 +613,10 @@ void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seco
     write_attribute(dat, "dt_min", d.dt_min_s);
     write_attribute(dat, "elements", d.elements);
     write_attribute(dat, "threads", d.threads);
+    write_attribute(dat, "contact_seconds", d.contact_seconds);
+    write_attribute(dat, "contact_node_cycles", d.contact_node_cycles);
+    write_attribute(dat, "peak_rss_bytes", d.peak_rss_bytes);
+    write_attribute(dat, "setup_cpu_seconds", d.setup_cpu_seconds);
   }
   w.flush_file();
 }

@@ -13,6 +13,7 @@
 #include "solver/run/cpu_clock.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/mono_checkpoints.h"
+#include "solver/run/peak_memory.h"
 #include "solver/run/progress.h"
 
 namespace crashlink::run {
@@ -43,6 +44,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   DomainRecorder recorder(writer, solver);
   double cpu_before = 0.0;  // of the runs before the checkpoint restarted from
   Progress progress(stderr, model.controls.end_time_s, options.progress);
+  double setup_cpu_s = 0.0;  // before the first cycle
   try {
     solver.initialize();
     // What the run will cost, from the first stable step (model/run_estimate.h): an end time or a
@@ -57,6 +59,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
     } else {
       checkpoints.start_fresh();
     }
+    setup_cpu_s = process_cpu_seconds() - cpu0;
     for (;;) {
       solver.begin_cycle();  // state at t^n complete; guard passed
       recorder.sample();
@@ -93,9 +96,11 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   }
   sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
   sum.wall_seconds = wall_seconds() - wall0;
+  const auto& contact = solver.contact_cost();
   writer.write_timing(sum.wall_seconds, 0.0,
                       {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s,
-                        sum.elements, options.threads}});
+                        sum.elements, options.threads, contact.seconds, contact.node_cycles,
+                        peak_resident_bytes(), setup_cpu_s}});
   writer.close();
   return sum;
 }

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "solver/contact/contact_interface.h"
 #include "solver/io/coupling_history_writer.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/result_writer.h"
@@ -597,6 +598,23 @@ TEST(GatherResults, ContactHistoryComesFromTheDomainHoldingIt) {
   EXPECT_LE(de, 1e-9 * e_max);
   EXPECT_LE(dp, 1e-9);
   EXPECT_LE(du, 1e-9);
+
+  // The run's cost figures (/timing, the scale benchmark's): every contact evaluation, at
+  // initialize() and after each cycle, tests the interface's slave nodes once.
+  const std::vector<double> unit_mass(m.nodes.count(), 1.0);
+  const contact::ContactInterface c0(m, m.contacts[0], unit_mass.data());
+  const std::int64_t cycles = r.attr_int64("/timing/model", "cycles");
+  EXPECT_GT(c0.slave_node_count(), 0u);
+  EXPECT_EQ(r.attr_int64("/timing/model", "contact_node_cycles"),
+            (cycles + 1) * static_cast<std::int64_t>(c0.slave_node_count()));
+  const double cpu = r.attr_double("/timing/model", "cpu_seconds");
+  const double contact_s = r.attr_double("/timing/model", "contact_seconds");
+  const double setup_s = r.attr_double("/timing/model", "setup_cpu_seconds");
+  EXPECT_GT(contact_s, 0.0);
+  EXPECT_LT(contact_s, r.attr_double("/timing", "wall_seconds"));
+  EXPECT_GT(setup_s, 0.0);
+  EXPECT_LT(setup_s, cpu);
+  EXPECT_GT(r.attr_int64("/timing/model", "peak_rss_bytes"), std::int64_t{1} << 20);  // > 1 MiB
 
   // /history/contacts/<name>/energy (issue 21): the interface's own energy. With one contact it
   // is glstat's contact_energy, in mono and gathered (from the domain that computes the contact,

@@ -64,7 +64,7 @@ TEST(ResultReaderStates, FileStemMeshStatesContactsAndTimingRoundTrip) {
     s2.time_s = 0.75;
     s2.displacement_m = u;
     w.write_field_state(s2);
-    w.write_timing(2.0, 0.0, {{"fine", 1.5, 42, 1e-7, 3}});
+    w.write_timing(2.0, 0.0, {{"fine", 1.5, 42, 1e-7, 3, 2, 0.25, 4200, 123456789, 0.125}});
   }
   // The xdmf names its own h5 file.
   std::ifstream xdmf(dir + "/fine.xdmf");
@@ -120,6 +120,11 @@ TEST(ResultReaderStates, FileStemMeshStatesContactsAndTimingRoundTrip) {
   EXPECT_EQ(t.domains[0].cycles, 42);
   EXPECT_EQ(t.domains[0].dt_min_s, 1e-7);
   EXPECT_EQ(t.domains[0].elements, 3);
+  EXPECT_EQ(t.domains[0].threads, 2);
+  EXPECT_EQ(t.domains[0].contact_seconds, 0.25);
+  EXPECT_EQ(t.domains[0].contact_node_cycles, 4200);
+  EXPECT_EQ(t.domains[0].peak_rss_bytes, 123456789);
+  EXPECT_EQ(t.domains[0].setup_cpu_seconds, 0.125);
 }
 
 TEST(ResultReaderStates, WholeColumnAppendsKeepEachProbesOwnTimes) {
