@@ -11,20 +11,24 @@ falls on all alike; the figures are medians over the runs, with their range:
   elements        of the model
   ns/el-cyc       CPU of the cycles / (elements x cycles): mono, and each domain of multi (the
                   CPU before the first cycle, /timing setup_cpu_seconds, left out)
-  mem B/el        peak resident memory / elements: mono's process; multi's daemons summed
-  contact ns      contact wall time per slave node-cycle (mono)
-  checkpoint      mono's checkpoint at mid-run: state MB, ms, folder MB
+  mem B/el        peak resident memory (VmHWM) / elements: mono's process; multi's daemons
+                  summed; and the marginal memory between consecutive sizes
+  contact ns      contact CPU time per slave node-cycle
+  checkpoint      a mono run of its own per size (to 0.2 ms at most), one checkpoint at half of
+                  it: state MB, ms, folder MB (the runs above take none: a checkpoint's state
+                  buffer would be their peak memory)
   result.h5 MB    mono's and multi's
-  CPU gain        mono CPU / multi CPU: of the whole run (daemons + coordinator, set-up
-                  included), and of the cycles alone (the daemons' CPU after their first cycle;
-                  the coordinator's CPU, mostly its own set-up, is a row of its own); the ideal
-                  gain (mono's element-cycles / the domains' summed); the cycles' gain / ideal
+  CPU gain        mono / multi: of the whole process tree (launcher, daemons, coordinator,
+                  reading, cutting and gathering: getrusage of the children), and of the cycles
+                  alone (/timing cpu_seconds - setup_cpu_seconds; the coordinator's CPU, mostly
+                  its own set-up, is a row of its own); the ideal gain (mono's element-cycles /
+                  the domains' summed); the cycles' gain / ideal
 
     bench/bench_scale.py [-b BUILD] [--levels 1,2,4] [--end-time 0.008] [--runs 3]
                          [--keep DIR [--resume]] [--check]
 
---resume takes the finished runs already in DIR (a benchmark stopped part-way goes on where it
-stopped; the scenes in DIR are rewritten, so keep the same --levels and --end-time).
+--resume takes the finished runs already in DIR whose command and scene match (a benchmark stopped
+part-way goes on where it stopped).
 
 --check (the short variant in CI): every figure must be present, finite and positive and the
 runs must have finished; exit 1 otherwise. Needs /usr/bin/python3 with python3-yaml and
@@ -32,8 +36,11 @@ python3-h5py.
 """
 
 import argparse
+import hashlib
+import json
 import math
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -71,30 +78,68 @@ def scaled_scene(base, level, end_time_s):
 DONE = "bench_scale.done"  # written in a run folder once its run has exited 0
 
 
-def finished(out):
-    """A run folder whose run exited 0 (--resume keeps it; a run stopped part-way has /timing too,
-    up to where it stopped, but no mark)."""
-    return os.path.exists(os.path.join(out, DONE))
+def run_key(cmd, scene):
+    """What a finished run must match to be taken again by --resume: the command and the scene."""
+    with open(scene, "rb") as f:
+        digest = hashlib.sha256(f.read()).hexdigest()
+    return json.dumps({"cmd": cmd, "scene_sha256": digest}, sort_keys=True)
 
 
-def run(cmd, log):
+def finished(out, key):
+    """A run folder whose run exited 0 with this command and scene (--resume takes it; a run
+    stopped part-way has /timing too, up to where it stopped, but no mark)."""
+    mark = os.path.join(out, DONE)
+    if not (os.path.exists(mark) and os.path.exists(os.path.join(out, "result.h5"))):
+        return False
+    with open(mark) as f:
+        return f.read() == key
+
+
+def children_cpu_s():
+    """CPU seconds (user + system) of this script's children that have ended, grandchildren
+    included: a run's launcher with its daemons, coordinator and gather."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run(cmd, scene, log):
+    """Runs `cmd` (a `crashlink run ... --out DIR`); returns the process tree's CPU seconds, or
+    None for a run taken from an earlier benchmark (--resume)."""
     out = cmd[cmd.index("--out") + 1]
-    if RESUME and finished(out):
-        return
+    key = run_key(cmd, scene)
+    if RESUME and finished(out, key):
+        return None
+    shutil.rmtree(out, ignore_errors=True)
+    cpu0_s = children_cpu_s()
     with open(log, "w") as f:
         r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT)
+    tree_cpu_s = children_cpu_s() - cpu0_s
     if r.returncode != 0:
         sys.stderr.write(f"bench_scale: {' '.join(cmd)} failed ({r.returncode}):\n")
         sys.stderr.write("".join(open(log).readlines()[-8:]))
         sys.exit(1)
-    open(os.path.join(out, DONE), "w").close()
+    with open(os.path.join(out, DONE), "w") as f:
+        f.write(key)
+    with open(os.path.join(out, "bench_scale.cpu"), "w") as f:
+        f.write(repr(tree_cpu_s))
+    return tree_cpu_s
+
+
+def tree_cpu(out):
+    """The process tree's CPU seconds of the run in `out` (kept beside it by run()); NaN for a run
+    of an older benchmark that did not keep it."""
+    try:
+        with open(os.path.join(out, "bench_scale.cpu")) as f:
+            return float(f.read())
+    except OSError:
+        return math.nan
 
 
 def timing(h5_path):
     with h5py.File(h5_path, "r") as f:
         t = f["timing"]
-        out = {"wall": float(t.attrs["wall_seconds"]),
-               "coordinator_cpu": float(t.attrs["coordinator_cpu_seconds"]), "domains": {}}
+        out = {"wall_s": float(t.attrs["wall_seconds"]),
+               "coordinator_cpu_s": float(t.attrs["coordinator_cpu_seconds"]), "domains": {}}
         for link in t:
             a = t[link].attrs
             name = a["name"].decode() if isinstance(a["name"], bytes) else str(a["name"])
@@ -121,46 +166,46 @@ def checkpoint_line(log):
     return math.nan, math.nan
 
 
-def measure_mono(exe, scene, out, end_time_s, log):
-    if not (RESUME and finished(out)):
-        shutil.rmtree(out, ignore_errors=True)
-    run([exe, "run", scene, "--mode", "mono", "--quiet", "--out", out,
-         "--checkpoint-interval", repr(end_time_s / 2)], log)
+def measure_mono(exe, scene, out, log):
+    run([exe, "run", scene, "--mode", "mono", "--quiet", "--out", out], scene, log)
     t = timing(os.path.join(out, "result.h5"))
     (d,) = t["domains"].values()
-    state_mb, ms = checkpoint_line(log)
+    cycle_cpu_s = d["cpu_seconds"] - d["setup_cpu_seconds"]
     return {
         "elements": d["elements"],
-        "cpu": d["cpu_seconds"],
-        "cycle_cpu": d["cpu_seconds"] - d["setup_cpu_seconds"],
+        "tree_cpu_s": tree_cpu(out),
+        "cycle_cpu_s": cycle_cpu_s,
         "element_cycles": d["elements"] * d["cycles"],
-        "ns": 1e9 * (d["cpu_seconds"] - d["setup_cpu_seconds"]) / (d["elements"] * d["cycles"]),
-        "mem": d["peak_rss_bytes"] / d["elements"],
-        "rss": d["peak_rss_bytes"],
-        "contact_ns": 1e9 * d["contact_seconds"] / max(d["contact_node_cycles"], 1),
-        "ckpt_state_mb": state_mb,
-        "ckpt_ms": ms,
-        "ckpt_dir_mb": folder_bytes(os.path.join(out, "checkpoints")) / 1e6,
-        "h5_mb": os.path.getsize(os.path.join(out, "result.h5")) / 1e6,
+        "ns_per_element_cycle": 1e9 * cycle_cpu_s / (d["elements"] * d["cycles"]),
+        "rss_bytes": d["peak_rss_bytes"],
+        "contact_ns_per_node_cycle": 1e9 * d["contact_seconds"] / max(d["contact_node_cycles"], 1),
+        "h5_MB": os.path.getsize(os.path.join(out, "result.h5")) / 1e6,
     }
 
 
+def measure_checkpoint(exe, scene, out, end_time_s, log):
+    """A mono run of its own with one checkpoint at end_time_s / 2: its state MB, ms and folder
+    MB (not in the runs that measure CPU and memory: the checkpoint's state buffer would be their
+    peak)."""
+    run([exe, "run", scene, "--mode", "mono", "--quiet", "--out", out,
+         "--checkpoint-interval", repr(end_time_s / 2)], scene, log)
+    state_MB, ms = checkpoint_line(log)
+    return {"state_MB": state_MB, "ms": ms,
+            "folder_MB": folder_bytes(os.path.join(out, "checkpoints")) / 1e6}
+
+
 def measure_multi(exe, scene, out, log):
-    if not (RESUME and finished(out)):
-        shutil.rmtree(out, ignore_errors=True)
-    run([exe, "run", scene, "--mode", "multi", "--quiet", "--out", out], log)
+    run([exe, "run", scene, "--mode", "multi", "--quiet", "--out", out], scene, log)
     t = timing(os.path.join(out, "result.h5"))
     doms = t["domains"]
-    elements = sum(d["elements"] for d in doms.values())
     r = {
-        "cpu": sum(d["cpu_seconds"] for d in doms.values()) + t["coordinator_cpu"],
-        "cycle_cpu": sum(d["cpu_seconds"] - d["setup_cpu_seconds"] for d in doms.values()),
-        "coordinator_cpu": t["coordinator_cpu"],
+        "tree_cpu_s": tree_cpu(out),
+        "cycle_cpu_s": sum(d["cpu_seconds"] - d["setup_cpu_seconds"] for d in doms.values()),
+        "coordinator_cpu_s": t["coordinator_cpu_s"],
         "element_cycles": sum(d["elements"] * d["cycles"] for d in doms.values()),
-        "mem": sum(d["peak_rss_bytes"] for d in doms.values()) / elements,
-        "rss": sum(d["peak_rss_bytes"] for d in doms.values()),
-        "h5_mb": os.path.getsize(os.path.join(out, "result.h5")) / 1e6,
-        "contact_ns": 1e9 * sum(d["contact_seconds"] for d in doms.values()) /
+        "rss_bytes": sum(d["peak_rss_bytes"] for d in doms.values()),
+        "h5_MB": os.path.getsize(os.path.join(out, "result.h5")) / 1e6,
+        "contact_ns_per_node_cycle": 1e9 * sum(d["contact_seconds"] for d in doms.values()) /
         max(sum(d["contact_node_cycles"] for d in doms.values()), 1),
     }
     for name, d in doms.items():
@@ -204,84 +249,104 @@ def main():
     levels = [int(x) for x in a.levels.split(",")]
     work = a.keep or tempfile.mkdtemp(prefix="bench_scale.")
     os.makedirs(work, exist_ok=True)
+    try:
+        measure_family(a, exe, levels, work)
+    finally:
+        if not a.keep:
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def measure_family(a, exe, levels, work):
     print(f"bench_scale: {os.path.basename(a.scenario)} at levels {levels}, end time "
           f"{a.end_time:g} s, {a.runs} run(s) of mono and multi each; {os.cpu_count()} core(s), "
           f"load {open('/proc/loadavg').read().split()[0]}", flush=True)
-    scenes = {}
+    # The checkpoint's own runs: to at most 0.2 ms (the state's size does not depend on the time).
+    ckpt_end_s = min(a.end_time, 2e-4)
+    scenes, ckpt_scenes = {}, {}
     for L in levels:
-        scenes[L] = os.path.join(work, f"scale_{L}.yaml")
-        with open(scenes[L], "w") as f:
-            f.write(f"# {a.scenario} refined {L}x by bench/bench_scale.py\n")
-            yaml.safe_dump(scaled_scene(a.scenario, L, a.end_time), f, sort_keys=False)
+        for table, end_s, stem in ((scenes, a.end_time, "scale"), (ckpt_scenes, ckpt_end_s, "ckpt")):
+            table[L] = os.path.join(work, f"{stem}_{L}.yaml")
+            with open(table[L], "w") as f:
+                f.write(f"# {a.scenario} refined {L}x, to {end_s:g} s, by bench/bench_scale.py\n")
+                yaml.safe_dump(scaled_scene(a.scenario, L, end_s), f, sort_keys=False)
     mono = {L: [] for L in levels}
     multi = {L: [] for L in levels}
+    ckpt = {}
     for i in range(1, a.runs + 1):
         for L in levels:
             base = os.path.join(work, f"L{L}-{i}")
-            mono[L].append(measure_mono(exe, scenes[L], base + "-mono", a.end_time,
-                                        base + "-mono.log"))
+            mono[L].append(measure_mono(exe, scenes[L], base + "-mono", base + "-mono.log"))
             multi[L].append(measure_multi(exe, scenes[L], base + "-multi", base + "-multi.log"))
+            if i == 1:
+                ckpt[L] = measure_checkpoint(exe, ckpt_scenes[L], base + "-ckpt", ckpt_end_s,
+                                             base + "-ckpt.log")
             m, c = mono[L][-1], multi[L][-1]
-            print(f"  run {i} level {L}: {m['elements']:.0f} elements, mono CPU {m['cpu']:.1f} s, "
-                  f"multi CPU {c['cpu']:.1f} s, gain {m['cpu'] / c['cpu']:.3f} (ideal "
+            print(f"  run {i} level {L}: {m['elements']:.0f} elements, CPU of the cycles: mono "
+                  f"{m['cycle_cpu_s']:.1f} s, multi {c['cycle_cpu_s']:.1f} s, gain "
+                  f"{m['cycle_cpu_s'] / c['cycle_cpu_s']:.3f} (ideal "
                   f"{m['element_cycles'] / c['element_cycles']:.3f})", flush=True)
 
     def row(label, fn, fmt="{:.4g}"):
-        cells = []
+        cells, medians = [], []
         for L in levels:
             v = [fn(L, k) for k in range(a.runs)]
             cells.append(fmt.format(med(v)) + span(v, fmt))
-        print(f"{label:<28}" + "".join(f"{c:>24}" for c in cells))
-        return [med([fn(L, k) for k in range(a.runs)]) for L in levels]
+            medians.append(med(v))
+        print(f"{label:<30}" + "".join(f"{c:>24}" for c in cells))
+        return medians
 
     print()
-    print(f"{'hood mesh':<28}" + "".join(f"{f'{10.0 / L:g} mm':>24}" for L in levels))
+    print(f"{'hood mesh':<30}" + "".join(f"{f'{10.0 / L:g} mm':>24}" for L in levels))
     figures = {}
-    figures["elements"] = row("elements", lambda L, k: mono[L][k]["elements"], "{:.0f}")
+    elements = {L: mono[L][0]["elements"] for L in levels}
+    figures["elements"] = row("elements", lambda L, k: elements[L], "{:.0f}")
     domains = sorted(k[3:] for k in multi[levels[0]][0] if k.startswith("ns_"))
     for d in domains:
         row(f"  of which {d}", lambda L, k, d=d: multi[L][k][f"el_{d}"], "{:.0f}")
-    figures["ns_mono"] = row("mono ns/element-cycle", lambda L, k: mono[L][k]["ns"], "{:.1f}")
+    figures["ns_mono"] = row("mono ns/element-cycle",
+                             lambda L, k: mono[L][k]["ns_per_element_cycle"], "{:.1f}")
     for d in domains:
         figures[f"ns_{d}"] = row(f"multi {d} ns/element-cycle",
                                  lambda L, k, d=d: multi[L][k][f"ns_{d}"], "{:.1f}")
-    figures["mem_mono"] = row("mono memory B/element", lambda L, k: mono[L][k]["mem"], "{:.0f}")
-    figures["mem_multi"] = row("multi memory B/element", lambda L, k: multi[L][k]["mem"],
-                               "{:.0f}")
+    figures["mem_mono"] = row("mono peak memory B/element",
+                              lambda L, k: mono[L][k]["rss_bytes"] / elements[L], "{:.0f}")
+    figures["mem_multi"] = row("multi peak memory B/element",
+                               lambda L, k: multi[L][k]["rss_bytes"] / elements[L], "{:.0f}")
     figures["contact_mono"] = row("mono contact ns/node-cycle",
-                                  lambda L, k: mono[L][k]["contact_ns"], "{:.1f}")
-    figures["contact_multi"] = row("multi contact ns/node-cyc",
-                                   lambda L, k: multi[L][k]["contact_ns"], "{:.1f}")
-    figures["ckpt_state"] = row("checkpoint state MB", lambda L, k: mono[L][k]["ckpt_state_mb"],
-                                "{:.1f}")
-    figures["ckpt_ms"] = row("checkpoint ms", lambda L, k: mono[L][k]["ckpt_ms"], "{:.0f}")
-    figures["ckpt_dir"] = row("checkpoint folder MB", lambda L, k: mono[L][k]["ckpt_dir_mb"],
-                              "{:.1f}")
-    figures["h5_mono"] = row("mono result.h5 MB", lambda L, k: mono[L][k]["h5_mb"], "{:.1f}")
-    figures["h5_multi"] = row("multi result.h5 MB", lambda L, k: multi[L][k]["h5_mb"], "{:.1f}")
-    row("multi coordinator CPU s", lambda L, k: multi[L][k]["coordinator_cpu"], "{:.2f}")
-    row("CPU gain, whole run", lambda L, k: mono[L][k]["cpu"] / multi[L][k]["cpu"], "{:.3f}")
+                                  lambda L, k: mono[L][k]["contact_ns_per_node_cycle"], "{:.1f}")
+    figures["contact_multi"] = row("multi contact ns/node-cycle",
+                                   lambda L, k: multi[L][k]["contact_ns_per_node_cycle"], "{:.1f}")
+    figures["ckpt_state"] = row("checkpoint state MB", lambda L, k: ckpt[L]["state_MB"], "{:.1f}")
+    figures["ckpt_ms"] = row("checkpoint ms", lambda L, k: ckpt[L]["ms"], "{:.0f}")
+    figures["ckpt_dir"] = row(f"checkpoint folder MB ({ckpt_end_s / 2:g} s)",
+                              lambda L, k: ckpt[L]["folder_MB"], "{:.1f}")
+    figures["h5_mono"] = row("mono result.h5 MB", lambda L, k: mono[L][k]["h5_MB"], "{:.1f}")
+    figures["h5_multi"] = row("multi result.h5 MB", lambda L, k: multi[L][k]["h5_MB"], "{:.1f}")
+    row("multi coordinator CPU s", lambda L, k: multi[L][k]["coordinator_cpu_s"], "{:.2f}")
+    row("CPU gain, whole process tree",
+        lambda L, k: mono[L][k]["tree_cpu_s"] / multi[L][k]["tree_cpu_s"], "{:.3f}")
     figures["gain"] = row("CPU gain, the cycles",
-                          lambda L, k: mono[L][k]["cycle_cpu"] / multi[L][k]["cycle_cpu"], "{:.3f}")
+                          lambda L, k: mono[L][k]["cycle_cpu_s"] / multi[L][k]["cycle_cpu_s"],
+                          "{:.3f}")
     figures["ideal"] = row("ideal gain (element-cycles)",
                            lambda L, k: mono[L][k]["element_cycles"] / multi[L][k]["element_cycles"],
                            "{:.3f}")
     figures["of_ideal"] = row("gain of the cycles / ideal",
-                              lambda L, k: (mono[L][k]["cycle_cpu"] / multi[L][k]["cycle_cpu"])
+                              lambda L, k: (mono[L][k]["cycle_cpu_s"] / multi[L][k]["cycle_cpu_s"])
                               / (mono[L][k]["element_cycles"] / multi[L][k]["element_cycles"]),
                               "{:.3f}")
     # Marginal memory: what one more element costs, between consecutive sizes (the fixed part of
     # a process, libraries and buffers, drops out).
     for j in range(1, len(levels)):
         lo, hi = levels[j - 1], levels[j]
-        de = figures["elements"][j] - figures["elements"][j - 1]
+        de = elements[hi] - elements[lo]
         for mode, runs_of in (("mono", mono), ("multi", multi)):
-            rss = [med([r["rss"] for r in runs_of[L]]) for L in (lo, hi)]
+            rss = [med([r["rss_bytes"] for r in runs_of[L]]) for L in (lo, hi)]
             print(f"marginal memory {mode} {10.0 / lo:g} -> {10.0 / hi:g} mm: "
                   f"{(rss[1] - rss[0]) / de:.0f} B/element")
     if len(levels) > 1:
-        first = levels[0]
-        print(f"\nagainst the {10.0 / first:g} mm size (issue 24: within 15 %; gain >= 0.95 of ideal):")
+        print(f"\nagainst the {10.0 / levels[0]:g} mm size (issue 24: within 15 %; gain >= 0.95 "
+              f"of ideal):")
         for key in ["ns_mono"] + [f"ns_{d}" for d in domains] + ["mem_mono", "mem_multi"]:
             rel = [v / figures[key][0] for v in figures[key]]
             print(f"  {key:<12}" + "".join(f"{r:>10.3f}" for r in rel))
@@ -290,8 +355,6 @@ def main():
         if bad:
             sys.exit(f"bench_scale: figures missing or not positive: {sorted(set(bad))}")
         print("bench_scale: every figure present and positive")
-    if not a.keep:
-        shutil.rmtree(work, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -193,7 +193,7 @@ class Daemon {
     // (docs/design.md §2.6 "Overlap").
     scheme_->set_on_outbox([this] { send_outbox(); });
     run_wall0_ = Clock::now();
-    output_->set_setup_cpu(run_cpu_seconds());
+    output_->set_setup_cpu(cpu_seconds() - cpu0_);  // this process's, as mono's (run_single)
   }
 
   /// link_->receive(timeout) in waits of at most 100 ms, checking the stop flag between them (the

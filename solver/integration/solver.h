@@ -213,8 +213,9 @@ class Solver {
   /// Contact interfaces (model.contacts order) and their last step (resultant force on the slave
   /// side at t^n).
   const std::vector<contact::ContactStep>& contact_steps() const { return contact_steps_; }
-  /// What the contacts have cost so far: wall seconds in their search and forces, and the slave
-  /// nodes they tested summed over the cycles (the scale benchmark's ns per slave node-cycle).
+  /// What the contacts have cost this process so far (not kept in checkpoints): CPU seconds of
+  /// their search and forces, and the slave nodes they tested summed over the evaluations
+  /// (initialize() and each cycle; the scale benchmark's ns per slave node-cycle).
   struct ContactCost {
     double seconds = 0.0;
     std::int64_t node_cycles = 0;

@@ -70,9 +70,9 @@ struct DomainTiming {
   std::int64_t elements = 0;
   std::int64_t threads = 1;  ///< the solver's threads (cpu_seconds is theirs summed)
   /// Cost figures of the scale benchmark (bench/bench_scale.py; 0 in files written before):
-  double contact_seconds = 0.0;          ///< wall time in contact search and forces [s]
-  std::int64_t contact_node_cycles = 0;  ///< slave nodes tested, summed over the cycles
-  std::int64_t peak_rss_bytes = 0;       ///< the process's peak resident memory [B]
+  double contact_seconds = 0.0;          ///< CPU time in contact search and forces [s]
+  std::int64_t contact_node_cycles = 0;  ///< slave nodes tested, summed over the evaluations
+  std::int64_t peak_rss_bytes = 0;       ///< the process's peak resident memory, VmHWM [B]
   /// CPU before the first cycle [s] (of cpu_seconds): reading, cutting, masses, the first step
   double setup_cpu_seconds = 0.0;
 };
