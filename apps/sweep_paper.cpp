@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <vector>
 
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "solver/cosim/layer_network.h"
 #include "solver/cosim/paper_runner.h"
@@ -16,12 +16,6 @@
 namespace crashlink::apps {
 
 namespace {
-
-double cpu_now_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 /// The solver of the two holding a probe named `name` and that probe (nullptr if none).
 std::pair<const integration::Solver*, const model::Probe*> find_probe(const cosim::PaperRunner& r,
@@ -38,7 +32,7 @@ PaperSceneResult run_paper_scene(const model::Model& m, bool drift, const std::s
                                  const std::string& disp_probe) {
   PaperSceneResult out;
   const auto wall0 = std::chrono::steady_clock::now();
-  const double cpu0 = cpu_now_s();
+  const double cpu0 = core::process_cpu_seconds();
   std::vector<double> t_s, accel;
   try {
     long ratio = 1;
@@ -87,7 +81,7 @@ PaperSceneResult run_paper_scene(const model::Model& m, bool drift, const std::s
     out.stopped = e.what();
     out.stopped_at_s = t_s.empty() ? 0.0 : t_s.back();
   }
-  out.cpu_s = cpu_now_s() - cpu0;
+  out.cpu_s = core::process_cpu_seconds() - cpu0;
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (out.finished && t_s.size() > 8) {
     const auto h = signal::head_metrics_xyz(t_s, accel, 1000, "paper run, probe " + head_probe);

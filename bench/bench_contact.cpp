@@ -7,9 +7,9 @@
 
 #include <random>
 
+#include "core/cpu_clock.h"
 #include "solver/contact/contact_interface.h"
 #include "solver/model/mesh_generators.h"
-#include "solver/run/cpu_clock.h"
 
 using namespace crashlink;
 
@@ -81,9 +81,9 @@ void BM_ContactPerSlaveNode(benchmark::State& state) {
         v[3 * i + 2] = -v[3 * i + 2];
     }
     std::fill(f.begin(), f.end(), 0.0);
-    const double t0 = run::thread_cpu_seconds();
+    const double t0 = core::thread_cpu_seconds();
     const auto step = ci.compute(x.data(), v.data(), kDt, f.data());
-    const double t1 = run::thread_cpu_seconds();
+    const double t1 = core::thread_cpu_seconds();
     benchmark::DoNotOptimize(step);
     state.SetIterationTime(t1 - t0);
     active += step.active_pairs;

@@ -23,6 +23,7 @@
 #include "coordinator/coordinator_stops.h"
 #include "coordinator/coupling_history.h"
 #include "coordinator/session_files.h"
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "core/exit_codes.h"
 #include "core/log_escape.h"
@@ -33,7 +34,6 @@
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/checkpoint_store.h"
-#include "solver/run/cpu_clock.h"
 #include "transport/coordinator_link.h"
 #include "transport/errors.h"
 #include "transport/failure.h"
@@ -96,7 +96,7 @@ class Coordinator final : private CoordinatorPort {
   }
 
  private:
-  double clock_cpu_seconds() const { return run::cpu_seconds(o_.in_process); }
+  double clock_cpu_seconds() const { return core::cpu_seconds(o_.in_process); }
   /// CPU of this run, plus that of the run(s) before the checkpoint it restarted from.
   double run_cpu_seconds() const {
     return (scheme_ ? scheme_->cpu_before() : 0.0) + clock_cpu_seconds() - cpu0_;

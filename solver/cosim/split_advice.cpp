@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <limits>
 
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "coupling/ticks.h"
 #include "solver/cosim/layer_network.h"
@@ -68,12 +68,6 @@ SplitCandidate evaluate(const model::Model& global, std::vector<model::Domain> d
   return c;
 }
 
-double cpu_now_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 /// CPU seconds of mono advancing `simulated_s` from t = 0 (initialisation excluded).
 double time_mono(const model::Model& g, double simulated_s) {
   model::Model m = g;
@@ -81,13 +75,13 @@ double time_mono(const model::Model& g, double simulated_s) {
   m.controls.end_time_s = simulated_s;
   integration::Solver solver(m, g.name);
   solver.initialize();
-  const double t0 = cpu_now_s();
+  const double t0 = core::process_cpu_seconds();
   for (;;) {
     solver.begin_cycle();
     if (solver.finished()) break;
     solver.end_cycle();
   }
-  return cpu_now_s() - t0;
+  return core::process_cpu_seconds() - t0;
 }
 
 /// CPU seconds of the coupled domains advancing `base_periods` coarse steps from t = 0; sets
@@ -102,9 +96,9 @@ double time_coupled(const model::Model& g, const std::vector<model::Domain>& dom
   net.initialize();
   const Tick until = static_cast<Tick>(base_periods) * net.plan().base;
   simulated_s = net.seconds(until);
-  const double t0 = cpu_now_s();
+  const double t0 = core::process_cpu_seconds();
   net.run({}, until);
-  return cpu_now_s() - t0;
+  return core::process_cpu_seconds() - t0;
 }
 
 /// Median over 3 alternating (coupled, mono) pairs of mono CPU / coupled CPU.

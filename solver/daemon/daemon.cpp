@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "proto/envelope_name.h"
 #include "solver/daemon/daemon_checkpoints.h"
@@ -28,7 +29,6 @@
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
 #include "solver/run/checkpoint_store.h"
-#include "solver/run/cpu_clock.h"
 #include "solver/run/domain_checkpoint.h"
 #include "solver/run/domain_recorder.h"
 #include "transport/daemon_link.h"
@@ -89,7 +89,7 @@ class Daemon {
   /// started, after cpu0_ was read).
   double cpu_seconds() const {
     const double team = o_.in_process && solver() ? solver()->team_cpu_seconds() : 0.0;
-    return run::cpu_seconds(o_.in_process) + team;
+    return core::cpu_seconds(o_.in_process) + team;
   }
 
   /// CPU of this run, plus that of the run(s) before the checkpoint it restarted from.

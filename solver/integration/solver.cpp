@@ -1,12 +1,12 @@
 #include "solver/integration/solver.h"
 
 #include <fmt/format.h>
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "solver/integration/central_difference.h"
 #include "solver/integration/energy_scale.h"
@@ -97,13 +97,6 @@ void positions_pass(const double* __restrict x0, const double* __restrict u,
   }
   external = ext;
   contact = cont;
-}
-
-/// CPU seconds of the calling thread (the contacts' cost, Solver::contact_cost()).
-double thread_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 /// sum a[k] b[k] over dofs [k0, k1), in index order.
@@ -469,7 +462,7 @@ void Solver::compute_contact_forces(double dt) {
   // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up.
   const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
-  const double t0 = thread_cpu_s();  // the contacts run on the calling thread
+  const double t0 = core::thread_cpu_seconds();  // the contacts run on the calling thread
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());
     contact_cost_.node_cycles += static_cast<std::int64_t>(contacts_[k].slave_node_count());
@@ -481,7 +474,7 @@ void Solver::compute_contact_forces(double dt) {
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }
   }
-  contact_cost_.seconds += thread_cpu_s() - t0;
+  contact_cost_.seconds += core::thread_cpu_seconds() - t0;
 }
 
 void Solver::compute_external_forces(double t) {

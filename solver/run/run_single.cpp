@@ -5,12 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include "core/cpu_clock.h"
 #include "core/errors.h"
 #include "solver/contact/contact_advice.h"
 #include "solver/integration/solver.h"
 #include "solver/io/result_writer.h"
 #include "solver/model/run_estimate.h"
-#include "solver/run/cpu_clock.h"
 #include "solver/run/domain_recorder.h"
 #include "solver/run/mono_checkpoints.h"
 #include "solver/run/peak_memory.h"
@@ -24,8 +24,8 @@ double RunSummary::ns_per_element_cycle() const {
 }
 
 RunSummary run_single_domain(const model::Model& model, const RunOptions& options) {
-  const double wall0 = wall_seconds();
-  const double cpu0 = process_cpu_seconds();
+  const double wall0 = core::wall_seconds();
+  const double cpu0 = core::process_cpu_seconds();
   RunSummary sum;
   sum.domain = options.domain_name;
   sum.elements = static_cast<std::int64_t>(model.element_count());
@@ -59,7 +59,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
     } else {
       checkpoints.start_fresh();
     }
-    setup_cpu_s = process_cpu_seconds() - cpu0;
+    setup_cpu_s = core::process_cpu_seconds() - cpu0;
     for (;;) {
       solver.begin_cycle();  // state at t^n complete; guard passed
       recorder.sample();
@@ -70,7 +70,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
       }
       solver.end_cycle();
       if (checkpoints.enabled())
-        checkpoints.after_cycle(recorder, solver, cpu_before + process_cpu_seconds() - cpu0);
+        checkpoints.after_cycle(recorder, solver, cpu_before + core::process_cpu_seconds() - cpu0);
       progress.update(solver.time_s(), solver.cycle(), solver.dt_s());
     }
     recorder.finish();  // also when stopped: the state at t^n passed the guard
@@ -94,8 +94,8 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
       welds.push_back({w.name, w.time_s, w.normal_N, w.shear_N});
     writer.write_spot_weld_failures(welds);
   }
-  sum.cpu_seconds = cpu_before + process_cpu_seconds() - cpu0;
-  sum.wall_seconds = wall_seconds() - wall0;
+  sum.cpu_seconds = cpu_before + core::process_cpu_seconds() - cpu0;
+  sum.wall_seconds = core::wall_seconds() - wall0;
   const auto& contact = solver.contact_cost();
   writer.write_timing(sum.wall_seconds, 0.0,
                       {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s,

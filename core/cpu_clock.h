@@ -1,9 +1,9 @@
 #pragma once
-// Process and thread CPU time and wall time, in seconds.
+// Process and thread CPU time and wall time, in seconds (the run summaries, /timing, advise).
 #include <chrono>
 #include <ctime>
 
-namespace crashlink::run {
+namespace crashlink::core {
 
 /// CPU seconds consumed by this process (all threads).
 inline double process_cpu_seconds() {
@@ -29,4 +29,4 @@ inline double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-}  // namespace crashlink::run
+}  // namespace crashlink::core
