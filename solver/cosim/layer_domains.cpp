@@ -69,9 +69,9 @@ std::vector<LayerPort> ports_of(const partition::Decomposition& dec, int d) {
 }
 }  // namespace
 
-LayerDomains build_layer_domains(const model::Model& global, const char* who) {
+LayerDomains build_layer_domains(const model::Model& global, const char* who, int overlap_layers) {
   LayerDomains r;
-  r.dec = partition::decompose(global, partition::Scheme::Layer);
+  r.dec = partition::decompose(global, partition::Scheme::Layer, overlap_layers);
   const std::size_t ng = global.nodes.count();
   r.owner_solver.assign(ng, kNoSolver);
   r.owner_local.assign(ng, kNoSolver);

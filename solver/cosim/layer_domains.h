@@ -36,8 +36,10 @@ struct LayerDomains {
 inline constexpr std::size_t kNoSolver = static_cast<std::size_t>(-1);
 
 /// Cuts `global` with the layer scheme and builds the solvers (ghosts, J masses and inertias set,
-/// not initialised). `who` prefixes the ModelError messages.
-LayerDomains build_layer_domains(const model::Model& global, const char* who);
+/// not initialised). `who` prefixes the ModelError messages. `overlap_layers`: the `lts` scheme's
+/// further coarse element layers in the finer domain (partition::decompose).
+LayerDomains build_layer_domains(const model::Model& global, const char* who,
+                                 int overlap_layers = 0);
 
 /// One domain of a layer cut, for a daemon that runs only that domain: its solver (ghosts, J
 /// masses and inertias set as in build_layer_domains, not initialised) and its ports (one per

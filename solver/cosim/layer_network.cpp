@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -14,15 +15,19 @@
 namespace crashlink::cosim {
 
 LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions options)
-    : options_(std::move(options)), d_(build_layer_domains(global, "layer network")) {
+    : options_(std::move(options)),
+      d_(build_layer_domains(global, "layer network",
+                             options_.run.scheme == "lts" ? options_.overlap_layers : 0)) {
   if (!(options_.step_safety > 0.0 && options_.step_safety <= 1.0))
     throw ModelError("layer network: step_safety must be in (0, 1], got " +
                      std::to_string(options_.step_safety));
   if (options_.run.ticks_per_second < 1)
     throw ModelError("layer network: ticks_per_second must be >= 1");
-  if (options_.run.scheme != "layer")
-    throw ModelError("layer network: it runs `layer`, not '" + options_.run.scheme +
+  if (options_.run.scheme != "layer" && options_.run.scheme != "lts")
+    throw ModelError("layer network: it runs `layer` and `lts`, not '" + options_.run.scheme +
                      "' (cosim::PaperRunner runs `paper` in process)");
+  if (options_.run.scheme == "lts" && options_.run.variable_steps)
+    throw ModelError("layer network: the lts coupling runs fixed steps only");
   if (options_.run.variable_steps && !options_.proposal_s.empty())
     throw ModelError(
         "layer network: variable steps follow the solvers' own proposals (no proposal_s)");
@@ -72,6 +77,7 @@ void LayerNetwork::build_steppers() {
         !options_.run.variable_steps ? LayerSteps::Fixed
         : options_.run.common_step   ? LayerSteps::VariableCommon
                                      : LayerSteps::Variable));
+    if (options_.run.scheme == "lts") steppers_.back()->set_form(LayerForm::Lts, plan_.base);
   }
   if (options_.run.variable_steps) {
     for (auto& st : steppers_) st->set_proposal_limits(options_.step_safety, 0.0);
@@ -80,6 +86,15 @@ void LayerNetwork::build_steppers() {
                                            options_.run.ticks_per_second);
     for (auto& st : steppers_) st->set_end_time(end);
   }
+}
+
+double LayerNetwork::lts_energy_J() const {
+  double sum = 0.0;
+  for (const auto& st : steppers_) {
+    if (!st->lts_energy_ready()) return std::numeric_limits<double>::quiet_NaN();
+    sum += st->lts_energy_J();
+  }
+  return sum;
 }
 
 void LayerNetwork::initialize() {

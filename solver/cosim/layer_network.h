@@ -32,7 +32,8 @@ struct LayerNetworkOptions {
   /// follows its own step proposal with variable_steps (layer_stepper.h "Steps"; multi: the
   /// leaders take step_safety of theirs, LayerStepper::set_proposal_limits; split: all the least
   /// proposal of all at every instant); proposal_s must then stay empty and plan() is not used.
-  /// scheme must be "layer" (ModelError otherwise); checkpoints are the caller's
+  /// scheme must be "layer" or "lts" (ModelError otherwise; lts: fixed steps, LayerForm::Lts on
+  /// every stepper, the cut with overlap_layers); checkpoints are the caller's
   /// (save_state/restore_state), lanes and restart the processes' (not read).
   coupling::CouplingConfig run{.scheme = "layer", .common_step = false};
   /// Margin on the initial stable steps (they shrink as the mesh deforms and bulk viscosity acts;
@@ -41,6 +42,10 @@ struct LayerNetworkOptions {
   /// [solvers] optional proposals in seconds replacing the solvers' own (each still capped by
   /// the solver's stable step): how tests impose a ratio. Empty: the solvers' initial steps.
   std::vector<double> proposal_s;
+  /// lts: the coarse element layers moved into the finer domain beyond the first
+  /// (partition::decompose). The plain leapfrog LTS has unstable step bands without one
+  /// (coupling-study/lts/README.md): >= 1.
+  int overlap_layers = 1;
 };
 
 class LayerNetwork {
@@ -79,6 +84,9 @@ class LayerNetwork {
   integration::EnergyAccount energy() const { return sum_energies(d_, 0.0); }
   /// [3 n_global] displacement of every global node from its owner [m].
   std::vector<double> global_displacement() const { return cosim::global_displacement(d_); }
+  /// lts: the sum of the domains' shares of the conserved energy E^{k-1/2} (LtsEnergy), valid when
+  /// every domain is at the same multiple of plan().base, from the third on (NaN otherwise).
+  double lts_energy_J() const;
   /// Messages routed so far (both kinds).
   std::int64_t messages() const { return messages_; }
 

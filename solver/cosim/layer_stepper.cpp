@@ -141,6 +141,7 @@ void LayerStepper::initialize() {
       ps.T1 = 0;
       // the owner's first message: u_J(H); with variable steps any later instant
       ps.next_expected = variable_ ? 1 : port.partner_step;
+      if (form_ == LayerForm::Lts) lts_start_port(port, ps);
     } else {
       ps.next_expected = 0;  // the holder's g_A(0)
       // u_J(t + h) leaves before the ghosts' motion is applied (Phase::Positions), so the J
@@ -154,6 +155,7 @@ void LayerStepper::initialize() {
               solver_.domain_name(), port.index, solver_.model().nodes.id[i]));
     }
   }
+  if (form_ == LayerForm::Lts) lts_start_energy();
   if (!forces_wait_for_holders()) send_forces();  // g_A(0) of every fine port (else: Initial)
 }
 
@@ -246,9 +248,12 @@ bool LayerStepper::ghost_targets_ready() {
         ps.u_T.swap(ps.u_1);
         ps.T = T;
         ps.have_u1 = false;
+        if (form_ == LayerForm::Lts) lts_next_owner_step(ps);
       }
     }
-    if (!ps.have_u1) {
+    // Lts: the owner's u_J(T + H) is needed only by the substep that lands on it.
+    const bool need_u1 = form_ != LayerForm::Lts || t1 == ps.T + port.partner_step;
+    if (!ps.have_u1 && need_u1) {
       if (ps.inbox.empty()) {
         wait_iface_ = port.index;
         return false;
@@ -272,6 +277,10 @@ bool LayerStepper::ghost_targets_ready() {
           fmt::format("layer stepper '{}': interface {}: the step to t = {} ticks "
                       "passes the owner's instant {} ticks (internal error)",
                       solver_.domain_name(), port.index, t1, ps.T + H));
+    if (form_ == LayerForm::Lts) {
+      lts_ghost_targets(port, state_[p], t1);
+      continue;
+    }
     const bool lands = t1 == ps.T + H;
     const double w = static_cast<double>(t1 - ps.T) / static_cast<double>(H);
     for (std::size_t j = 0; j < port.local.size(); ++j) {
@@ -366,6 +375,10 @@ void LayerStepper::send_displacements_ahead() {
 
 void LayerStepper::send_forces() {
   // Fine ports at an owner instant: the layer's force (and moment) on J, g_A(t) ([8]).
+  if (form_ == LayerForm::Lts) {
+    lts_send_forces();  // every fine instant: the hat average (layer_stepper_lts.cpp)
+    return;
+  }
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     if (!port.fine_side || !at_owner_instant(port)) continue;
@@ -499,6 +512,8 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           step_pending_ = false;
         }
         solver_.begin_cycle();  // state at t_ complete
+        if (form_ == LayerForm::Lts && t_ % energy_period_ == 0)
+          lts_energy_.sample(solver_.displacement().data());
         if (on_sample) on_sample();
         if (finished_here()) {
           phase_ = Phase::Done;

@@ -20,6 +20,7 @@
 #include "core/state_archive.h"
 #include "coupling/layer_work.h"
 #include "coupling/ticks.h"
+#include "solver/cosim/lts_energy.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::cosim {
@@ -77,6 +78,20 @@ class LayerPartnerError : public ModelError {
 /// its own and its holders' (no step safety, no hysteresis, no limit on the rise), and every
 /// follower then takes its owner step in one substep.
 enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
+
+/// What a fine side does with its ghosts J and what it sends (docs/multirate.md "lts"):
+///   Layer: J moves linearly in time between the owner's u_J(T) and u_J(T + H); g_A(T) is the
+///     layer's force on J at the owner instant T.
+///   Lts: leapfrog local time stepping (Diaz & Grote 2009, SIAM J. Sci. Comput. 31, 3.2-3.3), in
+///     its physical-state form (coupling-study/lts/lts_physical_form.py): the fine side runs
+///     ordinary central differences at h = H / p; over [T, T + H] J moves on the reflected path
+///     U(T + q h) = 2 u_J(T) - U(T - q h), q = 1..p-1 (frozen at u_J(0) over the first owner
+///     step), and lands on the owner's u_J(T + H); the force sent for T is the hat average of the
+///     layer's force on J over (T - H, T + H), Fbar(T) = sum_q (1/p)(1 - |t_q - T|/H) g(t_q) over
+///     the fine instants t_q (one-sided, weights doubled, over the first and the last owner
+///     step), sent once its last instant T + (p-1) h is done. The coarse side is the same for both.
+///     Conserves LtsEnergy's E in the linear case; fixed steps only; J without rotations.
+enum class LayerForm : std::uint8_t { Layer, Lts };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
 /// omega_J(time - H/2) [rad/s] (`second`, empty when no J node rotates). Force: ghost holder ->
@@ -217,6 +232,16 @@ class LayerStepper {
   /// first instant after the end time while that owner goes on to its own owner's). ModelError
   /// for a negative value or with variable steps (their `last` flag does it).
   void set_end_time(Tick end);
+  /// Before initialize(): the form (LayerForm). Lts: `energy_period` is the coarse step of the
+  /// conserved energy's instants (every domain's: the plan's base), at whose multiples the stepper
+  /// samples its share (lts_energy_J). ModelError with variable steps, a period that is not a
+  /// multiple of this domain's step, or an interface whose J nodes rotate (shells).
+  void set_form(LayerForm form, Tick energy_period = 0);
+  LayerForm form() const { return form_; }
+  /// Lts: this domain's share of E^{k-1/2} (LtsEnergy), sampled at the last instant that is a
+  /// multiple of the energy period; valid from the third such instant (lts_energy_ready).
+  bool lts_energy_ready() const { return form_ == LayerForm::Lts && lts_energy_.ready(); }
+  double lts_energy_J() const { return lts_energy_.value_J(); }
   /// Variable steps, before initialize(): proposals are min(the solver's, max_step_s) (if > 0),
   /// and a leader takes `leader_safety` (0, 1] of its own (the margin fixed steps keep on the
   /// coarse side: the layer coupling's error grows with the coarse Courant number). ModelError
@@ -253,6 +278,13 @@ class LayerStepper {
     std::vector<double> ahead_u, ahead_omega;  ///< coarse side: what was sent early
     coupling::LayerWorkMeter meter;            ///< fine side: the interface history
     std::vector<coupling::LayerSample> rows;   ///< fine side: rows not taken yet
+    // Lts, fine side (LayerForm):
+    std::int64_t substeps = 1;      ///< p = H / h
+    std::vector<double> path_prev;  ///< [(p + 1) 3 n_J] J at T - H + q h, q = 0..p
+    std::vector<double> path_cur;   ///< [(p + 1) 3 n_J] J at T + q h, as far as applied
+    std::vector<double> fbar_T;     ///< [3 n_J] Fbar(acc_T) so far [N]
+    std::vector<double> fbar_T1;    ///< [3 n_J] Fbar(acc_T + H) so far [N]
+    Tick acc_T = 0;                 ///< the owner instant fbar_T is for
   };
 
   Tick to_ticks_end(double t_s) const;
@@ -264,6 +296,12 @@ class LayerStepper {
   void send_displacements_ahead();
   LayerMessage displacement_message(const LayerPort& port) const;
   void send_forces();
+  // Lts (layer_stepper_lts.cpp).
+  void lts_start_port(const LayerPort& port, PortState& ps) const;
+  void lts_next_owner_step(PortState& ps) const;
+  void lts_ghost_targets(const LayerPort& port, PortState& ps, Tick t1);
+  void lts_send_forces();
+  void lts_start_energy();
   bool forces_ready();
   void apply_forces();
   void flush_outbox();
@@ -319,6 +357,9 @@ class LayerStepper {
   std::int64_t displacements_sent_ = 0, displacements_ahead_ = 0;
   std::vector<double> ghost_u_, ghost_omega_;  ///< [3 n_ghost] Solver::ghost_nodes() order
   std::vector<std::size_t> ghost_slot_;        ///< [n_local] position in the ghost list
+  LayerForm form_ = LayerForm::Layer;
+  Tick energy_period_ = 0;  ///< Lts: the conserved energy's coarse step [ticks]
+  LtsEnergy lts_energy_;
 };
 
 }  // namespace crashlink::cosim

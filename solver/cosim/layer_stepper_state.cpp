@@ -74,7 +74,16 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put(pre + "work.m_prev", std::span<const double>(h.m_prev));
     w.put_bool(pre + "work.have_prev", h.have_prev);
     w.put_double(pre + "work.J", h.work_J);
+    if (form_ == LayerForm::Lts && port.fine_side) {
+      w.put(pre + "lts.path_prev", std::span<const double>(ps.path_prev));
+      w.put(pre + "lts.path_cur", std::span<const double>(ps.path_cur));
+      w.put(pre + "lts.fbar_T", std::span<const double>(ps.fbar_T));
+      w.put(pre + "lts.fbar_T1", std::span<const double>(ps.fbar_T1));
+      w.put_int(pre + "lts.acc_T", ps.acc_T);
+    }
   }
+  w.put_int("stepper.form", static_cast<std::int64_t>(form_));
+  if (form_ == LayerForm::Lts) lts_energy_.save(w, "stepper.lts_energy.");
   w.put("stepper.ghost_u", std::span<const double>(ghost_u_));
   w.put("stepper.ghost_omega", std::span<const double>(ghost_omega_));
 }
@@ -117,6 +126,12 @@ void LayerStepper::restore_state(const core::StateReader& r) {
         r.path(), dom, r.get_int("stepper.step"), r.get_int("stepper.ticks_per_second"),
         r.get_int("stepper.ports"), h_, ticks_per_second_, ports_.size()));
   }
+  const std::int64_t form = r.has("stepper.form") ? r.get_int("stepper.form") : 0;
+  if (form != static_cast<std::int64_t>(form_))
+    throw CheckpointError(fmt::format(
+        "checkpoint {}: domain '{}' was run with --coupling {}, this run has --coupling {}; "
+        "restart with the coupling of the run that wrote it",
+        r.path(), dom, form == 1 ? "lts" : "layer", form_ == LayerForm::Lts ? "lts" : "layer"));
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     auto& ps = state_[p];
@@ -145,6 +160,18 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     h.work_J = r.get_double(pre + "work.J");
     ps.meter.restore(std::move(h));
     ps.rows.clear();
+    if (form_ == LayerForm::Lts && port.fine_side) {
+      lts_start_port(port, ps);  // sizes
+      r.get_exact(pre + "lts.path_prev", ps.path_prev);
+      r.get_exact(pre + "lts.path_cur", ps.path_cur);
+      r.get_exact(pre + "lts.fbar_T", ps.fbar_T);
+      r.get_exact(pre + "lts.fbar_T1", ps.fbar_T1);
+      ps.acc_T = r.get_int(pre + "lts.acc_T");
+    }
+  }
+  if (form_ == LayerForm::Lts) {
+    lts_start_energy();
+    lts_energy_.restore(r, "stepper.lts_energy.");
   }
   r.get_exact("stepper.ghost_u", ghost_u_);
   r.get_exact("stepper.ghost_omega", ghost_omega_);

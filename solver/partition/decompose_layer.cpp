@@ -54,7 +54,9 @@ std::vector<double> interface_damping(const Analysis& a, const std::vector<std::
 
 // 1. Link claims: every node used by elements of several domains is a permanent-link node; every
 //    element touching it is claimed by the finest of those domains (the coarse side's first
-//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade.
+//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade;
+//    then, `overlap_layers` times, the same claim on the assignment so far (the `lts` overlap: F
+//    integrates that many more coarse element layers at its step, docs/multirate.md "lts").
 // 2. Contact claims: all surface elements of a contact (master parts' elements, the elements
 //    holding slave nodes) go to the finest domain holding one of them, so the contact lies in one
 //    domain (for a cross-domain contact: the coarse body's contact-surface layer moves into F).
@@ -66,7 +68,7 @@ std::vector<double> interface_damping(const Analysis& a, const std::vector<std::
 //    Check: no element of an originally finer domain touches a node owned by a coarser one (it
 //    would be integrated above its stable step).
 // 5. Interface damping: interface_damping above.
-Decomposition decompose_layer(const Analysis& a) {
+Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
   const model::Model& g = *a.global;
   const std::size_t ne = a.element_count(), n = a.node_count(), nd = a.domain_count();
   auto finest = [&](int x, int y) { return a.finer(x, y) ? x : y; };
@@ -92,6 +94,28 @@ Decomposition decompose_layer(const Analysis& a) {
       pl.elem_domain[e] = finest(pl.elem_domain[e], f);
       link_moved[e] = 1;
     }
+  }
+
+  // 1b. The overlap: the link claim again on the assignment so far, one element layer per pass.
+  for (int layer = 0; layer < overlap_layers; ++layer) {
+    std::vector<int> next = pl.elem_domain;
+    for (std::size_t i = 0; i < n; ++i) {
+      int f = -1;
+      bool shared = false;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const int d = pl.elem_domain[static_cast<std::size_t>(a.node_elems[k])];
+        if (f >= 0 && d != f) shared = true;
+        f = f < 0 ? d : finest(f, d);
+      }
+      if (!shared) continue;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const auto e = static_cast<std::size_t>(a.node_elems[k]);
+        if (pl.elem_domain[e] == f) continue;
+        next[e] = finest(next[e], f);
+        link_moved[e] = 1;
+      }
+    }
+    pl.elem_domain.swap(next);
   }
 
   // 2.-3. Contact surfaces and rigid bodies, to a fixed point.
@@ -206,6 +230,7 @@ Decomposition decompose_layer(const Analysis& a) {
   for (const auto& kv : moved) pairs.insert(kv.first);
   Decomposition out;
   out.scheme = Scheme::Layer;
+  out.overlap_layers = overlap_layers;
   for (const auto& pr : pairs) {
     Interface itf;
     itf.fine = pr.first;

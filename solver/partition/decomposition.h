@@ -74,13 +74,18 @@ struct Decomposition {
   /// [domains] initial stable step x dt_scale of each domain as cut [s]; +inf: no deformable
   /// element (rigid bodies only, or emptied by the move).
   std::vector<double> domain_dt_s;
+  /// Layer: the coarse element layers moved into the finer domain beyond the first (decompose).
+  int overlap_layers = 0;
 };
 
 /// Cuts `global` along global.domains (checked: every part in exactly one domain, no empty
 /// domain, a rigid body inside one domain). Throws ModelError with the fix when the model cannot
 /// be cut by the scheme's rules (e.g. a contact spanning three domains). Each sub-model passes
 /// model::validate.
-Decomposition decompose(const model::Model& global, Scheme scheme);
+/// Layer: `overlap_layers` >= 0 further coarse element layers go into the finer domain after the
+/// first (the `lts` scheme's overlap, docs/multirate.md "lts"): the link claim repeated on the new
+/// assignment. 0 is the `layer` cut. Paper: must be 0 (ModelError otherwise).
+Decomposition decompose(const model::Model& global, Scheme scheme, int overlap_layers = 0);
 
 /// "layer" / "paper".
 const char* scheme_name(Scheme s);

@@ -96,7 +96,7 @@ void build_domains(const Analysis& a, const Placement& p, std::size_t domain_cou
 /// minimum over parts of integration::Solver's per-part step at t = 0.
 double initial_step_s(const model::Model& m);
 
-Decomposition decompose_layer(const Analysis& a);
+Decomposition decompose_layer(const Analysis& a, int overlap_layers);
 Decomposition decompose_paper(const Analysis& a);
 
 }  // namespace crashlink::partition::detail

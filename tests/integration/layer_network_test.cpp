@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "core/errors.h"
@@ -28,8 +29,11 @@ struct Accuracy {
 /// The study's 1-D bar (coupling-study/README.md "Measurements") in metres: fine [0, 1] m
 /// (dx = 10 mm), coarse [1, 3] m (elements r dx), nu = 0, far end fixed, Hann velocity pulse of
 /// 0.2 m / c on x = 0, bulk viscosity on. Coarse proposal r h: the fine side takes ceil(r) equal
-/// substeps (nested_steps.h). Reference: mono at the fine step actually used.
-Accuracy hann_vs_mono(double r) {
+/// substeps (nested_steps.h). Reference: mono at the fine step actually used. `scheme`: "layer",
+/// or "lts" with `overlap` further coarse element layers in the fine domain; bulk viscosity off
+/// with `bulk_viscosity` false (in mono too).
+Accuracy hann_vs_mono(double r, const std::string& scheme = "layer", int overlap = 0,
+                      bool bulk_viscosity = true) {
   model::Model m;
   m.name = "bar";
   auto mat = elastic("steel");
@@ -44,7 +48,7 @@ Accuracy hann_vs_mono(double r) {
   for (auto i : where(m, [&](double x, double, double) { return x > xe - 1e-9; }))
     m.fixed[static_cast<std::size_t>(i)] = 7;
   m.controls.end_time_s = 10.0;
-  m.controls.bulk_viscosity = true;
+  m.controls.bulk_viscosity = bulk_viscosity;
   m.domains = {{"fine", {0}}, {"coarse", {1}}};
   const double c = std::sqrt(mat.youngs_modulus_Pa / mat.density_kg_m3);
   const double unit = 1.0 / c, tp = 0.2 * unit, v0 = 1.0;
@@ -60,6 +64,8 @@ Accuracy hann_vs_mono(double r) {
     h0 = 0.8 * probe.dt_s();  // fixed steps: margin for bulk viscosity under the wave
   }
   cosim::LayerNetworkOptions o;
+  o.run.scheme = scheme;
+  o.overlap_layers = overlap;
   cosim::LayerNetwork net(m, o);
   const auto& d = net.domains();
   std::size_t kf = 0;
@@ -121,11 +127,12 @@ Accuracy hann_vs_mono(double r) {
   a.coupling = mr.energy().coupling_work_J / mr.energy().external_work_J;
   a.substeps = mr.plan().n[kf] / mr.plan().n[1 - kf];
   std::printf(
-      "[measured] layer multi, Hann pulse, stable-step ratio %.2f (%lld fine substeps of %.3e s "
+      "[measured] %s (overlap %d) multi, bulk viscosity %s, Hann pulse, stable-step ratio %.2f "
+      "(%lld fine substeps of %.3e s "
       "per coarse step) vs mono at that step: interface displacement error %.2f %%, interface "
       "velocity error %.2f %%, reflection %.2f %% of v0; summed coupling work %.2e of the input\n",
-      r, static_cast<long long>(a.substeps), h, 100.0 * a.disp, 100.0 * a.vel, 100.0 * a.refl,
-      a.coupling);
+      scheme.c_str(), overlap, bulk_viscosity ? "on" : "off", r, static_cast<long long>(a.substeps),
+      h, 100.0 * a.disp, 100.0 * a.vel, 100.0 * a.refl, a.coupling);
   return a;
 }
 
@@ -140,6 +147,32 @@ TEST(LayerNetwork, HannPulseAccuracyVsMonoAllRatiosUpToFour) {
     EXPECT_LE(a.refl, 0.10) << "r = " << r;
     EXPECT_LE(std::abs(a.coupling), 0.01) << "r = " << r;
   }
+}
+
+// lts (issue #25): the same bar, no interface damping, at least as accurate as `layer` in all
+// three measures at every ratio up to 4, with one and two overlap layers. Bulk viscosity off in
+// every run: on, the elements touching J see the ghosts' reflected path's velocity (the mirror
+// image of the last owner step's, docs/multirate.md "lts"), and the viscous force that velocity
+// drives pumps energy (measured: interface displacement error 4-18 %, coupling work up to 10^2
+// times the input); LtsNetwork.HannPulseWithBulkViscosityIsNotYetRight pins that.
+TEST(LtsNetwork, HannPulseAtLeastAsAccurateAsLayer) {
+  for (double r : {1.5, 2.0, 2.5, 3.0, 4.0}) {
+    const auto l = hann_vs_mono(r, "layer", 0, false);
+    for (int ov : {1, 2}) {
+      const auto a = hann_vs_mono(r, "lts", ov, false);
+      EXPECT_LE(a.disp, l.disp) << "r = " << r << ", overlap " << ov;
+      EXPECT_LE(a.vel, l.vel) << "r = " << r << ", overlap " << ov;
+      EXPECT_LE(a.refl, l.refl) << "r = " << r << ", overlap " << ov;
+    }
+  }
+}
+
+// The known defect, kept in view: with bulk viscosity on, lts at r = 1.5 moves the interface
+// 4.9 % off mono (layer: 0.32 %). When the ghosts' rate terms are fixed this test fails and
+// becomes the accuracy bound above.
+TEST(LtsNetwork, HannPulseWithBulkViscosityIsNotYetRight) {
+  const auto a = hann_vs_mono(1.5, "lts", 1, true);
+  EXPECT_GT(a.disp, 0.02);
 }
 
 namespace {

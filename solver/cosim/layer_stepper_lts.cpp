@@ -1,0 +1,159 @@
+// LayerStepper's `lts` form (layer_stepper.h LayerForm; docs/multirate.md "lts"): the reflected
+// ghost path and the hat-averaged force of leapfrog local time stepping (Diaz & Grote 2009) in its
+// physical-state form, and the conserved energy's samples.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <span>
+#include <vector>
+
+#include "core/errors.h"
+#include "solver/cosim/layer_stepper.h"
+
+namespace crashlink::cosim {
+
+void LayerStepper::set_form(LayerForm form, Tick energy_period) {
+  const std::string& dom = solver_.domain_name();
+  if (initialized_)
+    throw ModelError(fmt::format("layer stepper '{}': set_form() after initialize()", dom));
+  if (form == LayerForm::Lts) {
+    if (variable_)
+      throw ModelError(fmt::format(
+          "layer stepper '{}': the lts coupling runs fixed steps only (its conserved energy needs "
+          "one coarse step); run without --variable-steps",
+          dom));
+    if (energy_period < h_ || energy_period % h_ != 0)
+      throw ModelError(fmt::format(
+          "layer stepper '{}': lts energy period {} ticks is not a whole multiple of this "
+          "domain's step {} ticks",
+          dom, energy_period, h_));
+    for (std::size_t p = 0; p < ports_.size(); ++p) {
+      if (ports_[p].fine_side && energy_period % ports_[p].partner_step != 0)
+        throw ModelError(fmt::format(
+            "layer stepper '{}': lts energy period {} ticks is not a whole multiple of the "
+            "owner's step {} ticks on interface {}",
+            dom, energy_period, ports_[p].partner_step, ports_[p].index));
+      if (state_[p].rotates)
+        throw ModelError(fmt::format(
+            "layer stepper '{}': interface {} joins nodes with rotations (shells); the lts "
+            "coupling does not carry rotations yet: run it with --coupling layer",
+            dom, ports_[p].index));
+    }
+  }
+  form_ = form;
+  energy_period_ = energy_period;
+}
+
+void LayerStepper::lts_start_port(const LayerPort& port, PortState& ps) const {
+  // t = 0: the path of the first owner step starts at u_J(0); no force accumulated yet.
+  const std::size_t n3 = 3 * port.local.size();
+  ps.substeps = port.partner_step / h_;
+  const auto rows = static_cast<std::size_t>(ps.substeps + 1);
+  ps.path_prev.assign(rows * n3, 0.0);
+  ps.path_cur.assign(rows * n3, 0.0);
+  std::copy(ps.u_T.begin(), ps.u_T.end(), ps.path_cur.begin());
+  ps.fbar_T.assign(n3, 0.0);
+  ps.fbar_T1.assign(n3, 0.0);
+  ps.acc_T = 0;
+}
+
+void LayerStepper::lts_next_owner_step(PortState& ps) const {
+  // The owner step just ended becomes the one the next path reflects; the new one starts at
+  // u_J(T) (ps.u_T, already moved on).
+  ps.path_prev.swap(ps.path_cur);
+  std::copy(ps.u_T.begin(), ps.u_T.end(), ps.path_cur.begin());
+}
+
+void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick t1) {
+  // J at t1 = T + q h: the owner's u_J(T + H) at q = p; else the reflected path
+  // U(T + q h) = 2 u_J(T) - U(T - q h) (Diaz & Grote 2009 in the physical-state form of
+  // coupling-study/lts/lts_physical_form.py; in the linear case z_q = (U(T + qh) + U(T - qh)) / 2
+  // is the leapfrog LTS substate), frozen at u_J(0) over the first owner step (the start: a
+  // genuine initial-value problem on the fine side, coupling-study/lts/README.md).
+  const std::size_t n3 = 3 * port.local.size();
+  const std::int64_t p = ps.substeps;
+  const std::int64_t q = (t1 - ps.T) / h_;
+  CRASHLINK_ASSERT(q >= 1 && q <= p);
+  const auto row = static_cast<std::size_t>(q);
+  const auto mirror = static_cast<std::size_t>(p - q);
+  for (std::size_t j = 0; j < port.local.size(); ++j) {
+    const std::size_t s = ghost_slot_[port.local[j]];
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::size_t i = 3 * j + d;
+      double u = 0.0;
+      if (q == p)
+        u = ps.u_1[i];
+      else if (ps.T == 0)
+        u = ps.u_T[i];
+      else
+        u = 2.0 * ps.u_T[i] - ps.path_prev[mirror * n3 + i];
+      ps.path_cur[row * n3 + i] = u;
+      ghost_u_[3 * s + d] = u;
+      ghost_omega_[3 * s + d] = 0.0;
+    }
+  }
+}
+
+void LayerStepper::lts_send_forces() {
+  // At every fine instant t_q = T + q h: the layer's force on J, g = Solver::net_force, into
+  // Fbar(T) with weight (p - q) / p^2 and into Fbar(T + H) with q / p^2: the hat
+  // (1/p)(1 - |t_q - T| / H) of Diaz & Grote's leapfrog LTS seen from the coarse side
+  // (coupling-study/lts/lts_2proc.py: beta_0 = 1/p, beta_q = 2 (p - q) / p^2 split over T +- q h).
+  // Over the first owner step the weights are doubled (one-sided: nothing before t = 0), and the
+  // last Fbar, at the end of the run, is one-sided too. Fbar(T) leaves after T + (p - 1) h.
+  for (std::size_t pi = 0; pi < ports_.size(); ++pi) {
+    const auto& port = ports_[pi];
+    if (!port.fine_side) continue;
+    auto& ps = state_[pi];
+    const Tick H = port.partner_step;
+    const std::int64_t p = ps.substeps;
+    const Tick T = (t_ / H) * H;
+    const std::int64_t q = (t_ - T) / h_;
+    if (q == 0 && T != ps.acc_T) {
+      CRASHLINK_ASSERT(T == ps.acc_T + H);
+      ps.fbar_T.swap(ps.fbar_T1);
+      std::fill(ps.fbar_T1.begin(), ps.fbar_T1.end(), 0.0);
+      ps.acc_T = T;
+    }
+    const auto pp = static_cast<double>(p * p);
+    const double w_now = static_cast<double>(p - q) / pp * (T == 0 && q > 0 ? 2.0 : 1.0);
+    const double w_next = static_cast<double>(q) / pp;
+    const bool send = q == p - 1;
+    const bool ending = q == 0 && p > 1 && finished_here();
+    std::vector<double> g_now;
+    if (ending) g_now.resize(ps.fbar_T.size());
+    for (std::size_t j = 0; j < port.local.size(); ++j) {
+      const Vec3 g = solver_.net_force(port.local[j]);
+      for (std::size_t d = 0; d < 3; ++d) {
+        ps.fbar_T[3 * j + d] += w_now * g[d];
+        if (q > 0) ps.fbar_T1[3 * j + d] += w_next * g[d];
+        if (ending) g_now[3 * j + d] = g[d];
+      }
+    }
+    if (!send && !ending) continue;
+    LayerMessage m;
+    m.kind = LayerMessage::Kind::Force;
+    m.interface_index = port.index;
+    m.time = ps.acc_T;
+    m.first = ps.fbar_T;
+    if (ending)  // g/p + 2 S, where fbar_T = g/p + S: the last owner step one-sided
+      for (std::size_t k = 0; k < m.first.size(); ++k)
+        m.first[k] = 2.0 * ps.fbar_T[k] - g_now[k] / static_cast<double>(p);
+    if (record_history_) {
+      const auto& uJ = ps.acc_T == ps.T ? ps.u_T : ps.u_1;  // u_J(acc_T)
+      ps.rows.push_back(ps.meter.add(m.time, m.first, {}, uJ, {}));
+    }
+    outbox_.push_back(std::move(m));
+  }
+}
+
+void LayerStepper::lts_start_energy() {
+  const std::size_t n = solver_.model().nodes.count();
+  std::vector<std::uint8_t> owned(n, 1);
+  for (const auto g : solver_.ghost_nodes()) owned[static_cast<std::size_t>(g)] = 0;
+  lts_energy_.reset(std::move(owned), solver_.model().fixed,
+                    std::vector<double>(solver_.mass().begin(), solver_.mass().end()),
+                    seconds(energy_period_));
+}
+
+}  // namespace crashlink::cosim

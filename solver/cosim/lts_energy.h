@@ -1,0 +1,46 @@
+#pragma once
+// The discrete energy the `lts` scheme conserves (docs/multirate.md "lts"), one domain's share.
+//
+// Leapfrog local time stepping (Diaz & Grote 2009, SIAM J. Sci. Comput. 31, eq. (3.9)-(3.12) for
+// the scheme, Theorem 3.1 for the energy) advances every dof over a coarse step H as
+//   u^{n+1} - 2 u^n + u^{n-1} = -H^2 M^-1 K_H u^n,   K_H symmetric,
+// and conserves E^{n+1/2} = 1/2 v^T M v + 1/2 u^{n+1 T} K_H u^n, v = (u^{n+1} - u^n) / H, in the
+// linear case with no load. K_H is never formed: with K_H u^n = -M (u^{n+1} - 2u^n + u^{n-1}) / H^2
+// the energy is a sum over nodes of
+//   e_i = m_i / (2 H^2) [ |u_i^{n+1} - u_i^n|^2 - u_i^{n+1} . (u_i^{n+1} - 2 u_i^n + u_i^{n-1}) ]
+// from each node's displacements at three coarse instants. Each domain sums the nodes it owns
+// (ghosts left out: their owner counts them with their summed mass), and the sum over the domains
+// is E. A share alone is not an energy (it can be negative); only the sum is. Held dofs count 0.
+// Translational dofs only: the shell rotations' share is not counted yet.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/state_archive.h"
+
+namespace crashlink::cosim {
+
+class LtsEnergy {
+ public:
+  /// `owned[i]` 1 for the nodes this domain integrates (not ghosts), `fixed` the model's DofBits
+  /// masks (empty: none held), `mass_kg` the integration masses, H the coarse step [s].
+  void reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t> fixed,
+             std::vector<double> mass_kg, double coarse_step_s);
+  /// The displacements u [3 n, m] at the next coarse instant. After the third call, value() is
+  /// E^{k-1/2} of the last three.
+  void sample(const double* u);
+  bool ready() const { return samples_ >= 3; }
+  double value_J() const { return value_J_; }  ///< this domain's share of E^{k-1/2} [J]
+  void save(core::StateWriter& w, const std::string& prefix) const;
+  void restore(const core::StateReader& r, const std::string& prefix);
+
+ private:
+  std::vector<std::uint8_t> owned_, fixed_;
+  std::vector<double> mass_;
+  std::vector<double> u1_, u2_;  ///< u at the previous and the one before [3 n]
+  double h2_ = 0.0;              ///< H^2 [s^2]
+  std::int64_t samples_ = 0;
+  double value_J_ = 0.0;
+};
+
+}  // namespace crashlink::cosim

@@ -1,0 +1,225 @@
+// The `lts` coupling (leapfrog local time stepping, Diaz & Grote 2009, physical-state form;
+// layer_stepper.h LayerForm, docs/multirate.md "lts") in process (LayerNetwork), issue #25:
+//   - at a step ratio of 1 and no overlap it is the `layer` scheme to the bit (p = 1: the ghosts
+//     land on the owner's positions, the hat is the force at the instant itself);
+//   - linear elastic free vibration (the stability set-up of studies/free_vibration.h with no bulk
+//     viscosity, no interface damping, the velocities scaled down 1e6 so that the geometric
+//     nonlinearity is below 1e-9): its discrete energy E^{k-1/2} (cosim::LtsEnergy, summed over
+//     the domains) stays within 1e-6 of its first value at every step ratio of the issue, and the
+//     physical energy (kinetic + internal) shows no growth.
+// CI runs 2 10^4 fine steps per ratio; CRASHLINK_LONG=1 runs the issue's 10^5.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/state_archive.h"
+#include "solver/cosim/layer_network.h"
+#include "studies/free_vibration.h"
+
+using namespace crashlink;
+
+namespace {
+
+using studies::FreeVibrationShape;
+
+model::Model linear_model(FreeVibrationShape s, double r) {
+  studies::FreeVibrationConfig cfg;
+  cfg.damping = {0.0, 1};
+  cfg.uniaxial = s == FreeVibrationShape::Bar;
+  auto m = studies::free_vibration_model(s, r, cfg);
+  m.controls.bulk_viscosity = false;
+  m.controls.shell_bulk_viscosity = false;
+  for (auto& iv : m.initial_velocities)
+    for (double& v : iv.velocity_m_s) v *= 1e-6;  // linear: strains ~1e-10
+  return m;
+}
+
+/// The network with the fine proposal 0.8 of mono's step and the coarse one r times it, step
+/// safety 0.9, as studies::run_layer_energy.
+cosim::LayerNetworkOptions options(const model::Model& m, double r, const std::string& scheme,
+                                   int overlap) {
+  double h0 = 0.0;
+  {
+    model::Model mono = m;
+    mono.domains.clear();
+    integration::Solver probe(mono, "probe");
+    probe.initialize();
+    const char* c = std::getenv("CRASHLINK_LTS_C");  // sweeps: the fine Courant factor
+    h0 = (c ? std::atof(c) : 0.8) * probe.dt_s();
+  }
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = scheme;
+  o.overlap_layers = overlap;
+  cosim::LayerNetwork shape_probe(m, o);
+  const auto& d = shape_probe.domains();
+  o.proposal_s.assign(d.solvers.size(), 0.0);
+  for (std::size_t k = 0; k < d.solvers.size(); ++k)
+    o.proposal_s[k] = d.solvers[k]->domain_name() == "fine" ? h0 : r * h0;
+  o.step_safety = 0.9;
+  if (const char* v = std::getenv("CRASHLINK_LTS_SAFETY")) o.step_safety = std::atof(v);
+  return o;
+}
+
+struct LtsRun {
+  double ratio = 0.0;          ///< planned H / h
+  double e_drift = 0.0;        ///< max |E/E0 - 1| of the conserved energy
+  double phys_lo = 0.0;        ///< min (KE + IE) / its first value - 1
+  double phys_hi = 0.0;        ///< max
+  double phys_late_hi = 0.0;   ///< max over the last half
+  double phys_early_hi = 0.0;  ///< max over the first half
+  std::int64_t samples = 0;
+};
+
+LtsRun run_lts(FreeVibrationShape s, double r, std::int64_t fine_steps, int overlap) {
+  const auto m = linear_model(s, r);
+  cosim::LayerNetwork net(m, options(m, r, "lts", overlap));
+  net.initialize();
+  const auto& plan = net.plan();
+  const auto h_min = *std::min_element(plan.step.begin(), plan.step.end());
+  const auto h_max = *std::max_element(plan.step.begin(), plan.step.end());
+  LtsRun out;
+  out.ratio = static_cast<double>(h_max) / static_cast<double>(h_min);
+  const coupling::Tick t_end = fine_steps * h_min;
+  double e0 = 0.0, p0 = 0.0, phys = 0.0;
+  std::size_t count = 0;
+  net.run(
+      [&](std::size_t k) {
+        const coupling::Tick t = net.stepper(k).time();
+        if (t % plan.base != 0) return;
+        const auto& e = net.solver(k).energy();
+        phys += e.total_J();  // kinetic + internal + hourglass (no contact here)
+        if (++count < net.size()) return;
+        count = 0;
+        const double sum = phys;
+        phys = 0.0;
+        const double E = net.lts_energy_J();
+        if (!std::isfinite(E)) return;
+        if (out.samples++ == 0) {
+          e0 = E;
+          p0 = sum;
+        }
+        out.e_drift = std::max(out.e_drift, std::abs(E / e0 - 1.0));
+        const double x = sum / p0 - 1.0;
+        out.phys_lo = std::min(out.phys_lo, x);
+        out.phys_hi = std::max(out.phys_hi, x);
+        if (t >= t_end / 2)
+          out.phys_late_hi = std::max(out.phys_late_hi, x);
+        else
+          out.phys_early_hi = std::max(out.phys_early_hi, x);
+      },
+      t_end);
+  return out;
+}
+
+std::int64_t fine_steps() {
+  const char* v = std::getenv("CRASHLINK_LONG");
+  return v && *v == '1' ? 100000 : 20000;
+}
+
+}  // namespace
+
+TEST(LtsNetwork, RatioOneWithoutOverlapIsLayerToTheBit) {
+  const auto m = linear_model(FreeVibrationShape::Bar, 1.0);
+  std::vector<std::vector<double>> u;
+  for (const char* scheme : {"layer", "lts"}) {
+    cosim::LayerNetwork net(m, options(m, 1.0, scheme, 0));
+    net.initialize();
+    net.run({}, 500 * net.plan().base);
+    u.push_back(net.global_displacement());
+  }
+  ASSERT_EQ(u[0].size(), u[1].size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < u[0].size(); ++i) differ += u[0][i] != u[1][i];
+  EXPECT_EQ(differ, 0u);
+  double umax = 0.0;
+  for (double x : u[0]) umax = std::max(umax, std::abs(x));
+  EXPECT_GT(umax, 0.0);  // it moved
+}
+
+TEST(LtsNetwork, Sweep) {
+  // CRASHLINK_LTS_SWEEP=block:1 (shape:overlap) prints the ratios' measures for a shape.
+  const char* v = std::getenv("CRASHLINK_LTS_SWEEP");
+  if (!v) GTEST_SKIP() << "set CRASHLINK_LTS_SWEEP=bar|block:overlap";
+  const std::string arg(v);
+  const auto colon = arg.find(':');
+  const std::string shape = arg.substr(0, colon);
+  const int overlap = colon == std::string::npos ? 1 : std::atoi(arg.c_str() + colon + 1);
+  const auto s = shape == "block" ? FreeVibrationShape::Block : FreeVibrationShape::Bar;
+  for (const double r : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 4.7, 8.0, 16.0}) {
+    const LtsRun x = run_lts(s, r, fine_steps(), overlap);
+    std::printf(
+        "%s ov %d r %-4g (planned %.3f): %lld samples, |E/E0 - 1| <= %.2e; KE + IE + HG band "
+        "[%+.4f, %+.4f], max first half %+.4f, second half %+.4f\n",
+        shape.c_str(), overlap, r, x.ratio, static_cast<long long>(x.samples), x.e_drift, x.phys_lo,
+        x.phys_hi, x.phys_early_hi, x.phys_late_hi);
+  }
+}
+
+// The issue's bound: E within 1e-6 of its first value (measured: <= 5e-10 on the bar, <= 3e-9 on
+// the block, at 2 10^4 fine steps), and the physical energy no more than 0.5 % above its first
+// value (measured: <= 0.18 %; it dips by up to 11 % on the bar and 3 % on the block while the
+// energy sits in the coarse-instant representation's blind spot, and comes back).
+TEST(LtsNetwork, LinearBarAndBlockConserveTheirEnergyAtEveryRatio) {
+  const auto steps = fine_steps();
+  for (const auto s : {FreeVibrationShape::Bar, FreeVibrationShape::Block})
+    for (const double r : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 4.7, 8.0, 16.0}) {
+      const LtsRun x = run_lts(s, r, steps, 1);
+      std::printf(
+          "[measured] lts %s r %-4g (planned %.3f): %lld samples, |E/E0 - 1| <= %.2e; "
+          "KE + IE + HG band [%+.4f, %+.4f], max first half %+.4f, second half %+.4f\n",
+          studies::shape_key(s), r, x.ratio, static_cast<long long>(x.samples), x.e_drift,
+          x.phys_lo, x.phys_hi, x.phys_early_hi, x.phys_late_hi);
+      EXPECT_GT(x.samples, 100);
+      EXPECT_LT(x.e_drift, 1e-6) << studies::shape_key(s) << " r = " << r;
+      EXPECT_LT(x.phys_hi, 0.005) << studies::shape_key(s) << " r = " << r;
+    }
+}
+
+// A checkpoint taken mid-run and restored gives the uninterrupted run's bits, energy included;
+// a `layer` run does not take an lts checkpoint.
+TEST(LtsNetwork, RestoredRunEndsWithTheUninterruptedRunsBits) {
+  const auto m = linear_model(FreeVibrationShape::Bar, 3.0);
+  const auto o = options(m, 3.0, "lts", 1);
+  cosim::LayerNetwork straight(m, o);
+  straight.initialize();
+  const coupling::Tick base = straight.plan().base;
+  straight.run({}, 400 * base);
+  cosim::LayerNetwork paused(m, o);
+  paused.initialize();
+  ASSERT_FALSE(paused.run({}, 157 * base));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_lts_checkpoint_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < paused.size(); ++k) {
+    core::StateWriter w;
+    paused.save_state(k, w);
+    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
+    w.save(paths.back());
+  }
+  cosim::LayerNetwork resumed(m, o);
+  resumed.restore(paths);
+  resumed.run({}, 400 * base);
+  {
+    auto lo = options(m, 3.0, "layer", 0);
+    // (its cut differs too: the solver or the stepper refuses, a CheckpointError either way)
+    cosim::LayerNetwork layer(m, lo);
+    EXPECT_THROW(layer.restore(paths), CheckpointError);
+  }
+  std::filesystem::remove_all(dir);
+  const auto a = straight.global_displacement(), b = resumed.global_displacement();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(straight.lts_energy_J(), resumed.lts_energy_J());
+  EXPECT_TRUE(std::isfinite(resumed.lts_energy_J()));
+}
