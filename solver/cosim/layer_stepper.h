@@ -90,7 +90,9 @@ enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
 ///     layer's force on J over (T - H, T + H), Fbar(T) = sum_q (1/p)(1 - |t_q - T|/H) g(t_q) over
 ///     the fine instants t_q (one-sided, weights doubled, over the first and the last owner
 ///     step), sent once its last instant T + (p-1) h is done. The coarse side is the same for both.
-///     Conserves LtsEnergy's E in the linear case; fixed steps only; J without rotations.
+///     Conserves LtsEnergy's E in the linear case; fixed steps only; J without rotations. The
+///     elements on J compute no bulk viscosity (the path's velocity is no physical one:
+///     Solver::set_ghost_bulk_viscosity).
 enum class LayerForm : std::uint8_t { Layer, Lts };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and

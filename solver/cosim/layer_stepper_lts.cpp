@@ -42,6 +42,8 @@ void LayerStepper::set_form(LayerForm form, Tick energy_period) {
   }
   form_ = form;
   energy_period_ = energy_period;
+  // The reflected path's velocity is no physical one: the elements on J compute no bulk viscosity.
+  if (form == LayerForm::Lts) solver_.set_ghost_bulk_viscosity(false);
 }
 
 void LayerStepper::lts_start_port(const LayerPort& port, PortState& ps) const {

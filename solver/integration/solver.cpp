@@ -326,11 +326,13 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
   const auto& chunks = chunks_.chunks(s);
   for (const auto& c : chunks) prepare_element_steps(c.part);
   const bool ratio = global_.on && !probe;
+  const bool rate_terms = s == 0 || ghost_bulk_viscosity_;  // set_ghost_bulk_viscosity
   const auto run_chunks = [&](std::size_t k0, std::size_t k1) {
     for (std::size_t k = k0; k < k1; ++k) {
       const auto& c = chunks[k];
       chunks_.clear_slots(c);
-      chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe);
+      chunk_results_[k] =
+          run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe, rate_terms);
       if (ratio)
         global_.chunk_ratio[k] = element_ratio(c.part, c.first, c.end, global_.chunk_element[k]);
     }
@@ -358,8 +360,8 @@ void Solver::prepare_element_steps(std::size_t p) {
 }
 
 elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t first,
-                                          std::size_t end, const std::int32_t* scatter,
-                                          bool probe) {
+                                          std::size_t end, const std::int32_t* scatter, bool probe,
+                                          bool rate_terms) {
   const auto& part = model_.parts[p];
   auto& rt = parts_[p];
   const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
@@ -372,8 +374,8 @@ elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t 
             : elements::NodalView{x_.data(),     v_.data(),         omega_.data(),    f_int_.data(),
                                   m_int_.data(), chunks_.f_slots(), chunks_.m_slots()};
   auto& state = probe ? global_.probe_states[p] : rt.state;
-  elements::StepInfo step{dt, c.bulk_viscosity && !probe, c.bulk_q_linear, c.bulk_q_quadratic,
-                          c.bulk_linear_in_expansion};
+  elements::StepInfo step{dt, c.bulk_viscosity && !probe && rate_terms, c.bulk_q_linear,
+                          c.bulk_q_quadratic, c.bulk_linear_in_expansion};
   step.first_element = first;
   step.end_element = end;
   step.scatter = scatter;

@@ -116,6 +116,11 @@ class Solver {
   /// Before end_cycle_compute(): ghost angular velocities omega^{n+1/2} [3 * ghost count] [rad/s]
   /// (shell J nodes; optional: without it a ghost keeps its angular velocity).
   void set_ghost_angular_velocity(const double* omega_mid);
+  /// Whether the elements on ghost nodes (the rim) compute the artificial bulk viscosity (on by
+  /// default). The `lts` coupling's ghosts move on a reflected path whose velocity is the mirror
+  /// image in time of the owner step before (cosim::LayerForm): a viscous term driven by it does
+  /// work of either sign, and pumped energy into the Hann pulse bar (docs/multirate.md "lts").
+  void set_ghost_bulk_viscosity(bool on) { ghost_bulk_viscosity_ = on; }
   /// Between the two halves: -m_int of node i at t^{n+1} (its own domain's moment) [N m].
   Vec3 net_moment(std::size_t i) const;
   /// Between the two halves: adds a coupling moment on node i at t^{n+1} [N m].
@@ -421,13 +426,16 @@ class Solver {
   }
   /// Part p's kernel over elements [first, end) with the scatter plan (null: into the nodes);
   /// probe: on the global step's zero-stress histories and rates (global_), no bulk viscosity.
+  /// rate_terms false: no bulk viscosity (the rim with set_ghost_bulk_viscosity(false)).
   elements::KernelResult run_kernel(std::size_t p, double dt, std::size_t first, std::size_t end,
-                                    const std::int32_t* scatter, bool probe = false);
+                                    const std::int32_t* scatter, bool probe = false,
+                                    bool rate_terms = true);
   /// The chunks of span s (0 interior, 1 rim) on the team, their shared nodes' slots replayed
   /// into f and m; chunk_results_ holds each chunk's result for the caller to fold in order.
   void run_span(int s, double dt, bool probe, double* f, double* m);
   // ---- global stable step (solver_global_step.cpp, Controls::global_stable_step) ----
   GlobalStep global_;
+  bool ghost_bulk_viscosity_ = true;  ///< set_ghost_bulk_viscosity
   /// initialize(): the probe's arrays and histories, the first estimate.
   void set_up_global_step();
   /// A new estimate of omega_max^2 by `runs` Lanczos runs (a full estimate: its own count), and
