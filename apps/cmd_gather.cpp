@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/exit_codes.h"
+#include "solver/daemon/domain_schemes.h"
 #include "solver/gather/gather_results.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
@@ -20,12 +21,17 @@ CLI::App* add_gather_command(CLI::App& app, GatherOptions& o) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o.out, "the run's output directory")->capture_default_str();
+  cmd->add_option("--coupling", o.coupling,
+                  "the run's coupling scheme (its cut: lts moves more element layers)")
+      ->check(CLI::IsMember(daemon::domain_scheme_names()))
+      ->capture_default_str();
   return cmd;
 }
 
 int run_gather(const GatherOptions& o) {
   const auto model = io::read_scenario(o.scenario);
-  const auto dec = partition::decompose(model, partition::Scheme::Layer);
+  const auto& entry = daemon::domain_scheme_named(o.coupling);
+  const auto dec = partition::decompose(model, entry.cut, entry.overlap_layers);
   const auto r = gather::gather_results(model, dec, o.out);
   std::printf(
       "crashlink gather: %s/result.h5: %lld history rows up to t = %.6g s, %lld field "

@@ -11,6 +11,7 @@ namespace crashlink::apps {
 struct GatherOptions {
   std::string scenario;
   std::string out = "out";
+  std::string coupling = "layer";  ///< the run's --coupling: its cut (lts: overlap layers)
 };
 
 CLI::App* add_gather_command(CLI::App& app, GatherOptions& options);

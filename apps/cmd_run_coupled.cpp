@@ -226,7 +226,8 @@ int run_coupled(const RunCommandOptions& o) {
   const auto model = io::read_scenario(o.scenario);
   if (model.controls.mass_scaling_dt_s > 0.0)
     std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
-  const auto dec = partition::decompose(model, daemon::domain_scheme_named(run.scheme).cut);
+  const auto& entry = daemon::domain_scheme_named(run.scheme);
+  const auto dec = partition::decompose(model, entry.cut, entry.overlap_layers);
   std::vector<std::string> domains, emptied;
   for (const auto& d : dec.domains) {
     if (!d.empty()) {

@@ -17,6 +17,7 @@ coupling::NamedTable<CoordinatorSchemeEntry>& table() {
   static coupling::NamedTable<CoordinatorSchemeEntry> t({
       {"layer", make_layer_coordinator_scheme, validate_layer_config},
       {"paper", make_paper_coordinator_scheme, validate_paper_config},
+      {"lts", make_lts_coordinator_scheme, validate_lts_config},
   });
   return t;
 }

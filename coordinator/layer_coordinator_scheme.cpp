@@ -10,6 +10,7 @@
 #include "coordinator/coordinator_checkpoints.h"
 #include "coordinator/coupling_history.h"
 #include "core/errors.h"
+#include "coupling/coupling_config.h"
 #include "coupling/layer_router.h"
 #include "solver/partition/decomposition.h"
 
@@ -23,8 +24,11 @@ std::span<const double> view(const google::protobuf::RepeatedField<double>& v) {
 
 class LayerCoordinatorScheme final : public CoordinatorScheme {
  public:
-  LayerCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o) : o_(o) {
-    cut_ = layer_cut(model, partition::decompose(model, partition::Scheme::Layer));
+  LayerCoordinatorScheme(const model::Model& model, const CoordinatorOptions& o,
+                         std::string scheme = "layer")
+      : o_(o), scheme_(std::move(scheme)) {
+    const int overlap = scheme_ == "lts" ? coupling::kLtsOverlapLayers : 0;
+    cut_ = layer_cut(model, partition::decompose(model, partition::Scheme::Layer, overlap));
     latest_.assign(cut_.names.size(), 0);
     step_.assign(cut_.names.size(), 0);
   }
@@ -62,7 +66,7 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     const coupling::Tick restart_from = checkpoints.restarted_from();
     for (std::size_t k = 0; k < cut_.names.size(); ++k) {
       auto setup = setup_message(cut_, plan, static_cast<int>(k), o_.run.common_step, options,
-                                 o_.run.ticks_per_second);
+                                 o_.run.ticks_per_second, scheme_);
       setup.mutable_setup()->set_variable_steps(o_.run.variable_steps);
       if (restart_from >= 0) {
         setup.mutable_setup()->set_restart(true);
@@ -160,6 +164,7 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   }
 
   const CoordinatorOptions& o_;
+  std::string scheme_;  ///< "layer" or "lts"
   LayerCut cut_;
   std::vector<coupling::Tick> latest_;  ///< [daemons] the instant of the latest report
   std::vector<coupling::Tick> step_;    ///< [daemons] the planned steps
@@ -181,6 +186,22 @@ void validate_layer_config(const coupling::CouplingConfig& config) {
 std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(
     const model::Model& model, const CoordinatorOptions& options) {
   return std::make_unique<LayerCoordinatorScheme>(model, options);
+}
+
+void validate_lts_config(const coupling::CouplingConfig& config) {
+  if (!config.drift)
+    throw InputError(
+        "--no-drift: a `paper` option; `lts` has no drift correction (add --coupling paper, "
+        "or drop the option)");
+  if (config.variable_steps)
+    throw InputError(
+        "--variable-steps with --coupling lts: lts runs fixed steps only (its conserved energy "
+        "needs one coarse step); drop --variable-steps, or use --coupling layer");
+}
+
+std::unique_ptr<CoordinatorScheme> make_lts_coordinator_scheme(const model::Model& model,
+                                                               const CoordinatorOptions& options) {
+  return std::make_unique<LayerCoordinatorScheme>(model, options, "lts");
 }
 
 }  // namespace crashlink::coordinator

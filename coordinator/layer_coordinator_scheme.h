@@ -20,4 +20,10 @@ void validate_layer_config(const coupling::CouplingConfig& config);
 std::unique_ptr<CoordinatorScheme> make_layer_coordinator_scheme(const model::Model& model,
                                                                  const CoordinatorOptions& options);
 
+/// `lts` (leapfrog local time stepping, docs/multirate.md "lts"): `layer`'s coordinator side on
+/// the cut with coupling::kLtsOverlapLayers more layers; its rules: `layer`'s, and fixed steps.
+void validate_lts_config(const coupling::CouplingConfig& config);
+std::unique_ptr<CoordinatorScheme> make_lts_coordinator_scheme(const model::Model& model,
+                                                               const CoordinatorOptions& options);
+
 }  // namespace crashlink::coordinator

@@ -161,12 +161,13 @@ wire::Envelope setup_envelope(bool common, const std::string& scheme, const wire
 
 wire::Envelope setup_message(const LayerCut& cut, const coupling::StepPlan& plan, int k,
                              bool common, const wire::Options& options,
-                             std::int64_t ticks_per_second) {
+                             std::int64_t ticks_per_second, const std::string& scheme) {
   // every domain ends at the same base instant (LayerStepper::set_end_time)
-  wire::Envelope e = setup_envelope(common, "layer", options, ticks_per_second,
+  wire::Envelope e = setup_envelope(common, scheme, options, ticks_per_second,
                                     coupling::aligned_end(plan, cut.end_time_s, ticks_per_second));
   auto* s = e.mutable_setup();
   s->set_step_ticks(plan.step[static_cast<std::size_t>(k)]);
+  s->set_base_ticks(plan.base);
   for (const auto& c : cut.interfaces) {
     if (c.fine != k && c.coarse != k) continue;
     auto* li = s->add_layer_interfaces();

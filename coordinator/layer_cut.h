@@ -61,9 +61,9 @@ coupling::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Regis
 wire::Envelope setup_envelope(bool common, const std::string& scheme, const wire::Options& options,
                               std::int64_t ticks_per_second, coupling::Tick end_ticks);
 
-/// Daemon k's Setup.
+/// Daemon k's Setup (`scheme`: "layer" or "lts", the stepper's form).
 wire::Envelope setup_message(const LayerCut& cut, const coupling::StepPlan& plan, int k,
                              bool common, const wire::Options& options,
-                             std::int64_t ticks_per_second);
+                             std::int64_t ticks_per_second, const std::string& scheme = "layer");
 
 }  // namespace crashlink::coordinator

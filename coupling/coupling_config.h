@@ -12,6 +12,11 @@
 
 namespace crashlink::coupling {
 
+/// `lts`: the coarse element layers its cut moves into the finer domain beyond `layer`'s first
+/// (partition::decompose). Without one, the plain leapfrog LTS has unstable step bands
+/// (coupling-study/lts/README.md; docs/multirate.md "lts").
+inline constexpr int kLtsOverlapLayers = 1;
+
 struct CouplingConfig {
   /// The scheme, by name ("layer", "paper"; --coupling).
   std::string scheme = "layer";

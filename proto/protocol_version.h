@@ -19,7 +19,8 @@ namespace crashlink::wire {
 // daemon would run fixed steps against partners that do not); 7 checkpoints of variable `layer`
 // steps: LayerDisplacement.pause, LayerReport.checkpoint (a version-6 holder would not pause with
 // its owner, and the checkpoint instants would differ); 8 the scheme by name: Setup.scheme instead
-// of the Coupling enum (a version-7 daemon would read every Setup as "unspecified").
-inline constexpr std::uint32_t kProtocolVersion = 8;
+// of the Coupling enum (a version-7 daemon would read every Setup as "unspecified"); 9 `lts`:
+// Setup.base_ticks (a version-8 daemon would not know the scheme nor its energy instants).
+inline constexpr std::uint32_t kProtocolVersion = 9;
 
 }  // namespace crashlink::wire

@@ -45,7 +45,7 @@ struct LayerNetworkOptions {
   /// lts: the coarse element layers moved into the finer domain beyond the first
   /// (partition::decompose). The plain leapfrog LTS has unstable step bands without one
   /// (coupling-study/lts/README.md): >= 1.
-  int overlap_layers = 1;
+  int overlap_layers = coupling::kLtsOverlapLayers;
 };
 
 class LayerNetwork {

@@ -140,7 +140,8 @@ class Daemon {
     hash_ = std::move(read.hash);
     model_ = std::make_unique<model::Model>(std::move(read.model));
     const auto& entry = domain_scheme_named(o_.coupling);
-    dec_ = std::make_unique<partition::Decomposition>(partition::decompose(*model_, entry.cut));
+    dec_ = std::make_unique<partition::Decomposition>(
+        partition::decompose(*model_, entry.cut, entry.overlap_layers));
     scheme_ = entry.make(*dec_, *model_, scheme_options());
     elements_ = static_cast<std::int64_t>(solver()->model().element_count());
     solver()->initialize();

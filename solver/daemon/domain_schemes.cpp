@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "coupling/coupling_config.h"
 #include "coupling/named_table.h"
 #include "solver/daemon/layer_domain_scheme.h"
 #include "solver/daemon/paper_domain_scheme.h"
@@ -14,6 +15,7 @@ coupling::NamedTable<DomainSchemeEntry>& table() {
   static coupling::NamedTable<DomainSchemeEntry> t({
       {"layer", partition::Scheme::Layer, make_layer_domain_scheme},
       {"paper", partition::Scheme::Paper, make_paper_domain_scheme},
+      {"lts", partition::Scheme::Layer, make_lts_domain_scheme, coupling::kLtsOverlapLayers},
   });
   return t;
 }

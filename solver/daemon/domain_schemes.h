@@ -21,6 +21,8 @@ struct DomainSchemeEntry {
   std::string name;
   partition::Scheme cut = partition::Scheme::Layer;  ///< how the scenario is cut into domains
   MakeDomainScheme make = nullptr;
+  /// Layer cut: the coarse element layers moved beyond the first (`lts`, partition::decompose).
+  int overlap_layers = 0;
 };
 
 /// Every scheme, the built-in ones first (a deque: registering keeps the references valid).

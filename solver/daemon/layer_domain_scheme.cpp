@@ -19,8 +19,8 @@ namespace {
 class LayerDomainScheme final : public coupling::DomainScheme {
  public:
   LayerDomainScheme(const partition::Decomposition& dec, const model::Model& model,
-                    coupling::DomainSchemeOptions o)
-      : o_(std::move(o)), dom_(cosim::build_layer_domain(dec, model, o_.domain)) {
+                    coupling::DomainSchemeOptions o, cosim::LayerForm form)
+      : o_(std::move(o)), form_(form), dom_(cosim::build_layer_domain(dec, model, o_.domain)) {
     dom_.solver->set_threads(o_.threads);
   }
 
@@ -63,6 +63,14 @@ class LayerDomainScheme final : public coupling::DomainScheme {
         : setup.mode() == wire::MODE_SPLIT ? cosim::LayerSteps::VariableCommon
                                            : cosim::LayerSteps::Variable);
     stepper_->set_record_history(true);
+    if (form_ == cosim::LayerForm::Lts) {
+      if (setup.variable_steps())
+        throw ProtocolError("coordinator",
+                            fmt::format("domain '{}': a Setup with variable steps for the lts "
+                                        "coupling, which runs fixed steps only",
+                                        o_.domain));
+      stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());  // ModelError: shells
+    }
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);
     else
@@ -148,6 +156,7 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   }
 
   coupling::DomainSchemeOptions o_;
+  cosim::LayerForm form_ = cosim::LayerForm::Layer;
   cosim::LayerDomain dom_;
   std::int64_t tps_ = 0;
   std::unique_ptr<cosim::LayerStepper> stepper_;
@@ -158,7 +167,13 @@ class LayerDomainScheme final : public coupling::DomainScheme {
 std::unique_ptr<coupling::DomainScheme> make_layer_domain_scheme(
     const partition::Decomposition& dec, const model::Model& model,
     const coupling::DomainSchemeOptions& options) {
-  return std::make_unique<LayerDomainScheme>(dec, model, options);
+  return std::make_unique<LayerDomainScheme>(dec, model, options, cosim::LayerForm::Layer);
+}
+
+std::unique_ptr<coupling::DomainScheme> make_lts_domain_scheme(
+    const partition::Decomposition& dec, const model::Model& model,
+    const coupling::DomainSchemeOptions& options) {
+  return std::make_unique<LayerDomainScheme>(dec, model, options, cosim::LayerForm::Lts);
 }
 
 }  // namespace crashlink::daemon

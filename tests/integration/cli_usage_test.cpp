@@ -113,7 +113,7 @@ TEST(CliUsage, SolverUsageErrorsExit2) {
   expect_usage_error("crashlink-solver", needed + " --heartbeat-ms soon", "crashlink-solver",
                      "--heartbeat-ms");
   expect_usage_error("crashlink-solver", needed + " --coupling glue", "crashlink-solver",
-                     "--coupling: glue not in {layer,paper}");
+                     "--coupling: glue not in {layer,paper,lts}");
 }
 
 TEST(CliUsage, CoordinatorUsageErrorsExit2) {

@@ -503,3 +503,41 @@ TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged)
       static_cast<long long>(offers), static_cast<long long>(early_displacements),
       static_cast<long long>(early_forces), worst);
 }
+
+// `lts` (issue #25) over processes: `crashlink run --mode multi --coupling lts` (ipc, lanes) is
+// cosim::LayerNetwork with the lts form to the bit: every domain file's last state and the gathered
+// result.h5 (its cut has the overlap layer, as the daemons' and the coordinator's).
+TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
+  const auto dir = fresh_dir("lts-multi-bar");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
+  const auto out = dir / "out";
+  std::vector<std::string> argv{bin("crashlink"), "run",    scenario,      "--mode", "multi",
+                                "--coupling",     "lts",    "--transport", "ipc",    "--out",
+                                out.string(),     "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
+  ASSERT_EQ(exit_code(*st), 0) << run.output();
+
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.common_step = false;
+  o.step_safety = 0.9;  // crashlink run's default
+  const Reference ref = reference(m, o);
+  ASSERT_EQ(ref.steps.size(), 2u);
+  EXPECT_GT(std::max(ref.steps[0], ref.steps[1]), std::min(ref.steps[0], ref.steps[1]))
+      << "one step for both: not multirate";
+  const double worst = expect_network_bits(out, m, ref, {"fine", "coarse"}).worst;
+  const auto g = last_state((out / "result.h5").string());
+  const Diff gathered = compare(g, m, ref.u);
+  EXPECT_EQ(gathered.max_abs, 0.0) << "gathered result.h5";
+  std::printf(
+      "[measured] lts multi over ipc, bar at H/h = %lld/%lld ticks: max |u - u_network| / "
+      "max|u| = %.3e (domain files), %.3e (gathered, %zu nodes)\n",
+      static_cast<long long>(std::max(ref.steps[0], ref.steps[1])),
+      static_cast<long long>(std::min(ref.steps[0], ref.steps[1])), worst, gathered.rel(),
+      gathered.nodes);
+}
