@@ -33,12 +33,13 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       ->capture_default_str();
   run->add_option("--mode", o.mode, "mono | split | multi")
       ->check(CLI::IsMember({"mono", "split", "multi"}));
-  add_coupling_option(*run, o.coupling, coordinator::coordinator_scheme_names(),
-                      "split/multi: the coupling scheme (paper: Bourel 2005 [8]-[11], stable only "
-                      "up to a step ratio of about 2; its guard stops it beyond, "
-                      "docs/paper-scheme.md; lts: leapfrog local time stepping, a discrete "
-                      "energy conserved, fixed steps, no shell interfaces yet, "
-                      "docs/multirate.md)");
+  add_coupling_option(
+      *run, o.coupling, coordinator::coordinator_scheme_names(),
+      "split/multi: the coupling scheme (paper: Bourel 2005 [8]-[11], stable only "
+      "up to a step ratio of about 2; its guard stops it beyond, "
+      "docs/paper-scheme.md; lts: leapfrog local time stepping, a discrete "
+      "energy conserved in the linear case, fixed steps; not yet for plastic models, "
+      "docs/multirate.md)");
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
                 "each domain's step follows its stable step as the mesh deforms instead of "

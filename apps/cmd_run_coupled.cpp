@@ -28,6 +28,7 @@
 #include "solver/integration/mass_scaling.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
+#include "solver/materials/material.h"
 #include "solver/model/run_estimate.h"
 #include "solver/parallel/thread_shares.h"
 #include "solver/parallel/thread_team.h"
@@ -226,6 +227,16 @@ int run_coupled(const RunCommandOptions& o) {
   const auto model = io::read_scenario(o.scenario);
   if (model.controls.mass_scaling_dt_s > 0.0)
     std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
+  if (run.scheme == "lts")
+    for (const auto& mat : model.materials)
+      if (mat.kind == materials::MaterialKind::J2Plastic) {
+        std::printf(
+            "crashlink run: warning: --coupling lts with plastic material '%s': the plain leapfrog "
+            "LTS blew up on the plastic head impact (docs/multirate.md \"lts\"); the step guard "
+            "stops such a run (exit 3); --coupling layer is the scheme for plastic crash runs\n",
+            mat.name.c_str());
+        break;
+      }
   const auto& entry = daemon::domain_scheme_named(run.scheme);
   const auto dec = partition::decompose(model, entry.cut, entry.overlap_layers);
   std::vector<std::string> domains, emptied;

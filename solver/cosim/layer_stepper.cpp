@@ -537,6 +537,8 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           solver_.set_ghost_angular_velocity(ghost_omega_.data());
         }
         solver_.end_cycle_compute();  // overlaps the partners' work
+        if (form_ == LayerForm::Lts)
+          lts_energy_.add_rotation(solver_.angular_velocity_mid().data(), seconds(h_));
         t_ += h_;
         if (!forces_wait_for_holders()) {
           send_forces();

@@ -90,7 +90,10 @@ enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
 ///     layer's force on J over (T - H, T + H), Fbar(T) = sum_q (1/p)(1 - |t_q - T|/H) g(t_q) over
 ///     the fine instants t_q (one-sided, weights doubled, over the first and the last owner
 ///     step), sent once its last instant T + (p-1) h is done. The coarse side is the same for both.
-///     Conserves LtsEnergy's E in the linear case; fixed steps only; J without rotations. The
+///     Rotations (shell J) alike, as small rotations: J's angular velocity over substep q is the
+///     mirror substep's of the owner step before, and over the last one what lands on the owner's
+///     rotation at T + H; the moments hat-averaged as the forces.
+///     Conserves LtsEnergy's E in the linear case; fixed steps only. The
 ///     elements on J compute no bulk viscosity (the path's velocity is no physical one:
 ///     Solver::set_ghost_bulk_viscosity).
 enum class LayerForm : std::uint8_t { Layer, Lts };
@@ -281,12 +284,15 @@ class LayerStepper {
     coupling::LayerWorkMeter meter;            ///< fine side: the interface history
     std::vector<coupling::LayerSample> rows;   ///< fine side: rows not taken yet
     // Lts, fine side (LayerForm):
-    std::int64_t substeps = 1;      ///< p = H / h
-    std::vector<double> path_prev;  ///< [(p + 1) 3 n_J] J at T - H + q h, q = 0..p
-    std::vector<double> path_cur;   ///< [(p + 1) 3 n_J] J at T + q h, as far as applied
-    std::vector<double> fbar_T;     ///< [3 n_J] Fbar(acc_T) so far [N]
-    std::vector<double> fbar_T1;    ///< [3 n_J] Fbar(acc_T + H) so far [N]
-    Tick acc_T = 0;                 ///< the owner instant fbar_T is for
+    std::int64_t substeps = 1;       ///< p = H / h
+    std::vector<double> path_prev;   ///< [(p + 1) 3 n_J] J at T - H + q h, q = 0..p
+    std::vector<double> path_cur;    ///< [(p + 1) 3 n_J] J at T + q h, as far as applied
+    std::vector<double> fbar_T;      ///< [3 n_J] Fbar(acc_T) so far [N]
+    std::vector<double> fbar_T1;     ///< [3 n_J] Fbar(acc_T + H) so far [N]
+    std::vector<double> omega_prev;  ///< rotates: [p 3 n_J] J's omega over T - H + [q h, (q+1) h]
+    std::vector<double> omega_cur;   ///< rotates: [p 3 n_J] over T + [q h, (q+1) h], as applied
+    std::vector<double> mbar_T, mbar_T1;  ///< rotates: [3 n_J] the moments' Fbar alike [N m]
+    Tick acc_T = 0;                       ///< the owner instant fbar_T is for
   };
 
   Tick to_ticks_end(double t_s) const;

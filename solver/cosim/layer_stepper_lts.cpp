@@ -33,11 +33,6 @@ void LayerStepper::set_form(LayerForm form, Tick energy_period) {
             "layer stepper '{}': lts energy period {} ticks is not a whole multiple of the "
             "owner's step {} ticks on interface {}",
             dom, energy_period, ports_[p].partner_step, ports_[p].index));
-      if (state_[p].rotates)
-        throw ModelError(fmt::format(
-            "layer stepper '{}': interface {} joins nodes with rotations (shells); the lts "
-            "coupling does not carry rotations yet: run it with --coupling layer",
-            dom, ports_[p].index));
     }
   }
   form_ = form;
@@ -57,6 +52,11 @@ void LayerStepper::lts_start_port(const LayerPort& port, PortState& ps) const {
   ps.fbar_T.assign(n3, 0.0);
   ps.fbar_T1.assign(n3, 0.0);
   ps.acc_T = 0;
+  const std::size_t r3 = ps.rotates ? n3 : 0;
+  ps.omega_prev.assign(static_cast<std::size_t>(ps.substeps) * r3, 0.0);
+  ps.omega_cur.assign(static_cast<std::size_t>(ps.substeps) * r3, 0.0);
+  ps.mbar_T.assign(r3, 0.0);
+  ps.mbar_T1.assign(r3, 0.0);
 }
 
 void LayerStepper::lts_next_owner_step(PortState& ps) const {
@@ -64,6 +64,7 @@ void LayerStepper::lts_next_owner_step(PortState& ps) const {
   // u_J(T) (ps.u_T, already moved on).
   ps.path_prev.swap(ps.path_cur);
   std::copy(ps.u_T.begin(), ps.u_T.end(), ps.path_cur.begin());
+  ps.omega_prev.swap(ps.omega_cur);
 }
 
 void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick t1) {
@@ -91,7 +92,21 @@ void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick 
         u = 2.0 * ps.u_T[i] - ps.path_prev[mirror * n3 + i];
       ps.path_cur[row * n3 + i] = u;
       ghost_u_[3 * s + d] = u;
-      ghost_omega_[3 * s + d] = 0.0;
+      // omega over [t1 - h, t1] (small rotations, Theta reflected as U): the mirror substep's;
+      // frozen over the first owner step; over the last substep what lands on the owner's
+      // rotation Theta(T) + H omega_J(T + H/2): p omega_J - sum of the substeps' before.
+      double w = 0.0;
+      if (ps.rotates) {
+        const std::size_t sub = row - 1;
+        if (q == p) {
+          w = static_cast<double>(p) * (ps.omega.empty() ? 0.0 : ps.omega[i]);
+          for (std::size_t k = 0; k < sub; ++k) w -= ps.omega_cur[k * n3 + i];
+        } else if (ps.T != 0) {
+          w = ps.omega_prev[mirror * n3 + i];
+        }
+        ps.omega_cur[sub * n3 + i] = w;
+      }
+      ghost_omega_[3 * s + d] = w;
     }
   }
 }
@@ -115,6 +130,8 @@ void LayerStepper::lts_send_forces() {
       CRASHLINK_ASSERT(T == ps.acc_T + H);
       ps.fbar_T.swap(ps.fbar_T1);
       std::fill(ps.fbar_T1.begin(), ps.fbar_T1.end(), 0.0);
+      ps.mbar_T.swap(ps.mbar_T1);
+      std::fill(ps.mbar_T1.begin(), ps.mbar_T1.end(), 0.0);
       ps.acc_T = T;
     }
     const auto pp = static_cast<double>(p * p);
@@ -122,14 +139,23 @@ void LayerStepper::lts_send_forces() {
     const double w_next = static_cast<double>(q) / pp;
     const bool send = q == p - 1;
     const bool ending = q == 0 && p > 1 && finished_here();
-    std::vector<double> g_now;
-    if (ending) g_now.resize(ps.fbar_T.size());
+    std::vector<double> g_now, m_now;
+    if (ending) {
+      g_now.resize(ps.fbar_T.size());
+      m_now.resize(ps.mbar_T.size());
+    }
     for (std::size_t j = 0; j < port.local.size(); ++j) {
       const Vec3 g = solver_.net_force(port.local[j]);
+      const Vec3 mo = ps.rotates ? solver_.net_moment(port.local[j]) : Vec3{};
       for (std::size_t d = 0; d < 3; ++d) {
-        ps.fbar_T[3 * j + d] += w_now * g[d];
-        if (q > 0) ps.fbar_T1[3 * j + d] += w_next * g[d];
-        if (ending) g_now[3 * j + d] = g[d];
+        const std::size_t k = 3 * j + d;
+        ps.fbar_T[k] += w_now * g[d];
+        if (q > 0) ps.fbar_T1[k] += w_next * g[d];
+        if (ending) g_now[k] = g[d];
+        if (!ps.rotates) continue;
+        ps.mbar_T[k] += w_now * mo[d];
+        if (q > 0) ps.mbar_T1[k] += w_next * mo[d];
+        if (ending) m_now[k] = mo[d];
       }
     }
     if (!send && !ending) continue;
@@ -138,12 +164,16 @@ void LayerStepper::lts_send_forces() {
     m.interface_index = port.index;
     m.time = ps.acc_T;
     m.first = ps.fbar_T;
-    if (ending)  // g/p + 2 S, where fbar_T = g/p + S: the last owner step one-sided
+    m.second = ps.mbar_T;
+    if (ending) {  // g/p + 2 S, where fbar_T = g/p + S: the last owner step one-sided
       for (std::size_t k = 0; k < m.first.size(); ++k)
         m.first[k] = 2.0 * ps.fbar_T[k] - g_now[k] / static_cast<double>(p);
+      for (std::size_t k = 0; k < m.second.size(); ++k)
+        m.second[k] = 2.0 * ps.mbar_T[k] - m_now[k] / static_cast<double>(p);
+    }
     if (record_history_) {
       const auto& uJ = ps.acc_T == ps.T ? ps.u_T : ps.u_1;  // u_J(acc_T)
-      ps.rows.push_back(ps.meter.add(m.time, m.first, {}, uJ, {}));
+      ps.rows.push_back(ps.meter.add(m.time, m.first, m.second, uJ, {}));
     }
     outbox_.push_back(std::move(m));
   }
@@ -155,6 +185,7 @@ void LayerStepper::lts_start_energy() {
   for (const auto g : solver_.ghost_nodes()) owned[static_cast<std::size_t>(g)] = 0;
   lts_energy_.reset(std::move(owned), solver_.model().fixed,
                     std::vector<double>(solver_.mass().begin(), solver_.mass().end()),
+                    std::vector<double>(solver_.inertia().begin(), solver_.inertia().end()),
                     seconds(energy_period_));
 }
 

@@ -80,6 +80,10 @@ void LayerStepper::save_state(core::StateWriter& w) const {
       w.put(pre + "lts.fbar_T", std::span<const double>(ps.fbar_T));
       w.put(pre + "lts.fbar_T1", std::span<const double>(ps.fbar_T1));
       w.put_int(pre + "lts.acc_T", ps.acc_T);
+      w.put(pre + "lts.omega_prev", std::span<const double>(ps.omega_prev));
+      w.put(pre + "lts.omega_cur", std::span<const double>(ps.omega_cur));
+      w.put(pre + "lts.mbar_T", std::span<const double>(ps.mbar_T));
+      w.put(pre + "lts.mbar_T1", std::span<const double>(ps.mbar_T1));
     }
   }
   w.put_int("stepper.form", static_cast<std::int64_t>(form_));
@@ -167,6 +171,10 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       r.get_exact(pre + "lts.fbar_T", ps.fbar_T);
       r.get_exact(pre + "lts.fbar_T1", ps.fbar_T1);
       ps.acc_T = r.get_int(pre + "lts.acc_T");
+      r.get_exact(pre + "lts.omega_prev", ps.omega_prev);
+      r.get_exact(pre + "lts.omega_cur", ps.omega_cur);
+      r.get_exact(pre + "lts.mbar_T", ps.mbar_T);
+      r.get_exact(pre + "lts.mbar_T1", ps.mbar_T1);
     }
   }
   if (form_ == LayerForm::Lts) {

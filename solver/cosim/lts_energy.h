@@ -11,7 +11,8 @@
 // from each node's displacements at three coarse instants. Each domain sums the nodes it owns
 // (ghosts left out: their owner counts them with their summed mass), and the sum over the domains
 // is E. A share alone is not an energy (it can be negative); only the sum is. Held dofs count 0.
-// Translational dofs only: the shell rotations' share is not counted yet.
+// Rotational dofs (shell nodes) add the same with the rotary inertia I_i and the rotation theta_i
+// (the sum of the step's increments dt omega^{n+1/2}, small rotations).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -23,11 +24,14 @@ namespace crashlink::cosim {
 class LtsEnergy {
  public:
   /// `owned[i]` 1 for the nodes this domain integrates (not ghosts), `fixed` the model's DofBits
-  /// masks (empty: none held), `mass_kg` the integration masses, H the coarse step [s].
+  /// masks (empty: none held), `mass_kg` and `inertia_kgm2` the integration masses and rotary
+  /// inertias, H the coarse step [s].
   void reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t> fixed,
-             std::vector<double> mass_kg, double coarse_step_s);
-  /// The displacements u [3 n, m] at the next coarse instant. After the third call, value() is
-  /// E^{k-1/2} of the last three.
+             std::vector<double> mass_kg, std::vector<double> inertia_kgm2, double coarse_step_s);
+  /// After each cycle: theta += dt omega^{n+1/2} on the rotating owned nodes [3 n, rad/s].
+  void add_rotation(const double* omega_mid, double dt_s);
+  /// The displacements u [3 n, m] at the next coarse instant (the rotations are add_rotation's).
+  /// After the third call, value() is E^{k-1/2} of the last three.
   void sample(const double* u);
   bool ready() const { return samples_ >= 3; }
   double value_J() const { return value_J_; }  ///< this domain's share of E^{k-1/2} [J]
@@ -36,9 +40,12 @@ class LtsEnergy {
 
  private:
   std::vector<std::uint8_t> owned_, fixed_;
-  std::vector<double> mass_;
-  std::vector<double> u1_, u2_;  ///< u at the previous and the one before [3 n]
-  double h2_ = 0.0;              ///< H^2 [s^2]
+  std::vector<double> mass_, inertia_;
+  std::vector<std::int32_t> rotating_;  ///< owned nodes with inertia > 0
+  std::vector<double> theta_;           ///< [3 n] rotation so far [rad]
+  std::vector<double> u1_, u2_;         ///< u at the previous and the one before [3 n]
+  std::vector<double> t1_, t2_;         ///< theta alike [3 n]
+  double h2_ = 0.0;                     ///< H^2 [s^2]
   std::int64_t samples_ = 0;
   double value_J_ = 0.0;
 };

@@ -54,9 +54,10 @@ std::vector<double> interface_damping(const Analysis& a, const std::vector<std::
 
 // 1. Link claims: every node used by elements of several domains is a permanent-link node; every
 //    element touching it is claimed by the finest of those domains (the coarse side's first
-//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade;
-//    then, `overlap_layers` times, the same claim on the assignment so far (the `lts` overlap: F
-//    integrates that many more coarse element layers at its step, docs/multirate.md "lts").
+//    element layer moves into F). Claims use the ORIGINAL assignment only: one layer, no cascade.
+//    After 2.-3., `overlap_layers` times, the same claim on the assignment so far (the `lts`
+//    overlap: F integrates that many more coarse element layers at its step, beyond the links'
+//    and the contact surfaces' moved layers; docs/multirate.md "lts"), then 2.-3. again.
 // 2. Contact claims: all surface elements of a contact (master parts' elements, the elements
 //    holding slave nodes) go to the finest domain holding one of them, so the contact lies in one
 //    domain (for a cross-domain contact: the coarse body's contact-surface layer moves into F).
@@ -96,28 +97,6 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
     }
   }
 
-  // 1b. The overlap: the link claim again on the assignment so far, one element layer per pass.
-  for (int layer = 0; layer < overlap_layers; ++layer) {
-    std::vector<int> next = pl.elem_domain;
-    for (std::size_t i = 0; i < n; ++i) {
-      int f = -1;
-      bool shared = false;
-      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-        const int d = pl.elem_domain[static_cast<std::size_t>(a.node_elems[k])];
-        if (f >= 0 && d != f) shared = true;
-        f = f < 0 ? d : finest(f, d);
-      }
-      if (!shared) continue;
-      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-        const auto e = static_cast<std::size_t>(a.node_elems[k]);
-        if (pl.elem_domain[e] == f) continue;
-        next[e] = finest(next[e], f);
-        link_moved[e] = 1;
-      }
-    }
-    pl.elem_domain.swap(next);
-  }
-
   // 2.-3. Contact surfaces and rigid bodies, to a fixed point.
   std::vector<ContactSides> sides;
   for (std::size_t c = 0; c < g.contacts.size(); ++c) sides.push_back(contact_sides(a, c));
@@ -150,6 +129,39 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
     for (const auto& be : body_elems) (void)gather(be);
     changed = before != pl.elem_domain;
   }
+
+  // 1b. The overlap: the link claim again on the assignment so far (the links' and the contact
+  //     surfaces' moved layers alike), one element layer per pass; then 2.-3. again, so that a
+  //     rigid body or a contact surface the overlap reached moves whole.
+  for (int layer = 0; layer < overlap_layers; ++layer) {
+    std::vector<int> next = pl.elem_domain;
+    for (std::size_t i = 0; i < n; ++i) {
+      int f = -1;
+      bool shared = false;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const int d = pl.elem_domain[static_cast<std::size_t>(a.node_elems[k])];
+        if (f >= 0 && d != f) shared = true;
+        f = f < 0 ? d : finest(f, d);
+      }
+      if (!shared) continue;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const auto e = static_cast<std::size_t>(a.node_elems[k]);
+        if (pl.elem_domain[e] == f) continue;
+        next[e] = finest(next[e], f);
+        link_moved[e] = 1;
+      }
+    }
+    pl.elem_domain.swap(next);
+  }
+
+  if (overlap_layers > 0)
+    for (bool changed = true; changed;) {
+      const auto before = pl.elem_domain;
+      for (std::size_t c = 0; c < sides.size(); ++c)
+        pl.contact_domain[c] = gather(sides[c].surface);
+      for (const auto& be : body_elems) (void)gather(be);
+      changed = before != pl.elem_domain;
+    }
 
   // 4. Node roles.
   pl.role.assign(nd, std::vector<std::uint8_t>(n, kAbsent));

@@ -285,5 +285,37 @@ TEST(Layer, BadDomainsAreModelErrorsWithTheFix) {
   expect_error(q, "split it into one contact per slave domain");
 }
 
+// The `lts` overlap (decompose(..., overlap_layers)): the link claim repeated on the assignment so
+// far, beyond the links' moved layer and the contact surfaces' alike (docs/decomposition.md).
+TEST(Layer, OverlapLayersMoveMoreCoarseLayersPastLinksAndContactSurfaces) {
+  {
+    const auto g = testing::bar_two_sizes();
+    const auto d = decompose(g, Scheme::Layer, 2);
+    check_invariants(g, d);
+    ASSERT_EQ(d.interfaces.size(), 1u);
+    EXPECT_EQ(d.overlap_layers, 2);
+    // coarse elements 8, 9, 10 (x in [0.7, 1]) move; J is the plane x = 0.7
+    EXPECT_EQ(d.interfaces[0].moved_elements, (std::vector<std::int64_t>{8, 9, 10}));
+    EXPECT_EQ(d.interfaces[0].j_nodes_global, nodes_at_x(g, 0.7));
+  }
+  {
+    // The plate (the coarse side's contact surface) moves into the block's domain; with one
+    // overlap layer the frame's first column (x in [0.5, 0.625]) follows, and J is x = 0.625.
+    const auto g = testing::block_on_floor();
+    const auto plain = decompose(g, Scheme::Layer);
+    const auto d = decompose(g, Scheme::Layer, 1);
+    check_invariants(g, d);
+    ASSERT_EQ(d.interfaces.size(), 1u);
+    ASSERT_EQ(plain.interfaces.size(), 1u);
+    EXPECT_EQ(d.interfaces[0].moved_elements.size(), plain.interfaces[0].moved_elements.size() + 4);
+    std::vector<std::int32_t> j625;
+    for (const auto j : d.interfaces[0].j_nodes_global)
+      if (std::abs(g.nodes.x0[3 * static_cast<std::size_t>(j)] - 0.625) < 1e-9) j625.push_back(j);
+    EXPECT_EQ(j625.size(), d.interfaces[0].j_nodes_global.size());
+    EXPECT_EQ(j625.size(), 5u);
+  }
+  EXPECT_THROW(decompose(testing::bar_two_sizes(), Scheme::Paper, 1), ModelError);
+}
+
 }  // namespace
 }  // namespace crashlink::partition
