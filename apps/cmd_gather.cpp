@@ -41,8 +41,10 @@ int run_gather(const GatherOptions& o) {
       fmt::format("{}", fmt::join(r.domains_read, "', '")).c_str());
   for (const auto& n : r.notes) std::printf("note: %s\n", n.c_str());
   if (!r.missing.empty()) {
-    std::fprintf(stderr, "crashlink gather: missing or unusable: domain(s) '%s'\n",
-                 fmt::format("{}", fmt::join(r.missing, "', '")).c_str());
+    std::fprintf(stderr,
+                 "crashlink gather: missing or unusable: domain(s) '%s' (cut for --coupling %s: a "
+                 "run with --coupling lts is gathered with --coupling lts)\n",
+                 fmt::format("{}", fmt::join(r.missing, "', '")).c_str(), o.coupling.c_str());
     return kExitPeer;
   }
   return kExitOk;

@@ -44,7 +44,7 @@ struct LayerNetworkOptions {
   std::vector<double> proposal_s;
   /// lts: the coarse element layers moved into the finer domain beyond the first
   /// (partition::decompose). The plain leapfrog LTS has unstable step bands without one
-  /// (coupling-study/lts/README.md): >= 1.
+  /// (coupling-study/lts/README.md); 0 (the layer cut) is for tests that compare with `layer`.
   int overlap_layers = coupling::kLtsOverlapLayers;
 };
 
@@ -67,7 +67,10 @@ class LayerNetwork {
   void restore(const std::vector<std::string>& paths);
   /// Advances every domain until it has finished or reached `until` ticks (each stops at the
   /// start of its first cycle at or after `until`). on_sample(k) after every begin_cycle() of
-  /// solver k. Returns true when every domain has finished.
+  /// solver k. Returns true when every domain has finished. A domain whose partner needs one more
+  /// message to reach `until` takes the cycles that send it: under lts a fine domain sends
+  /// Fbar(T) only at T + (p - 1) h, so it stops there, past `until` (the domains are then at
+  /// different instants; a daemon instead writes its checkpoint at T and goes on).
   bool run(const std::function<void(std::size_t)>& on_sample = {},
            Tick until = std::numeric_limits<Tick>::max());
 

@@ -239,8 +239,8 @@ class LayerStepper {
   void set_end_time(Tick end);
   /// Before initialize(): the form (LayerForm). Lts: `energy_period` is the coarse step of the
   /// conserved energy's instants (every domain's: the plan's base), at whose multiples the stepper
-  /// samples its share (lts_energy_J). ModelError with variable steps, a period that is not a
-  /// multiple of this domain's step, or an interface whose J nodes rotate (shells).
+  /// samples its share (lts_energy_J). ModelError with variable steps, or a period that is not a
+  /// multiple of this domain's step and of every owner's.
   void set_form(LayerForm form, Tick energy_period = 0);
   LayerForm form() const { return form_; }
   /// Lts: this domain's share of E^{k-1/2} (LtsEnergy), sampled at the last instant that is a
@@ -293,6 +293,9 @@ class LayerStepper {
     std::vector<double> omega_cur;   ///< rotates: [p 3 n_J] over T + [q h, (q+1) h], as applied
     std::vector<double> mbar_T, mbar_T1;  ///< rotates: [3 n_J] the moments' Fbar alike [N m]
     Tick acc_T = 0;                       ///< the owner instant fbar_T is for
+    /// Restored at an owner instant T > 0 with p > 1: the owner used Fbar(T) before its
+    /// checkpoint, so it is not sent again (-1: none).
+    Tick consumed = -1;
   };
 
   Tick to_ticks_end(double t_s) const;

@@ -25,13 +25,14 @@ void LayerStepper::set_form(LayerForm form, Tick energy_period) {
     if (energy_period < h_ || energy_period % h_ != 0)
       throw ModelError(fmt::format(
           "layer stepper '{}': lts energy period {} ticks is not a whole multiple of this "
-          "domain's step {} ticks",
+          "domain's step {} ticks; the period must be the step plan's base (Setup.base_ticks: a "
+          "coordinator older than protocol 9 sends 0)",
           dom, energy_period, h_));
     for (std::size_t p = 0; p < ports_.size(); ++p) {
       if (ports_[p].fine_side && energy_period % ports_[p].partner_step != 0)
         throw ModelError(fmt::format(
             "layer stepper '{}': lts energy period {} ticks is not a whole multiple of the "
-            "owner's step {} ticks on interface {}",
+            "owner's step {} ticks on interface {}; the period must be the step plan's base",
             dom, energy_period, ports_[p].partner_step, ports_[p].index));
     }
   }
@@ -159,6 +160,10 @@ void LayerStepper::lts_send_forces() {
       }
     }
     if (!send && !ending) continue;
+    // After a restart at an owner instant: the owner's checkpoint is past Fbar(acc_T), and the
+    // coordinator's history has its row. Only the meter moves on.
+    const bool consumed = ps.consumed == ps.acc_T;
+    if (consumed) ps.consumed = -1;
     LayerMessage m;
     m.kind = LayerMessage::Kind::Force;
     m.interface_index = port.index;
@@ -172,10 +177,14 @@ void LayerStepper::lts_send_forces() {
         m.second[k] = 2.0 * ps.mbar_T[k] - m_now[k] / static_cast<double>(p);
     }
     if (record_history_) {
-      const auto& uJ = ps.acc_T == ps.T ? ps.u_T : ps.u_1;  // u_J(acc_T)
-      ps.rows.push_back(ps.meter.add(m.time, m.first, m.second, uJ, {}));
+      // u_J(acc_T); omega_J(acc_T - H/2), received with it (none at t = 0)
+      const auto& uJ = ps.acc_T == ps.T ? ps.u_T : ps.u_1;
+      const std::span<const double> omega =
+          ps.acc_T == 0 ? std::span<const double>() : std::span<const double>(ps.omega);
+      auto row = ps.meter.add(m.time, m.first, m.second, uJ, omega);
+      if (!consumed) ps.rows.push_back(std::move(row));
     }
-    outbox_.push_back(std::move(m));
+    if (!consumed) outbox_.push_back(std::move(m));
   }
 }
 

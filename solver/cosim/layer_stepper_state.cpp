@@ -175,6 +175,11 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       r.get_exact(pre + "lts.omega_cur", ps.omega_cur);
       r.get_exact(pre + "lts.mbar_T", ps.mbar_T);
       r.get_exact(pre + "lts.mbar_T1", ps.mbar_T1);
+      // A checkpoint at an owner instant T: the owner's is written after it used Fbar(T), which
+      // this side sends only p - 1 substeps later (layer_stepper_lts.cpp): not again.
+      const Tick t = r.get_int("stepper.time");
+      ps.consumed =
+          t > 0 && ps.substeps > 1 && t % port.partner_step == 0 && ps.acc_T == t ? t : -1;
     }
   }
   if (form_ == LayerForm::Lts) {

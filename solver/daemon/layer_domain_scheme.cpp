@@ -69,7 +69,7 @@ class LayerDomainScheme final : public coupling::DomainScheme {
                             fmt::format("domain '{}': a Setup with variable steps for the lts "
                                         "coupling, which runs fixed steps only",
                                         o_.domain));
-      stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());  // ModelError: shells
+      stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());
     }
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);

@@ -71,6 +71,13 @@ std::vector<double> interface_damping(const Analysis& a, const std::vector<std::
 // 5. Interface damping: interface_damping above.
 Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
   const model::Model& g = *a.global;
+  if (overlap_layers > 0 && g.coupling.interface_damping.ratio > 0.0)
+    throw ModelError(fmt::format(
+        "layer decomposition: coupling.interface_damping (ratio {}) with {} overlap layers (the "
+        "lts coupling): it would damp the elements lts drives on its reflected ghost path, and "
+        "lts conserves its energy without it; remove coupling.interface_damping, or run "
+        "--coupling layer",
+        g.coupling.interface_damping.ratio, overlap_layers));
   const std::size_t ne = a.element_count(), n = a.node_count(), nd = a.domain_count();
   auto finest = [&](int x, int y) { return a.finer(x, y) ? x : y; };
 
@@ -131,9 +138,12 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
   }
 
   // 1b. The overlap: the link claim again on the assignment so far (the links' and the contact
-  //     surfaces' moved layers alike), one element layer per pass; then 2.-3. again, so that a
-  //     rigid body or a contact surface the overlap reached moves whole.
-  for (int layer = 0; layer < overlap_layers; ++layer) {
+  //     surfaces' moved layers alike), one element layer per pass, `overlap_layers` passes; then
+  //     2.-3. again, so that a rigid body or a contact surface the overlap reached moves whole;
+  //     and when that moved anything, the passes again, so that the new boundary has its layers
+  //     too (older boundaries then get more, which costs steps, not stability). Claims only go
+  //     finer, so it ends. Overlap moves are not link reasons (an interface's kind).
+  const auto overlap_pass = [&] {
     std::vector<int> next = pl.elem_domain;
     for (std::size_t i = 0; i < n; ++i) {
       int f = -1;
@@ -146,22 +156,24 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
       if (!shared) continue;
       for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
         const auto e = static_cast<std::size_t>(a.node_elems[k]);
-        if (pl.elem_domain[e] == f) continue;
-        next[e] = finest(next[e], f);
-        link_moved[e] = 1;
+        if (pl.elem_domain[e] != f) next[e] = finest(next[e], f);
       }
     }
     pl.elem_domain.swap(next);
-  }
-
-  if (overlap_layers > 0)
+  };
+  while (overlap_layers > 0) {
+    for (int layer = 0; layer < overlap_layers; ++layer) overlap_pass();
+    bool claimed = false;
     for (bool changed = true; changed;) {
       const auto before = pl.elem_domain;
       for (std::size_t c = 0; c < sides.size(); ++c)
         pl.contact_domain[c] = gather(sides[c].surface);
       for (const auto& be : body_elems) (void)gather(be);
       changed = before != pl.elem_domain;
+      claimed = claimed || changed;
     }
+    if (!claimed) break;
+  }
 
   // 4. Node roles.
   pl.role.assign(nd, std::vector<std::uint8_t>(n, kAbsent));

@@ -274,3 +274,30 @@ TEST(CheckpointRestartRefusals, RestartWithoutCheckpointsIsRefusedNamingWhatEach
 }
 
 }  // namespace
+
+// `lts` (docs/multirate.md "lts"): the fine side sends Fbar(T) p - 1 substeps after T, so its
+// checkpoint at T is written before the owner used Fbar(T) and the owner's after; restored, the
+// fine side must not send it again (the owner would refuse a force for an instant it has passed).
+// The bar at H/h = 4 with checkpoints, restarted from the newest, ends as the run without them.
+TEST(CheckpointRestartLts, RestartedFromTheNewestCheckpointIsTheSameRun) {
+  const fs::path dir = fresh_dir("ckpt_lts");
+  const std::string scenario =
+      crashlink::proc_test::write_file(dir / "bar.yaml", crashlink::proc_test::bar_yaml(6.0e-3));
+  const std::string run =
+      bin("crashlink") + " run " + scenario + " --mode multi --coupling lts --quiet ";
+  int status = -1;
+  const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
+  ASSERT_EQ(status, 0) << out_ref;
+  const std::string every = "--checkpoint-interval 1.1e-3 ";
+  const fs::path ck = dir / "ck";
+  const std::string out_ck = run_command(run + every + "--out " + ck.string(), status);
+  ASSERT_EQ(status, 0) << out_ck;
+  const auto instants = crashlink::run::list_checkpoints(ck.string(), "coordinator");
+  ASSERT_EQ(instants.size(), 3u) << out_ck;
+  const std::string out = run_command(run + every + "--restart " + ck.string(), status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("from the checkpoint at t = "), std::string::npos) << out;
+  expect_same_results((dir / "ref" / "result.h5").string(), (ck / "result.h5").string(), 2);
+  std::error_code ec;
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
+}

@@ -313,6 +313,13 @@ TEST(Layer, OverlapLayersMoveMoreCoarseLayersPastLinksAndContactSurfaces) {
       if (std::abs(g.nodes.x0[3 * static_cast<std::size_t>(j)] - 0.625) < 1e-9) j625.push_back(j);
     EXPECT_EQ(j625.size(), d.interfaces[0].j_nodes_global.size());
     EXPECT_EQ(j625.size(), 5u);
+    EXPECT_EQ(d.interfaces[0].kind, plain.interfaces[0].kind);  // overlap moves are no link
+  }
+  {
+    auto g = testing::bar_two_sizes();  // interface damping is a `layer` option
+    g.coupling.interface_damping.ratio = 0.06;
+    EXPECT_NO_THROW(decompose(g, Scheme::Layer));
+    EXPECT_THROW(decompose(g, Scheme::Layer, 1), ModelError);
   }
   EXPECT_THROW(decompose(testing::bar_two_sizes(), Scheme::Paper, 1), ModelError);
 }
