@@ -52,10 +52,12 @@ int run_stability_map(const StabilityMapOptions& o) {
     bool linear_in_expansion = false;  ///< bulk viscosity's Q1 term in expansion too
     bool uniaxial = false;             ///< bar, block: lateral dofs held (the study's 1-D bar)
     double q_linear = 0.06;            ///< bulk viscosity's Q1
+    bool lts = false;                  ///< the lts form instead of layer (no damping)
   };
   const std::vector<Configuration> linked = {
       {"layer", false, 0.0, false, 0.0},
       {"layer + interface damping 0.06 x 3 layers", false, 0.06, false, 0.0},
+      {"lts", false, 0.0, false, 0.0, false, false, 0.06, true},
       {"paper + drift correction [11]", true, 0.0, true, 0.0},
       {"paper without drift correction", true, 0.0, false, 0.0},
       // Does a linear viscosity acting in expansion too (the study's, Abaqus's) make `paper`
@@ -89,6 +91,7 @@ int run_stability_map(const StabilityMapOptions& o) {
             is_contact ? (c.paper ? studies::run_paper_contact_drop(r, c.penalty, o.steps, c.drift)
                                   : studies::run_layer_contact_drop(r, c.penalty, o.steps))
             : c.paper  ? studies::run_paper_free_vibration(shape, r, o.steps, cfg, c.drift)
+            : c.lts    ? studies::run_lts_free_vibration(shape, r, o.steps, cfg)
                        : studies::run_layer_free_vibration(shape, r, o.steps, cfg);
         const double e_ratio = res.e0_J > 0.0 ? res.e_end_J / res.e0_J : 0.0;
         std::string why = res.error;  // CSV: one quoted cell

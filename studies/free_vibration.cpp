@@ -141,8 +141,10 @@ struct EnergyRise {
 };
 
 /// run_layer_energy; throws what stops the set-up (a run stopped midway is caught inside).
+/// `scheme`: "layer" or "lts" (LayerForm).
 FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
-                                 const FreeVibrationSample& on_sample) {
+                                 const FreeVibrationSample& on_sample,
+                                 const std::string& scheme = "layer") {
   double h0 = 0.0;
   {
     model::Model mono = m;
@@ -152,8 +154,9 @@ FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t f
     h0 = 0.8 * probe.dt_s();
   }
   LayerNetworkOptions o;
+  o.run.scheme = scheme;
   {
-    LayerNetwork shape_probe(m);
+    LayerNetwork shape_probe(m, o);
     const auto& d = shape_probe.domains();
     o.proposal_s.assign(d.solvers.size(), 0.0);
     for (std::size_t k = 0; k < d.solvers.size(); ++k)
@@ -210,6 +213,19 @@ FreeVibrationResult run_layer_energy(const model::Model& m, double r, std::int64
                                      const FreeVibrationSample& on_sample) {
   try {
     return layer_energy(m, r, fine_steps, on_sample);
+  } catch (const Error& e) {  // the cut or the plan refused: nothing ran
+    FreeVibrationResult out;
+    out.error = e.what();
+    return out;
+  }
+}
+
+FreeVibrationResult run_lts_free_vibration(FreeVibrationShape s, double r, std::int64_t fine_steps,
+                                           const FreeVibrationConfig& cfg) {
+  FreeVibrationConfig c = cfg;
+  c.damping = {0.0, 1};  // lts has no interface damping (the cut refuses it)
+  try {
+    return layer_energy(free_vibration_model(s, r, c), r, fine_steps, {}, "lts");
   } catch (const Error& e) {  // the cut or the plan refused: nothing ran
     FreeVibrationResult out;
     out.error = e.what();

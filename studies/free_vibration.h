@@ -69,6 +69,12 @@ FreeVibrationResult run_layer_free_vibration(FreeVibrationShape s, double r,
 FreeVibrationResult run_layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
                                      const FreeVibrationSample& on_sample = {});
 
+/// The same under `lts` (leapfrog local time stepping, docs/multirate.md "lts"): the same steps,
+/// no interface damping (cfg.damping ignored), the summed energy E measured as for `layer` (the
+/// physical one, not lts's conserved E).
+FreeVibrationResult run_lts_free_vibration(FreeVibrationShape s, double r, std::int64_t fine_steps,
+                                           const FreeVibrationConfig& cfg);
+
 /// The same free vibration under the `paper` scheme (PaperRunner: two domains, no interface
 /// damping, H/h = r rounded down to a whole number, h under 0.9 of both stable steps), drift
 /// correction [11] on or off. Energy sampled at every coarse instant (PaperRunner::energy). The

@@ -2,8 +2,8 @@
 """Plot of `crashlink stability-map`: stability_map.py CSV PNG.
 
 Maximum energy rise above the running minimum (% of E0, log scale) against the step ratio H/h,
-one curve per shape and configuration (`layer` with and without interface damping, `paper` with
-drift correction on and off); the issue's 0.1 % line; runs stopped by the guard marked x at the
+one curve per shape and configuration (`layer` with and without interface damping, `lts`, `paper`
+with drift correction on and off); the issue's 0.1 % line; runs stopped by the guard marked x at the
 top of the plot (the guard stops before the rise is sampled); runs the scheme refused (`paper`
 on shell links) left out.
 """
@@ -30,7 +30,8 @@ def main():
             continue
         x = [float(r["ratio"]) for r in rs]
         y = [top if r["stopped"] else max(100.0 * float(r["max_rise"]), 1e-6) for r in rs]
-        style = ":" if config.startswith("paper") else ("--" if "damping" in config else "-")
+        style = (":" if config.startswith("paper") else "-." if config == "lts"
+                 else ("--" if "damping" in config else "-"))
         ax.plot(x, y, marker=markers.get(shape, "o"), ls=style, ms=4, label=f"{shape}, {config}")
         for r, xv, yv in zip(rs, x, y):
             if r["stopped"]:
@@ -41,7 +42,7 @@ def main():
     ax.set_xlabel("step ratio H/h")
     ax.set_ylabel("max energy rise above running minimum [% of E0]")
     steps = rows[0]["fine_steps"] if rows else "?"
-    ax.set_title(f"layer and paper couplings, energy rise over {steps} fine steps "
+    ax.set_title(f"layer, lts and paper couplings, energy rise over {steps} fine steps "
                  f"(x: stopped by the guard)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)

@@ -33,7 +33,7 @@ TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
   std::string line;
   std::getline(f, line);
   EXPECT_EQ(line.rfind("shape,configuration,ratio", 0), 0u) << line;
-  int rows = 0, paper_rows = 0, contact_rows = 0;
+  int rows = 0, paper_rows = 0, contact_rows = 0, lts_rows = 0;
   while (std::getline(f, line)) {
     ++rows;
     std::vector<std::string> cell;
@@ -59,6 +59,7 @@ TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
       }
       continue;
     }
+    if (cell[1] == "lts") ++lts_rows;
     if (cell[1].rfind("paper", 0) != 0) {
       EXPECT_FALSE(stopped) << "layer, short run: " << line;
       EXPECT_LT(std::stod(cell[5]), 0.2) << "max rise, short run: " << line;
@@ -72,8 +73,9 @@ TEST(StabilityMap, ShortMapWritesFiniteCsvAndPng) {
       EXPECT_LT(std::stod(cell[5]), 1e-3) << line;
     }
   }
-  // linked: bar 9 configurations, plate 6 (no uniaxial variant), x ratios; + contact
-  EXPECT_EQ(rows, (9 + 6) * 2 + 2 * 2);
+  // linked: bar 10 configurations, plate 7 (no uniaxial variant), x ratios; + contact
+  EXPECT_EQ(rows, (10 + 7) * 2 + 2 * 2);
+  EXPECT_EQ(lts_rows, 2 * 2);
   EXPECT_EQ(paper_rows, (7 + 4) * 2);
   EXPECT_EQ(contact_rows, 2 * 2);  // (layer, paper) x ratios at one penalty
 }
