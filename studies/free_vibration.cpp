@@ -140,21 +140,22 @@ struct EnergyRise {
   double since_min(double sum) const { return (sum - running_min) / out.e0_J; }
 };
 
-/// run_layer_energy; throws what stops the set-up (a run stopped midway is caught inside).
-/// `scheme`: "layer" or "lts" (LayerForm).
-FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
-                                 const FreeVibrationSample& on_sample,
-                                 const std::string& scheme = "layer") {
+}  // namespace
+
+LayerNetworkOptions free_vibration_options(const model::Model& m, double r,
+                                           const std::string& scheme, double fine_factor,
+                                           double step_safety, int overlap_layers) {
   double h0 = 0.0;
   {
     model::Model mono = m;
     mono.domains.clear();
     integration::Solver probe(mono, "probe");
     probe.initialize();
-    h0 = 0.8 * probe.dt_s();
+    h0 = fine_factor * probe.dt_s();
   }
   LayerNetworkOptions o;
   o.run.scheme = scheme;
+  o.overlap_layers = overlap_layers;
   {
     LayerNetwork shape_probe(m, o);
     const auto& d = shape_probe.domains();
@@ -162,8 +163,18 @@ FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t f
     for (std::size_t k = 0; k < d.solvers.size(); ++k)
       o.proposal_s[k] = d.solvers[k]->domain_name() == "fine" ? h0 : r * h0;
   }
-  o.step_safety = 0.9;
-  LayerNetwork net(m, o);
+  o.step_safety = step_safety;
+  return o;
+}
+
+namespace {
+
+/// run_layer_energy; throws what stops the set-up (a run stopped midway is caught inside).
+/// `scheme`: "layer" or "lts" (LayerForm).
+FreeVibrationResult layer_energy(const model::Model& m, double r, std::int64_t fine_steps,
+                                 const FreeVibrationSample& on_sample,
+                                 const std::string& scheme = "layer") {
+  LayerNetwork net(m, free_vibration_options(m, r, scheme));
   net.initialize();
   const auto& plan = net.plan();
   const auto h_min = *std::min_element(plan.step.begin(), plan.step.end());

@@ -17,6 +17,8 @@
 #include <functional>
 #include <string>
 
+#include "coupling/coupling_config.h"
+#include "solver/cosim/layer_network.h"
 #include "solver/model/model.h"
 
 namespace crashlink::studies {
@@ -55,6 +57,15 @@ struct FreeVibrationResult {
 /// domains' coupling work / E0 (for history prints).
 using FreeVibrationSample =
     std::function<void(double, double, double, double, const std::vector<double>&)>;
+
+/// The network options of these studies for a two-domain model ("fine", "coarse") at ratio r:
+/// the fine proposal `fine_factor` of mono's stable step, the coarse one r times it, step safety
+/// `step_safety`; `scheme` "layer" or "lts" (with `overlap_layers`).
+cosim::LayerNetworkOptions free_vibration_options(const model::Model& m, double r,
+                                                  const std::string& scheme = "layer",
+                                                  double fine_factor = 0.8,
+                                                  double step_safety = 0.9,
+                                                  int overlap_layers = coupling::kLtsOverlapLayers);
 
 /// Runs `layer` multi for `fine_steps` fine steps (the fine proposal 0.8 of mono's step, the
 /// coarse one r times it, step safety 0.9). A crashlink::Error stopping the run is returned in

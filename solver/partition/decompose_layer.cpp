@@ -86,23 +86,30 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
   // Reasons an element moved: bit 0 link, contact c -> entry in contact_moved.
   std::vector<std::uint8_t> link_moved(ne, 0);
 
+  // The link claim on `assigned`: every element touching a node used by several domains of
+  // `assigned` goes into `into` as the finest of them (marked in `mark` when given).
+  const auto claim_links = [&](const std::vector<int>& assigned, std::vector<int>& into,
+                               std::uint8_t* mark) {
+    for (std::size_t i = 0; i < n; ++i) {
+      int f = -1;
+      bool shared = false;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const int d = assigned[static_cast<std::size_t>(a.node_elems[k])];
+        if (f >= 0 && d != f) shared = true;
+        f = f < 0 ? d : finest(f, d);
+      }
+      if (!shared) continue;
+      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
+        const auto e = static_cast<std::size_t>(a.node_elems[k]);
+        if (assigned[e] == f) continue;
+        into[e] = finest(into[e], f);
+        if (mark != nullptr) mark[e] = 1;
+      }
+    }
+  };
+
   // 1. Link claims on the original assignment.
-  for (std::size_t i = 0; i < n; ++i) {
-    int f = -1;
-    bool shared = false;
-    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-      const int d = a.orig_domain[static_cast<std::size_t>(a.node_elems[k])];
-      if (f >= 0 && d != f) shared = true;
-      f = f < 0 ? d : finest(f, d);
-    }
-    if (!shared) continue;
-    for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-      const auto e = static_cast<std::size_t>(a.node_elems[k]);
-      if (a.orig_domain[e] == f) continue;
-      pl.elem_domain[e] = finest(pl.elem_domain[e], f);
-      link_moved[e] = 1;
-    }
-  }
+  claim_links(a.orig_domain, pl.elem_domain, link_moved.data());
 
   // 2.-3. Contact surfaces and rigid bodies, to a fixed point.
   std::vector<ContactSides> sides;
@@ -129,13 +136,21 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
     return f;
   };
   pl.contact_domain.assign(g.contacts.size(), -1);
-  // The last pass changes nothing, so every contact's surface is in contact_domain.
-  for (bool changed = true; changed;) {
-    const auto before = pl.elem_domain;
-    for (std::size_t c = 0; c < sides.size(); ++c) pl.contact_domain[c] = gather(sides[c].surface);
-    for (const auto& be : body_elems) (void)gather(be);
-    changed = before != pl.elem_domain;
-  }
+  // To a fixed point; true when anything moved. The last pass changes nothing, so every
+  // contact's surface is in contact_domain.
+  const auto claim_surfaces_and_bodies = [&] {
+    bool moved = false;
+    for (bool changed = true; changed;) {
+      const auto before = pl.elem_domain;
+      for (std::size_t c = 0; c < sides.size(); ++c)
+        pl.contact_domain[c] = gather(sides[c].surface);
+      for (const auto& be : body_elems) (void)gather(be);
+      changed = before != pl.elem_domain;
+      moved = moved || changed;
+    }
+    return moved;
+  };
+  claim_surfaces_and_bodies();
 
   // 1b. The overlap: the link claim again on the assignment so far (the links' and the contact
   //     surfaces' moved layers alike), one element layer per pass, `overlap_layers` passes; then
@@ -143,36 +158,12 @@ Decomposition decompose_layer(const Analysis& a, int overlap_layers) {
   //     and when that moved anything, the passes again, so that the new boundary has its layers
   //     too (older boundaries then get more, which costs steps, not stability). Claims only go
   //     finer, so it ends. Overlap moves are not link reasons (an interface's kind).
-  const auto overlap_pass = [&] {
-    std::vector<int> next = pl.elem_domain;
-    for (std::size_t i = 0; i < n; ++i) {
-      int f = -1;
-      bool shared = false;
-      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-        const int d = pl.elem_domain[static_cast<std::size_t>(a.node_elems[k])];
-        if (f >= 0 && d != f) shared = true;
-        f = f < 0 ? d : finest(f, d);
-      }
-      if (!shared) continue;
-      for (std::size_t k = a.node_start[i]; k < a.node_start[i + 1]; ++k) {
-        const auto e = static_cast<std::size_t>(a.node_elems[k]);
-        if (pl.elem_domain[e] != f) next[e] = finest(next[e], f);
-      }
-    }
-    pl.elem_domain.swap(next);
-  };
   while (overlap_layers > 0) {
-    for (int layer = 0; layer < overlap_layers; ++layer) overlap_pass();
-    bool claimed = false;
-    for (bool changed = true; changed;) {
-      const auto before = pl.elem_domain;
-      for (std::size_t c = 0; c < sides.size(); ++c)
-        pl.contact_domain[c] = gather(sides[c].surface);
-      for (const auto& be : body_elems) (void)gather(be);
-      changed = before != pl.elem_domain;
-      claimed = claimed || changed;
+    for (int layer = 0; layer < overlap_layers; ++layer) {
+      const std::vector<int> assigned = pl.elem_domain;
+      claim_links(assigned, pl.elem_domain, nullptr);
     }
-    if (!claimed) break;
+    if (!claim_surfaces_and_bodies()) break;
   }
 
   // 4. Node roles.

@@ -288,12 +288,13 @@ TEST(Layer, BadDomainsAreModelErrorsWithTheFix) {
 // The `lts` overlap (decompose(..., overlap_layers)): the link claim repeated on the assignment so
 // far, beyond the links' moved layer and the contact surfaces' alike (docs/decomposition.md).
 TEST(Layer, OverlapLayersMoveMoreCoarseLayersPastLinksAndContactSurfaces) {
-  {
-    const auto g = testing::bar_two_sizes();
+  for (bool fine_first : {false, true}) {  // either domain order
+    const auto g = testing::bar_two_sizes(fine_first);
     const auto d = decompose(g, Scheme::Layer, 2);
     check_invariants(g, d);
     ASSERT_EQ(d.interfaces.size(), 1u);
     EXPECT_EQ(d.overlap_layers, 2);
+    EXPECT_EQ(d.interfaces[0].fine, domain_index(d, "fine"));
     // coarse elements 8, 9, 10 (x in [0.7, 1]) move; J is the plane x = 0.7
     EXPECT_EQ(d.interfaces[0].moved_elements, (std::vector<std::int64_t>{8, 9, 10}));
     EXPECT_EQ(d.interfaces[0].j_nodes_global, nodes_at_x(g, 0.7));
