@@ -38,8 +38,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommandOptions& o) {
       "split/multi: the coupling scheme (paper: Bourel 2005 [8]-[11], stable only "
       "up to a step ratio of about 2; its guard stops it beyond, "
       "docs/paper-scheme.md; lts: leapfrog local time stepping, a discrete "
-      "energy conserved in the linear case, fixed steps; not yet for plastic models, "
-      "docs/multirate.md)");
+      "energy conserved in the linear case, fixed steps, plastic flow on its rim at the "
+      "coarse instants, docs/multirate.md)");
   run->add_flag("--no-drift", o.no_drift, "--coupling paper: drift correction [11] off");
   run->add_flag("--variable-steps", o.variable_steps,
                 "each domain's step follows its stable step as the mesh deforms instead of "

@@ -227,16 +227,27 @@ int run_coupled(const RunCommandOptions& o) {
   const auto model = io::read_scenario(o.scenario);
   if (model.controls.mass_scaling_dt_s > 0.0)
     std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
-  if (run.scheme == "lts")
+  if (run.scheme == "lts") {
+    // The rim's rate terms still see the reflected path's velocity (docs/multirate.md "lts").
     for (const auto& mat : model.materials)
-      if (mat.kind == materials::MaterialKind::J2Plastic) {
+      if (mat.rate_dependent()) {
         std::printf(
-            "crashlink run: warning: --coupling lts with plastic material '%s': the plain leapfrog "
-            "LTS blew up on the plastic head impact (docs/multirate.md \"lts\"); the step guard "
-            "stops such a run (exit 3); --coupling layer is the scheme for plastic crash runs\n",
+            "crashlink run: warning: --coupling lts with rate-dependent material '%s': on the "
+            "elements next to the coupled nodes its strain rate is that of the reflected ghost "
+            "path, not of the motion (docs/multirate.md \"lts\"); --coupling layer has none\n",
             mat.name.c_str());
         break;
       }
+    for (const auto& part : model.parts)
+      if (part.damped()) {
+        std::printf(
+            "crashlink run: warning: --coupling lts with damped part '%s': on the elements next "
+            "to the coupled nodes its damping is driven by the reflected ghost path's velocity "
+            "(docs/multirate.md \"lts\"); --coupling layer has none\n",
+            part.name.c_str());
+        break;
+      }
+  }
   const auto& entry = daemon::domain_scheme_named(run.scheme);
   const auto dec = partition::decompose(model, entry.cut, entry.overlap_layers);
   std::vector<std::string> domains, emptied;

@@ -536,6 +536,8 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           solver_.set_ghost_displacement(ghost_u_.data());
           solver_.set_ghost_angular_velocity(ghost_omega_.data());
         }
+        if (form_ == LayerForm::Lts)  // plastic flow on the rim at the owner instants only
+          solver_.set_rim_returns(!lts_owner_instant(t_), !lts_owner_instant(t_ + h_));
         solver_.end_cycle_compute();  // overlaps the partners' work
         if (form_ == LayerForm::Lts)
           lts_energy_.add_rotation(solver_.angular_velocity_mid().data(), seconds(h_));

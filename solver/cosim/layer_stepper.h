@@ -312,6 +312,9 @@ class LayerStepper {
   void lts_next_owner_step(PortState& ps) const;
   void lts_ghost_targets(const LayerPort& port, PortState& ps, Tick t1);
   void lts_send_forces();
+  /// Whether t is an owner instant of every fine-side port: where the rim's deferred J2 returns
+  /// are taken (Solver::set_rim_returns; every instant without a fine-side port or at p = 1).
+  bool lts_owner_instant(Tick t) const;
   void lts_start_energy();
   bool forces_ready();
   void apply_forces();

@@ -112,6 +112,12 @@ void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick 
   }
 }
 
+bool LayerStepper::lts_owner_instant(Tick t) const {
+  for (const auto& port : ports_)
+    if (port.fine_side && t % port.partner_step != 0) return false;
+  return true;
+}
+
 void LayerStepper::lts_send_forces() {
   // At every fine instant t_q = T + q h: the layer's force on J, g = Solver::net_force, into
   // Fbar(T) with weight (p - q) / p^2 and into Fbar(T + H) with q / p^2: the hat

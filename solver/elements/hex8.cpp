@@ -377,11 +377,30 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
       CRASHLINK_HEX8_UNROLL
       for (int k = 3; k < 6; ++k) sn[k] = madd(dt_v, two_mu * d[k], sr[k]);
     }
-    // ---- J2 return (Simo-Hughes Box 3.1): not at the initial call
+    // ---- J2 return (Simo-Hughes Box 3.1): not at the initial call. Deferred returns
+    // (StepInfo::defer_return, trial_history): the history written back is the elastic trial,
+    // the return from the plastic strain held gives the stress of the forces and the work.
     vd ep;
+    vd held[6];  // the stress written back
     if (j2 && update) {
       ep = load(ep_all);
-      j2_return(mat.hardening, y_low, mu, nl, sn, ep, rate ? &mat : nullptr, d);
+      const materials::Material* rm = rate ? &mat : nullptr;
+      if (step.trial_history) {
+        vd ep_n = ep;  // sigma^n = the return of the held trial (rotated: J2 is isotropic)
+        j2_return(mat.hardening, y_low, mu, nl, sr, ep_n, rm, d);
+      }
+      if (step.defer_return) {
+        CRASHLINK_HEX8_UNROLL
+        for (int k = 0; k < 6; ++k) held[k] = sn[k];
+        vd ep_t = ep;
+        j2_return(mat.hardening, y_low, mu, nl, sn, ep_t, rm, d);
+      } else {
+        j2_return(mat.hardening, y_low, mu, nl, sn, ep, rm, d);
+      }
+    }
+    if (!(j2 && update && step.defer_return)) {
+      CRASHLINK_HEX8_UNROLL
+      for (int k = 0; k < 6; ++k) held[k] = sn[k];
     }
 
     // ---- b b^T, its trace b.b and the lmax bound; length for the bulk viscosity
@@ -596,7 +615,7 @@ KernelResult hex8_forces(const model::Part& part, const materials::Material& mat
     // ---- write back the history (not at the initial call) and scatter-add the forces
     if (update) {
       CRASHLINK_HEX8_UNROLL
-      for (int k = 0; k < 6; ++k) store(sn[k], s_all + static_cast<std::size_t>(k) * ne);
+      for (int k = 0; k < 6; ++k) store(held[k], s_all + static_cast<std::size_t>(k) * ne);
       CRASHLINK_HEX8_UNROLL
       for (int al = 0; al < 4; ++al) {
         CRASHLINK_HEX8_UNROLL

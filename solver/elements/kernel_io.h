@@ -51,6 +51,18 @@ struct StepInfo {
   /// (m_slot) when < 0: threads that compute disjoint element ranges at once then never add
   /// into the same value (integration::ElementChunks, docs/threads.md).
   const std::int32_t* scatter = nullptr;
+  /// Deferred J2 returns (the rim of an lts fine domain, Solver::set_deferred_return; docs/
+  /// multirate.md "Plasticity on the rim"). The material history of these elements then advances
+  /// only at the calls that do not defer: over a coarse step its plastic state is that of one
+  /// return from the start of the step (a coarse element's update), and between those calls the
+  /// stress is a function of the strain alone (the return from a fixed plastic strain, an
+  /// incremental potential), which no back-and-forth of the path can ratchet.
+  /// trial_history: the stresses held are elastic trials from the plastic strain held (the
+  /// elements' last call deferred); the stress at t^n, for the work of the step, is their return.
+  bool trial_history = false;
+  /// defer_return: hold the elastic trial at t^{n+1} and leave the plastic strain (and a shell's
+  /// thickness) as it is; the forces and the work use the trial's return.
+  bool defer_return = false;
 };
 
 /// The force accumulator of corner target t of a scatter plan (StepInfo::scatter): node t's

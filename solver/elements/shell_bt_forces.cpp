@@ -566,6 +566,11 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       double de[kMax][3][L];  // strain increments
       double dzp[kMax * L];   // plastic thickness strain increments [k L + l]
       copy_doubles(&sp[0][0][0], blk, 3 * nk * L);
+      // Deferred returns (StepInfo::defer_return, trial_history; J2 only): the history written
+      // back is the elastic trial and the plastic strain and thickness stay; sigma^n, for the
+      // work, is the return of the held trial.
+      const bool defer = K.j2 && step.defer_return;
+      const bool trial_history = K.j2 && step.trial_history;
       double sN[3][L], sM[3][L], wsum[L];
       zero_doubles(&sN[0][0], 3 * L);
       zero_doubles(&sM[0][0], 3 * L);
@@ -601,7 +606,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
         const double n_cand = (psum[0] + psum[1]) + (psum[2] + psum[3]);
         // Cowper-Symonds factor of each point's effective strain rate (cowper_symonds.h)
         double phi[kMax * L];
-        if (K.rate && n_cand != 0.0) {
+        if (K.rate && (n_cand != 0.0 || trial_history)) {
           double rate[kMax * L];
           const double inv_dt = 1.0 / dt;
           for (std::size_t k = 0; k < nk; ++k)
@@ -611,7 +616,22 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
           materials::cowper_symonds_factors(rate, K.rate_c, K.rate_p, phi, n_all);
         }
         const double* const phi_all = K.rate ? phi : nullptr;
-        double* const ep_blk = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
+        double* const ep_held = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
+        double ep_copy[kMax * L];  // a deferred return's plastic strains, dropped
+        if (defer) copy_doubles(ep_copy, ep_held, n_all);
+        double* const ep_blk = defer ? ep_copy : ep_held;
+        double held[3][kMax * L];  // a deferred return's trial, written back
+        if (defer) copy_doubles(&held[0][0], &s[0][0], 3 * kMax * L);
+        double spr[3][kMax * L];  // trial_history: sigma^n, the return of the held trial
+        if (trial_history) {
+          for (std::size_t k = 0; k < nk; ++k)
+            for (int c = 0; c < 3; ++c)
+              for (std::size_t l = 0; l < L; ++l) spr[c][k * L + l] = sp[k][c][l];
+          double ep_n[kMax * L], dz_n[kMax * L];
+          copy_doubles(ep_n, ep_held, n_all);
+          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, spr[0], spr[1],
+                                                            spr[2], ep_n, dz_n, phi_all);
+        }
         if (K.j2 && n_cand == static_cast<double>(n_all)) {
           materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, s[0], s[1], s[2],
                                                             ep_blk, dzp, phi_all);
@@ -645,14 +665,18 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
           const double zk = st.zeta[k], wk = st.weight[k];
           for (std::size_t l = 0; l < L; ++l) {
             const std::size_t i = k * L + l;
-            dezz[l] +=
-                0.5 * wk * (-nu_over_E * (s[0][i] - sp[k][0][l] + s[1][i] - sp[k][1][l]) + dzp[i]);
+            // the held stresses' difference (telescoping over deferred calls) and, where the
+            // return is not deferred, its plastic thickness strain
+            const double(&hs)[3][kMax * L] = defer ? held : s;
+            dezz[l] += 0.5 * wk *
+                       (-nu_over_E * (hs[0][i] - sp[k][0][l] + hs[1][i] - sp[k][1][l]) +
+                        (defer ? 0.0 : dzp[i]));
             double w = 0.0;
             for (int c = 0; c < 3; ++c) {
-              w += 0.5 * (sp[k][c][l] + s[c][i]) * de[k][c][l];
+              w += 0.5 * ((trial_history ? spr[c][i] : sp[k][c][l]) + s[c][i]) * de[k][c][l];
               sN[c][l] += wk * s[c][i];
               sM[c][l] += wk * zk * s[c][i];
-              sp[k][c][l] = s[c][i];  // sigma^{n+1}, block layout for the write-back
+              sp[k][c][l] = hs[c][i];  // sigma^{n+1} (or the trial), for the write-back
             }
             wsum[l] += wk * w;
           }

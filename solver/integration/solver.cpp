@@ -331,8 +331,8 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
     for (std::size_t k = k0; k < k1; ++k) {
       const auto& c = chunks[k];
       chunks_.clear_slots(c);
-      chunk_results_[k] =
-          run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe, rate_terms);
+      chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe,
+                                     rate_terms, s == 1 && !probe);
       if (ratio)
         global_.chunk_ratio[k] = element_ratio(c.part, c.first, c.end, global_.chunk_element[k]);
     }
@@ -361,7 +361,7 @@ void Solver::prepare_element_steps(std::size_t p) {
 
 elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t first,
                                           std::size_t end, const std::int32_t* scatter, bool probe,
-                                          bool rate_terms) {
+                                          bool rate_terms, bool rim) {
   const auto& part = model_.parts[p];
   auto& rt = parts_[p];
   const auto& mat = model_.materials[static_cast<std::size_t>(part.material)];
@@ -379,6 +379,10 @@ elements::KernelResult Solver::run_kernel(std::size_t p, double dt, std::size_t 
   step.first_element = first;
   step.end_element = end;
   step.scatter = scatter;
+  if (rim) {
+    step.trial_history = rim_trial_history_;
+    step.defer_return = rim_defer_return_;
+  }
   if (probe) {
     step.element_dt_s = global_.probe_dt[p].data();
   } else if (record_element_steps_ && !std::holds_alternative<std::monostate>(rt.state)) {

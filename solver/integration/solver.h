@@ -121,6 +121,15 @@ class Solver {
   /// image in time of the owner step before (cosim::LayerForm): a viscous term driven by it does
   /// work of either sign, and pumped energy into the Hann pulse bar (docs/multirate.md "lts").
   void set_ghost_bulk_viscosity(bool on) { ghost_bulk_viscosity_ = on; }
+  /// Before end_cycle_compute(): the J2 returns of the elements on ghost nodes (the rim) this
+  /// cycle (elements::StepInfo::trial_history, defer_return). The `lts` coupling defers them at
+  /// the substeps between owner instants: plastic flow driven by the reflected path's
+  /// back-and-forth ratcheted the full head impact's rim until it blew up (docs/multirate.md
+  /// "Plasticity on the rim"). trial_history: the rim's last call deferred.
+  void set_rim_returns(bool trial_history, bool defer) {
+    rim_trial_history_ = trial_history;
+    rim_defer_return_ = defer;
+  }
   /// Between the two halves: -m_int of node i at t^{n+1} (its own domain's moment) [N m].
   Vec3 net_moment(std::size_t i) const;
   /// Between the two halves: adds a coupling moment on node i at t^{n+1} [N m].
@@ -427,15 +436,17 @@ class Solver {
   /// Part p's kernel over elements [first, end) with the scatter plan (null: into the nodes);
   /// probe: on the global step's zero-stress histories and rates (global_), no bulk viscosity.
   /// rate_terms false: no bulk viscosity (the rim with set_ghost_bulk_viscosity(false)).
+  /// rim: the rim's J2 returns as set_rim_returns says.
   elements::KernelResult run_kernel(std::size_t p, double dt, std::size_t first, std::size_t end,
                                     const std::int32_t* scatter, bool probe = false,
-                                    bool rate_terms = true);
+                                    bool rate_terms = true, bool rim = false);
   /// The chunks of span s (0 interior, 1 rim) on the team, their shared nodes' slots replayed
   /// into f and m; chunk_results_ holds each chunk's result for the caller to fold in order.
   void run_span(int s, double dt, bool probe, double* f, double* m);
   // ---- global stable step (solver_global_step.cpp, Controls::global_stable_step) ----
   GlobalStep global_;
-  bool ghost_bulk_viscosity_ = true;  ///< set_ghost_bulk_viscosity
+  bool ghost_bulk_viscosity_ = true;                           ///< set_ghost_bulk_viscosity
+  bool rim_trial_history_ = false, rim_defer_return_ = false;  ///< set_rim_returns
   /// initialize(): the probe's arrays and histories, the first estimate.
   void set_up_global_step();
   /// A new estimate of omega_max^2 by `runs` Lanczos runs (a full estimate: its own count), and
