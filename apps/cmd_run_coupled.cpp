@@ -104,6 +104,26 @@ void print_timing(std::FILE* f, const TimingRecord& t, const LaunchResult& lr) {
                t.domains.size());
 }
 
+/// The scheme's conserved discrete energy (lts), summed over the domains in the gathered rows:
+/// its first and last values and its largest relative change. Nothing for a scheme without one.
+void print_scheme_energy(std::FILE* f, const std::vector<io::GlstatSample>& g) {
+  const io::GlstatSample* first = nullptr;
+  double worst = 0.0;
+  for (const auto& row : g) {
+    if (!std::isfinite(row.scheme_energy_J)) continue;
+    if (first == nullptr) first = &row;
+    if (first->scheme_energy_J != 0.0)
+      worst = std::max(worst, std::abs(row.scheme_energy_J / first->scheme_energy_J - 1.0));
+  }
+  if (first == nullptr || !std::isfinite(g.back().scheme_energy_J)) return;
+  std::fprintf(f,
+               "lts invariant E (docs/multirate.md \"lts\") %.6g J at t = %.4e s, %.6g J at "
+               "the end, largest |E/E_first - 1| %.2e: conserved by linear elastic models without "
+               "loads or damping; with plasticity, contact or loads its u.K_H u part is no "
+               "energy\n",
+               first->scheme_energy_J, first->time_s, g.back().scheme_energy_J, worst);
+}
+
 void print_energy(std::FILE* f, const model::Model& model, const std::string& h5, bool complete) {
   try {
     io::ResultReader reader(h5);
@@ -124,6 +144,7 @@ void print_energy(std::FILE* f, const model::Model& model, const std::string& h5
         f, "coupling work %.6g J (%+.3f %% of the %s)\n", e.coupling_work_J,
         scale > 0.0 ? 100.0 * e.coupling_work_J / scale : 0.0,
         std::abs(e.external_work_J) > std::abs(e0) ? "external work" : "initial total energy");
+    print_scheme_energy(f, g);
     // Each contact's energy: the last row of its domain's history (energy_summary.h).
     run::EnergySummary s;
     s.reference_J = gather::balance_reference_J(g);

@@ -8,6 +8,7 @@
 // schemes are listed in apps/schemes.h.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,6 +100,13 @@ class DomainScheme {
   virtual std::optional<wire::Envelope> report(bool checkpoint) = 0;
   /// This scheme's part of the Bye's report.
   virtual void fill_bye(wire::DomainReport& r) const = 0;
+
+  /// The scheme's conserved discrete energy, this domain's share at the last coarse instant at
+  /// or before `instant_s` (io::GlstatSample::scheme_energy_J, the row of that history instant;
+  /// `lts`: cosim::LtsEnergy); NaN for a scheme without one.
+  virtual double scheme_energy_J(double /*instant_s*/) const {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 
   /// Checkpoints (docs/design.md §2.6 "Checkpoints"), at a cycle boundary after Pace::Paused.
   virtual bool at_cycle_boundary() const = 0;

@@ -247,6 +247,15 @@ class LayerStepper {
   /// multiple of the energy period; valid from the third such instant (lts_energy_ready).
   bool lts_energy_ready() const { return form_ == LayerForm::Lts && lts_energy_.ready(); }
   double lts_energy_J() const { return lts_energy_.value_J(); }
+  /// Lts: this domain's share at `instant` if it is one of the last two it sampled (the result
+  /// file's rows of a history instant take the share of the last coarse instant before it, which
+  /// every domain holds: io::GlstatSample::scheme_energy_J); NaN otherwise or before it is ready.
+  double lts_energy_at_J(Tick instant) const {
+    for (int k = 0; k < 2; ++k)
+      if (lts_sampled_at_[k] == instant) return lts_sampled_J_[k];
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  Tick lts_energy_period() const { return energy_period_; }
   /// Variable steps, before initialize(): proposals are min(the solver's, max_step_s) (if > 0),
   /// and a leader takes `leader_safety` (0, 1] of its own (the margin fixed steps keep on the
   /// coarse side: the layer coupling's error grows with the coarse Courant number). ModelError
@@ -374,6 +383,9 @@ class LayerStepper {
   LayerForm form_ = LayerForm::Layer;
   Tick energy_period_ = 0;  ///< Lts: the conserved energy's coarse step [ticks]
   LtsEnergy lts_energy_;
+  Tick lts_sampled_at_[2] = {-1, -1};  ///< the last two sample instants, newest first
+  double lts_sampled_J_[2] = {std::numeric_limits<double>::quiet_NaN(),
+                              std::numeric_limits<double>::quiet_NaN()};
 };
 
 }  // namespace crashlink::cosim

@@ -198,8 +198,17 @@ void LayerStepper::lts_start_energy() {
   const std::size_t n = solver_.model().nodes.count();
   std::vector<std::uint8_t> owned(n, 1);
   for (const auto g : solver_.ghost_nodes()) owned[static_cast<std::size_t>(g)] = 0;
-  lts_energy_.reset(std::move(owned), solver_.model().fixed,
-                    std::vector<double>(solver_.mass().begin(), solver_.mass().end()),
+  // A rigid body's nodes carry its mass, shared in proportion to their lumped masses: the body's
+  // translation counts 1/2 M v^2 (its rotation the inertia of those scaled masses, which is the
+  // body's unless the scenario gives it).
+  std::vector<double> mass(solver_.mass().begin(), solver_.mass().end());
+  for (const auto& b : solver_.rigid_bodies()) {
+    double sum = 0.0;
+    for (const auto i : b.nodes) sum += mass[static_cast<std::size_t>(i)];
+    if (sum <= 0.0 || b.mass_kg <= 0.0) continue;
+    for (const auto i : b.nodes) mass[static_cast<std::size_t>(i)] *= b.mass_kg / sum;
+  }
+  lts_energy_.reset(std::move(owned), solver_.model().fixed, std::move(mass),
                     std::vector<double>(solver_.inertia().begin(), solver_.inertia().end()),
                     seconds(energy_period_));
 }

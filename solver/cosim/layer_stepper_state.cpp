@@ -1,6 +1,10 @@
 // LayerStepper checkpoints (layer_stepper.h save_state / restore_state).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <span>
+#include <vector>
+
 #include "core/errors.h"
 #include "solver/cosim/layer_stepper.h"
 
@@ -87,7 +91,12 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     }
   }
   w.put_int("stepper.form", static_cast<std::int64_t>(form_));
-  if (form_ == LayerForm::Lts) lts_energy_.save(w, "stepper.lts_energy.");
+  if (form_ == LayerForm::Lts) {
+    lts_energy_.save(w, "stepper.lts_energy.");
+    w.put_int("stepper.lts_sampled_at0", lts_sampled_at_[0]);
+    w.put_int("stepper.lts_sampled_at1", lts_sampled_at_[1]);
+    w.put("stepper.lts_sampled_J", std::span<const double>(lts_sampled_J_, 2));
+  }
   w.put("stepper.ghost_u", std::span<const double>(ghost_u_));
   w.put("stepper.ghost_omega", std::span<const double>(ghost_omega_));
 }
@@ -185,6 +194,13 @@ void LayerStepper::restore_state(const core::StateReader& r) {
   if (form_ == LayerForm::Lts) {
     lts_start_energy();
     lts_energy_.restore(r, "stepper.lts_energy.");
+    if (r.has("stepper.lts_sampled_J")) {  // (checkpoints before 2026-11-28: the rows' NaN)
+      lts_sampled_at_[0] = r.get_int("stepper.lts_sampled_at0");
+      lts_sampled_at_[1] = r.get_int("stepper.lts_sampled_at1");
+      std::vector<double> v(2);
+      r.get_exact("stepper.lts_sampled_J", v);
+      std::copy(v.begin(), v.end(), lts_sampled_J_);
+    }
   }
   r.get_exact("stepper.ghost_u", ghost_u_);
   r.get_exact("stepper.ghost_omega", ghost_omega_);

@@ -35,6 +35,12 @@ DomainOutput::DomainOutput(const std::string& out_dir, const std::string& domain
 void DomainOutput::follow(const integration::Solver& solver) {
   solver_ = &solver;
   recorder_ = std::make_unique<run::DomainRecorder>(writer_, solver);
+  if (scheme_energy_) recorder_->set_scheme_energy(scheme_energy_);
+}
+
+void DomainOutput::set_scheme_energy(std::function<double(double)> share_J) {
+  scheme_energy_ = std::move(share_J);
+  recorder_->set_scheme_energy(scheme_energy_);
 }
 
 void DomainOutput::finish(double wall_s, double cpu_s, std::int64_t elements) {

@@ -3,6 +3,7 @@
 // sub-model), sampled at the instants a mono run samples (run/domain_recorder.h), with the
 // domain's timing and spot weld failures at the end: what solver/gather reads back.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -21,6 +22,8 @@ class DomainOutput {
 
   /// The solver was replaced (`paper`'s summed masses): sample that one.
   void follow(const integration::Solver& solver);
+  /// The coupling scheme's energy share for the history (run::DomainRecorder::set_scheme_energy).
+  void set_scheme_energy(std::function<double(double)> share_J);
   void sample() { recorder_->sample(); }
   run::DomainRecorder& recorder() { return *recorder_; }
   const std::string& h5_path() const { return h5_path_; }
@@ -39,6 +42,7 @@ class DomainOutput {
   const integration::Solver* solver_;
   io::ResultWriter writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
+  std::function<double(double)> scheme_energy_;
   std::string h5_path_;
   double setup_cpu_s_ = 0.0;
 };

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/errors.h"
@@ -143,6 +145,15 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   }
 
   void fill_bye(wire::DomainReport& /*r*/) const override {}
+  double scheme_energy_J(double instant_s) const override {
+    if (!stepper_ || form_ != cosim::LayerForm::Lts)
+      return std::numeric_limits<double>::quiet_NaN();
+    // the last coarse instant at or before the history instant: the same in every domain (the
+    // same instant_s, tps and period)
+    const auto period = static_cast<double>(stepper_->lts_energy_period());
+    const double k = std::floor(instant_s * static_cast<double>(tps_) / period);
+    return stepper_->lts_energy_at_J(static_cast<coupling::Tick>(k * period));
+  }
 
   bool at_cycle_boundary() const override { return stepper_->at_cycle_boundary(); }
   coupling::Tick end_time() const override { return stepper_->end_time(); }

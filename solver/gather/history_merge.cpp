@@ -31,12 +31,17 @@ double end_with_margin(double t_end) {
 
 namespace {
 
-/// The summed glstat columns (energy_balance_error excluded: recomputed).
+/// The summed glstat columns (energy_balance_error excluded: recomputed). The scheme's energy
+/// shares (lts, the last column) are held, not interpolated: each domain's row of a history
+/// instant holds its share at the same coarse instant (the last at or before the history
+/// instant), and that row is the last at or before the grid's row of that instant (the grid is the
+/// domain with the fewest rows, whose row comes at its first instant past the history instant,
+/// after every finer domain's). Their sum is the energy; NaN stays NaN.
 constexpr double io::GlstatSample::*kSummed[] = {
     &io::GlstatSample::kinetic_energy_J,   &io::GlstatSample::internal_energy_J,
     &io::GlstatSample::hourglass_energy_J, &io::GlstatSample::contact_energy_J,
     &io::GlstatSample::external_work_J,    &io::GlstatSample::total_energy_J,
-    &io::GlstatSample::coupling_work_J};
+    &io::GlstatSample::coupling_work_J,    &io::GlstatSample::scheme_energy_J};
 
 }  // namespace
 
@@ -67,11 +72,17 @@ GlstatMerge merge_glstat(const std::vector<std::vector<io::GlstatSample>>& serie
     if (t > last) break;
     io::GlstatSample row;
     row.time_s = t;
+    for (const auto column : kSummed) row.*column = 0.0;  // (scheme_energy_J starts as NaN)
     for (std::size_t s = 0; s < series.size(); ++s) {
       if (series[s].empty()) continue;
       const Bracket b = bracket(times[s], t);
-      for (std::size_t c = 0; c < kWidth; ++c)
+      for (std::size_t c = 0; c + 1 < kWidth; ++c)
         row.*kSummed[c] += interpolate(values[s], kWidth, c, b);
+      // held: the last row at or before t, to the rounding of the domains' summed steps
+      const auto& ts = times[s];
+      const auto after = std::upper_bound(ts.begin(), ts.end(), end_with_margin(t));
+      const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - ts.begin() - 1, 0));
+      row.*kSummed[kWidth - 1] += values[s][kWidth * i + kWidth - 1];
     }
     out.rows.push_back(row);
   }

@@ -34,7 +34,7 @@ struct GlstatColumn {
   const char* units;
   double GlstatSample::*value;
 };
-constexpr std::array<GlstatColumn, 9> kGlstat{{
+constexpr std::array<GlstatColumn, 10> kGlstat{{
     {"time", "s", &GlstatSample::time_s},
     {"kinetic_energy", "J", &GlstatSample::kinetic_energy_J},
     {"internal_energy", "J", &GlstatSample::internal_energy_J},
@@ -44,6 +44,7 @@ constexpr std::array<GlstatColumn, 9> kGlstat{{
     {"total_energy", "J", &GlstatSample::total_energy_J},
     {"energy_balance_error", "1", &GlstatSample::energy_balance_error},
     {"coupling_work", "J", &GlstatSample::coupling_work_J},
+    {"scheme_energy", "J", &GlstatSample::scheme_energy_J},
 }};
 
 /// Link names for a list of user names; throws ModelError on a collision.

@@ -4,6 +4,7 @@
 // carries a "units" attribute. What a run that dies leaves behind: ResultWriter and
 // docs/result-format.md "Robustness". Arrays: n = model node count, ne = element count of a part.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -29,6 +30,12 @@ struct GlstatSample {
   /// single-domain run; summed over the domains it is the energy the coupling put in (> 0) or
   /// took out.
   double coupling_work_J = 0.0;
+  /// The coupling scheme's conserved discrete energy, this domain's share at the last coarse
+  /// instant (`lts`: cosim::LtsEnergy E^{k-1/2}, docs/multirate.md "lts"); summed over the
+  /// domains it is the energy (a share alone is not one). An lts domain samples its history at
+  /// the coarse instants only, so that every domain's row of an instant holds the same E's share.
+  /// NaN where there is none (mono, layer, paper; before lts's third coarse instant).
+  double scheme_energy_J = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One probe row (node or rigid-body centre of mass), global frame.

@@ -28,9 +28,12 @@ void DomainRecorder::sample() {
   const auto& c = solver_.model().controls;
   const double t = solver_.time_s();
   if (t >= next_history_) {
-    write_history();
-    do next_history_ += c.history_interval_s;
-    while (c.history_interval_s > 0.0 && next_history_ <= t);
+    double instant = next_history_;  // the last history instant at or before t: the row's
+    do {
+      instant = next_history_;
+      next_history_ += c.history_interval_s;
+    } while (c.history_interval_s > 0.0 && next_history_ <= t);
+    write_history(c.history_interval_s > 0.0 ? instant : t);  // (0: every cycle)
   }
   if (t >= next_field_) {
     write_fields();
@@ -44,7 +47,7 @@ void DomainRecorder::finish() {
   writer_.flush();
 }
 
-void DomainRecorder::write_history() {
+void DomainRecorder::write_history(double instant_s) {
   const auto& s = solver_;
   probes_.resize(s.model().probes.size());
   for (std::size_t k = 0; k < probes_.size(); ++k) {
@@ -67,7 +70,9 @@ void DomainRecorder::write_history() {
     for (std::size_t d = 0; d < 3; ++d) walls_[k].force_N[d] = f[d];
     walls_[k].energy_J = s.wall_work_J(k);
   }
-  writer_.append_history(glstat(s), probes_, contacts_, walls_);
+  io::GlstatSample g = glstat(s);
+  if (scheme_energy_) g.scheme_energy_J = scheme_energy_(instant_s);
+  writer_.append_history(g, probes_, contacts_, walls_);
 }
 
 void DomainRecorder::write_fields() {

@@ -22,6 +22,7 @@
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/daemon.h"
 #include "solver/integration/solver.h"
+#include "solver/io/result_reader.h"
 #include "solver/io/scenario_reader.h"
 #include "solver/partition/decomposition.h"
 
@@ -540,4 +541,38 @@ TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
       static_cast<long long>(std::max(ref.steps[0], ref.steps[1])),
       static_cast<long long>(std::min(ref.steps[0], ref.steps[1])), worst, gathered.rel(),
       gathered.nodes);
+
+  // The scheme's energy (issue 25, build 2): each domain file's row holds its share at the last
+  // coarse instant at or before the row's history instant (the last one the row's step passed);
+  // result.h5 holds the shares' sum at the coarse domain's rows (the finer one's last row before
+  // each), which is the network's E at that coarse instant.
+  const auto fine_rows = io::ResultReader((out / "domains" / "fine.h5").string()).glstat();
+  const auto coarse_rows = io::ResultReader((out / "domains" / "coarse.h5").string()).glstat();
+  const auto rows = io::ResultReader((out / "result.h5").string()).glstat();
+  ASSERT_EQ(rows.size(), coarse_rows.size());
+  ASSERT_GT(rows.size(), 3u);
+  const auto& last = rows.back();
+  ASSERT_TRUE(std::isfinite(last.scheme_energy_J));
+  const auto fine_last = std::find_if(fine_rows.rbegin(), fine_rows.rend(), [&](const auto& r) {
+    return r.time_s <= last.time_s * (1.0 + 1e-12);
+  });
+  ASSERT_NE(fine_last, fine_rows.rend());
+  EXPECT_EQ(last.scheme_energy_J, fine_last->scheme_energy_J + coarse_rows.back().scheme_energy_J);
+  // the last history instant at or before the row, as the recorder steps (0: every cycle)
+  double instant = m.controls.history_interval_s > 0.0 ? 0.0 : last.time_s;
+  while (m.controls.history_interval_s > 0.0 &&
+         instant + m.controls.history_interval_s <= last.time_s)
+    instant += m.controls.history_interval_s;
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  const auto base = static_cast<double>(net.plan().base);
+  const auto at = static_cast<coupling::Tick>(
+      std::floor(instant * static_cast<double>(o.run.ticks_per_second) / base) * base);
+  net.run({}, at + 1);  // past the sample at `at`, before the next coarse instant's
+  const double expected = net.lts_energy_J();
+  EXPECT_NEAR(last.scheme_energy_J, expected, 1e-9 * std::abs(expected));
+  std::printf(
+      "[measured] lts scheme energy of the history instant %.4e s (coarse instant %.4e s): "
+      "result.h5 %.9e J, network %.9e J\n",
+      instant, net.seconds(at), last.scheme_energy_J, expected);
 }
