@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/state_archive.h"
@@ -101,11 +102,13 @@ class DomainScheme {
   /// This scheme's part of the Bye's report.
   virtual void fill_bye(wire::DomainReport& r) const = 0;
 
-  /// The scheme's conserved discrete energy, this domain's share at the last coarse instant at
-  /// or before `instant_s` (io::GlstatSample::scheme_energy_J, the row of that history instant;
-  /// `lts`: cosim::LtsEnergy); NaN for a scheme without one.
-  virtual double scheme_energy_J(double /*instant_s*/) const {
-    return std::numeric_limits<double>::quiet_NaN();
+  /// The scheme's conserved discrete energy: this domain's share [J] at the last coarse instant
+  /// at or before `instant_s`, and that instant [s] (io::GlstatSample::scheme_energy_J and
+  /// scheme_energy_time_s of the row of that history instant; `lts`: cosim::LtsEnergy); NaN for
+  /// a scheme without one.
+  virtual std::pair<double, double> scheme_energy(double /*instant_s*/) const {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan};
   }
 
   /// Checkpoints (docs/design.md §2.6 "Checkpoints"), at a cycle boundary after Pace::Paused.

@@ -38,7 +38,7 @@ void DomainOutput::follow(const integration::Solver& solver) {
   if (scheme_energy_) recorder_->set_scheme_energy(scheme_energy_);
 }
 
-void DomainOutput::set_scheme_energy(std::function<double(double)> share_J) {
+void DomainOutput::set_scheme_energy(std::function<std::pair<double, double>(double)> share_J) {
   scheme_energy_ = std::move(share_J);
   recorder_->set_scheme_energy(scheme_energy_);
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "solver/integration/solver.h"
 #include "solver/io/result_writer.h"
@@ -23,7 +24,7 @@ class DomainOutput {
   /// The solver was replaced (`paper`'s summed masses): sample that one.
   void follow(const integration::Solver& solver);
   /// The coupling scheme's energy share for the history (run::DomainRecorder::set_scheme_energy).
-  void set_scheme_energy(std::function<double(double)> share_J);
+  void set_scheme_energy(std::function<std::pair<double, double>(double)> share_J);
   void sample() { recorder_->sample(); }
   run::DomainRecorder& recorder() { return *recorder_; }
   const std::string& h5_path() const { return h5_path_; }
@@ -42,7 +43,7 @@ class DomainOutput {
   const integration::Solver* solver_;
   io::ResultWriter writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
-  std::function<double(double)> scheme_energy_;
+  std::function<std::pair<double, double>(double)> scheme_energy_;
   std::string h5_path_;
   double setup_cpu_s_ = 0.0;
 };

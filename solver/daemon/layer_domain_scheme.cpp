@@ -145,14 +145,19 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   }
 
   void fill_bye(wire::DomainReport& /*r*/) const override {}
-  double scheme_energy_J(double instant_s) const override {
-    if (!stepper_ || form_ != cosim::LayerForm::Lts)
-      return std::numeric_limits<double>::quiet_NaN();
-    // the last coarse instant at or before the history instant: the same in every domain (the
-    // same instant_s, tps and period)
-    const auto period = static_cast<double>(stepper_->lts_energy_period());
-    const double k = std::floor(instant_s * static_cast<double>(tps_) / period);
-    return stepper_->lts_energy_at_J(static_cast<coupling::Tick>(k * period));
+  std::pair<double, double> scheme_energy(double instant_s) const override {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!stepper_ || form_ != cosim::LayerForm::Lts) return {nan, nan};
+    // the last coarse instant at or before the history instant, the same in every domain (the
+    // same instant_s, tps and period; the 1e-9 of a period takes an instant the recorder's sum
+    // left just below a coarse instant as that instant: each row comes at or after it in whole
+    // cycles, so that the sample of it is taken)
+    const coupling::Tick period = stepper_->lts_energy_period();
+    const auto k = static_cast<coupling::Tick>(
+        std::floor(instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-9));
+    const coupling::Tick at = k * period;
+    const double share = stepper_->lts_energy_at_J(at);
+    return {share, std::isfinite(share) ? stepper_->seconds(at) : nan};
   }
 
   bool at_cycle_boundary() const override { return stepper_->at_cycle_boundary(); }

@@ -51,7 +51,7 @@ struct StepInfo {
   /// (m_slot) when < 0: threads that compute disjoint element ranges at once then never add
   /// into the same value (integration::ElementChunks, docs/threads.md).
   const std::int32_t* scatter = nullptr;
-  /// Deferred J2 returns (the rim of an lts fine domain, Solver::set_deferred_return; docs/
+  /// Deferred J2 returns (the rim of an lts fine domain, Solver::set_rim_returns; docs/
   /// multirate.md "Plasticity on the rim"). The material history of these elements then advances
   /// only at the calls that do not defer: over a coarse step its plastic state is that of one
   /// return from the start of the step (a coarse element's update), and between those calls the

@@ -31,17 +31,37 @@ double end_with_margin(double t_end) {
 
 namespace {
 
-/// The summed glstat columns (energy_balance_error excluded: recomputed). The scheme's energy
-/// shares (lts, the last column) are held, not interpolated: each domain's row of a history
-/// instant holds its share at the same coarse instant (the last at or before the history
-/// instant), and that row is the last at or before the grid's row of that instant (the grid is the
-/// domain with the fewest rows, whose row comes at its first instant past the history instant,
-/// after every finer domain's). Their sum is the energy; NaN stays NaN.
+/// The summed glstat columns (energy_balance_error excluded: recomputed; the scheme's energy
+/// apart: merge_scheme_energy).
 constexpr double io::GlstatSample::*kSummed[] = {
     &io::GlstatSample::kinetic_energy_J,   &io::GlstatSample::internal_energy_J,
     &io::GlstatSample::hourglass_energy_J, &io::GlstatSample::contact_energy_J,
     &io::GlstatSample::external_work_J,    &io::GlstatSample::total_energy_J,
-    &io::GlstatSample::coupling_work_J,    &io::GlstatSample::scheme_energy_J};
+    &io::GlstatSample::coupling_work_J};
+
+/// The scheme's energy (lts) of the merged rows, which are the grid domain's rows in order: each
+/// row's coarse instant K is the grid row's scheme_energy_time_s, and its energy the sum of every
+/// domain's share at K, from the domain's row that holds K (not interpolated: the shares are of
+/// instants, not of the rows' times). NaN where some domain has no row of K or there is no K.
+void merge_scheme_energy(const std::vector<std::vector<io::GlstatSample>>& series, std::size_t grid,
+                         std::vector<io::GlstatSample>& rows) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::size_t> cursor(series.size(), 0);  // keys never decrease: one pass each
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const double key = series[grid][r].scheme_energy_time_s;
+    rows[r].scheme_energy_time_s = key;
+    rows[r].scheme_energy_J = std::isfinite(key) ? 0.0 : nan;
+    if (!std::isfinite(key)) continue;
+    for (std::size_t s = 0; s < series.size(); ++s) {
+      const auto& d = series[s];
+      if (d.empty()) continue;
+      auto& c = cursor[s];
+      while (c < d.size() && !(d[c].scheme_energy_time_s >= key)) ++c;  // (NaN keys skipped)
+      rows[r].scheme_energy_J +=
+          c < d.size() && d[c].scheme_energy_time_s == key ? d[c].scheme_energy_J : nan;
+    }
+  }
+}
 
 }  // namespace
 
@@ -72,20 +92,15 @@ GlstatMerge merge_glstat(const std::vector<std::vector<io::GlstatSample>>& serie
     if (t > last) break;
     io::GlstatSample row;
     row.time_s = t;
-    for (const auto column : kSummed) row.*column = 0.0;  // (scheme_energy_J starts as NaN)
     for (std::size_t s = 0; s < series.size(); ++s) {
       if (series[s].empty()) continue;
       const Bracket b = bracket(times[s], t);
-      for (std::size_t c = 0; c + 1 < kWidth; ++c)
+      for (std::size_t c = 0; c < kWidth; ++c)
         row.*kSummed[c] += interpolate(values[s], kWidth, c, b);
-      // held: the last row at or before t, to the rounding of the domains' summed steps
-      const auto& ts = times[s];
-      const auto after = std::upper_bound(ts.begin(), ts.end(), end_with_margin(t));
-      const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - ts.begin() - 1, 0));
-      row.*kSummed[kWidth - 1] += values[s][kWidth * i + kWidth - 1];
     }
     out.rows.push_back(row);
   }
+  merge_scheme_energy(series, out.grid, out.rows);
   recompute_balance_error(out.rows);
   return out;
 }

@@ -116,7 +116,7 @@ struct GlstatColumn {
   double GlstatSample::*value;
   bool required;
 };
-constexpr std::array<GlstatColumn, 10> kGlstat{{
+constexpr std::array<GlstatColumn, 11> kGlstat{{
     {"time", &GlstatSample::time_s, true},
     {"kinetic_energy", &GlstatSample::kinetic_energy_J, true},
     {"internal_energy", &GlstatSample::internal_energy_J, true},
@@ -127,6 +127,7 @@ constexpr std::array<GlstatColumn, 10> kGlstat{{
     {"energy_balance_error", &GlstatSample::energy_balance_error, false},
     {"coupling_work", &GlstatSample::coupling_work_J, false},  // files before 2026-11-21: 0
     {"scheme_energy", &GlstatSample::scheme_energy_J, false},  // before 2026-11-28: NaN
+    {"scheme_energy_time", &GlstatSample::scheme_energy_time_s, false},
 }};
 
 }  // namespace

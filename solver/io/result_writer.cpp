@@ -34,7 +34,7 @@ struct GlstatColumn {
   const char* units;
   double GlstatSample::*value;
 };
-constexpr std::array<GlstatColumn, 10> kGlstat{{
+constexpr std::array<GlstatColumn, 11> kGlstat{{
     {"time", "s", &GlstatSample::time_s},
     {"kinetic_energy", "J", &GlstatSample::kinetic_energy_J},
     {"internal_energy", "J", &GlstatSample::internal_energy_J},
@@ -45,6 +45,7 @@ constexpr std::array<GlstatColumn, 10> kGlstat{{
     {"energy_balance_error", "1", &GlstatSample::energy_balance_error},
     {"coupling_work", "J", &GlstatSample::coupling_work_J},
     {"scheme_energy", "J", &GlstatSample::scheme_energy_J},
+    {"scheme_energy_time", "s", &GlstatSample::scheme_energy_time_s},
 }};
 
 /// Link names for a list of user names; throws ModelError on a collision.

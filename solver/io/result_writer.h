@@ -30,12 +30,13 @@ struct GlstatSample {
   /// single-domain run; summed over the domains it is the energy the coupling put in (> 0) or
   /// took out.
   double coupling_work_J = 0.0;
-  /// The coupling scheme's conserved discrete energy, this domain's share at the last coarse
-  /// instant (`lts`: cosim::LtsEnergy E^{k-1/2}, docs/multirate.md "lts"); summed over the
-  /// domains it is the energy (a share alone is not one). An lts domain samples its history at
-  /// the coarse instants only, so that every domain's row of an instant holds the same E's share.
-  /// NaN where there is none (mono, layer, paper; before lts's third coarse instant).
+  /// The coupling scheme's conserved discrete energy, this domain's share at the coarse instant
+  /// scheme_energy_time_s, the last at or before the row's history instant (`lts`:
+  /// cosim::LtsEnergy E^{k-1/2}, docs/multirate.md "lts"); summed over the domains' rows of the
+  /// same coarse instant it is the energy (a share alone is not one). NaN where there is none
+  /// (mono, layer, paper; before lts's third coarse instant).
   double scheme_energy_J = std::numeric_limits<double>::quiet_NaN();
+  double scheme_energy_time_s = std::numeric_limits<double>::quiet_NaN();  ///< its instant [s]
 };
 
 /// One probe row (node or rigid-body centre of mass), global frame.

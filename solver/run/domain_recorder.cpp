@@ -1,5 +1,7 @@
 #include "solver/run/domain_recorder.h"
 
+#include <tuple>
+
 namespace crashlink::run {
 
 namespace {
@@ -71,7 +73,8 @@ void DomainRecorder::write_history(double instant_s) {
     walls_[k].energy_J = s.wall_work_J(k);
   }
   io::GlstatSample g = glstat(s);
-  if (scheme_energy_) g.scheme_energy_J = scheme_energy_(instant_s);
+  if (scheme_energy_)
+    std::tie(g.scheme_energy_J, g.scheme_energy_time_s) = scheme_energy_(instant_s);
   writer_.append_history(g, probes_, contacts_, walls_);
 }
 

@@ -8,6 +8,7 @@
 // Call sample() after every Solver::begin_cycle() (the state at t^n is complete there, solver.h)
 // and finish() once after the last one.
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "solver/integration/solver.h"
@@ -43,10 +44,10 @@ class DomainRecorder {
   }
 
   io::ResultWriter& writer() { return writer_; }
-  /// The coupling scheme's energy share for the history rows (GlstatSample::scheme_energy_J),
-  /// called with the history instant the row is for [s] (the last one at or before the row's
-  /// time, when a step passes several); none: NaN.
-  void set_scheme_energy(std::function<double(double)> share_J) {
+  /// The coupling scheme's energy share and its coarse instant [s] for the history rows
+  /// (GlstatSample::scheme_energy_J, scheme_energy_time_s), called with the history instant the
+  /// row is for [s] (the last one at or before the row's time, when a step passes several).
+  void set_scheme_energy(std::function<std::pair<double, double>(double)> share_J) {
     scheme_energy_ = std::move(share_J);
   }
 
@@ -56,7 +57,7 @@ class DomainRecorder {
 
   io::ResultWriter& writer_;
   const integration::Solver& solver_;
-  std::function<double(double)> scheme_energy_;
+  std::function<std::pair<double, double>(double)> scheme_energy_;
   double next_history_ = 0.0;
   double next_field_ = 0.0;
   double last_field_time_ = -1.0;
