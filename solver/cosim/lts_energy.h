@@ -39,8 +39,8 @@ class LtsEnergy {
   void restore(const core::StateReader& r, const std::string& prefix);
 
  private:
-  std::vector<std::uint8_t> owned_, fixed_;
-  std::vector<double> mass_, inertia_;
+  std::vector<double> weight_;          ///< [3 n] m_i of a free dof of an owned node, else 0
+  std::vector<double> weight_rot_;      ///< [3 n] I_i alike (rotating nodes), empty if none
   std::vector<std::int32_t> rotating_;  ///< owned nodes with inertia > 0
   std::vector<double> theta_;           ///< [3 n] rotation so far [rad]
   std::vector<double> u1_, u2_;         ///< u at the previous and the one before [3 n]
