@@ -121,7 +121,8 @@ void print_scheme_energy(std::FILE* f, const std::vector<io::GlstatSample>& g) {
                "the end, largest |E/E_first - 1| %.2e: conserved by linear elastic models without "
                "loads or damping; with plasticity, contact or loads its u.K_H u part is no "
                "energy\n",
-               first->scheme_energy_J, first->time_s, g.back().scheme_energy_J, worst);
+               first->scheme_energy_J, first->scheme_energy_time_s, g.back().scheme_energy_J,
+               worst);
 }
 
 void print_energy(std::FILE* f, const model::Model& model, const std::string& h5, bool complete) {

@@ -22,6 +22,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options);
 ///   mono         the reference (global minimum step);
 ///   split        `layer`, every domain at the common step (processes);
 ///   multi        `layer`, each domain at its own step (processes);
+///   lts          `lts` (issue 25), each domain at its own step (processes);
 ///   paper, paper_no_drift  the seed's scheme with drift correction [11] on and off, in this
 ///                process at multi's ratio (apps/sweep_paper.h);
 ///   mass_scaled  mono with conventional mass scaling of the fine domain's parts: each part whose

@@ -149,12 +149,12 @@ class LayerDomainScheme final : public coupling::DomainScheme {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     if (!stepper_ || form_ != cosim::LayerForm::Lts) return {nan, nan};
     // the last coarse instant at or before the history instant, the same in every domain (the
-    // same instant_s, tps and period; the 1e-9 of a period takes an instant the recorder's sum
-    // left just below a coarse instant as that instant: each row comes at or after it in whole
-    // cycles, so that the sample of it is taken)
+    // same instant_s, tps and period; the 1e-6 of a period takes an instant the recorder's sum
+    // left just below a coarse instant as that instant: far above that sum's rounding, far below
+    // any step, and each row comes at or after it in whole cycles, so that its sample is taken)
     const coupling::Tick period = stepper_->lts_energy_period();
     const auto k = static_cast<coupling::Tick>(
-        std::floor(instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-9));
+        std::floor(instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-6));
     const coupling::Tick at = k * period;
     const double share = stepper_->lts_energy_at_J(at);
     return {share, std::isfinite(share) ? stepper_->seconds(at) : nan};
