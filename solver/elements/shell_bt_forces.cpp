@@ -14,6 +14,8 @@
 
 #include "core/errors.h"
 #include "solver/elements/shell_bt.h"
+#include "solver/elements/shell_bt_lanes.h"
+#include "solver/elements/shell_bt_points.h"
 #include "solver/materials/cowper_symonds.h"
 #include "solver/materials/plane_stress_update.h"
 
@@ -21,24 +23,14 @@ namespace crashlink::elements {
 
 namespace {
 
-constexpr std::size_t L = kShellLanes;
-static_assert(L % 4 == 0, "sqrt_lanes and the J2 lane return work on groups of 4 lanes");
+using shell_lanes::copy_doubles;
+using shell_lanes::L;
+using shell_lanes::load_block;
+using shell_lanes::ShellConstants;
+using shell_lanes::store_block;
+using shell_lanes::zero_doubles;
 
 using materials::sqrt_lanes;
-
-/// Per-part constants of the kernel.
-struct ShellConstants {
-  materials::PlaneStressElastic el;
-  materials::HardeningView hv;
-  bool j2 = false;
-  bool rate = false;    ///< Cowper-Symonds scaling of the curve (cowper_symonds.h)
-  double rate_c = 0.0;  ///< its C [1/s]
-  double rate_p = 0.0;  ///< its P [-]
-  double sy0_sq = 0.0;  ///< (initial yield)^2: a trial vm^2 below it is elastic (hardening curve)
-  double kG = 0.0;      ///< kappa G, transverse shear modulus with the 5/6 factor [Pa]
-  double c_plate = 0.0;
-  double r_hg = 0.0;
-};
 
 /// Gather of three components of four nodes per lane from an interleaved xyz array. With AVX, four
 /// lanes at a time: the (x, y) pairs by 128-bit loads, transposed into the x and y vectors by one
@@ -74,47 +66,6 @@ inline void gather(const double* a, const std::int32_t (&nd)[4][L], double (&out
       out[I][2][l] = p[2];
     }
 #endif
-}
-
-/// Copies n doubles (n a multiple of 4) by 256-bit loads and stores. Not memcpy: GCC turns a
-/// memcpy of a few hundred bytes into `rep movsq` and one of a runtime size into a libc call, whose
-/// start-up costs showed in the cycle's profile (docs/elements.md "Shell kernel performance"); the
-/// empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
-inline void copy_doubles(double* __restrict dst, const double* __restrict src, std::size_t n) {
-  CRASHLINK_ASSERT(n % 4 == 0);
-#if defined(__AVX__)
-  for (std::size_t i = 0; i < n; i += 4) {
-    __m256d v = _mm256_loadu_pd(src + i);
-    asm("" : "+x"(v));
-    _mm256_storeu_pd(dst + i, v);
-  }
-#else
-  std::memcpy(dst, src, n * sizeof(double));
-#endif
-}
-
-/// Zeroes n doubles (n a multiple of 4), for the same reason (`rep stosq` or memset otherwise).
-inline void zero_doubles(double* dst, std::size_t n) {
-  CRASHLINK_ASSERT(n % 4 == 0);
-#if defined(__AVX__)
-  __m256d z = _mm256_setzero_pd();
-  asm("" : "+x"(z));
-  for (std::size_t i = 0; i < n; i += 4) _mm256_storeu_pd(dst + i, z);
-#else
-  std::memset(dst, 0, n * sizeof(double));
-#endif
-}
-
-/// One batch's block of a blocked state array (shell_bt.h: [ns/L][R][L], contiguous) into / out
-/// of a local [R][L] array: the lane loops then work on locals only and vectorise without alias
-/// checks.
-template <int R>
-inline void load_block(const double* a, double (&out)[R][L]) {
-  copy_doubles(&out[0][0], a, R * L);
-}
-template <int R>
-inline void store_block(double* a, const double (&in)[R][L]) {
-  copy_doubles(a, &in[0][0], R * L);
 }
 
 /// Corotational frame and in-plane operators of one configuration of a batch (geometry() below):
@@ -555,150 +506,7 @@ KernelResult shell_forces(const model::Part& part, const materials::Material& ma
       }
       if (update) store_block(st.resultant_Pa.data() + 6 * b0, R);
     } else {
-      // Gauss sums sN = sum w s, sM = sum w zeta s; then N/h = sN/2, 6M/h^2 = 1.5 sM.
-      // Three passes over the batch's points: elastic trial stresses of all points, one plastic
-      // return for all np * L of them (their latencies overlap), then the sums and the write-back.
-      constexpr int kMax = kShellMaxPoints;
-      const std::size_t nk = static_cast<std::size_t>(np);
-      double* const blk = st.sigma_Pa.data() + 3 * nk * b0;  // [np][3][L], shell_bt.h
-      double sp[kMax][3][L];                                 // sigma^n
-      double s[3][kMax * L];  // trial, then sigma^{n+1}: [c][k L + l] for the return
-      double de[kMax][3][L];  // strain increments
-      double dzp[kMax * L];   // plastic thickness strain increments [k L + l]
-      copy_doubles(&sp[0][0][0], blk, 3 * nk * L);
-      // Deferred returns (StepInfo::defer_return, trial_history; J2 only): the history written
-      // back is the elastic trial and the plastic strain and thickness stay; sigma^n, for the
-      // work, is the return of the held trial.
-      const bool defer = K.j2 && step.defer_return;
-      const bool trial_history = K.j2 && step.trial_history;
-      double sN[3][L], sM[3][L], wsum[L];
-      zero_doubles(&sN[0][0], 3 * L);
-      zero_doubles(&sM[0][0], 3 * L);
-      zero_doubles(wsum, L);
-      if (update) {
-        double cand[kMax * L];  // 1: trial vm above the initial yield (a return candidate)
-        for (std::size_t k = 0; k < nk; ++k) {
-          const double zk = st.zeta[k];
-          for (std::size_t l = 0; l < L; ++l) {
-            const double z = 0.5 * zk * h[0][l];
-            de[k][0][l] = (dm[0][l] + z * kap[0][l]) * dt;
-            de[k][1][l] = (dm[1][l] + z * kap[1][l]) * dt;
-            de[k][2][l] = (dm[2][l] + z * kap[2][l]) * dt;
-            const double t0 = sp[k][0][l] + c11 * de[k][0][l] + c12 * de[k][1][l];
-            const double t1 = sp[k][1][l] + c12 * de[k][0][l] + c11 * de[k][1][l];
-            const double t2 = sp[k][2][l] + G * de[k][2][l];
-            s[0][k * L + l] = t0;
-            s[1][k * L + l] = t1;
-            s[2][k * L + l] = t2;
-            const double vm2 = t0 * t0 + t1 * t1 - t0 * t1 + 3.0 * t2 * t2;
-            cand[k * L + l] = vm2 > K.sy0_sq ? 1.0 : 0.0;
-          }
-        }
-        // Cheap elastic check first: below the initial yield no lane needs the return. All
-        // candidates: one return over the batch's points in place; some: the return over the
-        // candidates only, packed (padded to a multiple of 4 with copies of the last one).
-        const std::size_t n_all = nk * L;
-        zero_doubles(dzp, n_all);
-        // (four partial sums: one ordered sum is a scalar loop)
-        double psum[4] = {0.0, 0.0, 0.0, 0.0};
-        for (std::size_t i = 0; i < n_all; i += 4)
-          for (std::size_t j = 0; j < 4; ++j) psum[j] += cand[i + j];
-        const double n_cand = (psum[0] + psum[1]) + (psum[2] + psum[3]);
-        // Cowper-Symonds factor of each point's effective strain rate (cowper_symonds.h)
-        double phi[kMax * L];
-        if (K.rate && (n_cand != 0.0 || trial_history)) {
-          double rate[kMax * L];
-          const double inv_dt = 1.0 / dt;
-          for (std::size_t k = 0; k < nk; ++k)
-            for (std::size_t l = 0; l < L; ++l)
-              rate[k * L + l] = materials::plane_effective_strain_rate(
-                  de[k][0][l] * inv_dt, de[k][1][l] * inv_dt, de[k][2][l] * inv_dt);
-          materials::cowper_symonds_factors(rate, K.rate_c, K.rate_p, phi, n_all);
-        }
-        const double* const phi_all = K.rate ? phi : nullptr;
-        double* const ep_held = K.j2 ? st.eps_p.data() + nk * b0 : nullptr;
-        double ep_copy[kMax * L];  // a deferred return's plastic strains, dropped
-        if (defer) copy_doubles(ep_copy, ep_held, n_all);
-        double* const ep_blk = defer ? ep_copy : ep_held;
-        double held[3][kMax * L];  // a deferred return's trial, written back
-        if (defer) copy_doubles(&held[0][0], &s[0][0], 3 * kMax * L);
-        double spr[3][kMax * L];  // trial_history: sigma^n, the return of the held trial
-        if (trial_history) {
-          for (std::size_t k = 0; k < nk; ++k)
-            for (int c = 0; c < 3; ++c)
-              for (std::size_t l = 0; l < L; ++l) spr[c][k * L + l] = sp[k][c][l];
-          double ep_n[kMax * L], dz_n[kMax * L];
-          copy_doubles(ep_n, ep_held, n_all);
-          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, spr[0], spr[1],
-                                                            spr[2], ep_n, dz_n, phi_all);
-        }
-        if (K.j2 && n_cand == static_cast<double>(n_all)) {
-          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, n_all, s[0], s[1], s[2],
-                                                            ep_blk, dzp, phi_all);
-        } else if (K.j2 && n_cand != 0.0) {
-          std::size_t ci[kMax * L], m = 0;
-          for (std::size_t i = 0; i < n_all; ++i)
-            if (cand[i] != 0.0) ci[m++] = i;
-          const std::size_t m4 = (m + 3) / 4 * 4;
-          double px[kMax * L], py[kMax * L], pxy[kMax * L], pep[kMax * L], pdz[kMax * L];
-          double pphi[kMax * L];
-          for (std::size_t j = 0; j < m4; ++j) {
-            const std::size_t i = ci[std::min(j, m - 1)];
-            px[j] = s[0][i];
-            py[j] = s[1][i];
-            pxy[j] = s[2][i];
-            pep[j] = ep_blk[i];
-            if (phi_all != nullptr) pphi[j] = phi_all[i];
-          }
-          materials::plane_stress_j2_return_lanes<kMax * L>(K.el, K.hv, m4, px, py, pxy, pep, pdz,
-                                                            phi_all != nullptr ? pphi : nullptr);
-          for (std::size_t j = 0; j < m; ++j) {
-            const std::size_t i = ci[j];
-            s[0][i] = px[j];
-            s[1][i] = py[j];
-            s[2][i] = pxy[j];
-            ep_blk[i] = pep[j];
-            dzp[i] = pdz[j];
-          }
-        }
-        for (std::size_t k = 0; k < nk; ++k) {
-          const double zk = st.zeta[k], wk = st.weight[k];
-          for (std::size_t l = 0; l < L; ++l) {
-            const std::size_t i = k * L + l;
-            // the held stresses' difference (telescoping over deferred calls) and, where the
-            // return is not deferred, its plastic thickness strain
-            const double(&hs)[3][kMax * L] = defer ? held : s;
-            dezz[l] += 0.5 * wk *
-                       (-nu_over_E * (hs[0][i] - sp[k][0][l] + hs[1][i] - sp[k][1][l]) +
-                        (defer ? 0.0 : dzp[i]));
-            double w = 0.0;
-            for (int c = 0; c < 3; ++c) {
-              w += 0.5 * ((trial_history ? spr[c][i] : sp[k][c][l]) + s[c][i]) * de[k][c][l];
-              sN[c][l] += wk * s[c][i];
-              sM[c][l] += wk * zk * s[c][i];
-              sp[k][c][l] = hs[c][i];  // sigma^{n+1} (or the trial), for the write-back
-            }
-            wsum[l] += wk * w;
-          }
-        }
-        copy_doubles(blk, &sp[0][0][0], 3 * nk * L);
-      } else {
-        for (std::size_t k = 0; k < nk; ++k) {
-          const double zk = st.zeta[k], wk = st.weight[k];
-          for (std::size_t l = 0; l < L; ++l)
-            for (int c = 0; c < 3; ++c) {
-              sN[c][l] += wk * sp[k][c][l];
-              sM[c][l] += wk * zk * sp[k][c][l];
-            }
-        }
-      }
-      for (std::size_t l = 0; l < L; ++l) {
-        ework[l] += wsum[l];
-        for (int c = 0; c < 3; ++c) {
-          Nn[c][l] = 0.5 * sN[c][l];
-          Mn[c][l] = 1.5 * sM[c][l];
-        }
-      }
+      shell_lanes::point_stresses(K, st, b0, step, h, dm, kap, Nn, Mn, ework, dezz);
     }
 
     // ---- stiffness-proportional damping (parts with Part::damping_ratio; the hex's form, hex8.h)
