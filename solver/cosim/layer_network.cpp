@@ -160,11 +160,18 @@ bool LayerNetwork::run(const std::function<void(std::size_t)>& on_sample, Tick u
     if (all_paused) return false;  // every unfinished domain reached `until`
     if (progressed) continue;
     // A domain paused at `until` while a partner mid-step needs its next message (a coarse step
-    // that straddles `until`): the paused ones take one more cycle.
+    // that straddles `until`): the paused domains that a waiting one waits on take one more cycle
+    // (only those: in a chain, a domain paused at `until` that nobody waits on stays there).
+    std::vector<std::uint8_t> needed(steppers_.size(), 0);
+    for (const auto& st : steppers_) {
+      const std::uint32_t i = st->waiting_interface();
+      if (st->waiting() == Wait::Force) needed[fine_of_[i]] = 1;  // g_A comes from the fine side
+      if (st->waiting() == Wait::Displacement) needed[coarse_of_[i]] = 1;
+    }
     bool nudged = false;
     for (std::size_t k = 0; k < steppers_.size(); ++k) {
       auto& st = *steppers_[k];
-      if (st.waiting() != Wait::None) continue;
+      if (st.waiting() != Wait::None || !needed[k]) continue;
       st.advance(on_sample ? std::function<void()>([&, k] { on_sample(k); }) : nullptr,
                  st.time() + 1);
       route(k);

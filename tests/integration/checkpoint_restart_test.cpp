@@ -9,6 +9,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -278,13 +279,13 @@ TEST(CheckpointRestartRefusals, RestartWithoutCheckpointsIsRefusedNamingWhatEach
 // `lts` (docs/multirate.md "lts"): the fine side sends Fbar(T) p - 1 substeps after T, so its
 // checkpoint at T is written before the owner used Fbar(T) and the owner's after; restored, the
 // fine side must not send it again (the owner would refuse a force for an instant it has passed).
-// The bar at H/h = 4 with checkpoints, restarted from the newest, ends as the run without them.
-TEST(CheckpointRestartLts, RestartedFromTheNewestCheckpointIsTheSameRun) {
-  const fs::path dir = fresh_dir("ckpt_lts");
-  const std::string scenario =
-      crashlink::proc_test::write_file(dir / "bar.yaml", crashlink::proc_test::bar_yaml(6.0e-3));
+// Run with checkpoints and restarted from the newest, the run ends as the run without them.
+static void lts_restart_case(const std::string& name, const std::string& yaml,
+                             const std::string& extra) {
+  const fs::path dir = fresh_dir(name);
+  const std::string scenario = crashlink::proc_test::write_file(dir / "scene.yaml", yaml);
   const std::string run =
-      bin("crashlink") + " run " + scenario + " --mode multi --coupling lts --quiet ";
+      bin("crashlink") + " run " + scenario + " --mode multi --coupling lts --quiet " + extra;
   int status = -1;
   const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
   ASSERT_EQ(status, 0) << out_ref;
@@ -298,6 +299,38 @@ TEST(CheckpointRestartLts, RestartedFromTheNewestCheckpointIsTheSameRun) {
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("from the checkpoint at t = "), std::string::npos) << out;
   expect_same_results((dir / "ref" / "result.h5").string(), (ck / "result.h5").string(), 2);
+  // the scheme's energy too: each row's sum of the domains' shares (NaN before the third sample)
+  const auto a = crashlink::io::ResultReader((dir / "ref" / "result.h5").string()).glstat();
+  const auto b = crashlink::io::ResultReader((ck / "result.h5").string()).glstat();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::isnan(a[i].scheme_energy_J)) {
+      EXPECT_TRUE(std::isnan(b[i].scheme_energy_J)) << "row " << i;
+      continue;
+    }
+    ++finite;
+    EXPECT_EQ(a[i].scheme_energy_J, b[i].scheme_energy_J) << "row " << i;
+    EXPECT_EQ(a[i].scheme_energy_time_s, b[i].scheme_energy_time_s) << "row " << i;
+  }
+  EXPECT_GT(finite + 3, a.size());
   std::error_code ec;
   if (!::testing::Test::HasFailure()) fs::remove_all(dir, ec);
+}
+
+// The bar at H/h = 4.
+TEST(CheckpointRestartLts, RestartedFromTheNewestCheckpointIsTheSameRun) {
+  lts_restart_case("ckpt_lts", crashlink::proc_test::bar_yaml(6.0e-3), "");
+}
+
+// A chain of three (fine | mid | coarse bars of 5, 10 and 30 mm hexes: mid is the fine side of
+// coarse and the owner of fine), step safety 0.8 as LayerProcesses' chain: each pair's Fbar(T)
+// leaves p - 1 substeps after T, so the three checkpoints of an instant hold three different
+// moments of the exchange.
+TEST(CheckpointRestartLts, ChainOfThreeRestartedIsTheSameRun) {
+  lts_restart_case("ckpt_lts_chain",
+                   crashlink::proc_test::bar_parts_yaml(
+                       "chain3", 6.0e-3,
+                       {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}),
+                   "--step-safety 0.8 ");
 }

@@ -574,3 +574,53 @@ TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
       "%.9e J; %zu of %zu rows finite\n",
       key, last.scheme_energy_J, expected, finite, rows.size());
 }
+
+// A tree over processes: the chain of three (fine | mid | coarse, 5 / 10 / 30 mm hexes; mid is
+// the fine side of coarse and the owner of fine) under `crashlink run --mode multi --coupling lts`
+// over tcp is LayerNetwork's lts chain to the bit, and result.h5's scheme energy at the last coarse
+// instant is the network's summed E there.
+TEST(LtsProcesses, ThreeDomainChainIsNetworkToTheBit) {
+  const auto dir = fresh_dir("lts-chain3");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(
+      dir / "chain.yaml",
+      bar_parts_yaml("chain3", 2.11e-4,
+                     {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}));
+  const auto out = dir / "out";
+  std::vector<std::string> argv{
+      bin("crashlink"), "run", scenario,        "--mode", "multi", "--coupling", "lts",
+      "--transport",    "tcp", "--step-safety", "0.8",    "--out", out.string(), "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
+  ASSERT_EQ(exit_code(*st), 0) << run.output();
+  const auto m = io::read_scenario(scenario);
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.common_step = false;
+  o.step_safety = 0.8;
+  const Reference ref = reference(m, o);
+  ASSERT_EQ(ref.steps.size(), 3u);
+  const double worst = expect_network_bits(out, m, ref, {"fine", "mid", "coarse"}).worst;
+  const Diff gathered = compare(last_state((out / "result.h5").string()), m, ref.u);
+  EXPECT_EQ(gathered.max_abs, 0.0) << "gathered result.h5";
+  const auto rows = io::ResultReader((out / "result.h5").string()).glstat();
+  ASSERT_GT(rows.size(), 3u);
+  const double key = rows.back().scheme_energy_time_s;
+  ASSERT_TRUE(std::isfinite(rows.back().scheme_energy_J));
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  const auto at =
+      static_cast<coupling::Tick>(std::llround(key * static_cast<double>(o.run.ticks_per_second)));
+  net.run({}, at + 1);  // every domain past its sample at `at`, before the next coarse instant's
+  const double expected = net.lts_energy_J();
+  EXPECT_NEAR(rows.back().scheme_energy_J, expected, 1e-9 * std::abs(expected));
+  std::printf(
+      "[measured] lts chain of three over tcp, steps %lld / %lld / %lld ticks: max |u - "
+      "u_network| = %.3e (domain files), %.3e (gathered); E at %.4e s: result.h5 %.9e J, network "
+      "%.9e J\n",
+      static_cast<long long>(ref.steps[0]), static_cast<long long>(ref.steps[1]),
+      static_cast<long long>(ref.steps[2]), worst, gathered.max_abs, key,
+      rows.back().scheme_energy_J, expected);
+}

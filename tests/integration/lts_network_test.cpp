@@ -231,8 +231,7 @@ TEST(LtsNetwork, RestoredRunEndsWithTheUninterruptedRunsBits) {
 // nested form's conservation is not derived in docs/multirate.md).
 TEST(LtsNetwork, ThreeDomainChainConservesTheSummedEnergy) {
   auto m = crashlink::testing::chain3();
-  m.controls.end_time_s = 0.12;  // about 2 10^4 fine steps (run to the end: in process, a pause
-                                 // of an lts chain does not hold, see layer_network.h run())
+  m.controls.end_time_s = 0.12;  // about 2 10^4 fine steps
   m.controls.bulk_viscosity = false;
   for (auto i : crashlink::testing::where(
            m, [](double x, double, double) { return x < 1e-9 || x > 2.0 - 1e-9; }))
@@ -297,4 +296,57 @@ TEST(LtsNetwork, DomainOrderDoesNotChangeTheRun) {
   EXPECT_EQ(differ, 0u);
   EXPECT_TRUE(std::isfinite(energy[0]));
   EXPECT_EQ(energy[0], energy[1]);
+}
+
+// A pause of a chain (coarse | mid | fine, steps 4 : 2 : 1) holds: run(..., until) returns with
+// each domain at or just past `until` (a fine side goes on to the substep that sends Fbar(T), at
+// most one owner step), and a checkpoint taken there and restored ends with the straight run's
+// bits and energy. Before the fix every paused domain was nudged on, and the chain ran to its end.
+TEST(LtsNetwork, ThreeDomainChainPausesAndRestoresToTheBit) {
+  auto m = crashlink::testing::chain3();
+  m.controls.end_time_s = 0.12;  // far past the instants run to
+  m.controls.bulk_viscosity = false;
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+    const double x = m.nodes.x0[3 * i];
+    m.initial_velocities.push_back(
+        {{static_cast<std::int32_t>(i)}, {1e-6 * std::sin(3.0 * x), 0.0, 0.0}});
+  }
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.common_step = false;
+  o.step_safety = 0.9;
+  cosim::LayerNetwork straight(m, o);
+  straight.initialize();
+  const coupling::Tick base = straight.plan().base;
+  const coupling::Tick until = 57 * base, end = 200 * base;
+  ASSERT_FALSE(straight.run({}, end));
+  cosim::LayerNetwork paused(m, o);
+  paused.initialize();
+  ASSERT_FALSE(paused.run({}, until));
+  for (std::size_t k = 0; k < paused.size(); ++k) {
+    const coupling::Tick t = paused.stepper(k).time();
+    EXPECT_GE(t, until) << paused.solver(k).domain_name();
+    EXPECT_LT(t, until + base) << paused.solver(k).domain_name() << " ran past the pause";
+  }
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_lts_chain_checkpoint_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < paused.size(); ++k) {
+    core::StateWriter w;
+    paused.save_state(k, w);
+    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
+    w.save(paths.back());
+  }
+  cosim::LayerNetwork resumed(m, o);
+  resumed.restore(paths);
+  ASSERT_FALSE(resumed.run({}, end));
+  std::filesystem::remove_all(dir);
+  const auto a = straight.global_displacement(), b = resumed.global_displacement();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  EXPECT_EQ(differ, 0u);
+  EXPECT_TRUE(std::isfinite(resumed.lts_energy_J()));
+  EXPECT_EQ(straight.lts_energy_J(), resumed.lts_energy_J());
 }
