@@ -512,14 +512,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           step_pending_ = false;
         }
         solver_.begin_cycle();  // state at t_ complete
-        if (form_ == LayerForm::Lts && t_ % energy_period_ == 0) {
-          lts_energy_.sample(solver_.displacement().data());
-          lts_sampled_at_[1] = lts_sampled_at_[0];
-          lts_sampled_J_[1] = lts_sampled_J_[0];
-          lts_sampled_at_[0] = t_;
-          lts_sampled_J_[0] = lts_energy_.ready() ? lts_energy_.value_J()
-                                                  : std::numeric_limits<double>::quiet_NaN();
-        }
+        if (form_ == LayerForm::Lts && t_ % energy_period_ == 0) lts_sample_energy();
         if (on_sample) on_sample();
         if (finished_here()) {
           phase_ = Phase::Done;

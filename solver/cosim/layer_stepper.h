@@ -256,6 +256,12 @@ class LayerStepper {
     return std::numeric_limits<double>::quiet_NaN();
   }
   Tick lts_energy_period() const { return energy_period_; }
+  /// Lts: the coarse instants whose share someone reads (a daemon: those of its history rows).
+  /// The stepper then samples only those and the two before each, not every coarse instant
+  /// (unset: every one). The shares read are the same bits either way.
+  void set_lts_energy_wanted(std::function<bool(Tick)> wanted) {
+    lts_energy_wanted_ = std::move(wanted);
+  }
   /// Variable steps, before initialize(): proposals are min(the solver's, max_step_s) (if > 0),
   /// and a leader takes `leader_safety` (0, 1] of its own (the margin fixed steps keep on the
   /// coarse side: the layer coupling's error grows with the coarse Courant number). ModelError
@@ -325,6 +331,8 @@ class LayerStepper {
   /// are taken (Solver::set_rim_returns; every instant without a fine-side port or at p = 1).
   bool lts_owner_instant(Tick t) const;
   void lts_start_energy();
+  /// At a coarse instant t_ (a multiple of energy_period_): LtsEnergy::sample if wanted.
+  void lts_sample_energy();
   bool forces_ready();
   void apply_forces();
   void flush_outbox();
@@ -383,7 +391,8 @@ class LayerStepper {
   LayerForm form_ = LayerForm::Layer;
   Tick energy_period_ = 0;  ///< Lts: the conserved energy's coarse step [ticks]
   LtsEnergy lts_energy_;
-  Tick lts_sampled_at_[2] = {-1, -1};  ///< the last two sample instants, newest first
+  std::function<bool(Tick)> lts_energy_wanted_;  ///< set_lts_energy_wanted's (empty: all)
+  Tick lts_sampled_at_[2] = {-1, -1};            ///< the last two evaluated instants, newest first
   double lts_sampled_J_[2] = {std::numeric_limits<double>::quiet_NaN(),
                               std::numeric_limits<double>::quiet_NaN()};
 };

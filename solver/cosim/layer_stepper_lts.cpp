@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -192,6 +193,21 @@ void LayerStepper::lts_send_forces() {
     }
     if (!consumed) outbox_.push_back(std::move(m));
   }
+}
+
+void LayerStepper::lts_sample_energy() {
+  // E at a wanted instant needs u there and at the two coarse instants before
+  const Tick P = energy_period_;
+  const auto& want = lts_energy_wanted_;
+  const bool evaluate = !want || want(t_);
+  if (!evaluate && !want(t_ + P) && !want(t_ + 2 * P)) return;
+  lts_energy_.sample(solver_.displacement().data(), t_ / P, evaluate);
+  if (!evaluate) return;
+  lts_sampled_at_[1] = lts_sampled_at_[0];
+  lts_sampled_J_[1] = lts_sampled_J_[0];
+  lts_sampled_at_[0] = t_;
+  lts_sampled_J_[0] =
+      lts_energy_.ready() ? lts_energy_.value_J() : std::numeric_limits<double>::quiet_NaN();
 }
 
 void LayerStepper::lts_start_energy() {

@@ -16,12 +16,12 @@ void LtsEnergy::reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t>
   // Per dof the weight of its term: m_i (I_i) for a free dof of an owned node, else 0; the sums
   // then run over contiguous arrays without a branch.
   weight_.assign(n3, 0.0);
-  rotating_.clear();
+  bool any_rotating = false;
   std::vector<double> weight_rot(n3, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (!owned[i]) continue;
     const bool rot = i < inertia_kgm2.size() && inertia_kgm2[i] > 0.0;
-    if (rot) rotating_.push_back(static_cast<std::int32_t>(i));
+    any_rotating = any_rotating || rot;
     for (std::size_t d = 0; d < 3; ++d) {
       const bool held = !fixed.empty() && (fixed[i] & (1u << d));
       const bool held_rot = !fixed.empty() && (fixed[i] & (1u << (3 + d)));
@@ -29,23 +29,27 @@ void LtsEnergy::reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t>
       weight_rot[3 * i + d] = rot && !held_rot ? inertia_kgm2[i] : 0.0;
     }
   }
-  weight_rot_ = rotating_.empty() ? std::vector<double>() : std::move(weight_rot);
+  weight_rot_ = !any_rotating ? std::vector<double>() : std::move(weight_rot);
   u1_.assign(n3, 0.0);
   u2_.assign(n3, 0.0);
-  theta_.assign(rotating_.empty() ? 0 : n3, 0.0);
+  theta_.assign(!any_rotating ? 0 : n3, 0.0);
   t1_.assign(theta_.size(), 0.0);
   t2_.assign(theta_.size(), 0.0);
   h2_ = coarse_step_s * coarse_step_s;
   samples_ = 0;
+  last_k_ = -1;
+  ready_ = false;
   value_J_ = 0.0;
 }
 
 void LtsEnergy::add_rotation(const double* omega_mid, double dt_s) {
-  for (const auto node : rotating_)
-    for (std::size_t d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * static_cast<std::size_t>(node) + d;
-      theta_[k] += dt_s * omega_mid[k];
-    }
+  // every dof, branch-free (a select: the others' omega is never read into theta); the sums weigh
+  // the non-rotating ones 0
+  if (theta_.empty()) return;
+  const double* __restrict w = weight_rot_.data();
+  double* __restrict th = theta_.data();
+  const std::size_t n3 = theta_.size();
+  for (std::size_t k = 0; k < n3; ++k) th[k] += w[k] != 0.0 ? dt_s * omega_mid[k] : 0.0;
 }
 
 namespace {
@@ -70,16 +74,20 @@ double weighted_terms(const double* __restrict w, const double* __restrict x,
 
 }  // namespace
 
-void LtsEnergy::sample(const double* u) {
+void LtsEnergy::sample(const double* u, std::int64_t k, bool evaluate) {
   // e_i = m_i / (2 H^2) [ |u^{k} - u^{k-1}|^2 - u^{k} . (u^{k} - 2 u^{k-1} + u^{k-2}) ]
   // (Diaz & Grote 2009, Theorem 3.1, with K_H u^{k-1} written by the scheme's own recurrence);
   // the same with I_i and theta_i for the rotating nodes.
-  ++samples_;
+  samples_ = last_k_ == kAnyNext || k == last_k_ + 1 ? samples_ + 1 : 1;
+  last_k_ = k;
   const std::size_t n3 = u1_.size();
-  double sum = weighted_terms(weight_.data(), u, u1_.data(), u2_.data(), n3);
-  if (!theta_.empty())
-    sum += weighted_terms(weight_rot_.data(), theta_.data(), t1_.data(), t2_.data(), n3);
-  value_J_ = sum / (2.0 * h2_);
+  ready_ = evaluate && samples_ >= 3;
+  if (ready_) {
+    double sum = weighted_terms(weight_.data(), u, u1_.data(), u2_.data(), n3);
+    if (!theta_.empty())
+      sum += weighted_terms(weight_rot_.data(), theta_.data(), t1_.data(), t2_.data(), n3);
+    value_J_ = sum / (2.0 * h2_);
+  }
   u2_.swap(u1_);
   std::copy(u, u + n3, u1_.begin());
   t2_.swap(t1_);
@@ -93,6 +101,8 @@ void LtsEnergy::save(core::StateWriter& w, const std::string& prefix) const {
   w.put(prefix + "t1", std::span<const double>(t1_));
   w.put(prefix + "t2", std::span<const double>(t2_));
   w.put_int(prefix + "samples", samples_);
+  w.put_int(prefix + "last_k", last_k_);
+  w.put_int(prefix + "ready", ready_ ? 1 : 0);
   w.put_double(prefix + "value_J", value_J_);
 }
 
@@ -103,6 +113,9 @@ void LtsEnergy::restore(const core::StateReader& r, const std::string& prefix) {
   r.get_exact(prefix + "t1", t1_);
   r.get_exact(prefix + "t2", t2_);
   samples_ = r.get_int(prefix + "samples");
+  // (checkpoints before 2026-11-28 sampled every instant: the next one follows)
+  last_k_ = r.has(prefix + "last_k") ? r.get_int(prefix + "last_k") : kAnyNext;
+  ready_ = r.has(prefix + "ready") ? r.get_int(prefix + "ready") != 0 : samples_ >= 3;
   value_J_ = r.get_double(prefix + "value_J");
 }
 

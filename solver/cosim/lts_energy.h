@@ -30,24 +30,28 @@ class LtsEnergy {
              std::vector<double> mass_kg, std::vector<double> inertia_kgm2, double coarse_step_s);
   /// After each cycle: theta += dt omega^{n+1/2} on the rotating owned nodes [3 n, rad/s].
   void add_rotation(const double* omega_mid, double dt_s);
-  /// The displacements u [3 n, m] at the next coarse instant (the rotations are add_rotation's).
-  /// After the third call, value() is E^{k-1/2} of the last three.
-  void sample(const double* u);
-  bool ready() const { return samples_ >= 3; }
+  /// The displacements u [3 n, m] at coarse instant k (k H; the rotations are add_rotation's).
+  /// With `evaluate`, and the two instants before sampled too, value_J() becomes E^{k-1/2} of the
+  /// three (ready()); a caller that wants E only at some instants samples just those and the two
+  /// before each (a gap starts the count again).
+  void sample(const double* u, std::int64_t k, bool evaluate);
+  bool ready() const { return ready_; }
   double value_J() const { return value_J_; }  ///< this domain's share of E^{k-1/2} [J]
   void save(core::StateWriter& w, const std::string& prefix) const;
   void restore(const core::StateReader& r, const std::string& prefix);
 
  private:
-  std::vector<double> weight_;          ///< [3 n] m_i of a free dof of an owned node, else 0
-  std::vector<double> weight_rot_;      ///< [3 n] I_i alike (rotating nodes), empty if none
-  std::vector<std::int32_t> rotating_;  ///< owned nodes with inertia > 0
-  std::vector<double> theta_;           ///< [3 n] rotation so far [rad]
-  std::vector<double> u1_, u2_;         ///< u at the previous and the one before [3 n]
-  std::vector<double> t1_, t2_;         ///< theta alike [3 n]
-  double h2_ = 0.0;                     ///< H^2 [s^2]
-  std::int64_t samples_ = 0;
+  std::vector<double> weight_;      ///< [3 n] m_i of a free dof of an owned node, else 0
+  std::vector<double> weight_rot_;  ///< [3 n] I_i alike (inertia > 0), empty if none
+  std::vector<double> theta_;       ///< [3 n] rotation so far [rad]
+  std::vector<double> u1_, u2_;     ///< u at the previous and the one before [3 n]
+  std::vector<double> t1_, t2_;     ///< theta alike [3 n]
+  double h2_ = 0.0;                 ///< H^2 [s^2]
+  std::int64_t samples_ = 0;        ///< consecutive instants sampled, up to the last
+  std::int64_t last_k_ = -1;        ///< the last instant sampled (kAnyNext: take the next)
+  bool ready_ = false;              ///< value_J_ is the last sample's E
   double value_J_ = 0.0;
+  static constexpr std::int64_t kAnyNext = -2;  ///< restored from a checkpoint without last_k
 };
 
 }  // namespace crashlink::cosim

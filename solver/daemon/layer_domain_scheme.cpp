@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -72,6 +73,7 @@ class LayerDomainScheme final : public coupling::DomainScheme {
                                         "coupling, which runs fixed steps only",
                                         o_.domain));
       stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());
+      stepper_->set_lts_energy_wanted([this](coupling::Tick T) { return row_reads(T); });
     }
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);
@@ -148,14 +150,7 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   std::pair<double, double> scheme_energy(double instant_s) const override {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     if (!stepper_ || form_ != cosim::LayerForm::Lts) return {nan, nan};
-    // the last coarse instant at or before the history instant, the same in every domain (the
-    // same instant_s, tps and period; the 1e-6 of a period takes an instant the recorder's sum
-    // left just below a coarse instant as that instant: far above that sum's rounding, far below
-    // any step, and each row comes at or after it in whole cycles, so that its sample is taken)
-    const coupling::Tick period = stepper_->lts_energy_period();
-    const auto k = static_cast<coupling::Tick>(
-        std::floor(instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-6));
-    const coupling::Tick at = k * period;
+    const coupling::Tick at = energy_instant(instant_s);
     const double share = stepper_->lts_energy_at_J(at);
     return {share, std::isfinite(share) ? stepper_->seconds(at) : nan};
   }
@@ -169,6 +164,31 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   /// The ports: in the domain until start(), in the stepper after.
   const std::vector<cosim::LayerPort>& ports() const {
     return stepper_ ? stepper_->ports() : dom_.ports;
+  }
+
+  /// The coarse instant whose share the history row of instant_s carries: the last at or before
+  /// it, the same in every domain (the same instant_s, tps and period; the 1e-6 of a period takes
+  /// an instant the recorder's sum left just below a coarse instant as that instant: far above
+  /// that sum's rounding, far below any step, and each row comes at or after it in whole cycles,
+  /// so that its sample is taken).
+  coupling::Tick energy_instant(double instant_s) const {
+    const coupling::Tick period = stepper_->lts_energy_period();
+    return period *
+           static_cast<coupling::Tick>(std::floor(
+               instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-6));
+  }
+
+  /// Whether a history row will read the share of coarse instant T (run::DomainRecorder: rows at
+  /// 0, interval, 2 interval, ..., every cycle at 0): some row instant in [T, T + period), widened
+  /// below by 1e-5 of a period, past energy_instant's margin and the rows' summed rounding.
+  bool row_reads(coupling::Tick T) const {
+    const double interval = dom_.solver->model().controls.history_interval_s;
+    const auto period = static_cast<double>(stepper_->lts_energy_period());
+    const double every = interval * static_cast<double>(tps_);  // [ticks]
+    if (!(every > period)) return true;  // a row in every coarse step (or every cycle)
+    const double lo = static_cast<double>(T) - 1e-5 * period;
+    const double k = std::max(0.0, std::ceil(lo / every));
+    return k * every < static_cast<double>(T) + period;
   }
 
   coupling::DomainSchemeOptions o_;
