@@ -43,6 +43,7 @@ class LtsEnergy {
  private:
   std::vector<double> weight_;      ///< [3 n] m_i of a free dof of an owned node, else 0
   std::vector<double> weight_rot_;  ///< [3 n] I_i alike (inertia > 0), empty if none
+  std::vector<double> rotates_;     ///< [3 n] 1 where weight_rot_ > 0, else 0 (if any)
   std::vector<double> theta_;       ///< [3 n] rotation so far [rad]
   std::vector<double> u1_, u2_;     ///< u at the previous and the one before [3 n]
   std::vector<double> t1_, t2_;     ///< theta alike [3 n]
