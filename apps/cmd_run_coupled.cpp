@@ -250,23 +250,23 @@ int run_coupled(const RunCommandOptions& o) {
   if (model.controls.mass_scaling_dt_s > 0.0)
     std::printf("crashlink run: %s\n", integration::describe_mass_scaling(model).summary().c_str());
   if (run.scheme == "lts") {
-    // The rim's rate terms still see the reflected path's velocity (docs/multirate.md "lts").
+    // The rim's rate terms still see the reflected path's velocity (docs/multirate.md "lts"):
+    // one warning for the first such material, one for the first such part.
+    const auto warn = [](const char* what, const std::string& name, const char* effect) {
+      fmt::print(stderr,
+                 "crashlink run: warning: --coupling lts with {} '{}': on the elements next to "
+                 "the coupled nodes {} the reflected ghost path's velocity, not the motion's "
+                 "(docs/multirate.md \"lts\"); --coupling layer has none\n",
+                 what, name, effect);
+    };
     for (const auto& mat : model.materials)
       if (mat.rate_dependent()) {
-        std::printf(
-            "crashlink run: warning: --coupling lts with rate-dependent material '%s': on the "
-            "elements next to the coupled nodes its strain rate is that of the reflected ghost "
-            "path, not of the motion (docs/multirate.md \"lts\"); --coupling layer has none\n",
-            mat.name.c_str());
+        warn("rate-dependent material", mat.name, "its strain rate is that of");
         break;
       }
     for (const auto& part : model.parts)
       if (part.damped()) {
-        std::printf(
-            "crashlink run: warning: --coupling lts with damped part '%s': on the elements next "
-            "to the coupled nodes its damping is driven by the reflected ghost path's velocity "
-            "(docs/multirate.md \"lts\"); --coupling layer has none\n",
-            part.name.c_str());
+        warn("damped part", part.name, "its damping is driven by");
         break;
       }
   }

@@ -575,21 +575,19 @@ TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
       key, last.scheme_energy_J, expected, finite, rows.size());
 }
 
-// A tree over processes: the chain of three (fine | mid | coarse, 5 / 10 / 30 mm hexes; mid is
-// the fine side of coarse and the owner of fine) under `crashlink run --mode multi --coupling lts`
-// over tcp is LayerNetwork's lts chain to the bit, and result.h5's scheme energy at the last coarse
-// instant is the network's summed E there.
-TEST(LtsProcesses, ThreeDomainChainIsNetworkToTheBit) {
-  const auto dir = fresh_dir("lts-chain3");
+// A tree of three bars over processes under `crashlink run --mode multi --coupling lts` over tcp is
+// LayerNetwork's lts run to the bit, and every row of result.h5 carries the network's summed E at
+// its coarse instant. History rows every 10 us, past the coarsest step (about 3 us): each daemon
+// samples its share only at the rows' coarse instants and the two before each
+// (LayerStepper::set_lts_energy_wanted).
+static void lts_tree_case(const std::string& label, const std::vector<BarPart>& parts) {
+  const auto dir = fresh_dir("lts-" + label);
   const RemoveIfPassed cleanup{dir};
-  // history rows every 10 us, past the coarse step (3 us): each daemon samples its share only at
-  // the rows' coarse instants and the two before each (LayerStepper::set_lts_energy_wanted)
-  std::string yaml = bar_parts_yaml(
-      "chain3", 2.11e-4, {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}});
+  std::string yaml = bar_parts_yaml(label, 2.11e-4, parts);
   const std::string key = "controls:\n";
   ASSERT_NE(yaml.find(key), std::string::npos);
   yaml.insert(yaml.find(key) + key.size(), "  history_interval: 1.0e-5\n");
-  const std::string scenario = write_file(dir / "chain.yaml", yaml);
+  const std::string scenario = write_file(dir / (label + ".yaml"), yaml);
   const auto out = dir / "out";
   std::vector<std::string> argv{
       bin("crashlink"), "run", scenario,        "--mode", "multi", "--coupling", "lts",
@@ -606,7 +604,9 @@ TEST(LtsProcesses, ThreeDomainChainIsNetworkToTheBit) {
   o.step_safety = 0.8;
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 3u);
-  const double bits = expect_network_bits(out, m, ref, {"fine", "mid", "coarse"}).worst;
+  std::vector<std::string> names;
+  for (const auto& part : parts) names.push_back(part.name);
+  const double bits = expect_network_bits(out, m, ref, names).worst;
   const Diff gathered = compare(last_state((out / "result.h5").string()), m, ref.u);
   EXPECT_EQ(gathered.max_abs, 0.0) << "gathered result.h5";
   // every row's summed share against the network's E at that coarse instant (sampled at all)
@@ -635,9 +635,25 @@ TEST(LtsProcesses, ThreeDomainChainIsNetworkToTheBit) {
   }
   EXPECT_GE(compared + 1, rows.size());  // NaN only in the first row (before the third instant)
   std::printf(
-      "[measured] lts chain of three over tcp, steps %lld / %lld / %lld ticks: max |u - "
+      "[measured] lts %s over tcp, steps %lld / %lld / %lld ticks: max |u - "
       "u_network| = %.3e (domain files), %.3e (gathered); summed E of %zu of %zu rows against the "
       "network's: max relative difference %.2e\n",
-      static_cast<long long>(ref.steps[0]), static_cast<long long>(ref.steps[1]),
+      label.c_str(), static_cast<long long>(ref.steps[0]), static_cast<long long>(ref.steps[1]),
       static_cast<long long>(ref.steps[2]), bits, gathered.max_abs, compared, rows.size(), worst);
+}
+
+// The chain: fine | mid | coarse (5 / 10 / 30 mm hexes; mid the fine side of coarse and the owner
+// of fine).
+TEST(LtsProcesses, ThreeDomainChainIsNetworkToTheBit) {
+  lts_tree_case("chain3",
+                {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}});
+}
+
+// One owner, two fine domains at different steps (fineA 5 mm, coarse 30 mm, fineB 10 mm hexes),
+// and one fine domain with two owners at different steps (coarseA 40 mm, fine 5 mm, coarseB 30 mm).
+TEST(LtsProcesses, StarTreesAreNetworkToTheBit) {
+  lts_tree_case("star-owner",
+                {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}});
+  lts_tree_case("star-fine",
+                {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}});
 }
