@@ -70,9 +70,10 @@ class LayerNetwork {
   /// solver k. Returns true when every domain has finished. A domain whose partner needs one more
   /// message to reach `until` takes the cycles that send it: under lts a fine domain sends
   /// Fbar(T) only at T + (p - 1) h, so it stops there, past `until` (the domains are then at
-  /// different instants; a daemon instead writes its checkpoint at T and goes on). Only a paused
-  /// domain that a waiting one waits on takes such cycles, so a chain stops too
-  /// (LtsNetwork.ThreeDomainChainPausesAndRestoresToTheBit).
+  /// different instants, in a tree up to about two coarse steps apart; a daemon instead writes
+  /// its checkpoint at T and goes on). Only a paused domain that a waiting one waits on takes
+  /// such cycles, so a chain stops too (LtsNetwork.ThreeDomainChainPausesAndRestoresToTheBit,
+  /// TreesPausedAnywhereRestoreToTheBit).
   bool run(const std::function<void(std::size_t)>& on_sample = {},
            Tick until = std::numeric_limits<Tick>::max());
 

@@ -170,6 +170,13 @@ void LayerStepper::deliver(LayerMessage m) {
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                        ": got a " + kind_name(m.kind) + " from '" + port.partner +
                        "', expected a " + kind_name(want));
+    // After a restore from an in-process pause (LayerNetwork::run: the domains stop at different
+    // instants), a restored owner sends again a u_J that this side had used before its checkpoint:
+    // an instant before the one its checkpoint expects. Dropped, the first ones only.
+    if (ps.drop_before >= 0) {
+      if (m.time < ps.drop_before) return;
+      ps.drop_before = -1;
+    }
     if (variable_ ? m.time < ps.next_expected : m.time != ps.next_expected)
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                        ": " + kind_name(m.kind) + " from '" + port.partner + "' for t = " +

@@ -243,11 +243,12 @@ class LayerStepper {
   /// multiple of this domain's step and of every owner's.
   void set_form(LayerForm form, Tick energy_period = 0);
   LayerForm form() const { return form_; }
-  /// Lts: this domain's share of E^{k-1/2} (LtsEnergy), sampled at the last instant that is a
-  /// multiple of the energy period; valid from the third such instant (lts_energy_ready).
+  /// Lts: this domain's share of E^{k-1/2} (LtsEnergy) at the last coarse instant (a multiple of
+  /// the energy period) it evaluated; ready once that instant and the two before it were sampled
+  /// and the last sample was evaluated (every instant, unless set_lts_energy_wanted filters).
   bool lts_energy_ready() const { return form_ == LayerForm::Lts && lts_energy_.ready(); }
   double lts_energy_J() const { return lts_energy_.value_J(); }
-  /// Lts: this domain's share at `instant` if it is one of the last two it sampled (the result
+  /// Lts: this domain's share at `instant` [ticks] if it is one of the last two it evaluated (the result
   /// file's rows of a history instant take the share of the last coarse instant before it, which
   /// every domain holds: io::GlstatSample::scheme_energy_J); NaN otherwise or before it is ready.
   double lts_energy_at_J(Tick instant) const {
@@ -256,7 +257,7 @@ class LayerStepper {
     return std::numeric_limits<double>::quiet_NaN();
   }
   Tick lts_energy_period() const { return energy_period_; }
-  /// Lts: the coarse instants whose share someone reads (a daemon: those of its history rows).
+  /// Lts: the coarse instants [ticks] whose share someone reads (a daemon: its history rows').
   /// The stepper then samples only those and the two before each, not every coarse instant
   /// (unset: every one). The shares read are the same bits either way.
   void set_lts_energy_wanted(std::function<bool(Tick)> wanted) {
@@ -285,16 +286,17 @@ class LayerStepper {
   enum class Phase : std::uint8_t { Initial, Begin, Positions, Rim, Accelerations, Done };
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   struct PortState {
-    std::deque<LayerMessage> inbox;            ///< received, not consumed yet
-    Tick next_expected = 0;                    ///< time of the next message from the partner
-    std::vector<double> u_T;                   ///< fine side: u_J(T) of the current owner step
-    std::vector<double> u_1;                   ///< fine side: u_J(T + H)
-    std::vector<double> omega;                 ///< fine side: omega_J(T + H/2)
-    Tick T = 0;                                ///< fine side: the owner step [T, T + H] in use
-    Tick T1 = 0;                               ///< fine side: T + H, once u_1 is in
-    bool have_u1 = false;                      ///< fine side: u_1 received for this owner step
-    bool rotates = false;                      ///< J has rotational dofs (shell nodes)
-    Tick sent_ahead = -1;                      ///< coarse side: u_J of this instant sent early
+    std::deque<LayerMessage> inbox;  ///< received, not consumed yet
+    Tick next_expected = 0;          ///< time of the next message from the partner
+    Tick drop_before = -1;      ///< restored: the partner's messages before this instant are resent
+    std::vector<double> u_T;    ///< fine side: u_J(T) of the current owner step
+    std::vector<double> u_1;    ///< fine side: u_J(T + H)
+    std::vector<double> omega;  ///< fine side: omega_J(T + H/2)
+    Tick T = 0;                 ///< fine side: the owner step [T, T + H] in use
+    Tick T1 = 0;                ///< fine side: T + H, once u_1 is in
+    bool have_u1 = false;       ///< fine side: u_1 received for this owner step
+    bool rotates = false;       ///< J has rotational dofs (shell nodes)
+    Tick sent_ahead = -1;       ///< coarse side: u_J of this instant sent early
     std::vector<double> ahead_u, ahead_omega;  ///< coarse side: what was sent early
     coupling::LayerWorkMeter meter;            ///< fine side: the interface history
     std::vector<coupling::LayerSample> rows;   ///< fine side: rows not taken yet

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "core/errors.h"
@@ -13,6 +13,7 @@
 #include "solver/cosim/layer_domains.h"
 #include "solver/cosim/layer_stepper.h"
 #include "solver/daemon/apply_setup.h"
+#include "solver/daemon/history_row_instants.h"
 #include "solver/daemon/layer_wire.h"
 
 namespace crashlink::daemon {
@@ -73,7 +74,8 @@ class LayerDomainScheme final : public coupling::DomainScheme {
                                         "coupling, which runs fixed steps only",
                                         o_.domain));
       stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());
-      stepper_->set_lts_energy_wanted([this](coupling::Tick T) { return row_reads(T); });
+      rows_.emplace(dom_.solver->model().controls.history_interval_s, tps_, setup.base_ticks());
+      stepper_->set_lts_energy_wanted([this](coupling::Tick T) { return rows_->reads(T); });
     }
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);
@@ -149,8 +151,8 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   void fill_bye(wire::DomainReport& /*r*/) const override {}
   std::pair<double, double> scheme_energy(double instant_s) const override {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    if (!stepper_ || form_ != cosim::LayerForm::Lts) return {nan, nan};
-    const coupling::Tick at = energy_instant(instant_s);
+    if (!stepper_ || form_ != cosim::LayerForm::Lts || !rows_) return {nan, nan};
+    const coupling::Tick at = rows_->coarse_instant(instant_s);
     const double share = stepper_->lts_energy_at_J(at);
     return {share, std::isfinite(share) ? stepper_->seconds(at) : nan};
   }
@@ -166,35 +168,11 @@ class LayerDomainScheme final : public coupling::DomainScheme {
     return stepper_ ? stepper_->ports() : dom_.ports;
   }
 
-  /// The coarse instant whose share the history row of instant_s carries: the last at or before
-  /// it, the same in every domain (the same instant_s, tps and period; the 1e-6 of a period takes
-  /// an instant the recorder's sum left just below a coarse instant as that instant: far above
-  /// that sum's rounding, far below any step, and each row comes at or after it in whole cycles,
-  /// so that its sample is taken).
-  coupling::Tick energy_instant(double instant_s) const {
-    const coupling::Tick period = stepper_->lts_energy_period();
-    return period *
-           static_cast<coupling::Tick>(std::floor(
-               instant_s * static_cast<double>(tps_) / static_cast<double>(period) + 1e-6));
-  }
-
-  /// Whether a history row will read the share of coarse instant T (run::DomainRecorder: rows at
-  /// 0, interval, 2 interval, ..., every cycle at 0): some row instant in [T, T + period), widened
-  /// below by 1e-5 of a period, past energy_instant's margin and the rows' summed rounding.
-  bool row_reads(coupling::Tick T) const {
-    const double interval = dom_.solver->model().controls.history_interval_s;
-    const auto period = static_cast<double>(stepper_->lts_energy_period());
-    const double every = interval * static_cast<double>(tps_);  // [ticks]
-    if (!(every > period)) return true;  // a row in every coarse step (or every cycle)
-    const double lo = static_cast<double>(T) - 1e-5 * period;
-    const double k = std::max(0.0, std::ceil(lo / every));
-    return k * every < static_cast<double>(T) + period;
-  }
-
   coupling::DomainSchemeOptions o_;
   cosim::LayerForm form_ = cosim::LayerForm::Layer;
   cosim::LayerDomain dom_;
   std::int64_t tps_ = 0;
+  std::optional<HistoryRowInstants> rows_;  ///< lts: the coarse instants the history reads
   std::unique_ptr<cosim::LayerStepper> stepper_;
 };
 

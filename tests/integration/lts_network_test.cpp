@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -301,7 +302,8 @@ TEST(LtsNetwork, DomainOrderDoesNotChangeTheRun) {
 }
 
 /// Steel bars of hexes end to end along x, one domain each ({name, x0 [m], length [m], divisions}),
-/// both ends held, no load: linear free vibration from a smooth axial velocity (1e-6 m/s scale).
+/// both ends (x = 0 and the last bar's end) held, no load: linear free vibration from a smooth
+/// axial velocity (1e-6 m/s scale).
 static model::Model bar_tree(
     const std::vector<std::tuple<std::string, double, double, int>>& parts) {
   std::string y = R"(name: tree
@@ -311,8 +313,10 @@ materials:
 parts:
 )";
   std::string domains = "domains:\n";
+  double total = 0.0;  // [m] where the bars end
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const auto& [name, x0, length, divisions] = parts[i];
+    total = x0 + length;
     y += "  " + name + ":\n    material: steel\n" + (i > 0 ? "    merge_nodes: true\n" : "") +
          "    mesh: {generator: bar, origin: [" + std::to_string(x0) +
          ", 0.0, 0.0], axis: x, length: " + std::to_string(length) +
@@ -321,7 +325,8 @@ parts:
   }
   y += R"(node_sets:
   ends: {box: {min: [-1.0, -1.0, -1.0], max: [1.0e-4, 1.0, 1.0]}}
-  far: {box: {min: [0.5999, -1.0, -1.0], max: [0.7, 1.0, 1.0]}}
+  far: {box: {min: [)" +
+       std::to_string(total - 1e-4) + R"(, -1.0, -1.0], max: [9.0, 1.0, 1.0]}}
 boundary:
   - {nodes: ends, fix: all}
   - {nodes: far, fix: all}
@@ -379,10 +384,11 @@ TEST(LtsNetwork, TreesConserveTheSummedEnergy) {
   }
 }
 
-// A pause of a chain (coarse | mid | fine, steps 4 : 2 : 1) holds: run(..., until) returns with
-// each domain at or just past `until` (a fine side goes on to the substep that sends Fbar(T), at
-// most one owner step), and a checkpoint taken there and restored ends with the straight run's
-// bits and energy. Before the fix every paused domain was nudged on, and the chain ran to its end.
+// A pause of a chain (coarse | mid | fine, steps 4 : 2 : 1) at a coarse instant holds: run(...,
+// until) returns with each domain at or just past `until` (a fine side goes on to the substep
+// that sends Fbar(T), less than one coarse step here), and a checkpoint taken there and restored
+// ends with the straight run's bits and energy. Before the fix every paused domain was nudged on,
+// and the chain ran to its end.
 TEST(LtsNetwork, ThreeDomainChainPausesAndRestoresToTheBit) {
   auto m = crashlink::testing::chain3();
   m.controls.end_time_s = 0.12;  // far past the instants run to
@@ -436,8 +442,9 @@ TEST(LtsNetwork, ThreeDomainChainPausesAndRestoresToTheBit) {
 // block at r = 3 (studies/free_vibration.h, no bulk viscosity, no damping), the material J2 steel
 // yielding at 200 MPa (hardening to 240 MPa at 10 %) and the velocities x 10 so that it yields
 // at once. The total KE + IE + HG (IE holds the dissipated plastic work) summed over the domains
-// at the coarse instants never rises above its first value by more than the elastic runs' band
-// (+0.18 %, above): the coupling adds no energy to a dissipating system.
+// at the coarse instants never rises above its first value by more than 1e-4 (measured at most
+// 4.2e-6; the elastic runs' band reaches +0.18 %): the coupling adds no energy to a dissipating
+// system.
 TEST(LtsNetwork, PlasticFreeVibrationGainsNoEnergy) {
   for (auto shape :
        {FreeVibrationShape::Bar, FreeVibrationShape::Plate, FreeVibrationShape::Block}) {
@@ -489,6 +496,86 @@ TEST(LtsNetwork, PlasticFreeVibrationGainsNoEnergy) {
         "(KE + IE + HG) / E0 - 1 at the coarse instants in [%+.2e, %+.2e], %+.2e at the last\n",
         name, static_cast<long long>(plan.base / h), eps_p, low, rise, last);
     EXPECT_GT(eps_p, 1e-3) << name << ": it did not yield, no test";
-    EXPECT_LT(rise, 1.8e-3) << name;
+    EXPECT_LT(rise, 1e-4) << name;  // 24 x the largest measured (4.2e-6); elastic band +0.18 %
   }
+}
+
+// Pauses anywhere, checkpoints and restores, in trees of 3 to 5 domains (a fine domain with two
+// owners, an owner with two fine domains, chains of 3 and 4, a fan of 5), under lts, layer and
+// layer with variable steps: the run paused at every 3.71 coarse instants (not on them), restored
+// from a checkpoint at every third pause, ends with the straight run's bits (and E under lts).
+// A pause leaves the domains at different instants; a restored owner sends again what its fine
+// side may already have used (LayerStepper::deliver drops those after a restore).
+TEST(LtsNetwork, TreesPausedAnywhereRestoreToTheBit) {
+  using Parts = std::vector<std::tuple<std::string, double, double, int>>;
+  const std::vector<std::pair<std::string, Parts>> trees{
+      {"coarseA | fine | coarseB",
+       {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}}},
+      {"fineA | coarse | fineB",
+       {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}}},
+      {"chain of 3", {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}},
+      {"chain of 4",
+       {{"f", 0.0, 0.1, 40}, {"m1", 0.1, 0.1, 10}, {"m2", 0.2, 0.2, 10}, {"c", 0.4, 0.2, 5}}},
+      {"fan of 5 (fB between two owners)",
+       {{"fA", 0.0, 0.1, 30},
+        {"c1", 0.1, 0.3, 6},
+        {"fB", 0.4, 0.1, 14},
+        {"c2", 0.5, 0.4, 7},
+        {"fC", 0.9, 0.1, 25}}},
+  };
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("crashlink_lts_tree_pauses_" + std::to_string(::getpid()));
+  for (const auto& [label, parts] : trees)
+    for (const auto& [scheme, variable] : std::vector<std::pair<std::string, bool>>{
+             {"lts", false}, {"layer", false}, {"layer", true}}) {
+      // variable steps refuse a domain with two owners
+      if (variable && (label.rfind("coarseA", 0) == 0 || label.rfind("fan", 0) == 0)) continue;
+      auto m = bar_tree(parts);
+      m.controls.end_time_s = 1.5e-3;
+      cosim::LayerNetworkOptions o;
+      o.run.scheme = scheme;
+      o.run.common_step = false;
+      o.run.variable_steps = variable;
+      o.step_safety = 0.9;
+      const std::string what = label + ", " + scheme + (variable ? " variable" : "");
+      cosim::LayerNetwork straight(m, o);
+      straight.initialize();
+      ASSERT_TRUE(straight.run()) << what;
+      auto net = std::make_unique<cosim::LayerNetwork>(m, o);
+      net->initialize();
+      const double base = static_cast<double>(net->plan().base);
+      int pauses = 0, restores = 0;
+      try {
+        for (double f = 0.37;; f += 3.71) {
+          if (net->run({}, static_cast<coupling::Tick>(f * base))) break;
+          if (++pauses % 3 != 0) continue;
+          std::filesystem::create_directories(dir);
+          std::vector<std::string> paths;
+          for (std::size_t k = 0; k < net->size(); ++k) {
+            core::StateWriter w;
+            net->save_state(k, w);
+            paths.push_back((dir / (std::to_string(k) + ".bin")).string());
+            w.save(paths.back());
+          }
+          net = std::make_unique<cosim::LayerNetwork>(m, o);
+          net->restore(paths);
+          ++restores;
+        }
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << what << ": " << e.what();
+        continue;
+      }
+      const auto a = straight.global_displacement(), b = net->global_displacement();
+      ASSERT_EQ(a.size(), b.size());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+      EXPECT_EQ(differ, 0u) << what;
+      if (scheme == "lts") {
+        EXPECT_EQ(straight.lts_energy_J(), net->lts_energy_J()) << what;
+      }
+      EXPECT_GT(restores, 5) << what;
+      std::printf("[measured] %s: %d pauses, %d restores, %zu dofs differ\n", what.c_str(), pauses,
+                  restores, differ);
+    }
+  std::filesystem::remove_all(dir);
 }
