@@ -248,9 +248,10 @@ class LayerStepper {
   /// and the last sample was evaluated (every instant, unless set_lts_energy_wanted filters).
   bool lts_energy_ready() const { return form_ == LayerForm::Lts && lts_energy_.ready(); }
   double lts_energy_J() const { return lts_energy_.value_J(); }
-  /// Lts: this domain's share at `instant` [ticks] if it is one of the last two it evaluated (the result
-  /// file's rows of a history instant take the share of the last coarse instant before it, which
-  /// every domain holds: io::GlstatSample::scheme_energy_J); NaN otherwise or before it is ready.
+  /// Lts: this domain's share at `instant` [ticks] if it is one of the last two it evaluated (the
+  /// result file's rows of a history instant take the share of the last coarse instant before it,
+  /// which every domain holds: io::GlstatSample::scheme_energy_J); NaN otherwise or before it is
+  /// ready.
   double lts_energy_at_J(Tick instant) const {
     for (int k = 0; k < 2; ++k)
       if (lts_sampled_at_[k] == instant) return lts_sampled_J_[k];
