@@ -170,11 +170,15 @@ void LayerStepper::deliver(LayerMessage m) {
       throw ModelError("layer stepper '" + dom + "': interface " + std::to_string(port.index) +
                        ": got a " + kind_name(m.kind) + " from '" + port.partner +
                        "', expected a " + kind_name(want));
-    // After a restore from an in-process pause (LayerNetwork::run: the domains stop at different
-    // instants), a restored owner sends again a u_J that this side had used before its checkpoint:
-    // an instant before the one its checkpoint expects. Dropped, the first ones only.
+    // After a restore, a partner sends again what this side had received before its checkpoint
+    // (used, or kept in the checkpoint's inbox): instants before the one the checkpoint expects.
+    // Dropped and counted (repeats_dropped), the first ones only; in process a pause leaves the
+    // domains at different instants (LayerNetwork::run), the daemons' checkpoints are at one.
     if (ps.drop_before >= 0) {
-      if (m.time < ps.drop_before) return;
+      if (m.time < ps.drop_before) {
+        ++repeats_dropped_;
+        return;
+      }
       ps.drop_before = -1;
     }
     if (variable_ ? m.time < ps.next_expected : m.time != ps.next_expected)

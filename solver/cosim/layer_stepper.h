@@ -258,6 +258,8 @@ class LayerStepper {
     return std::numeric_limits<double>::quiet_NaN();
   }
   Tick lts_energy_period() const { return energy_period_; }
+  /// Messages dropped as a partner's repeats after a restore (deliver; docs/checkpoints.md).
+  std::int64_t repeats_dropped() const { return repeats_dropped_; }
   /// Lts: the coarse instants [ticks] whose share someone reads (a daemon: its history rows').
   /// The stepper then samples only those and the two before each, not every coarse instant
   /// (unset: every one). The shares read are the same bits either way.
@@ -394,6 +396,7 @@ class LayerStepper {
   LayerForm form_ = LayerForm::Layer;
   Tick energy_period_ = 0;  ///< Lts: the conserved energy's coarse step [ticks]
   LtsEnergy lts_energy_;
+  std::int64_t repeats_dropped_ = 0;             ///< repeats_dropped()
   std::function<bool(Tick)> lts_energy_wanted_;  ///< set_lts_energy_wanted's (empty: all)
   Tick lts_sampled_at_[2] = {-1, -1};            ///< the last two evaluated instants, newest first
   double lts_sampled_J_[2] = {std::numeric_limits<double>::quiet_NaN(),

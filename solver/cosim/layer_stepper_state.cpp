@@ -188,6 +188,21 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       m.pause = r.get_bool(mp + "pause");
       r.get(mp + "first", m.first);
       r.get(mp + "second", m.second);
+      // what deliver() checks of a message: its kind, its size, its order; and that it is ahead
+      const auto want =
+          port.fine_side ? LayerMessage::Kind::Displacement : LayerMessage::Kind::Force;
+      const std::size_t n3 = 3 * port.local.size();
+      const Tick t = r.get_int("stepper.time");
+      if (m.kind != want || m.first.size() != n3 || !(m.second.empty() || m.second.size() == n3) ||
+          m.time <= t || (!ps.inbox.empty() && m.time <= ps.inbox.back().time) ||
+          m.time >= ps.next_expected)
+        throw CheckpointError(fmt::format(
+            "checkpoint {}: domain '{}', interface {}: kept message {} (a {} for t = {} ticks, "
+            "{} + {} values) does not fit the stepper at t = {} ticks; the file was not written "
+            "by this run's stepper",
+            r.path(), dom, port.index, j,
+            m.kind == LayerMessage::Kind::Displacement ? "displacement" : "force", m.time,
+            m.first.size(), m.second.size(), t));
       ps.inbox.push_back(std::move(m));
     }
     ps.drop_before = ps.next_expected;  // (deliver: what the partner sends again)

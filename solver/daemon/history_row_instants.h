@@ -15,9 +15,10 @@ class HistoryRowInstants {
       : interval_s_(interval_s), tps_(tps), period_(period) {}
 
   /// The coarse instant [ticks] whose share the row of instant_s [s] carries: the last at or
-  /// before it, the same in every domain. The 1e-6 of a period takes an instant the recorder's
-  /// sum left just below a coarse instant as that instant: far above that sum's rounding, far
-  /// below any step, and each row comes at or after it in whole cycles, so its sample is taken.
+  /// before it, the same in every domain (int64 max past the last representable tick). The 1e-6 of
+  /// a period takes an instant the recorder's sum left just below a coarse instant as that instant:
+  /// far above that sum's rounding, far below any step, and each row comes at or after it in whole
+  /// cycles, so its sample is taken.
   std::int64_t coarse_instant(double instant_s) const;
 
   /// Whether some row reads coarse instant T [ticks]. The rows' instants are replayed as the

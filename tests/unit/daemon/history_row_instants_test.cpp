@@ -51,6 +51,17 @@ TEST(HistoryRowInstants, EveryRowsInstantAndNoOtherOverLongRuns) {
               static_cast<long long>(rows3));
 }
 
+// A history interval far past any run (1e20 s: rows off but the first) or past the last tick
+// (1e4 s at 1e15 ticks per second): instant 0 only, no overflow, no endless loop.
+TEST(HistoryRowInstants, HugeIntervalsReadTheFirstInstantOnly) {
+  for (const double interval : {1e4, 1e20}) {
+    HistoryRowInstants rows(interval, 1'000'000'000'000'000, 1'000'000'000);
+    EXPECT_TRUE(rows.reads(0)) << interval;
+    for (std::int64_t t = 1'000'000'000; t < 100'000'000'000; t += 1'000'000'000)
+      EXPECT_FALSE(rows.reads(t)) << interval << " s at " << t;
+  }
+}
+
 TEST(HistoryRowInstants, EveryCoarseInstantWhenRowsAreDenser) {
   HistoryRowInstants every(0.0, 1'000'000, 7);
   HistoryRowInstants dense(1e-6, 1'000'000, 3);  // interval 1 tick < period 3 ticks
