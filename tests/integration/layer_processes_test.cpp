@@ -506,6 +506,30 @@ TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged)
       static_cast<long long>(early_forces), worst);
 }
 
+/// `crashlink run SCENARIO --mode multi --coupling lts --transport TRANSPORT --step-safety SAFETY
+/// --out OUT --quiet` (and the fast session options) to its end within 90 s; fails the test on a
+/// time-out or a non-zero exit. The lts network options of the same run (for reference()).
+static cosim::LayerNetworkOptions run_lts_multi(const std::string& scenario,
+                                                const std::filesystem::path& out,
+                                                const std::string& transport, double safety) {
+  std::vector<std::string> argv{
+      bin("crashlink"),       "run",   scenario,      "--mode",  "multi",
+      "--coupling",           "lts",   "--transport", transport, "--step-safety",
+      std::to_string(safety), "--out", out.string(),  "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  EXPECT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
+  if (st) {
+    EXPECT_EQ(exit_code(*st), 0) << run.output();
+  }
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.common_step = false;
+  o.step_safety = safety;
+  return o;
+}
+
 // `lts` (issue #25) over processes: `crashlink run --mode multi --coupling lts` (ipc, lanes) is
 // cosim::LayerNetwork with the lts form to the bit: every domain file's last state and the gathered
 // result.h5 (its cut has the overlap layer, as the daemons' and the coordinator's).
@@ -514,20 +538,9 @@ TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
   const RemoveIfPassed cleanup{dir};
   const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
   const auto out = dir / "out";
-  std::vector<std::string> argv{bin("crashlink"), "run",    scenario,      "--mode", "multi",
-                                "--coupling",     "lts",    "--transport", "ipc",    "--out",
-                                out.string(),     "--quiet"};
-  for (const auto& s : fast_session_args()) argv.push_back(s);
-  Child run(argv);
-  const auto st = run.wait(90s);
-  ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
-  ASSERT_EQ(exit_code(*st), 0) << run.output();
-
+  const auto o = run_lts_multi(scenario, out, "ipc", 0.9);  // crashlink run's default safety
+  if (::testing::Test::HasFailure()) return;
   const auto m = io::read_scenario(scenario);
-  cosim::LayerNetworkOptions o;
-  o.run.scheme = "lts";
-  o.run.common_step = false;
-  o.step_safety = 0.9;  // crashlink run's default
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 2u);
   EXPECT_GT(std::max(ref.steps[0], ref.steps[1]), std::min(ref.steps[0], ref.steps[1]))
@@ -589,19 +602,9 @@ static void lts_tree_case(const std::string& label, const std::vector<BarPart>& 
   yaml.insert(yaml.find(key) + key.size(), "  history_interval: 1.0e-5\n");
   const std::string scenario = write_file(dir / (label + ".yaml"), yaml);
   const auto out = dir / "out";
-  std::vector<std::string> argv{
-      bin("crashlink"), "run", scenario,        "--mode", "multi", "--coupling", "lts",
-      "--transport",    "tcp", "--step-safety", "0.8",    "--out", out.string(), "--quiet"};
-  for (const auto& s : fast_session_args()) argv.push_back(s);
-  Child run(argv);
-  const auto st = run.wait(90s);
-  ASSERT_TRUE(st.has_value()) << "crashlink run did not end within 90 s\n" << run.output();
-  ASSERT_EQ(exit_code(*st), 0) << run.output();
+  const auto o = run_lts_multi(scenario, out, "tcp", 0.8);
+  if (::testing::Test::HasFailure()) return;
   const auto m = io::read_scenario(scenario);
-  cosim::LayerNetworkOptions o;
-  o.run.scheme = "lts";
-  o.run.common_step = false;
-  o.step_safety = 0.8;
   const Reference ref = reference(m, o);
   ASSERT_EQ(ref.steps.size(), 3u);
   std::vector<std::string> names;

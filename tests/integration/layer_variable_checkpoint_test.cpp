@@ -21,6 +21,7 @@
 #include "core/errors.h"
 #include "core/state_archive.h"
 #include "solver/cosim/layer_network.h"
+#include "tests/integration/network_helpers.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;
@@ -145,14 +146,7 @@ TEST(LayerVariableCheckpoint, SavedAndRestoredChainEndsWithTheUninterruptedRunsB
   ASSERT_FALSE(paused.run({}, ticks(paused, 7.7e-4)));  // mid-pulse
   const auto dir = std::filesystem::temp_directory_path() /
                    ("crashlink_layer_variable_checkpoint_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  std::vector<std::string> paths;
-  for (std::size_t k = 0; k < paused.size(); ++k) {
-    core::StateWriter w;
-    paused.save_state(k, w);
-    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
-    w.save(paths.back());
-  }
+  const auto paths = crashlink::testing::save_network(paused, dir);
   cosim::LayerNetworkOptions fixed;  // a checkpoint of variable steps restarts no fixed run,
   fixed.step_safety = 0.9;
   expect_restore_refused(m, fixed, paths, "restart with --variable-steps");

@@ -26,6 +26,7 @@
 #include "solver/cosim/layer_network.h"
 #include "solver/io/scenario_reader.h"
 #include "studies/free_vibration.h"
+#include "tests/integration/network_helpers.h"
 #include "tests/unit/partition/partition_models.h"
 
 using namespace crashlink;
@@ -201,14 +202,7 @@ TEST(LtsNetwork, RestoredRunEndsWithTheUninterruptedRunsBits) {
   ASSERT_FALSE(paused.run({}, 157 * base));
   const auto dir = std::filesystem::temp_directory_path() /
                    ("crashlink_lts_checkpoint_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  std::vector<std::string> paths;
-  for (std::size_t k = 0; k < paused.size(); ++k) {
-    core::StateWriter w;
-    paused.save_state(k, w);
-    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
-    w.save(paths.back());
-  }
+  const auto paths = crashlink::testing::save_network(paused, dir);
   cosim::LayerNetwork resumed(m, o);
   resumed.restore(paths);
   resumed.run({}, 400 * base);
@@ -219,10 +213,8 @@ TEST(LtsNetwork, RestoredRunEndsWithTheUninterruptedRunsBits) {
     EXPECT_THROW(layer.restore(paths), CheckpointError);
   }
   std::filesystem::remove_all(dir);
-  const auto a = straight.global_displacement(), b = resumed.global_displacement();
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  const std::size_t differ =
+      crashlink::testing::differing(straight.global_displacement(), resumed.global_displacement());
   EXPECT_EQ(differ, 0u);
   EXPECT_EQ(straight.lts_energy_J(), resumed.lts_energy_J());
   EXPECT_TRUE(std::isfinite(resumed.lts_energy_J()));
@@ -246,10 +238,7 @@ TEST(LtsNetwork, ThreeDomainChainConservesTheSummedEnergy) {
     const double vx = 1e-6 * std::sin(3.0 * x) + 1e-8 * static_cast<double>(seed >> 40) / 1.6e7;
     m.initial_velocities.push_back({{static_cast<std::int32_t>(i)}, {vx, 0.3 * vx, 0.0}});
   }
-  cosim::LayerNetworkOptions o;
-  o.run.scheme = "lts";
-  o.run.common_step = false;
-  o.step_safety = 0.9;
+  const auto o = crashlink::testing::lts_multi();
   cosim::LayerNetwork net(m, o);
   net.initialize();
   const auto& plan = net.plan();
@@ -258,18 +247,7 @@ TEST(LtsNetwork, ThreeDomainChainConservesTheSummedEnergy) {
   std::sort(steps.begin(), steps.end());
   EXPECT_GT(steps[2], steps[1]);
   EXPECT_GT(steps[1], steps[0]);
-  double e0 = 0.0, drift = 0.0;
-  std::int64_t samples = 0;
-  std::size_t count = 0;
-  net.run([&](std::size_t k) {
-    if (net.stepper(k).time() % plan.base != 0) return;
-    if (++count < net.size()) return;
-    count = 0;
-    const double E = net.lts_energy_J();
-    if (!std::isfinite(E)) return;
-    if (samples++ == 0) e0 = E;
-    drift = std::max(drift, std::abs(E / e0 - 1.0));
-  });
+  const auto [samples, drift] = crashlink::testing::run_summed_energy_drift(net);
   std::printf(
       "[measured] lts chain coarse | mid | fine, steps %lld / %lld / %lld ticks: %lld "
       "samples, |E/E0 - 1| <= %.2e\n",
@@ -301,11 +279,21 @@ TEST(LtsNetwork, DomainOrderDoesNotChangeTheRun) {
   EXPECT_EQ(energy[0], energy[1]);
 }
 
+/// {name, x0 [m], length [m], divisions} per bar, one domain each (bar_tree).
+using BarParts = std::vector<std::tuple<std::string, double, double, int>>;
+/// One owner with two fine domains at different steps (5 mm | 30 mm | 10 mm hexes).
+static const std::pair<std::string, BarParts> kOwnerOfTwo{
+    "fineA | coarse | fineB",
+    {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}}};
+/// One fine domain with two owners at different steps (40 mm | 5 mm | 30 mm hexes).
+static const std::pair<std::string, BarParts> kFineOfTwo{
+    "coarseA | fine | coarseB",
+    {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}}};
+
 /// Steel bars of hexes end to end along x, one domain each ({name, x0 [m], length [m], divisions}),
 /// both ends (x = 0 and the last bar's end) held, no load: linear free vibration from a smooth
 /// axial velocity (1e-6 m/s scale).
-static model::Model bar_tree(
-    const std::vector<std::tuple<std::string, double, double, int>>& parts) {
+static model::Model bar_tree(const BarParts& parts) {
   std::string y = R"(name: tree
 controls: {end_time: 0.02, bulk_viscosity: {enabled: false}}
 materials:
@@ -345,35 +333,16 @@ boundary:
 // different steps (coarseA | fine | coarseB: it takes its rim's plastic returns, and its energy
 // samples, at the instants common to both). The summed shares stay conserved as for two domains.
 TEST(LtsNetwork, TreesConserveTheSummedEnergy) {
-  using Parts = std::vector<std::tuple<std::string, double, double, int>>;
-  const std::vector<std::pair<std::string, Parts>> trees{
-      {"fineA | coarse | fineB",
-       {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}}},
-      {"coarseA | fine | coarseB",
-       {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}}}};
+  const std::vector<std::pair<std::string, BarParts>> trees{kOwnerOfTwo, kFineOfTwo};
   for (const auto& [label, parts] : trees) {
     const auto m = bar_tree(parts);
-    cosim::LayerNetworkOptions o;
-    o.run.scheme = "lts";
-    o.run.common_step = false;
-    o.step_safety = 0.9;
+    const auto o = crashlink::testing::lts_multi();
     cosim::LayerNetwork net(m, o);
     net.initialize();
     const auto& plan = net.plan();
     ASSERT_EQ(plan.step.size(), 3u);
     EXPECT_NE(plan.step[0], plan.step[2]) << label << ": both outer domains at one step";
-    double e0 = 0.0, drift = 0.0;
-    std::int64_t samples = 0;
-    std::size_t count = 0;
-    net.run([&](std::size_t k) {
-      if (net.stepper(k).time() % plan.base != 0) return;
-      if (++count < net.size()) return;
-      count = 0;
-      const double E = net.lts_energy_J();
-      if (!std::isfinite(E)) return;
-      if (samples++ == 0) e0 = E;
-      drift = std::max(drift, std::abs(E / e0 - 1.0));
-    });
+    const auto [samples, drift] = crashlink::testing::run_summed_energy_drift(net);
     std::printf(
         "[measured] lts tree %s, steps %lld / %lld / %lld ticks: %lld samples, |E/E0 - 1| <= "
         "%.2e\n",
@@ -398,10 +367,7 @@ TEST(LtsNetwork, ThreeDomainChainPausesAndRestoresToTheBit) {
     m.initial_velocities.push_back(
         {{static_cast<std::int32_t>(i)}, {1e-6 * std::sin(3.0 * x), 0.0, 0.0}});
   }
-  cosim::LayerNetworkOptions o;
-  o.run.scheme = "lts";
-  o.run.common_step = false;
-  o.step_safety = 0.9;
+  const auto o = crashlink::testing::lts_multi();
   cosim::LayerNetwork straight(m, o);
   straight.initialize();
   const coupling::Tick base = straight.plan().base;
@@ -417,22 +383,13 @@ TEST(LtsNetwork, ThreeDomainChainPausesAndRestoresToTheBit) {
   }
   const auto dir = std::filesystem::temp_directory_path() /
                    ("crashlink_lts_chain_checkpoint_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  std::vector<std::string> paths;
-  for (std::size_t k = 0; k < paused.size(); ++k) {
-    core::StateWriter w;
-    paused.save_state(k, w);
-    paths.push_back((dir / (paused.solver(k).domain_name() + ".bin")).string());
-    w.save(paths.back());
-  }
+  const auto paths = crashlink::testing::save_network(paused, dir);
   cosim::LayerNetwork resumed(m, o);
   resumed.restore(paths);
   ASSERT_FALSE(resumed.run({}, end));
   std::filesystem::remove_all(dir);
-  const auto a = straight.global_displacement(), b = resumed.global_displacement();
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  const std::size_t differ =
+      crashlink::testing::differing(straight.global_displacement(), resumed.global_displacement());
   EXPECT_EQ(differ, 0u);
   EXPECT_TRUE(std::isfinite(resumed.lts_energy_J()));
   EXPECT_EQ(straight.lts_energy_J(), resumed.lts_energy_J());
@@ -502,17 +459,16 @@ TEST(LtsNetwork, PlasticFreeVibrationGainsNoEnergy) {
 
 // Pauses anywhere, checkpoints and restores, in trees of 3 to 5 domains (a fine domain with two
 // owners, an owner with two fine domains, chains of 3 and 4, a fan of 5), under lts, layer and
-// layer with variable steps: the run paused at every 3.71 coarse instants (not on them), restored
-// from a checkpoint at every third pause, ends with the straight run's bits (and E under lts).
-// A pause leaves the domains at different instants; a restored owner sends again what its fine
-// side may already have used (LayerStepper::deliver drops those after a restore).
+// layer with variable steps (where they allow the tree): the run paused every 3.71 coarse
+// instants (not on them), restored from a checkpoint at every third pause, ends with the straight
+// run's bits (and E under lts). A pause leaves the domains at different instants: the checkpoint
+// keeps the messages received and not used yet, and a restored owner's repeats of what its fine
+// side had used are dropped (LayerStepper::deliver). Before, the fine domain with two owners
+// failed on such a repeat, and then on the force its owner had received and lost.
 TEST(LtsNetwork, TreesPausedAnywhereRestoreToTheBit) {
-  using Parts = std::vector<std::tuple<std::string, double, double, int>>;
-  const std::vector<std::pair<std::string, Parts>> trees{
-      {"coarseA | fine | coarseB",
-       {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}}},
-      {"fineA | coarse | fineB",
-       {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}}},
+  const std::vector<std::pair<std::string, BarParts>> trees{
+      kFineOfTwo,
+      kOwnerOfTwo,
       {"chain of 3", {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}},
       {"chain of 4",
        {{"f", 0.0, 0.1, 40}, {"m1", 0.1, 0.1, 10}, {"m2", 0.2, 0.2, 10}, {"c", 0.4, 0.2, 5}}},
@@ -553,14 +509,7 @@ TEST(LtsNetwork, TreesPausedAnywhereRestoreToTheBit) {
         for (double f = 0.37;; f += 3.71) {
           if (net->run({}, static_cast<coupling::Tick>(f * base))) break;
           if (++pauses % 3 != 0) continue;
-          std::filesystem::create_directories(dir);
-          std::vector<std::string> paths;
-          for (std::size_t k = 0; k < net->size(); ++k) {
-            core::StateWriter w;
-            net->save_state(k, w);
-            paths.push_back((dir / (std::to_string(k) + ".bin")).string());
-            w.save(paths.back());
-          }
+          const auto paths = crashlink::testing::save_network(*net, dir);
           count_repeats();
           net = std::make_unique<cosim::LayerNetwork>(m, o);
           net->restore(paths);
@@ -571,10 +520,8 @@ TEST(LtsNetwork, TreesPausedAnywhereRestoreToTheBit) {
         continue;
       }
       count_repeats();
-      const auto a = straight.global_displacement(), b = net->global_displacement();
-      ASSERT_EQ(a.size(), b.size());
-      std::size_t differ = 0;
-      for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+      const std::size_t differ =
+          crashlink::testing::differing(straight.global_displacement(), net->global_displacement());
       EXPECT_EQ(differ, 0u) << what;
       if (scheme == "lts") {
         EXPECT_EQ(straight.lts_energy_J(), net->lts_energy_J()) << what;
