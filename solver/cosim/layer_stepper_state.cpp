@@ -177,6 +177,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     // (checkpoints before 2026-11-28 hold no inbox: next_expected was its first message's, and
     // the partner sends it again)
     const std::int64_t kept = r.has(pre + "inbox") ? r.get_int(pre + "inbox") : 0;
+    const Tick t_saved = r.get_int("stepper.time");
     for (std::int64_t j = 0; j < kept; ++j) {
       const std::string mp = fmt::format("{}inbox{}.", pre, j);
       LayerMessage m;
@@ -192,9 +193,8 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       const auto want =
           port.fine_side ? LayerMessage::Kind::Displacement : LayerMessage::Kind::Force;
       const std::size_t n3 = 3 * port.local.size();
-      const Tick t = r.get_int("stepper.time");
       if (m.kind != want || m.first.size() != n3 || !(m.second.empty() || m.second.size() == n3) ||
-          m.time <= t || (!ps.inbox.empty() && m.time <= ps.inbox.back().time) ||
+          m.time <= t_saved || (!ps.inbox.empty() && m.time <= ps.inbox.back().time) ||
           m.time >= ps.next_expected)
         throw CheckpointError(fmt::format(
             "checkpoint {}: domain '{}', interface {}: kept message {} (a {} for t = {} ticks, "
@@ -202,7 +202,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
             "by this run's stepper",
             r.path(), dom, port.index, j,
             m.kind == LayerMessage::Kind::Displacement ? "displacement" : "force", m.time,
-            m.first.size(), m.second.size(), t));
+            m.first.size(), m.second.size(), t_saved));
       ps.inbox.push_back(std::move(m));
     }
     ps.drop_before = ps.next_expected;  // (deliver: what the partner sends again)
@@ -233,9 +233,10 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       r.get_exact(pre + "lts.mbar_T1", ps.mbar_T1);
       // A checkpoint at an owner instant T: the owner's is written after it used Fbar(T), which
       // this side sends only p - 1 substeps later (layer_stepper_lts.cpp): not again.
-      const Tick t = r.get_int("stepper.time");
       ps.consumed =
-          t > 0 && ps.substeps > 1 && t % port.partner_step == 0 && ps.acc_T == t ? t : -1;
+          t_saved > 0 && ps.substeps > 1 && t_saved % port.partner_step == 0 && ps.acc_T == t_saved
+              ? t_saved
+              : -1;
     }
   }
   if (form_ == LayerForm::Lts) {

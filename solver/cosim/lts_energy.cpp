@@ -33,8 +33,6 @@ void LtsEnergy::reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t>
   u1_.assign(n3, 0.0);
   u2_.assign(n3, 0.0);
   theta_.assign(!any_rotating ? 0 : n3, 0.0);
-  rotates_.assign(theta_.size(), 0.0);
-  for (std::size_t k = 0; k < rotates_.size(); ++k) rotates_[k] = weight_rot_[k] != 0.0 ? 1.0 : 0.0;
   t1_.assign(theta_.size(), 0.0);
   t2_.assign(theta_.size(), 0.0);
   h2_ = coarse_step_s * coarse_step_s;
@@ -45,14 +43,13 @@ void LtsEnergy::reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t>
 }
 
 void LtsEnergy::add_rotation(const double* omega_mid, double dt_s) {
-  // every dof, one vectorised pass: theta += dt omega times 1 on a rotating dof and 0 elsewhere
-  // (whose omega is finite: the solver's kinetic sum multiplies it by I = 0 as well)
+  // every dof, one vectorised pass; the sums weigh the non-rotating and held ones 0 (their omega
+  // is finite: the solver's kinetic sum multiplies it by I = 0 as well)
   if (theta_.empty()) return;
-  const double* __restrict r = rotates_.data();
   const double* __restrict om = omega_mid;
   double* __restrict th = theta_.data();
   const std::size_t n3 = theta_.size();
-  for (std::size_t k = 0; k < n3; ++k) th[k] += r[k] * (dt_s * om[k]);
+  for (std::size_t k = 0; k < n3; ++k) th[k] += dt_s * om[k];
 }
 
 namespace {

@@ -28,7 +28,8 @@ class LtsEnergy {
   /// inertias, H the coarse step [s].
   void reset(std::vector<std::uint8_t> owned, std::vector<std::uint8_t> fixed,
              std::vector<double> mass_kg, std::vector<double> inertia_kgm2, double coarse_step_s);
-  /// After each cycle: theta += dt omega^{n+1/2} on the rotating owned nodes [3 n, rad/s].
+  /// After each cycle: theta += dt omega^{n+1/2} [3 n, rad/s] (every dof; only the rotating owned
+  /// free ones weigh in the sums).
   void add_rotation(const double* omega_mid, double dt_s);
   /// The displacements u [3 n, m] at coarse instant k (k H; the rotations are add_rotation's).
   /// With `evaluate`, and the two instants before sampled too, value_J() becomes E^{k-1/2} of the
@@ -43,7 +44,6 @@ class LtsEnergy {
  private:
   std::vector<double> weight_;      ///< [3 n] m_i of a free dof of an owned node, else 0
   std::vector<double> weight_rot_;  ///< [3 n] I_i alike (inertia > 0), empty if none
-  std::vector<double> rotates_;     ///< [3 n] 1 where weight_rot_ > 0, else 0 (if any)
   std::vector<double> theta_;       ///< [3 n] rotation so far [rad]
   std::vector<double> u1_, u2_;     ///< u at the previous and the one before [3 n]
   std::vector<double> t1_, t2_;     ///< theta alike [3 n]

@@ -291,8 +291,9 @@ static const std::pair<std::string, BarParts> kFineOfTwo{
     {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}}};
 
 /// Steel bars of hexes end to end along x, one domain each ({name, x0 [m], length [m], divisions}),
-/// both ends (x = 0 and the last bar's end) held, no load: linear free vibration from a smooth
-/// axial velocity (1e-6 m/s scale).
+/// 100 x 100 mm, 2 x 2 elements across (50 mm: the 5-40 mm lengths set the steps), both ends
+/// (x = 0 and the last bar's end) held, no load: linear free vibration from a smooth axial and
+/// lateral velocity (1e-6 m/s scale).
 static model::Model bar_tree(const BarParts& parts) {
   std::string y = R"(name: tree
 controls: {end_time: 0.02, bulk_viscosity: {enabled: false}}
@@ -308,7 +309,8 @@ parts:
     y += "  " + name + ":\n    material: steel\n" + (i > 0 ? "    merge_nodes: true\n" : "") +
          "    mesh: {generator: bar, origin: [" + std::to_string(x0) +
          ", 0.0, 0.0], axis: x, length: " + std::to_string(length) +
-         ", cross_section: [0.05, 0.05], divisions: " + std::to_string(divisions) + "}\n";
+         ", cross_section: [0.1, 0.1], cross_divisions: [2, 2], divisions: " +
+         std::to_string(divisions) + "}\n";
     domains += "  " + name + ": {parts: [" + name + "]}\n";
   }
   y += R"(node_sets:
