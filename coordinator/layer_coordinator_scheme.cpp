@@ -195,8 +195,9 @@ void validate_lts_config(const coupling::CouplingConfig& config) {
         "or drop the option)");
   if (config.variable_steps)
     throw InputError(
-        "--variable-steps with --coupling lts: lts runs fixed steps only (its conserved energy "
-        "needs one coarse step); drop --variable-steps, or use --coupling layer");
+        "--variable-steps with --coupling lts: not over processes yet (lts with variable steps "
+        "runs in process only: the wire does not carry its announced owner steps yet); drop "
+        "--variable-steps, or use --coupling layer");
 }
 
 std::unique_ptr<CoordinatorScheme> make_lts_coordinator_scheme(const model::Model& model,

@@ -26,10 +26,6 @@ LayerNetwork::LayerNetwork(const model::Model& global, LayerNetworkOptions optio
   if (options_.run.scheme != "layer" && options_.run.scheme != "lts")
     throw ModelError("layer network: it runs `layer` and `lts`, not '" + options_.run.scheme +
                      "' (cosim::PaperRunner runs `paper` in process)");
-  if (options_.run.scheme == "lts" && options_.run.variable_steps)
-    throw ModelError(
-        "layer network: the lts coupling runs fixed steps only (its conserved energy needs one "
-        "coarse step); set run.variable_steps = false, or run `layer`");
   if (options_.run.variable_steps && !options_.proposal_s.empty())
     throw ModelError(
         "layer network: variable steps follow the solvers' own proposals (no proposal_s)");

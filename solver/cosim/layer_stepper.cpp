@@ -33,7 +33,8 @@ LayerStepper::LayerStepper(integration::Solver& solver, std::vector<LayerPort> p
       ticks_per_second_(ticks_per_second) {
   const std::string& dom = solver_.domain_name();
   if (variable_) {
-    h_ = 0;  // chosen at every instant (leader) or owner step (follower)
+    planned_h_ = h_;  // lts: the first cycle's (set_form)
+    h_ = 0;           // chosen at every instant (leader) or owner step (follower)
     std::string owner;
     for (const auto& port : ports_) {
       if (!port.fine_side) continue;
@@ -127,6 +128,16 @@ void LayerStepper::initialize() {
   if (!variable_) impose_fixed_step();
   step_pending_ = variable_ && follower_;  // a leader chooses once the g_A(0) are in
   t_ = 0;
+  if (lts_variable()) {  // the first owner step is the plan's (set_form checked it)
+    h_ = announced_ = planned_h_;
+    step_pending_ = false;
+    for (const auto& port : ports_)
+      if (port.fine_side) owner_H_ = port.partner_step;
+    owner_T_ = 0;
+    substeps_ = owner_H_ > 0 ? owner_H_ / h_ : 1;
+    substep_ = 0;
+    solver_.impose_step(seconds(h_));
+  }
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     auto& ps = state_[p];
@@ -155,7 +166,7 @@ void LayerStepper::initialize() {
               solver_.domain_name(), port.index, solver_.model().nodes.id[i]));
     }
   }
-  if (form_ == LayerForm::Lts) lts_start_energy();
+  if (form_ == LayerForm::Lts && !variable_) lts_start_energy();
   if (!forces_wait_for_holders()) send_forces();  // g_A(0) of every fine port (else: Initial)
 }
 
@@ -250,6 +261,7 @@ bool LayerStepper::ghost_targets_ready() {
         ps.u_T.swap(ps.u_1);
         ps.T = ps.T1;
         ps.have_u1 = false;
+        if (form_ == LayerForm::Lts) lts_next_owner_step_variable(ps);
       }
     } else {
       const Tick H = port.partner_step;
@@ -263,7 +275,8 @@ bool LayerStepper::ghost_targets_ready() {
       }
     }
     // Lts: the owner's u_J(T + H) is needed only by the substep that lands on it.
-    const bool need_u1 = form_ != LayerForm::Lts || t1 == ps.T + port.partner_step;
+    const Tick lands_at = lts_variable() ? owner_T_ + owner_H_ : ps.T + port.partner_step;
+    const bool need_u1 = form_ != LayerForm::Lts || t1 == lands_at;
     if (!ps.have_u1 && need_u1) {
       if (ps.inbox.empty()) {
         wait_iface_ = port.index;
@@ -271,6 +284,14 @@ bool LayerStepper::ghost_targets_ready() {
       }
       auto& m = ps.inbox.front();
       CRASHLINK_ASSERT(variable_ || m.time == ps.T + port.partner_step);
+      if (lts_variable() && m.time != lands_at)
+        throw LayerPartnerError(fmt::format(
+            "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, but "
+            "the owner step [{}, {}] ticks it announced ends at {} ticks (lts, variable steps)",
+            solver_.domain_name(), port.index, port.partner, m.time, owner_T_, lands_at, lands_at));
+      ps.next_step_1 = m.next_step;
+      ps.last_1 = m.last;
+      ps.pause_1 = m.pause;
       ps.T1 = m.time;
       ps.u_1 = std::move(m.first);
       ps.omega = std::move(m.second);
@@ -278,11 +299,16 @@ bool LayerStepper::ghost_targets_ready() {
       ps.have_u1 = true;
     }
   }
+  // Lts, variable: the landing substep knows the owner step after it (its u_J says it)
+  if (lts_variable() && t1 == owner_T_ + owner_H_) {
+    [[maybe_unused]] const bool known = lts_decide_next_owner_step();
+    CRASHLINK_ASSERT(known);
+  }
   for (std::size_t p = 0; p < ports_.size(); ++p) {
     const auto& port = ports_[p];
     if (!port.fine_side) continue;
     const auto& ps = state_[p];
-    const Tick H = variable_ ? ps.T1 - ps.T : port.partner_step;
+    const Tick H = lts_variable() ? owner_H_ : variable_ ? ps.T1 - ps.T : port.partner_step;
     if (t1 > ps.T + H)
       throw ModelError(
           fmt::format("layer stepper '{}': interface {}: the step to t = {} ticks "
@@ -356,6 +382,7 @@ LayerMessage LayerStepper::displacement_message(const LayerPort& port) const {
   m.time = t_ + h_;
   m.last = variable_ && finishes_at(m.time);
   m.pause = variable_ && pauses_at(m.time);
+  if (lts_variable()) m.next_step = m.last ? 0 : announced_;
   return m;
 }
 
@@ -497,6 +524,11 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
   if (!initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() +
                      "': advance() before initialize()");
+  if (lts_variable() && until != std::numeric_limits<Tick>::max())
+    throw ModelError(fmt::format(
+        "layer stepper '{}': lts with variable steps does not pause yet (checkpoints, `until` "
+        "{} ticks); run lts with fixed steps, or `layer` with variable steps",
+        solver_.domain_name(), until));
   until_ = until;
   for (;;) {
     switch (phase_) {
@@ -506,9 +538,15 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           send_forces();
           flush_outbox();
         }
-        if (variable_ && !follower_) h_ = choose_step();  // reads the g_A(0) proposals
+        if (lts_variable()) {  // the plan's first step; announced_: the one after
+          Tick next = 0;
+          if (!lts_plan_next(next)) return wait_ = Wait::Displacement;
+          CRASHLINK_ASSERT(next == h_);
+        } else if (variable_ && !follower_) {
+          h_ = choose_step();  // reads the g_A(0) proposals
+        }
         apply_initial_forces();
-        if (variable_ && !follower_) solver_.impose_step(seconds(h_));
+        if (variable_ && !follower_ && !lts_variable()) solver_.impose_step(seconds(h_));
         phase_ = Phase::Begin;
         break;
       case Phase::Begin:
@@ -523,7 +561,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           step_pending_ = false;
         }
         solver_.begin_cycle();  // state at t_ complete
-        if (form_ == LayerForm::Lts && t_ % energy_period_ == 0) lts_sample_energy();
+        if (form_ == LayerForm::Lts && !variable_ && t_ % energy_period_ == 0) lts_sample_energy();
         if (on_sample) on_sample();
         if (finished_here()) {
           phase_ = Phase::Done;
@@ -549,7 +587,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
         if (form_ == LayerForm::Lts)  // plastic flow on the rim at the owner instants only
           solver_.set_rim_returns(!lts_owner_instant(t_), !lts_owner_instant(t_ + h_));
         solver_.end_cycle_compute();  // overlaps the partners' work
-        if (form_ == LayerForm::Lts)
+        if (form_ == LayerForm::Lts && !variable_)
           lts_energy_.add_rotation(solver_.angular_velocity_mid().data(), seconds(h_));
         t_ += h_;
         if (!forces_wait_for_holders()) {
@@ -569,7 +607,9 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           // apply_forces takes them); a follower's next substep, or unknown at the end of its
           // owner step (step_pending_: the owner's next u_J tells it).
           Tick next = h_;
-          if (variable_) {
+          if (lts_variable()) {
+            if (!lts_plan_next(next)) return wait_ = Wait::Displacement;
+          } else if (variable_) {
             if (!follower_) {
               next = choose_step();
             } else if (at_owner_end()) {
@@ -588,7 +628,7 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
           solver_.end_cycle_accelerations();
           if (next == 0)
             step_pending_ = true;
-          else if (variable_ && follower_)
+          else if (variable_ && (follower_ || lts_variable()))  // lts: chosen an instant ago
             solver_.impose_committed_step(seconds(h_));
           else if (variable_)
             solver_.impose_step(seconds(h_));

@@ -93,9 +93,15 @@ enum class LayerSteps : std::uint8_t { Fixed, Variable, VariableCommon };
 ///     Rotations (shell J) alike, as small rotations: J's angular velocity over substep q is the
 ///     mirror substep's of the owner step before, and over the last one what lands on the owner's
 ///     rotation at T + H; the moments hat-averaged as the forces.
-///     Conserves LtsEnergy's E in the linear case; fixed steps only. The
+///     Conserves LtsEnergy's E in the linear case with fixed steps. The
 ///     elements on J compute no bulk viscosity (the path's velocity is no physical one:
 ///     Solver::set_ghost_bulk_viscosity).
+///     Variable steps (LayerSteps::Variable; layer_stepper_lts_variable.cpp): the fine side runs
+///     most of an owner step before the owner's u_J at its end exists, so every owner step is
+///     announced one ahead: the first is the plan's, each later one rides on the u_J of the
+///     instant it starts at (LayerMessage::next_step). The path reflects the owner step before
+///     in time (interpolated where the steps differ), and Fbar(T) weighs the two one-sided hat
+///     averages by the owner steps on either side of T. No E: it needs one coarse step.
 enum class LayerForm : std::uint8_t { Layer, Lts };
 
 /// A vector sent to a partner. Displacement: owner -> ghost holder, u_J(time) [m] and
@@ -117,6 +123,10 @@ struct LayerMessage {
   /// Displacement, variable steps: the owner pauses at `time` (advance()'s `until`: a checkpoint),
   /// and its holder pauses there with it.
   bool pause = false;
+  /// Displacement, lts with variable steps: the owner's step after `time` [ticks], the owner step
+  /// [time, time + next_step] that the holder substeps next (its fine side runs most of it before
+  /// the owner's u_J at its end exists); 0 when the owner ends at `time`.
+  Tick next_step = 0;
 };
 
 /// History rows of one fine-side interface (coupling/layer_work.h), for the coordinator.
@@ -316,6 +326,15 @@ class LayerStepper {
     /// Restored at an owner instant T > 0 with p > 1: the owner used Fbar(T) before its
     /// checkpoint, so it is not sent again (-1: none).
     Tick consumed = -1;
+    // Lts with variable steps (layer_stepper_lts_variable.cpp):
+    std::vector<Tick> path_prev_t, path_cur_t;  ///< the instants of path_prev's / path_cur's rows
+    std::vector<double> fbar_left;       ///< [3 n_J] the left half of Fbar(acc_T), complete [N]
+    std::vector<double> g_T;             ///< [3 n_J] g(acc_T) [N]
+    std::vector<double> mbar_left, m_T;  ///< rotates: the moments' alike [N m]
+    Tick H_prev = 0;                     ///< the owner step that ended at acc_T (0: t = 0)
+    Tick next_step_1 = 0;  ///< LayerMessage::next_step of the u_J(T1) consumed (have_u1)
+    bool last_1 = false;   ///< LayerMessage::last of the u_J(T1) consumed
+    bool pause_1 = false;  ///< LayerMessage::pause of the u_J(T1) consumed
   };
 
   Tick to_ticks_end(double t_s) const;
@@ -336,6 +355,29 @@ class LayerStepper {
   /// are taken (Solver::set_rim_returns; every instant without a fine-side port or at p = 1).
   bool lts_owner_instant(Tick t) const;
   void lts_start_energy();
+  // Lts with variable steps (layer_stepper_lts_variable.cpp; docs/multirate.md "Variable steps
+  // under lts").
+  void lts_ghost_targets_variable(const LayerPort& port, PortState& ps, Tick t1);
+  void lts_send_forces_variable();
+  void lts_next_owner_step_variable(PortState& ps) const;
+  /// At the instant t_, its forces in: the step to take next and, with holders, announced_ (the
+  /// one after). false: waits for the owner's u_J (nothing changed).
+  bool lts_plan_next(Tick& next);
+  bool lts_variable() const { return variable_ && form_ == LayerForm::Lts; }
+  /// A follower: the owner step after the current one, from the owner's u_J at the current one's
+  /// end (consumed, or at the inbox front): owner_last_, owner_pause_, next_owner_H_ and
+  /// next_substeps_ (ceil(H / the proposal sent with the last Fbar)). false: that u_J is not in
+  /// yet.
+  bool lts_decide_next_owner_step();
+  /// The step after the one of `index` (0-based) in the current owner step, or the first of the
+  /// next owner step (waits for it: false), which a domain with holders announces with its u_J
+  /// (LayerMessage::next_step). A leader: its choice (choose_step) after `next`.
+  bool lts_step_after(std::int64_t index, Tick next, Tick& after);
+  /// Substep j of n of an owner step of H ticks: H / n whole ticks, the last H mod n of them a
+  /// tick longer (no substep shorter than the others by more than a tick: docs/design.md §2.7).
+  static Tick substep_length(Tick H, std::int64_t n, std::int64_t j) {
+    return H / n + (j >= n - H % n ? 1 : 0);
+  }
   /// At a coarse instant t_ (a multiple of energy_period_): LtsEnergy::sample if wanted.
   void lts_sample_energy();
   bool forces_ready();
@@ -363,7 +405,7 @@ class LayerStepper {
   bool start_owner_step();  ///< false: waits for the owner's next u_J
   /// A follower's next step inside the owner step H: H / n whole ticks, n = ceil(H / p)
   /// (LayerSteps), the last ones a tick longer when n does not divide H.
-  Tick next_substep() const;
+  Tick next_substep() const { return substep_length(owner_H_, substeps_, substep_); }
 
   integration::Solver& solver_;
   std::vector<LayerPort> ports_;
@@ -383,6 +425,14 @@ class LayerStepper {
   Tick owner_T_ = 0, owner_H_ = 0;  ///< variable follower: the owner step [T, T + H] in use
   bool owner_last_ = false;         ///< variable follower: the owner ends at T + H
   bool owner_pause_ = false;        ///< variable follower: the owner pauses at T + H
+  // Lts with variable steps: the first owner step is the plan's, every later one announced
+  // (LayerMessage::next_step).
+  Tick planned_h_ = 0;              ///< the step the plan gave (the first cycle's)
+  Tick announced_ = 0;              ///< the step after the next instant, sent with u_J
+  bool next_owner_known_ = false;   ///< follower: next_owner_H_ / next_substeps_ decided
+  Tick next_owner_H_ = 0;           ///< follower: the owner step after the current one
+  std::int64_t next_substeps_ = 1;  ///< follower: its substeps
+  std::vector<std::pair<std::size_t, double>> lts_overlap_;  ///< scratch: omega_prev's weights
   Tick until_ = std::numeric_limits<Tick>::max();  ///< advance()'s `until` (a leader's pause)
   std::int64_t ticks_per_second_ = 0;
   Phase phase_ = Phase::Initial;

@@ -17,12 +17,20 @@ void LayerStepper::set_form(LayerForm form, Tick energy_period) {
   const std::string& dom = solver_.domain_name();
   if (initialized_)
     throw ModelError(fmt::format("layer stepper '{}': set_form() after initialize()", dom));
-  if (form == LayerForm::Lts) {
-    if (variable_)
+  if (form == LayerForm::Lts && variable_) {
+    // The first owner step is the plan's: every fine port's owner step a whole number of this
+    // domain's planned steps. No E (it needs one coarse step): energy_period is not used.
+    if (common_)
       throw ModelError(fmt::format(
-          "layer stepper '{}': the lts coupling runs fixed steps only (its conserved energy needs "
-          "one coarse step); run without --variable-steps",
-          dom));
+          "layer stepper '{}': lts runs `multi` steps; `split` (one common step) is `layer`", dom));
+    for (const auto& port : ports_)
+      if (port.fine_side &&
+          (planned_h_ < 1 || port.partner_step < planned_h_ || port.partner_step % planned_h_))
+        throw ModelError(fmt::format(
+            "layer stepper '{}': lts with variable steps starts from the plan: the owner's step "
+            "{} ticks on interface {} is not a whole multiple of this domain's {} ticks",
+            dom, port.partner_step, port.index, planned_h_));
+  } else if (form == LayerForm::Lts) {
     if (energy_period < h_ || energy_period % h_ != 0)
       throw ModelError(fmt::format(
           "layer stepper '{}': lts energy period {} ticks is not a whole multiple of this "
@@ -47,6 +55,15 @@ void LayerStepper::lts_start_port(const LayerPort& port, PortState& ps) const {
   // t = 0: the path of the first owner step starts at u_J(0); no force accumulated yet.
   const std::size_t n3 = 3 * port.local.size();
   ps.substeps = port.partner_step / h_;
+  if (variable_) {  // the instants of the rows, the halves of Fbar (layer_stepper_lts_variable)
+    ps.path_prev_t.assign(static_cast<std::size_t>(ps.substeps + 1), 0);
+    ps.path_cur_t.assign(static_cast<std::size_t>(ps.substeps + 1), 0);
+    ps.fbar_left.assign(n3, 0.0);
+    ps.g_T.assign(n3, 0.0);
+    ps.mbar_left.assign(ps.rotates ? n3 : 0, 0.0);
+    ps.m_T.assign(ps.rotates ? n3 : 0, 0.0);
+    ps.H_prev = 0;
+  }
   const auto rows = static_cast<std::size_t>(ps.substeps + 1);
   ps.path_prev.assign(rows * n3, 0.0);
   ps.path_cur.assign(rows * n3, 0.0);
@@ -70,6 +87,10 @@ void LayerStepper::lts_next_owner_step(PortState& ps) const {
 }
 
 void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick t1) {
+  if (variable_) {
+    lts_ghost_targets_variable(port, ps, t1);
+    return;
+  }
   // J at t1 = T + q h: the owner's u_J(T + H) at q = p; else the reflected path
   // U(T + q h) = 2 u_J(T) - U(T - q h) (Diaz & Grote 2009 in the physical-state form of
   // coupling-study/lts/lts_physical_form.py; in the linear case z_q = (U(T + qh) + U(T - qh)) / 2
@@ -114,12 +135,18 @@ void LayerStepper::lts_ghost_targets(const LayerPort& port, PortState& ps, Tick 
 }
 
 bool LayerStepper::lts_owner_instant(Tick t) const {
+  if (variable_)  // one owner: the ends of its owner step
+    return !follower_ || t == owner_T_ || t == owner_T_ + owner_H_;
   for (const auto& port : ports_)
     if (port.fine_side && t % port.partner_step != 0) return false;
   return true;
 }
 
 void LayerStepper::lts_send_forces() {
+  if (variable_) {
+    lts_send_forces_variable();
+    return;
+  }
   // At every fine instant t_q = T + q h: the layer's force on J, g = Solver::net_force, into
   // Fbar(T) with weight (p - q) / p^2 and into Fbar(T + H) with q / p^2: the hat
   // (1/p)(1 - |t_q - T| / H) of Diaz & Grote's leapfrog LTS seen from the coarse side

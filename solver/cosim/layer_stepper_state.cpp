@@ -12,6 +12,11 @@ namespace crashlink::cosim {
 
 void LayerStepper::save_state(core::StateWriter& w) const {
   const std::string& dom = solver_.domain_name();
+  if (lts_variable())
+    throw ModelError(fmt::format(
+        "layer stepper '{}': checkpoints of lts with variable steps are not built yet; run lts "
+        "with fixed steps, or `layer` with variable steps",
+        dom));
   if (phase_ != Phase::Begin || !outbox_.empty()) {
     throw ModelError(
         fmt::format("layer stepper '{}': a checkpoint is taken between two cycles "

@@ -119,13 +119,6 @@ bool LayerStepper::at_owner_end() const {
   return owner_H_ > 0 && t_ == owner_T_ + owner_H_;
 }
 
-Tick LayerStepper::next_substep() const {
-  // Substep j of n of the owner step H: H / n whole ticks, the last H mod n of them one tick
-  // longer (no substep shorter than the others by more than a tick: docs/design.md §2.7).
-  const Tick q = owner_H_ / substeps_, r = owner_H_ % substeps_;
-  return q + (substep_ >= substeps_ - r ? 1 : 0);
-}
-
 bool LayerStepper::start_owner_step() {
   // A follower at the end of its owner step (or at t = 0): the owner's next u_J(T + H), the
   // front of every fine port's inbox (the one in use was taken by ghost_targets_ready), tells H.

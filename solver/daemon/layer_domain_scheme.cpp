@@ -71,7 +71,7 @@ class LayerDomainScheme final : public coupling::DomainScheme {
       if (setup.variable_steps())
         throw ProtocolError("coordinator",
                             fmt::format("domain '{}': a Setup with variable steps for the lts "
-                                        "coupling, which runs fixed steps only",
+                                        "coupling, which runs them in process only",
                                         o_.domain));
       stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());
       rows_.emplace(dom_.solver->model().controls.history_interval_s, tps_, setup.base_ticks());

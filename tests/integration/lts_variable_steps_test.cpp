@@ -1,0 +1,247 @@
+// `lts` with variable steps in process (cosim::LayerStepper, LayerForm::Lts with
+// LayerSteps::Variable; docs/multirate.md "Variable steps under lts"): every owner step is
+// announced one ahead (LayerMessage::next_step), the ghost path reflects the owner step before in
+// time, Fbar weighs its two halves by the owner steps on either side. Checked against mono at its
+// own steps beside `layer` with variable steps on the same models, with the steps really
+// changing; a falling stable step that stops fixed steps; a chain whose middle domain announces
+// its own steps; what is refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/state_archive.h"
+#include "solver/cosim/layer_network.h"
+#include "solver/cosim/layer_stepper.h"
+#include "solver/integration/solver.h"
+#include "studies/free_vibration.h"
+#include "tests/integration/variable_steps_helpers.h"
+#include "tests/unit/partition/partition_models.h"
+
+using namespace crashlink;
+using namespace crashlink::testing;
+
+// The Hann pulse through the bar at mesh ratios 1.5-4, variable steps, dt_scale 0.5 (as the
+// `layer` test: mono at its own steps): lts keeps the bar bounds (interface displacement
+// 3 %, velocity 7 %) and is within 1.5x of `layer`'s error where `layer` is already small. The
+// steps change under the pulse (bulk viscosity lowers the stable step) and, at 4, the coarse step
+// climbs from 3 fine proposals to 4: the runs take several coarse steps and substep counts.
+TEST(LtsVariableSteps, HannPulseAtMeshRatiosMatchesMonoAsLayerDoes) {
+  std::size_t changed = 0;
+  for (const double ratio : {1.5, 2.0, 2.5, 3.06, 4.0}) {
+    const auto m = hann_bar(ratio, 100, 2.0, 0.5);
+    const auto layer = variable_vs_mono(m, 0.0, "layer");
+    const auto lts = variable_vs_mono(m, 0.0, "lts");
+    const auto fixed = variable_vs_mono(m, 0.8, "lts");  // the stable step falls 14 % at first
+    std::printf(
+        "[measured] lts multi, variable steps, Hann pulse, mesh ratio %.2f: %lld coarse and %lld "
+        "fine cycles, %zu coarse steps and %zu substep counts taken; interface displacement "
+        "error %.2f %% (layer %.2f %%, fixed lts steps at safety 0.8 %.2f %%), velocity %.2f %% "
+        "(%.2f %%, %.2f %%); coupling work %.2e of the input (%.2e, %.2e)\n",
+        ratio, static_cast<long long>(lts.coarse_cycles), static_cast<long long>(lts.fine_cycles),
+        lts.coarse_steps_distinct, lts.substep_counts_distinct, 100.0 * lts.disp,
+        100.0 * layer.disp, 100.0 * fixed.disp, 100.0 * lts.vel, 100.0 * layer.vel,
+        100.0 * fixed.vel, lts.coupling_work_J / lts.external_work_J,
+        layer.coupling_work_J / layer.external_work_J,
+        fixed.coupling_work_J / fixed.external_work_J);
+    EXPECT_LE(lts.disp, 0.03) << "ratio " << ratio;
+    EXPECT_LE(lts.vel, 0.07) << "ratio " << ratio;
+    EXPECT_LE(lts.disp, std::max(1.5 * layer.disp, 0.01)) << "ratio " << ratio;
+    EXPECT_LE(lts.vel, std::max(1.5 * layer.vel, 0.01)) << "ratio " << ratio;
+    changed += lts.coarse_steps_distinct > 1 ? 1 : 0;
+  }
+  EXPECT_GE(changed, 3u);  // the step changes are exercised, not only constant steps
+}
+
+// Bulk viscosity under the pulse lowers the stable step below the initial one: fixed lts steps at
+// the full initial steps (step safety 1) stop with Solver::impose_step's message, variable ones
+// follow it, and the coupling does next to no work (variable_vs_mono: < 5 % of the input).
+TEST(LtsVariableSteps, FollowsAStableStepThatFallsWhereFixedStepsStop) {
+  const auto m = hann_bar(2.0);
+  {
+    cosim::LayerNetworkOptions o;
+    o.run.scheme = "lts";
+    o.step_safety = 1.0;
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    EXPECT_THROW(net.run(), NumericalError);
+  }
+  const auto r = variable_vs_mono(m, 0.0, "lts");
+  std::printf(
+      "[measured] lts, variable steps, the stable step falling under the pulse: coarse steps "
+      "%.3e-%.3e s (%zu different), coupling work %.2e of the input\n",
+      r.coarse_dt_min, r.coarse_dt_max, r.coarse_steps_distinct,
+      r.coupling_work_J / r.external_work_J);
+  EXPECT_GT(r.coarse_steps_distinct, 1u);
+}
+
+// The chain fine | mid | coarse (0.05 / 0.1 / 0.2 m elements), listed out of order: the middle
+// domain follows the coarse one and announces its own steps to the fine one, which needs the
+// coarse one's next step before its u_J leaves. Against mono at its own steps on the fine end's
+// node, beside `layer`; every domain ends at the same instant (the `last` flag).
+TEST(LtsVariableSteps, ThreeDomainChainFollowsItsOwnersAnnouncements) {
+  auto m = pulsed_chain3({{"fine", {2}}, {"coarse", {0}}, {"mid", {1}}}, 2e-3, 2e-4, -1e5);
+  m.controls.dt_scale = 0.5;
+  const std::size_t gi = static_cast<std::size_t>(m.loads.back().nodes.front());
+  const History mono = mono_history(m, gi);
+  double err[2] = {0.0, 0.0};
+  const char* schemes[2] = {"layer", "lts"};
+  for (int c = 0; c < 2; ++c) {
+    cosim::LayerNetworkOptions o;
+    o.run.scheme = schemes[c];
+    o.run.variable_steps = true;
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    const auto& d = net.domains();
+    const std::size_t k_end = d.owner_solver[gi];
+    double du = 0.0, umax = 0.0;
+    ASSERT_TRUE(net.run([&](std::size_t k) {
+      if (k != k_end) return;
+      const double u = net.solver(k).displacement()[3 * d.owner_local[gi]];
+      const double um = mono.at(net.seconds(net.stepper(k).time())).first;
+      du = std::max(du, std::abs(u - um));
+      umax = std::max(umax, std::abs(um));
+    }));
+    err[c] = du / umax;
+    std::string cycles;
+    for (std::size_t k = 0; k < net.size(); ++k)
+      cycles += " " + net.solver(k).domain_name() + " " + std::to_string(net.solver(k).cycle());
+    std::printf("[measured] chain, %s, variable steps: cycles%s; end node error %.2f %%\n",
+                schemes[c], cycles.c_str(), 100.0 * err[c]);
+    for (std::size_t k = 1; k < net.size(); ++k)
+      EXPECT_EQ(net.stepper(k).time(), net.stepper(0).time()) << net.solver(k).domain_name();
+    EXPECT_GE(net.seconds(net.stepper(0).time()), m.controls.end_time_s * (1.0 - 1e-12));
+    const auto e = net.energy();
+    EXPECT_LT(std::abs(e.coupling_work_J), 0.05 * e.external_work_J) << schemes[c];
+  }
+  EXPECT_LE(err[1], 0.03);
+  EXPECT_LE(err[1], std::max(1.5 * err[0], 0.01));
+}
+
+// Pauses and checkpoints of lts with variable steps are not built: refused with what to run
+// instead, not run wrong.
+TEST(LtsVariableSteps, PausesAndCheckpointsAreRefused) {
+  const auto m = hann_bar(2.0, 100, 2.0, 0.5);
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.variable_steps = true;
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  try {
+    net.run({}, 1000);
+    ADD_FAILURE() << "a pause of lts with variable steps ran";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("does not pause yet"), std::string::npos) << what;
+    EXPECT_NE(what.find("fixed steps"), std::string::npos) << what;
+  }
+  core::StateWriter w;
+  try {
+    net.stepper(0).save_state(w);
+    ADD_FAILURE() << "a checkpoint of lts with variable steps was written";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("not built yet"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+
+struct BandRun {
+  double max_rel = 0.0, min_rel = 0.0, end_rel = 0.0;  ///< of (KE + IE + HG) / E0 - 1
+  double late_mean_rel = 0.0;                          ///< its mean over the second half
+  std::size_t coarse_steps_distinct = 0;
+  std::int64_t coarse_cycles = 0;
+};
+
+/// The physical energy (KE + IE + HG, the domains' summed) at the instants every domain shares,
+/// and how many different steps the coarse domain took.
+BandRun energy_band(const model::Model& m, bool variable) {
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = "lts";
+  o.run.variable_steps = variable;
+  o.step_safety = 0.9;  // crashlink run's default: fixed steps keep a margin under the stable one
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  std::map<coupling::Tick, std::pair<std::size_t, double>> at;
+  std::size_t kc = 0;
+  for (std::size_t k = 0; k < net.size(); ++k)
+    if (net.solver(k).domain_name() == "coarse") kc = k;
+  std::set<coupling::Tick> steps;
+  coupling::Tick last_coarse = -1;
+  EXPECT_TRUE(net.run([&](std::size_t k) {
+    const coupling::Tick t = net.stepper(k).time();
+    auto& [count, sum] = at[t];
+    ++count;
+    sum += net.solver(k).energy().total_J();
+    if (k != kc) return;
+    if (last_coarse >= 0) steps.insert(t - last_coarse);
+    last_coarse = t;
+  }));
+  BandRun r;
+  double e0 = 0.0, late_sum = 0.0;
+  std::size_t late_n = 0;
+  const coupling::Tick t_end = at.rbegin()->first;
+  for (const auto& [t, cs] : at) {
+    if (cs.first != net.size()) continue;
+    if (e0 == 0.0) e0 = cs.second;
+    const double rel = cs.second / e0 - 1.0;
+    r.max_rel = std::max(r.max_rel, rel);
+    r.min_rel = std::min(r.min_rel, rel);
+    r.end_rel = rel;
+    if (2 * t >= t_end) {
+      late_sum += rel;
+      ++late_n;
+    }
+  }
+  r.late_mean_rel = late_sum / static_cast<double>(std::max<std::size_t>(late_n, 1));
+  r.coarse_steps_distinct = steps.size();
+  r.coarse_cycles = net.solver(kc).cycle();
+  return r;
+}
+
+}  // namespace
+
+// Free vibration of the stability study's bar, shell plate (rotations on J) and hex block at mesh
+// ratio 3, with bulk viscosity (the band of 1 m/s: the stable steps move with it) and no
+// interface damping, 2e4 fine steps, step safety 0.9: under variable steps the physical energy at
+// the shared instants grows no more than under fixed lts steps (+0.5 % of E0 of margin; fixed lts:
+// it never rose above its start by more than 0.18 %, docs/multirate.md "lts") and ends below its
+// start.
+TEST(LtsVariableSteps, FreeVibrationGainsNoMoreEnergyThanFixedSteps) {
+  using studies::FreeVibrationShape;
+  for (const bool bulk : {true, false})
+    for (const auto shape :
+         {FreeVibrationShape::Bar, FreeVibrationShape::Plate, FreeVibrationShape::Block}) {
+      studies::FreeVibrationConfig cfg;
+      cfg.damping = {0.0, 1};
+      auto m = studies::free_vibration_model(shape, 3.0, cfg);
+      m.controls.bulk_viscosity = m.controls.shell_bulk_viscosity = bulk;
+      {
+        model::Model mono = m;
+        mono.domains.clear();
+        integration::Solver probe(mono, "probe");
+        probe.initialize();
+        m.controls.end_time_s = 2e4 * probe.dt_s();
+      }
+      const auto fixed = energy_band(m, false);
+      const auto variable = energy_band(m, true);
+      std::printf(
+          "[measured] lts free vibration, %s, mesh ratio 3, bulk viscosity %s: (KE + IE + HG) / E0 "
+          "- 1 in [%.2e, %.2e], second half's mean %.2e, at the end %.2e with variable steps (%zu "
+          "coarse steps, %lld coarse cycles); fixed steps [%.2e, %.2e], %.2e, %.2e (%lld "
+          "cycles)\n",
+          studies::shape_name(shape), bulk ? "on" : "off", variable.min_rel, variable.max_rel,
+          variable.late_mean_rel, variable.end_rel, variable.coarse_steps_distinct,
+          static_cast<long long>(variable.coarse_cycles), fixed.min_rel, fixed.max_rel,
+          fixed.late_mean_rel, fixed.end_rel, static_cast<long long>(fixed.coarse_cycles));
+      EXPECT_LE(variable.max_rel, fixed.max_rel + 5e-3) << studies::shape_name(shape);
+      EXPECT_LT(variable.end_rel, 0.0) << studies::shape_name(shape);
+    }
+}
