@@ -58,6 +58,12 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     auto& checkpoints = port.checkpoints();
     wire::Options options = base;
     options.set_checkpoint_interval_ticks(checkpoints.plan(plan.step));
+    if (scheme_ == "lts" && o_.run.variable_steps &&
+        (options.checkpoint_interval_ticks() > 0 || o_.run.restart))
+      throw InputError(
+          "checkpoints or --restart with --coupling lts --variable-steps: not built yet (lts "
+          "pauses with fixed steps only); drop the checkpoint interval, drop --variable-steps, or "
+          "use --coupling layer");
     if (o_.run.restart) {
       const auto T = checkpoints.choose_restart(regs, router_->size() > 0);
       cpu_before_ = checkpoints.restore(T, *router_, port.history());
@@ -193,11 +199,6 @@ void validate_lts_config(const coupling::CouplingConfig& config) {
     throw InputError(
         "--no-drift: a `paper` option; `lts` has no drift correction (add --coupling paper, "
         "or drop the option)");
-  if (config.variable_steps)
-    throw InputError(
-        "--variable-steps with --coupling lts: not over processes yet (lts with variable steps "
-        "runs in process only: the wire does not carry its announced owner steps yet); drop "
-        "--variable-steps, or use --coupling layer");
 }
 
 std::unique_ptr<CoordinatorScheme> make_lts_coordinator_scheme(const model::Model& model,

@@ -360,6 +360,7 @@ class LayerStepper {
   void lts_ghost_targets_variable(const LayerPort& port, PortState& ps, Tick t1);
   void lts_send_forces_variable();
   void lts_next_owner_step_variable(PortState& ps) const;
+  void lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before);
   /// At the instant t_, its forces in: the step to take next and, with holders, announced_ (the
   /// one after). false: waits for the owner's u_J (nothing changed).
   bool lts_plan_next(Tick& next);

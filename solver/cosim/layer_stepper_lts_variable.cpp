@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <span>
 #include <utility>
 
 #include "core/errors.h"
@@ -71,8 +72,12 @@ bool LayerStepper::lts_decide_next_owner_step() {
 }
 
 bool LayerStepper::lts_step_after(std::int64_t index, Tick next, Tick& after) {
-  if (!follower_) {  // a leader's choice, its rise limited against the step it takes next
-    const Tick taken = std::exchange(h_, next);
+  if (!follower_) {
+    // A leader's choice, its rise limited against the step it takes next; at t = 0 free, as
+    // `layer`'s first (the plan's first step, from nested_steps, is not the rule's: held against
+    // it, the rule's hysteresis kept it for tens of steps and then fell 28 % at once, when the
+    // first energy reached the coarse side).
+    const Tick taken = std::exchange(h_, t_ == 0 ? 0 : next);
     after = choose_step();
     h_ = taken;
     return true;
@@ -265,6 +270,7 @@ void LayerStepper::lts_send_forces_variable() {
         m.proposal = proposal_sent_ = proposal_ticks();
         m.first = ps.fbar_T1;
         m.second = ps.mbar_T1;
+        lts_record_row(ps, m, owner_H_);
         outbox_.push_back(std::move(m));
         continue;
       }
@@ -295,8 +301,20 @@ void LayerStepper::lts_send_forces_variable() {
     m.second.resize(ps.mbar_T.size());
     for (std::size_t k = 0; k < m.second.size(); ++k)
       m.second[k] = wl * ps.mbar_left[k] + wr * (ps.mbar_T[k] + g0 * ps.m_T[k]);
+    lts_record_row(ps, m, ps.H_prev);
     outbox_.push_back(std::move(m));
   }
+}
+
+void LayerStepper::lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before) {
+  // The interface history row at m.time (a daemon's; coupling/layer_work.h): Fbar(T) with u_J(T)
+  // and omega_J(T - H/2), received with it (none at t = 0), H the owner step that ended at T.
+  if (!record_history_) return;
+  ps.meter.set_coarse_step_s(seconds(H_before));
+  const auto& uJ = m.time == ps.T ? ps.u_T : ps.u_1;
+  const std::span<const double> omega =
+      m.time == 0 ? std::span<const double>() : std::span<const double>(ps.omega);
+  ps.rows.push_back(ps.meter.add(m.time, m.first, m.second, uJ, omega));
 }
 
 }  // namespace crashlink::cosim

@@ -68,14 +68,11 @@ class LayerDomainScheme final : public coupling::DomainScheme {
                                            : cosim::LayerSteps::Variable);
     stepper_->set_record_history(true);
     if (form_ == cosim::LayerForm::Lts) {
-      if (setup.variable_steps())
-        throw ProtocolError("coordinator",
-                            fmt::format("domain '{}': a Setup with variable steps for the lts "
-                                        "coupling, which runs them in process only",
-                                        o_.domain));
       stepper_->set_form(cosim::LayerForm::Lts, setup.base_ticks());
-      rows_.emplace(dom_.solver->model().controls.history_interval_s, tps_, setup.base_ticks());
-      stepper_->set_lts_energy_wanted([this](coupling::Tick T) { return rows_->reads(T); });
+      if (!setup.variable_steps()) {  // variable steps have no E (it needs one coarse step)
+        rows_.emplace(dom_.solver->model().controls.history_interval_s, tps_, setup.base_ticks());
+        stepper_->set_lts_energy_wanted([this](coupling::Tick T) { return rows_->reads(T); });
+      }
     }
     if (setup.variable_steps())
       stepper_->set_proposal_limits(o_.step_safety, o_.max_step_s);

@@ -16,7 +16,7 @@ std::unique_ptr<coupling::DomainScheme> make_layer_domain_scheme(
     const coupling::DomainSchemeOptions& options);
 
 /// `lts`: the same, with the stepper in LayerForm::Lts (docs/multirate.md "lts") on the cut with
-/// coupling::kLtsOverlapLayers more layers; fixed steps only (variable: in process only).
+/// coupling::kLtsOverlapLayers more layers; fixed or variable steps (no E with variable ones).
 std::unique_ptr<coupling::DomainScheme> make_lts_domain_scheme(
     const partition::Decomposition& dec, const model::Model& model,
     const coupling::DomainSchemeOptions& options);

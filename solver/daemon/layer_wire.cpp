@@ -23,6 +23,7 @@ wire::Envelope to_envelope(const cosim::LayerMessage& m) {
     d->set_time_ticks(m.time);
     d->set_last(m.last);
     d->set_pause(m.pause);
+    d->set_next_step_ticks(m.next_step);
     put(d->mutable_displacements_m(), m.first);
     put(d->mutable_angular_velocities_rad_s(), m.second);
   } else {
@@ -45,6 +46,7 @@ std::optional<cosim::LayerMessage> to_layer_message(const wire::Envelope& e) {
     m.time = d.time_ticks();
     m.last = d.last();
     m.pause = d.pause();
+    m.next_step = d.next_step_ticks();
     m.first = get(d.displacements_m());
     m.second = get(d.angular_velocities_rad_s());
     return m;

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -511,11 +512,13 @@ TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged)
 /// time-out or a non-zero exit. The lts network options of the same run (for reference()).
 static cosim::LayerNetworkOptions run_lts_multi(const std::string& scenario,
                                                 const std::filesystem::path& out,
-                                                const std::string& transport, double safety) {
+                                                const std::string& transport, double safety,
+                                                bool variable = false) {
   std::vector<std::string> argv{
       bin("crashlink"),       "run",   scenario,      "--mode",  "multi",
       "--coupling",           "lts",   "--transport", transport, "--step-safety",
       std::to_string(safety), "--out", out.string(),  "--quiet"};
+  if (variable) argv.emplace_back("--variable-steps");
   for (const auto& s : fast_session_args()) argv.push_back(s);
   Child run(argv);
   const auto st = run.wait(90s);
@@ -526,6 +529,7 @@ static cosim::LayerNetworkOptions run_lts_multi(const std::string& scenario,
   cosim::LayerNetworkOptions o;
   o.run.scheme = "lts";
   o.run.common_step = false;
+  o.run.variable_steps = variable;
   o.step_safety = safety;
   return o;
 }
@@ -659,4 +663,89 @@ TEST(LtsProcesses, StarTreesAreNetworkToTheBit) {
                 {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}});
   lts_tree_case("star-fine",
                 {{"coarseA", 0.0, 0.2, 5}, {"fine", 0.2, 0.1, 20}, {"coarseB", 0.3, 0.3, 10}});
+}
+
+// `lts` with variable steps over processes (crashlink run --coupling lts --variable-steps): each
+// owner step rides one ahead on the u_J before it (LayerDisplacement.next_step_ticks). The bar over
+// ipc with lanes, and the chain fine | mid | coarse over tcp, whose middle domain announces its own
+// steps once its owner's announcement is in: every domain file and result.h5 are LayerNetwork's
+// to the bit, the steps changed during the run, and no row carries an lts E (variable steps have
+// none).
+TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
+  struct Case {
+    std::string label, transport;
+    std::vector<BarPart> parts;
+  };
+  const std::vector<Case> cases{
+      {"bar", "ipc", {{"fine", 0.0, 0.3, 60}, {"coarse", 0.3, 0.3, 20}}},
+      {"chain3", "tcp", {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}}};
+  for (const auto& c : cases) {
+    const auto dir = fresh_dir("lts-variable-" + c.label);
+    const RemoveIfPassed cleanup{dir};
+    const std::string scenario =
+        write_file(dir / (c.label + ".yaml"), bar_parts_yaml(c.label, 2.11e-4, c.parts));
+    const auto out = dir / "out";
+    const auto o = run_lts_multi(scenario, out, c.transport, 0.9, true);
+    if (::testing::Test::HasFailure()) return;
+    const auto m = io::read_scenario(scenario);
+    const Reference ref = reference(m, o);
+    std::vector<std::string> names;
+    for (const auto& part : c.parts) names.push_back(part.name);
+    const auto bits = expect_network_bits(out, m, ref, names);
+    const Diff gathered = compare(last_state((out / "result.h5").string()), m, ref.u);
+    EXPECT_EQ(gathered.max_abs, 0.0) << c.label << ": gathered result.h5";
+    // the steps changed: the coarse domain's instants are not evenly spaced
+    cosim::LayerNetwork net(m, o);
+    net.initialize();
+    std::set<coupling::Tick> steps;
+    coupling::Tick last = -1;
+    const std::size_t kc = [&] {
+      for (std::size_t k = 0; k < net.size(); ++k)
+        if (net.solver(k).domain_name() == "coarse") return k;
+      return std::size_t{0};
+    }();
+    ASSERT_TRUE(net.run([&](std::size_t k) {
+      if (k != kc) return;
+      const auto t = net.stepper(k).time();
+      if (last >= 0) steps.insert(t - last);
+      last = t;
+    }));
+    EXPECT_GT(steps.size(), 1u) << c.label << ": the coarse step never changed";
+    for (const auto& r : io::ResultReader((out / "result.h5").string()).glstat())
+      EXPECT_FALSE(std::isfinite(r.scheme_energy_J)) << c.label << " row at " << r.time_s << " s";
+    std::printf(
+        "[measured] lts %s over %s, variable steps (%zu different coarse steps): max |u - "
+        "u_network| = %.3e (domain files), %.3e (gathered)\n",
+        c.label.c_str(), c.transport.c_str(), steps.size(), bits.worst, gathered.max_abs);
+  }
+}
+
+// Checkpoints of lts with variable steps are not built: crashlink run refuses them before any
+// daemon computes, with what to run instead.
+TEST(LtsProcesses, VariableStepsRefuseCheckpoints) {
+  const auto dir = fresh_dir("lts-variable-ckpt");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(
+      dir / "bar.yaml",
+      bar_parts_yaml("bar", 2.11e-4, {{"fine", 0.0, 0.3, 60}, {"coarse", 0.3, 0.3, 20}}));
+  std::vector<std::string> argv{bin("crashlink"),
+                                "run",
+                                scenario,
+                                "--mode",
+                                "multi",
+                                "--coupling",
+                                "lts",
+                                "--variable-steps",
+                                "--checkpoint-interval",
+                                "5e-5",
+                                "--out",
+                                (dir / "out").string(),
+                                "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  ASSERT_TRUE(st.has_value()) << run.output();
+  EXPECT_NE(exit_code(*st), 0) << run.output();
+  EXPECT_NE(run.output().find("not built yet"), std::string::npos) << run.output();
+  EXPECT_NE(run.output().find("--coupling layer"), std::string::npos) << run.output();
 }
