@@ -58,12 +58,6 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
     auto& checkpoints = port.checkpoints();
     wire::Options options = base;
     options.set_checkpoint_interval_ticks(checkpoints.plan(plan.step));
-    if (scheme_ == "lts" && o_.run.variable_steps &&
-        (options.checkpoint_interval_ticks() > 0 || o_.run.restart))
-      throw InputError(
-          "checkpoints or --restart with --coupling lts --variable-steps: not built yet (lts "
-          "pauses with fixed steps only); drop the checkpoint interval, drop --variable-steps, or "
-          "use --coupling layer");
     if (o_.run.restart) {
       const auto T = checkpoints.choose_restart(regs, router_->size() > 0);
       cpu_before_ = checkpoints.restore(T, *router_, port.history());

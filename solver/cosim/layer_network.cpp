@@ -130,6 +130,16 @@ void LayerNetwork::route(std::size_t from) {
 
 bool LayerNetwork::run(const std::function<void(std::size_t)>& on_sample, Tick until) {
   using Wait = LayerStepper::Wait;
+  // An lts fine side pauses where its owner does, having sent nothing of the next owner step,
+  // while the owner needs its Fbar of that instant to get there: the daemons, which write and go
+  // on, do it; in one thread the pause would not settle.
+  if (options_.run.scheme == "lts" && options_.run.variable_steps &&
+      until != std::numeric_limits<Tick>::max())
+    throw ModelError(fmt::format(
+        "layer network: lts with variable steps does not pause in process (`until` {} ticks); "
+        "its checkpoints are the daemons' (crashlink run --checkpoint-interval), or run lts with "
+        "fixed steps",
+        until));
   for (;;) {
     // The earliest domain that can move goes first (docs/design.md §2.6).
     bool progressed = false, all_done = true, all_paused = true;

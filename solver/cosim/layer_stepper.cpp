@@ -524,11 +524,6 @@ LayerStepper::Wait LayerStepper::advance(const std::function<void()>& on_sample,
   if (!initialized_)
     throw ModelError("layer stepper '" + solver_.domain_name() +
                      "': advance() before initialize()");
-  if (lts_variable() && until != std::numeric_limits<Tick>::max())
-    throw ModelError(fmt::format(
-        "layer stepper '{}': lts with variable steps does not pause yet (checkpoints, `until` "
-        "{} ticks); run lts with fixed steps, or `layer` with variable steps",
-        solver_.domain_name(), until));
   until_ = until;
   for (;;) {
     switch (phase_) {

@@ -360,7 +360,10 @@ class LayerStepper {
   void lts_ghost_targets_variable(const LayerPort& port, PortState& ps, Tick t1);
   void lts_send_forces_variable();
   void lts_next_owner_step_variable(PortState& ps) const;
-  void lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before);
+  /// The row of Fbar(m.time); `keep` false: only the meter moves on (restored past it).
+  void lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before, bool keep = true);
+  /// Sends Fbar (m) unless the owner used it before the checkpoint this side restored from.
+  void lts_send_fbar(PortState& ps, LayerMessage m, Tick H_before);
   /// At the instant t_, its forces in: the step to take next and, with holders, announced_ (the
   /// one after). false: waits for the owner's u_J (nothing changed).
   bool lts_plan_next(Tick& next);
@@ -431,6 +434,7 @@ class LayerStepper {
   Tick planned_h_ = 0;              ///< the step the plan gave (the first cycle's)
   Tick announced_ = 0;              ///< the step after the next instant, sent with u_J
   bool next_owner_known_ = false;   ///< follower: next_owner_H_ / next_substeps_ decided
+  Tick lts_pause_at_ = -1;          ///< follower: the owner pauses there (its u_J's flag)
   Tick next_owner_H_ = 0;           ///< follower: the owner step after the current one
   std::int64_t next_substeps_ = 1;  ///< follower: its substeps
   std::vector<std::pair<std::size_t, double>> lts_overlap_;  ///< scratch: omega_prev's weights

@@ -58,6 +58,7 @@ bool LayerStepper::lts_decide_next_owner_step() {
   }
   owner_last_ = last;
   owner_pause_ = pause;
+  if (pause) lts_pause_at_ = end;
   if (!last) {
     // ceil(H / p) substeps, p the proposal sent with the Fbar the owner chose H from
     // (layer_stepper.h "Steps": a follower's rule; H = m p gives m substeps, not m + 1 when the
@@ -270,8 +271,7 @@ void LayerStepper::lts_send_forces_variable() {
         m.proposal = proposal_sent_ = proposal_ticks();
         m.first = ps.fbar_T1;
         m.second = ps.mbar_T1;
-        lts_record_row(ps, m, owner_H_);
-        outbox_.push_back(std::move(m));
+        lts_send_fbar(ps, std::move(m), owner_H_);
         continue;
       }
       ps.fbar_left.swap(ps.fbar_T1);
@@ -301,12 +301,20 @@ void LayerStepper::lts_send_forces_variable() {
     m.second.resize(ps.mbar_T.size());
     for (std::size_t k = 0; k < m.second.size(); ++k)
       m.second[k] = wl * ps.mbar_left[k] + wr * (ps.mbar_T[k] + g0 * ps.m_T[k]);
-    lts_record_row(ps, m, ps.H_prev);
-    outbox_.push_back(std::move(m));
+    lts_send_fbar(ps, std::move(m), ps.H_prev);
   }
 }
 
-void LayerStepper::lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before) {
+void LayerStepper::lts_send_fbar(PortState& ps, LayerMessage m, Tick H_before) {
+  // Restored at an owner instant T with p > 1 (layer_stepper_state.cpp): the owner's checkpoint
+  // is past Fbar(T) and the coordinator's history has its row; only the meter moves on.
+  const bool consumed = ps.consumed == m.time;
+  if (consumed) ps.consumed = -1;
+  lts_record_row(ps, m, H_before, !consumed);
+  if (!consumed) outbox_.push_back(std::move(m));
+}
+
+void LayerStepper::lts_record_row(PortState& ps, const LayerMessage& m, Tick H_before, bool keep) {
   // The interface history row at m.time (a daemon's; coupling/layer_work.h): Fbar(T) with u_J(T)
   // and omega_J(T - H/2), received with it (none at t = 0), H the owner step that ended at T.
   if (!record_history_) return;
@@ -314,7 +322,8 @@ void LayerStepper::lts_record_row(PortState& ps, const LayerMessage& m, Tick H_b
   const auto& uJ = m.time == ps.T ? ps.u_T : ps.u_1;
   const std::span<const double> omega =
       m.time == 0 ? std::span<const double>() : std::span<const double>(ps.omega);
-  ps.rows.push_back(ps.meter.add(m.time, m.first, m.second, uJ, omega));
+  auto row = ps.meter.add(m.time, m.first, m.second, uJ, omega);
+  if (keep) ps.rows.push_back(std::move(row));
 }
 
 }  // namespace crashlink::cosim

@@ -12,18 +12,20 @@ namespace crashlink::cosim {
 
 void LayerStepper::save_state(core::StateWriter& w) const {
   const std::string& dom = solver_.domain_name();
-  if (lts_variable())
-    throw ModelError(fmt::format(
-        "layer stepper '{}': checkpoints of lts with variable steps are not built yet; run lts "
-        "with fixed steps, or `layer` with variable steps",
-        dom));
   if (phase_ != Phase::Begin || !outbox_.empty()) {
     throw ModelError(
         fmt::format("layer stepper '{}': a checkpoint is taken between two cycles "
                     "with nothing left to send (phase {}, {} messages queued)",
                     dom, static_cast<int>(phase_), outbox_.size()));
   }
-  if (variable_ && follower_ && !(step_pending_ && (t_ == 0 || at_owner_end()))) {
+  if (lts_variable() && follower_ && t_ != owner_T_) {
+    throw ModelError(
+        fmt::format("layer stepper '{}': a checkpoint of an lts follower with variable steps is "
+                    "taken at the start of an owner step; this one is at {} ticks, inside [{}, {}]",
+                    dom, t_, owner_T_, owner_T_ + owner_H_));
+  }
+  if (variable_ && follower_ && !lts_variable() &&
+      !(step_pending_ && (t_ == 0 || at_owner_end()))) {
     throw ModelError(
         fmt::format("layer stepper '{}': a checkpoint of a variable follower is taken at the end "
                     "of an owner step; this one is at {} ticks, inside [{}, {}]",
@@ -47,6 +49,13 @@ void LayerStepper::save_state(core::StateWriter& w) const {
     w.put_bool("stepper.common", common_);
     w.put_double("stepper.leader_safety", leader_safety_);
     w.put_double("stepper.max_step_s", max_step_s_);
+    if (form_ == LayerForm::Lts) {  // the owner steps announced one ahead
+      w.put_int("stepper.lts.announced", announced_);
+      w.put_bool("stepper.lts.next_owner_known", next_owner_known_);
+      w.put_int("stepper.lts.next_owner_H", next_owner_H_);
+      w.put_int("stepper.lts.next_substeps", next_substeps_);
+      w.put_bool("stepper.lts.owner_pause", owner_pause_);
+    }
   }
   w.put_int("stepper.ports", static_cast<std::int64_t>(ports_.size()));
   for (std::size_t p = 0; p < ports_.size(); ++p) {
@@ -77,6 +86,7 @@ void LayerStepper::save_state(core::StateWriter& w) const {
       w.put_int(mp + "proposal", m.proposal);
       w.put_bool(mp + "last", m.last);
       w.put_bool(mp + "pause", m.pause);
+      w.put_int(mp + "next_step", m.next_step);
       w.put(mp + "first", std::span<const double>(m.first));
       w.put(mp + "second", std::span<const double>(m.second));
     }
@@ -108,10 +118,22 @@ void LayerStepper::save_state(core::StateWriter& w) const {
       w.put(pre + "lts.omega_cur", std::span<const double>(ps.omega_cur));
       w.put(pre + "lts.mbar_T", std::span<const double>(ps.mbar_T));
       w.put(pre + "lts.mbar_T1", std::span<const double>(ps.mbar_T1));
+      if (variable_) {
+        w.put(pre + "lts.path_prev_t", std::span<const Tick>(ps.path_prev_t));
+        w.put(pre + "lts.path_cur_t", std::span<const Tick>(ps.path_cur_t));
+        w.put(pre + "lts.fbar_left", std::span<const double>(ps.fbar_left));
+        w.put(pre + "lts.g_T", std::span<const double>(ps.g_T));
+        w.put(pre + "lts.mbar_left", std::span<const double>(ps.mbar_left));
+        w.put(pre + "lts.m_T", std::span<const double>(ps.m_T));
+        w.put_int(pre + "lts.H_prev", ps.H_prev);
+        w.put_int(pre + "lts.next_step_1", ps.next_step_1);
+        w.put_bool(pre + "lts.last_1", ps.last_1);
+        w.put_bool(pre + "lts.pause_1", ps.pause_1);
+      }
     }
   }
   w.put_int("stepper.form", static_cast<std::int64_t>(form_));
-  if (form_ == LayerForm::Lts) {
+  if (form_ == LayerForm::Lts && !variable_) {
     lts_energy_.save(w, "stepper.lts_energy.");
     w.put_int("stepper.lts_sampled_at0", lts_sampled_at_[0]);
     w.put_int("stepper.lts_sampled_at1", lts_sampled_at_[1]);
@@ -192,6 +214,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       m.proposal = r.get_int(mp + "proposal");
       m.last = r.get_bool(mp + "last");
       m.pause = r.get_bool(mp + "pause");
+      m.next_step = r.has(mp + "next_step") ? r.get_int(mp + "next_step") : 0;
       r.get(mp + "first", m.first);
       r.get(mp + "second", m.second);
       // what deliver() checks of a message: its kind, its size, its order; and that it is ahead
@@ -225,7 +248,41 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     h.work_J = r.get_double(pre + "work.J");
     ps.meter.restore(std::move(h));
     ps.rows.clear();
-    if (form_ == LayerForm::Lts && port.fine_side) {
+    if (form_ == LayerForm::Lts && port.fine_side && variable_) {
+      // (the sizes follow the owner steps: as saved)
+      r.get(pre + "lts.path_prev", ps.path_prev);
+      r.get(pre + "lts.path_cur", ps.path_cur);
+      r.get(pre + "lts.fbar_T", ps.fbar_T);
+      r.get(pre + "lts.fbar_T1", ps.fbar_T1);
+      ps.acc_T = r.get_int(pre + "lts.acc_T");
+      r.get(pre + "lts.omega_prev", ps.omega_prev);
+      r.get(pre + "lts.omega_cur", ps.omega_cur);
+      r.get(pre + "lts.mbar_T", ps.mbar_T);
+      r.get(pre + "lts.mbar_T1", ps.mbar_T1);
+      r.get(pre + "lts.path_prev_t", ps.path_prev_t);
+      r.get(pre + "lts.path_cur_t", ps.path_cur_t);
+      r.get(pre + "lts.fbar_left", ps.fbar_left);
+      r.get(pre + "lts.g_T", ps.g_T);
+      r.get(pre + "lts.mbar_left", ps.mbar_left);
+      r.get(pre + "lts.m_T", ps.m_T);
+      ps.H_prev = r.get_int(pre + "lts.H_prev");
+      ps.next_step_1 = r.get_int(pre + "lts.next_step_1");
+      ps.last_1 = r.get_bool(pre + "lts.last_1");
+      ps.pause_1 = r.get_bool(pre + "lts.pause_1");
+      const std::size_t n3 = 3 * port.local.size();
+      const auto rows = static_cast<std::size_t>(r.get_int("stepper.substeps")) + 1;
+      if (ps.fbar_T.size() != n3 || ps.g_T.size() != n3 || ps.path_cur_t.size() != rows ||
+          ps.path_cur.size() != rows * n3 || ps.path_prev.size() != ps.path_prev_t.size() * n3)
+        throw CheckpointError(fmt::format(
+            "checkpoint {}: domain '{}', interface {}: the lts path and forces ({} rows of {} "
+            "values, {} forces) do not fit {} J nodes and {} substeps; the file was not written "
+            "by this run's stepper",
+            r.path(), dom, port.index, ps.path_cur_t.size(), ps.path_cur.size(), ps.fbar_T.size(),
+            port.local.size(), rows - 1));
+      // At the start of an owner step T: the owner's checkpoint is past Fbar(T), which this side
+      // sends p - 1 substeps later (layer_stepper_lts_variable.cpp): not again.
+      ps.consumed = t_saved > 0 && rows > 2 && ps.acc_T == t_saved ? t_saved : -1;
+    } else if (form_ == LayerForm::Lts && port.fine_side) {
       lts_start_port(port, ps);  // sizes
       r.get_exact(pre + "lts.path_prev", ps.path_prev);
       r.get_exact(pre + "lts.path_cur", ps.path_cur);
@@ -244,7 +301,7 @@ void LayerStepper::restore_state(const core::StateReader& r) {
               : -1;
     }
   }
-  if (form_ == LayerForm::Lts) {
+  if (form_ == LayerForm::Lts && !variable_) {
     lts_start_energy();
     lts_energy_.restore(r, "stepper.lts_energy.");
     if (r.has("stepper.lts_sampled_J")) {  // (checkpoints before 2026-11-28: the rows' NaN)
@@ -268,6 +325,14 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     owner_H_ = r.get_int("stepper.owner_H");
     owner_last_ = r.get_bool("stepper.owner_last");
     owner_pause_ = false;  // the pause it was written at is behind
+    if (form_ == LayerForm::Lts) {
+      announced_ = r.get_int("stepper.lts.announced");
+      next_owner_known_ = r.get_bool("stepper.lts.next_owner_known");
+      next_owner_H_ = r.get_int("stepper.lts.next_owner_H");
+      next_substeps_ = r.get_int("stepper.lts.next_substeps");
+      owner_pause_ = r.get_bool("stepper.lts.owner_pause");
+      lts_pause_at_ = -1;
+    }
   }
   initialized_ = true;
   phase_ = Phase::Begin;

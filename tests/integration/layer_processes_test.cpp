@@ -719,33 +719,3 @@ TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
         c.label.c_str(), c.transport.c_str(), steps.size(), bits.worst, gathered.max_abs);
   }
 }
-
-// Checkpoints of lts with variable steps are not built: crashlink run refuses them before any
-// daemon computes, with what to run instead.
-TEST(LtsProcesses, VariableStepsRefuseCheckpoints) {
-  const auto dir = fresh_dir("lts-variable-ckpt");
-  const RemoveIfPassed cleanup{dir};
-  const std::string scenario = write_file(
-      dir / "bar.yaml",
-      bar_parts_yaml("bar", 2.11e-4, {{"fine", 0.0, 0.3, 60}, {"coarse", 0.3, 0.3, 20}}));
-  std::vector<std::string> argv{bin("crashlink"),
-                                "run",
-                                scenario,
-                                "--mode",
-                                "multi",
-                                "--coupling",
-                                "lts",
-                                "--variable-steps",
-                                "--checkpoint-interval",
-                                "5e-5",
-                                "--out",
-                                (dir / "out").string(),
-                                "--quiet"};
-  for (const auto& s : fast_session_args()) argv.push_back(s);
-  Child run(argv);
-  const auto st = run.wait(90s);
-  ASSERT_TRUE(st.has_value()) << run.output();
-  EXPECT_NE(exit_code(*st), 0) << run.output();
-  EXPECT_NE(run.output().find("not built yet"), std::string::npos) << run.output();
-  EXPECT_NE(run.output().find("--coupling layer"), std::string::npos) << run.output();
-}
