@@ -193,6 +193,10 @@ void validate_lts_config(const coupling::CouplingConfig& config) {
     throw InputError(
         "--no-drift: a `paper` option; `lts` has no drift correction (add --coupling paper, "
         "or drop the option)");
+  if (config.variable_steps && config.common_step)
+    throw InputError(
+        "--mode split --variable-steps with --coupling lts: one common step is `layer`'s split "
+        "(lts at one step is `layer`); drop --coupling lts, or run --mode multi");
 }
 
 std::unique_ptr<CoordinatorScheme> make_lts_coordinator_scheme(const model::Model& model,

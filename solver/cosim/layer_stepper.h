@@ -191,7 +191,11 @@ class LayerStepper {
   /// instant. So a whole tree of domains pauses at its leader's first instant >= until, to the
   /// tick, as a checkpoint needs, and stays there until called with a later `until`. The leader
   /// marks the u_J it sends from the `until` of the call that sends it (nothing is sent ahead
-  /// across a pause): call every domain with the same `until` until all have paused.
+  /// across a pause): call every domain with the same `until` until all have paused. Lts with
+  /// variable steps: a follower pauses at the start of the owner step that begins where its owner
+  /// pauses, and its owner reaches that instant only with the Fbar this side sends p - 1
+  /// substeps later, so the tree pauses only if each domain goes on after its pause (the daemons
+  /// write and go on; LayerNetwork::run refuses such a pause).
   Wait advance(const std::function<void()>& on_sample = {},
                Tick until = std::numeric_limits<Tick>::max());
 
@@ -249,8 +253,9 @@ class LayerStepper {
   void set_end_time(Tick end);
   /// Before initialize(): the form (LayerForm). Lts: `energy_period` is the coarse step of the
   /// conserved energy's instants (every domain's: the plan's base), at whose multiples the stepper
-  /// samples its share (lts_energy_J). ModelError with variable steps, or a period that is not a
-  /// multiple of this domain's step and of every owner's.
+  /// samples its share (lts_energy_J; fixed steps only: variable steps have no E). ModelError for
+  /// a period that is not a multiple of this domain's step and of every owner's (fixed steps), a
+  /// first owner step that is not a multiple of this domain's planned step, or `split` (variable).
   void set_form(LayerForm form, Tick energy_period = 0);
   LayerForm form() const { return form_; }
   /// Lts: this domain's share of E^{k-1/2} (LtsEnergy) at the last coarse instant (a multiple of

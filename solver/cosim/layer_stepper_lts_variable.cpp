@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <span>
 #include <utility>
 
@@ -11,6 +12,12 @@
 #include "solver/cosim/layer_stepper.h"
 
 namespace crashlink::cosim {
+
+namespace {
+/// More fine substeps per owner step than any mesh ratio a cut plans (a partner's step that
+/// would need more is refused: the path holds a row per substep).
+constexpr std::int64_t kMaxLtsSubsteps = 100000;
+}  // namespace
 
 bool LayerStepper::lts_decide_next_owner_step() {
   // The u_J of the current owner step's end carries the owner's next step
@@ -41,11 +48,11 @@ bool LayerStepper::lts_decide_next_owner_step() {
           "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks, but the "
           "owner step [{}, {}] ticks it announced ends at {} ticks (lts, variable steps)",
           dom, port.index, port.partner, t, owner_T_, end, end));
-    if (!l && n <= 0)
+    if (!l && (n <= 0 || n > std::numeric_limits<Tick>::max() - end))
       throw LayerPartnerError(fmt::format(
           "layer stepper '{}': interface {}: the owner '{}' sent u_J for t = {} ticks with the "
           "next step {} ticks; under lts with variable steps every u_J but the last announces "
-          "the owner's step after it (a partner older than this protocol?)",
+          "the owner's step after it, > 0 and within the tick range",
           dom, port.index, port.partner, t, n));
     if (!first && (n != next || l != last || pa != pause))
       throw LayerPartnerError(fmt::format(
@@ -67,6 +74,15 @@ bool LayerStepper::lts_decide_next_owner_step() {
     const Tick prop = proposal_sent_;
     next_owner_H_ = next;
     next_substeps_ = prop > 0 ? std::max<Tick>(1, next / prop + (next % prop != 0 ? 1 : 0)) : 1;
+    if (next_substeps_ > kMaxLtsSubsteps) {
+      const auto owner = std::find_if(ports_.begin(), ports_.end(),
+                                      [](const LayerPort& p) { return p.fine_side; });
+      throw LayerPartnerError(fmt::format(
+          "layer stepper '{}': the owner '{}' announces the step {} ticks after t = {} ticks, "
+          "{} of this domain's proposal {} ticks; at most {} substeps per owner step (the "
+          "reflected path holds one row each)",
+          solver_.domain_name(), owner->partner, next, end, next_substeps_, prop, kMaxLtsSubsteps));
+    }
   }
   next_owner_known_ = true;
   return true;
@@ -97,7 +113,9 @@ bool LayerStepper::lts_plan_next(Tick& next) {
   // holders, the one after it (announced_, sent with u_J(t_ + next)). A leader takes the step it
   // announced at the instant before (the plan's at t = 0); a follower the next substep of its
   // owner step, or at its end the first of the owner step announced with the u_J it landed on.
-  // Waits (false) only before changing anything, so that advance() can come back.
+  // It may wait (false) after taking up that next owner step (a domain with holders whose new
+  // owner step has one substep waits for the u_J at its end); taking it up is done once
+  // (t_ == owner_T_ afterwards), so the call after the wait finds the same step.
   std::int64_t index = 0;
   if (!follower_) {
     next = announced_;
@@ -118,10 +136,11 @@ bool LayerStepper::lts_plan_next(Tick& next) {
     index = t_ == owner_T_ ? 0 : substep_ + 1;
     next = substep_length(owner_H_, substeps_, index);
   }
+  // A leader's announced_ is also its own next step: it chooses one with holders or without.
   Tick after = 0;
   const bool holders =
       std::any_of(ports_.begin(), ports_.end(), [](const LayerPort& p) { return !p.fine_side; });
-  if (holders && !lts_step_after(index, next, after)) return false;
+  if ((holders || !follower_) && !lts_step_after(index, next, after)) return false;
   if (follower_) substep_ = index;
   announced_ = after;
   return true;

@@ -513,12 +513,13 @@ TEST(LayerStepperOverlap, DisplacementLeavesBeforeTheForcesAndTheRunIsUnchanged)
 static cosim::LayerNetworkOptions run_lts_multi(const std::string& scenario,
                                                 const std::filesystem::path& out,
                                                 const std::string& transport, double safety,
-                                                bool variable = false) {
+                                                bool variable = false, bool lanes = true) {
   std::vector<std::string> argv{
       bin("crashlink"),       "run",   scenario,      "--mode",  "multi",
       "--coupling",           "lts",   "--transport", transport, "--step-safety",
       std::to_string(safety), "--out", out.string(),  "--quiet"};
   if (variable) argv.emplace_back("--variable-steps");
+  if (!lanes) argv.emplace_back("--no-lanes");
   for (const auto& s : fast_session_args()) argv.push_back(s);
   Child run(argv);
   const auto st = run.wait(90s);
@@ -667,25 +668,32 @@ TEST(LtsProcesses, StarTreesAreNetworkToTheBit) {
 
 // `lts` with variable steps over processes (crashlink run --coupling lts --variable-steps): each
 // owner step rides one ahead on the u_J before it (LayerDisplacement.next_step_ticks). The bar over
-// ipc with lanes, and the chain fine | mid | coarse over tcp, whose middle domain announces its own
-// steps once its owner's announcement is in: every domain file and result.h5 are LayerNetwork's
-// to the bit, the steps changed during the run, and no row carries an lts E (variable steps have
-// none).
+// ipc with lanes; the chain fine | mid | coarse over tcp, whose middle domain announces its own
+// steps once its owner's announcement is in; the chain with mid and coarse at one step (one
+// substep per owner step: the Fbar leaves at the landing, and mid waits for the owner's next u_J
+// in the cycle it takes the owner step up) through the coordinator (no lanes). Every domain file
+// and result.h5 are LayerNetwork's to the bit, the steps changed during the run, and no row
+// carries an lts E (variable steps have none).
 TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
   struct Case {
     std::string label, transport;
     std::vector<BarPart> parts;
+    bool lanes = true;
   };
   const std::vector<Case> cases{
       {"bar", "ipc", {{"fine", 0.0, 0.3, 60}, {"coarse", 0.3, 0.3, 20}}},
-      {"chain3", "tcp", {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}}};
+      {"chain3", "tcp", {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}}},
+      {"chain3-even",
+       "tcp",
+       {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 30}},
+       false}};
   for (const auto& c : cases) {
     const auto dir = fresh_dir("lts-variable-" + c.label);
     const RemoveIfPassed cleanup{dir};
     const std::string scenario =
         write_file(dir / (c.label + ".yaml"), bar_parts_yaml(c.label, 2.11e-4, c.parts));
     const auto out = dir / "out";
-    const auto o = run_lts_multi(scenario, out, c.transport, 0.9, true);
+    const auto o = run_lts_multi(scenario, out, c.transport, 0.9, true, c.lanes);
     if (::testing::Test::HasFailure()) return;
     const auto m = io::read_scenario(scenario);
     const Reference ref = reference(m, o);
@@ -711,11 +719,44 @@ TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
       last = t;
     }));
     EXPECT_GT(steps.size(), 1u) << c.label << ": the coarse step never changed";
+    std::string cycles;
+    for (std::size_t k = 0; k < net.size(); ++k)
+      cycles += " " + net.solver(k).domain_name() + " " + std::to_string(net.solver(k).cycle());
+    if (c.label == "chain3-even") {  // one substep per owner step between mid and coarse
+      std::int64_t mid = 0, coarse = 0;
+      for (std::size_t k = 0; k < net.size(); ++k) {
+        if (net.solver(k).domain_name() == "mid") mid = net.solver(k).cycle();
+        if (net.solver(k).domain_name() == "coarse") coarse = net.solver(k).cycle();
+      }
+      EXPECT_EQ(mid, coarse) << cycles;
+    }
     for (const auto& r : io::ResultReader((out / "result.h5").string()).glstat())
       EXPECT_FALSE(std::isfinite(r.scheme_energy_J)) << c.label << " row at " << r.time_s << " s";
     std::printf(
-        "[measured] lts %s over %s, variable steps (%zu different coarse steps): max |u - "
-        "u_network| = %.3e (domain files), %.3e (gathered)\n",
-        c.label.c_str(), c.transport.c_str(), steps.size(), bits.worst, gathered.max_abs);
+        "[measured] lts %s over %s%s, variable steps (%zu different coarse steps; cycles%s): "
+        "max |u - u_network| = %.3e (domain files), %.3e (gathered)\n",
+        c.label.c_str(), c.transport.c_str(), c.lanes ? "" : " without lanes", steps.size(),
+        cycles.c_str(), bits.worst, gathered.max_abs);
   }
+}
+
+// `--mode split --variable-steps --coupling lts` is refused before any daemon starts: one common
+// step is `layer`'s split.
+TEST(LtsProcesses, SplitWithVariableStepsIsRefused) {
+  const auto dir = fresh_dir("lts-split-variable");
+  const RemoveIfPassed cleanup{dir};
+  const std::string scenario = write_file(
+      dir / "bar.yaml",
+      bar_parts_yaml("bar", 2.11e-4, {{"fine", 0.0, 0.3, 60}, {"coarse", 0.3, 0.3, 20}}));
+  std::vector<std::string> argv{
+      bin("crashlink"), "run", scenario,           "--mode", "split",
+      "--coupling",     "lts", "--variable-steps", "--out",  (dir / "out").string(),
+      "--quiet"};
+  for (const auto& s : fast_session_args()) argv.push_back(s);
+  Child run(argv);
+  const auto st = run.wait(90s);
+  ASSERT_TRUE(st.has_value()) << run.output();
+  EXPECT_NE(exit_code(*st), 0) << run.output();
+  EXPECT_NE(run.output().find("one common step is `layer`'s split"), std::string::npos)
+      << run.output();
 }
