@@ -111,6 +111,11 @@ class DomainScheme {
     return {nan, nan};
   }
 
+  /// Whether the state at this instant is one a field state may show: `lts`'s fine side holds its
+  /// rim elements' elastic trial between owner instants (docs/multirate.md "Plasticity on the
+  /// rim"), so its field states wait for the next owner instant.
+  virtual bool fields_settled() const { return true; }
+
   /// Checkpoints (docs/design.md §2.6 "Checkpoints"), at a cycle boundary after Pace::Paused.
   virtual bool at_cycle_boundary() const = 0;
   virtual Tick end_time() const = 0;

@@ -273,6 +273,11 @@ class LayerStepper {
     return std::numeric_limits<double>::quiet_NaN();
   }
   Tick lts_energy_period() const { return energy_period_; }
+  /// Lts: the rim elements' plastic state is settled at time() (an owner instant of every fine
+  /// port, where the deferred J2 returns are taken: Solver::set_rim_returns); between owner
+  /// instants the rim holds its elastic trial, which a field state should not show. Always true
+  /// for `layer` and for a domain that holds no ghosts.
+  bool rim_settled() const { return form_ != LayerForm::Lts || lts_owner_instant(t_); }
   /// Messages dropped as a partner's repeats after a restore (deliver; docs/checkpoints.md).
   std::int64_t repeats_dropped() const { return repeats_dropped_; }
   /// Lts: the coarse instants [ticks] whose share someone reads (a daemon: its history rows').

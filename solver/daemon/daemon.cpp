@@ -174,6 +174,7 @@ class Daemon {
     scheme_->set_ticks_per_second(tps_);
     open_output();
     output_->set_scheme_energy([this](double t_s) { return scheme_->scheme_energy(t_s); });
+    output_->set_field_gate([this] { return scheme_->fields_settled(); });
     if (o_.offer_lane && scheme_->uses_lanes()) lanes_.open_own(o_.endpoint);
     link_->send(register_message(*scheme_, scheme_options(), tps_, checkpoints_->instants(),
                                  {lanes_.endpoint(), lanes_.public_key()}));

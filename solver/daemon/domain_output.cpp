@@ -36,11 +36,17 @@ void DomainOutput::follow(const integration::Solver& solver) {
   solver_ = &solver;
   recorder_ = std::make_unique<run::DomainRecorder>(writer_, solver);
   if (scheme_energy_) recorder_->set_scheme_energy(scheme_energy_);
+  if (field_gate_) recorder_->set_field_gate(field_gate_);
 }
 
 void DomainOutput::set_scheme_energy(std::function<std::pair<double, double>(double)> share_J) {
   scheme_energy_ = std::move(share_J);
   recorder_->set_scheme_energy(scheme_energy_);
+}
+
+void DomainOutput::set_field_gate(std::function<bool()> settled) {
+  field_gate_ = std::move(settled);
+  recorder_->set_field_gate(field_gate_);
 }
 
 void DomainOutput::finish(double wall_s, double cpu_s, std::int64_t elements) {

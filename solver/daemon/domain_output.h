@@ -25,6 +25,8 @@ class DomainOutput {
   void follow(const integration::Solver& solver);
   /// The coupling scheme's energy share for the history (run::DomainRecorder::set_scheme_energy).
   void set_scheme_energy(std::function<std::pair<double, double>(double)> share_J);
+  /// When a due field state may be written (run::DomainRecorder::set_field_gate).
+  void set_field_gate(std::function<bool()> settled);
   void sample() { recorder_->sample(); }
   run::DomainRecorder& recorder() { return *recorder_; }
   const std::string& h5_path() const { return h5_path_; }
@@ -44,6 +46,7 @@ class DomainOutput {
   io::ResultWriter writer_;
   std::unique_ptr<run::DomainRecorder> recorder_;
   std::function<std::pair<double, double>(double)> scheme_energy_;
+  std::function<bool()> field_gate_;
   std::string h5_path_;
   double setup_cpu_s_ = 0.0;
 };

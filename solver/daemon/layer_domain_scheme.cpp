@@ -146,6 +146,8 @@ class LayerDomainScheme final : public coupling::DomainScheme {
   }
 
   void fill_bye(wire::DomainReport& /*r*/) const override {}
+  bool fields_settled() const override { return !stepper_ || stepper_->rim_settled(); }
+
   std::pair<double, double> scheme_energy(double instant_s) const override {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     if (!stepper_ || form_ != cosim::LayerForm::Lts || !rows_) return {nan, nan};

@@ -37,7 +37,7 @@ void DomainRecorder::sample() {
     } while (c.history_interval_s > 0.0 && next_history_ <= t);
     write_history(c.history_interval_s > 0.0 ? instant : t);  // (0: every cycle)
   }
-  if (t >= next_field_) {
+  if (t >= next_field_ && (!field_gate_ || field_gate_())) {
     write_fields();
     next_field_ = c.field_interval_s > 0.0 ? next_field_ + c.field_interval_s : c.end_time_s * 2.0;
     while (next_field_ <= t) next_field_ += c.field_interval_s;

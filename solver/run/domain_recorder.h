@@ -50,6 +50,10 @@ class DomainRecorder {
   void set_scheme_energy(std::function<std::pair<double, double>(double)> share_J) {
     scheme_energy_ = std::move(share_J);
   }
+  /// A field state that is due is written only once `settled()` says the state may be shown
+  /// (coupling::DomainScheme::fields_settled: `lts`'s fine side at its owner instants); unset,
+  /// always.
+  void set_field_gate(std::function<bool()> settled) { field_gate_ = std::move(settled); }
 
  private:
   void write_history(double instant_s);
@@ -58,6 +62,7 @@ class DomainRecorder {
   io::ResultWriter& writer_;
   const integration::Solver& solver_;
   std::function<std::pair<double, double>(double)> scheme_energy_;
+  std::function<bool()> field_gate_;
   double next_history_ = 0.0;
   double next_field_ = 0.0;
   double last_field_time_ = -1.0;

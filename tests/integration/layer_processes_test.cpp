@@ -541,7 +541,11 @@ static cosim::LayerNetworkOptions run_lts_multi(const std::string& scenario,
 TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
   const auto dir = fresh_dir("lts-multi-bar");
   const RemoveIfPassed cleanup{dir};
-  const std::string scenario = write_file(dir / "bar.yaml", bar_yaml(6.0e-3));
+  std::string yaml = bar_yaml(6.0e-3);
+  const std::string controls = "controls:\n";
+  ASSERT_NE(yaml.find(controls), std::string::npos);
+  yaml.insert(yaml.find(controls) + controls.size(), "  field_interval: 3.7e-4\n");  // off grid
+  const std::string scenario = write_file(dir / "bar.yaml", yaml);
   const auto out = dir / "out";
   const auto o = run_lts_multi(scenario, out, "ipc", 0.9);  // crashlink run's default safety
   if (::testing::Test::HasFailure()) return;
@@ -551,6 +555,28 @@ TEST(LtsProcesses, MultiBarIsNetworkToTheBit) {
   EXPECT_GT(std::max(ref.steps[0], ref.steps[1]), std::min(ref.steps[0], ref.steps[1]))
       << "one step for both: not multirate";
   const double worst = expect_network_bits(out, m, ref, {"fine", "coarse"}).worst;
+  // The fine side's field states wait for an owner instant: between them its rim elements hold
+  // their elastic trial (docs/multirate.md "Plasticity on the rim"); the coarse side's are at its
+  // own instants. Both at or after each requested instant, the same count.
+  {
+    const coupling::Tick H = std::max(ref.steps[0], ref.steps[1]);
+    const io::ResultReader fine((out / "domains" / "fine.h5").string());
+    const io::ResultReader coarse((out / "domains" / "coarse.h5").string());
+    ASSERT_GT(fine.state_count(), 10u);
+    EXPECT_EQ(fine.state_count(), coarse.state_count());
+    std::size_t off_grid = 0;
+    for (std::size_t k = 0; k < fine.state_count(); ++k) {
+      const auto t = static_cast<coupling::Tick>(
+          std::llround(fine.state_time(k) * static_cast<double>(o.run.ticks_per_second)));
+      EXPECT_EQ(t % H, 0) << "fine field state " << k << " at " << fine.state_time(k) << " s";
+      if (k + 1 < fine.state_count()) {  // (the last: at the end, requested or not)
+        EXPECT_GE(fine.state_time(k), 3.7e-4 * static_cast<double>(k) * (1.0 - 1e-9)) << k;
+      }
+      const double H_s = static_cast<double>(H) / static_cast<double>(o.run.ticks_per_second);
+      off_grid += std::fmod(3.7e-4 * static_cast<double>(k), H_s) > 1e-12 ? 1 : 0;
+    }
+    EXPECT_GT(off_grid, 5u) << "the requested instants are owner instants: no test";
+  }
   const auto g = last_state((out / "result.h5").string());
   const Diff gathered = compare(g, m, ref.u);
   EXPECT_EQ(gathered.max_abs, 0.0) << "gathered result.h5";
@@ -671,7 +697,8 @@ TEST(LtsProcesses, StarTreesAreNetworkToTheBit) {
 // ipc with lanes; the chain fine | mid | coarse over tcp, whose middle domain announces its own
 // steps once its owner's announcement is in; the chain with mid and coarse at one step (one
 // substep per owner step: the Fbar leaves at the landing, and mid waits for the owner's next u_J
-// in the cycle it takes the owner step up) through the coordinator (no lanes). Every domain file
+// in the cycle it takes the owner step up) through the coordinator (no lanes); one owner with two
+// fine domains at different steps. Every domain file
 // and result.h5 are LayerNetwork's to the bit, the steps changed during the run, and no row
 // carries an lts E (variable steps have none).
 TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
@@ -686,7 +713,11 @@ TEST(LtsProcesses, VariableStepsAreNetworkToTheBit) {
       {"chain3-even",
        "tcp",
        {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 30}},
-       false}};
+       false},
+      // one owner, two fine domains at different steps: the leader announces to both
+      {"star-owner",
+       "ipc",
+       {{"fineA", 0.0, 0.1, 20}, {"coarse", 0.1, 0.3, 10}, {"fineB", 0.4, 0.2, 20}}}};
   for (const auto& c : cases) {
     const auto dir = fresh_dir("lts-variable-" + c.label);
     const RemoveIfPassed cleanup{dir};
