@@ -375,7 +375,8 @@ class LayerStepper {
   /// Sends Fbar (m) unless the owner used it before the checkpoint this side restored from.
   void lts_send_fbar(PortState& ps, LayerMessage m, Tick H_before);
   /// At the instant t_, its forces in: the step to take next and, with holders, announced_ (the
-  /// one after). false: waits for the owner's u_J (nothing changed).
+  /// one after). false: waits for the owner's u_J (the next owner step may have been taken up;
+  /// the call after the wait finds it taken and goes on from there).
   bool lts_plan_next(Tick& next);
   bool lts_variable() const { return variable_ && form_ == LayerForm::Lts; }
   /// A follower: the owner step after the current one, from the owner's u_J at the current one's
@@ -444,7 +445,7 @@ class LayerStepper {
   Tick planned_h_ = 0;              ///< the step the plan gave (the first cycle's)
   Tick announced_ = 0;              ///< the step after the next instant, sent with u_J
   bool next_owner_known_ = false;   ///< follower: next_owner_H_ / next_substeps_ decided
-  Tick lts_pause_at_ = -1;          ///< follower: the owner pauses there (its u_J's flag)
+  Tick lts_pause_at_ = -1;          ///< follower: pauses there (the owner step taken up there)
   Tick next_owner_H_ = 0;           ///< follower: the owner step after the current one
   std::int64_t next_substeps_ = 1;  ///< follower: its substeps
   std::vector<std::pair<std::size_t, double>> lts_overlap_;  ///< scratch: omega_prev's weights

@@ -65,7 +65,6 @@ bool LayerStepper::lts_decide_next_owner_step() {
   }
   owner_last_ = last;
   owner_pause_ = pause;
-  if (pause) lts_pause_at_ = end;
   if (!last) {
     // ceil(H / p) substeps, p the proposal sent with the Fbar the owner chose H from
     // (layer_stepper.h "Steps": a follower's rule; H = m p gives m substeps, not m + 1 when the
@@ -131,6 +130,10 @@ bool LayerStepper::lts_plan_next(Tick& next) {
       substeps_ = next_substeps_;
       substep_ = 0;
       next_owner_known_ = false;
+      // the owner pauses where this owner step starts: so does this side, before any substep
+      // (pause_here); owner_pause_ is then the next end's, which a domain with holders whose
+      // owner step has one substep decides below, in this same call
+      lts_pause_at_ = owner_pause_ ? t_ : -1;
       owner_pause_ = false;
     }
     index = t_ == owner_T_ ? 0 : substep_ + 1;

@@ -269,19 +269,29 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       ps.next_step_1 = r.get_int(pre + "lts.next_step_1");
       ps.last_1 = r.get_bool(pre + "lts.last_1");
       ps.pause_1 = r.get_bool(pre + "lts.pause_1");
-      const std::size_t n3 = 3 * port.local.size();
-      const auto rows = static_cast<std::size_t>(r.get_int("stepper.substeps")) + 1;
-      if (ps.fbar_T.size() != n3 || ps.g_T.size() != n3 || ps.path_cur_t.size() != rows ||
-          ps.path_cur.size() != rows * n3 || ps.path_prev.size() != ps.path_prev_t.size() * n3)
+      // The path holds the owner step this side is in or has just ended (at a pause, the next
+      // one is taken up and its rows come at its first substep): sizes checked against
+      // themselves and the J nodes, not against the substeps of the step taken up.
+      const std::size_t n3 = 3 * port.local.size(), r3 = ps.rotates ? n3 : 0;
+      const std::size_t cur = ps.path_cur_t.size(), prev = ps.path_prev_t.size();
+      const bool fits = cur >= 2 && prev >= 2 && ps.path_cur.size() == cur * n3 &&
+                        ps.path_prev.size() == prev * n3 && ps.omega_cur.size() == (cur - 1) * r3 &&
+                        ps.omega_prev.size() == (prev - 1) * r3 && ps.fbar_T.size() == n3 &&
+                        ps.fbar_T1.size() == n3 && ps.fbar_left.size() == n3 &&
+                        ps.g_T.size() == n3 && ps.mbar_T.size() == r3 && ps.mbar_T1.size() == r3 &&
+                        ps.mbar_left.size() == r3 && ps.m_T.size() == r3;
+      if (!fits)
         throw CheckpointError(fmt::format(
-            "checkpoint {}: domain '{}', interface {}: the lts path and forces ({} rows of {} "
-            "values, {} forces) do not fit {} J nodes and {} substeps; the file was not written "
-            "by this run's stepper",
-            r.path(), dom, port.index, ps.path_cur_t.size(), ps.path_cur.size(), ps.fbar_T.size(),
-            port.local.size(), rows - 1));
+            "checkpoint {}: domain '{}', interface {}: the lts path and forces ({} and {} rows of "
+            "{} and {} values, {} forces) do not fit {} J nodes; the file was not written by this "
+            "run's stepper",
+            r.path(), dom, port.index, cur, prev, ps.path_cur.size(), ps.path_prev.size(),
+            ps.fbar_T.size(), port.local.size()));
       // At the start of an owner step T: the owner's checkpoint is past Fbar(T), which this side
-      // sends p - 1 substeps later (layer_stepper_lts_variable.cpp): not again.
-      ps.consumed = t_saved > 0 && rows > 2 && ps.acc_T == t_saved ? t_saved : -1;
+      // sends p - 1 substeps later (layer_stepper_lts_variable.cpp), p the substeps of the owner
+      // step taken up at T: not again.
+      const std::int64_t p_new = r.get_int("stepper.substeps");
+      ps.consumed = t_saved > 0 && p_new > 1 && ps.acc_T == t_saved ? t_saved : -1;
     } else if (form_ == LayerForm::Lts && port.fine_side) {
       lts_start_port(port, ps);  // sizes
       r.get_exact(pre + "lts.path_prev", ps.path_prev);

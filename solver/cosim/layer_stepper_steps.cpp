@@ -92,15 +92,17 @@ bool LayerStepper::finishes_at(Tick t) const {
 }
 
 bool LayerStepper::pauses_at(Tick t) const {
-  if (!follower_) return t_ < until_ && t >= until_;
+  // (lts: a leader does not pause at its last instant, where its followers, which end there,
+  // could not: no u_J marked `last` is marked `pause`)
+  if (!follower_) return t_ < until_ && t >= until_ && !(lts_variable() && finishes_at(t));
   return owner_pause_ && t == owner_T_ + owner_H_;
 }
 
 bool LayerStepper::pause_here() const {
-  if (!variable_ || !follower_) return t_ >= until_;
-  // lts: at the start of the owner step that begins where the owner pauses (its u_J said so when
-  // this side landed on it; the owner step after it is already taken up)
-  if (form_ == LayerForm::Lts) return t_ == lts_pause_at_ && t_ == owner_T_ && t_ >= until_;
+  if (!variable_ || !follower_) return t_ >= until_ && !(lts_variable() && finished_here());
+  // lts: at the start of the owner step that begins where the owner pauses (set when that owner
+  // step is taken up, lts_plan_next: its u_J said so)
+  if (form_ == LayerForm::Lts) return t_ == lts_pause_at_ && t_ >= until_;
   // where the owner pauses, for as long as the caller's `until` has not passed that instant (a
   // later `until`, the next checkpoint's, lets it go on; a repeated call stays paused)
   return step_pending_ && owner_pause_ && at_owner_end() && t_ >= until_;

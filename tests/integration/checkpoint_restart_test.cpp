@@ -281,7 +281,8 @@ TEST(CheckpointRestartRefusals, RestartWithoutCheckpointsIsRefusedNamingWhatEach
 // fine side must not send it again (the owner would refuse a force for an instant it has passed).
 // Run with checkpoints and restarted from the newest, the run ends as the run without them.
 static void lts_restart_case(const std::string& name, const std::string& yaml,
-                             const std::string& extra, bool energy = true) {
+                             const std::string& extra, bool energy = true,
+                             const std::string& interval = "1.1e-3", std::size_t checkpoints = 3) {
   const fs::path dir = fresh_dir(name);
   const std::string scenario = crashlink::proc_test::write_file(dir / "scene.yaml", yaml);
   const std::string run =
@@ -289,12 +290,12 @@ static void lts_restart_case(const std::string& name, const std::string& yaml,
   int status = -1;
   const std::string out_ref = run_command(run + "--out " + (dir / "ref").string(), status);
   ASSERT_EQ(status, 0) << out_ref;
-  const std::string every = "--checkpoint-interval 1.1e-3 ";
+  const std::string every = "--checkpoint-interval " + interval + " ";
   const fs::path ck = dir / "ck";
   const std::string out_ck = run_command(run + every + "--out " + ck.string(), status);
   ASSERT_EQ(status, 0) << out_ck;
   const auto instants = crashlink::run::list_checkpoints(ck.string(), "coordinator");
-  ASSERT_EQ(instants.size(), 3u) << out_ck;
+  ASSERT_EQ(instants.size(), checkpoints) << out_ck;
   const std::string out = run_command(run + every + "--restart " + ck.string(), status);
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("from the checkpoint at t = "), std::string::npos) << out;
@@ -354,4 +355,17 @@ TEST(CheckpointRestartLts, VariableStepsChainOfThreeRestartedIsTheSameRun) {
   const std::string yaml = crashlink::proc_test::bar_parts_yaml(
       "chain3", 6.0e-3, {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 10}});
   lts_restart_case("ckpt_lts_var_chain", yaml, "--variable-steps --step-safety 0.8 ", false);
+}
+
+// The chain fine | mid | coarse whose mid (10 mm) takes one substep per owner step of coarse
+// (10.7 mm hexes): mid decides its next owner step, and whether its owner pauses at its end, in
+// the cycle it takes the current one up. Checkpoints every 1 us against a coarse step of about
+// 1.3 us: every coarse instant is a checkpoint instant, so mid's pause at one and its owner's
+// flag for the next meet in one cycle (before, mid missed every such pause), and the restart from
+// the newest (the coordinator keeps the last 3) is the same run.
+TEST(CheckpointRestartLts, VariableStepsChainWithOneSubstepAtEveryInstant) {
+  const std::string yaml = crashlink::proc_test::bar_parts_yaml(
+      "chain3even", 3.0e-5,
+      {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 28}});
+  lts_restart_case("ckpt_lts_var_even", yaml, "--variable-steps ", false, "1.0e-6", 3);
 }
