@@ -150,32 +150,11 @@ TEST(LtsVariableSteps, ThreeDomainChainFollowsItsOwnersAnnouncements) {
   double err[2] = {0.0, 0.0};
   const char* schemes[2] = {"layer", "lts"};
   for (int c = 0; c < 2; ++c) {
-    cosim::LayerNetworkOptions o;
-    o.run.scheme = schemes[c];
-    o.run.variable_steps = true;
-    cosim::LayerNetwork net(m, o);
-    net.initialize();
-    const auto& d = net.domains();
-    const std::size_t k_end = d.owner_solver[gi];
-    double du = 0.0, umax = 0.0;
-    ASSERT_TRUE(net.run([&](std::size_t k) {
-      if (k != k_end) return;
-      const double u = net.solver(k).displacement()[3 * d.owner_local[gi]];
-      const double um = mono.at(net.seconds(net.stepper(k).time())).first;
-      du = std::max(du, std::abs(u - um));
-      umax = std::max(umax, std::abs(um));
-    }));
-    err[c] = du / umax;
-    std::string cycles;
-    for (std::size_t k = 0; k < net.size(); ++k)
-      cycles += " " + net.solver(k).domain_name() + " " + std::to_string(net.solver(k).cycle());
+    const auto r = variable_chain_vs_mono(m, mono, gi, schemes[c]);
+    err[c] = r.error;
     std::printf("[measured] chain, %s, variable steps: cycles%s; end node error %.2f %%\n",
-                schemes[c], cycles.c_str(), 100.0 * err[c]);
-    for (std::size_t k = 1; k < net.size(); ++k)
-      EXPECT_EQ(net.stepper(k).time(), net.stepper(0).time()) << net.solver(k).domain_name();
-    EXPECT_GE(net.seconds(net.stepper(0).time()), m.controls.end_time_s * (1.0 - 1e-12));
-    const auto e = net.energy();
-    EXPECT_LT(std::abs(e.coupling_work_J), 0.05 * e.external_work_J) << schemes[c];
+                schemes[c], r.cycles.c_str(), 100.0 * err[c]);
+    EXPECT_LT(std::abs(r.coupling_work_J), 0.05 * r.external_work_J) << schemes[c];
   }
   EXPECT_LE(err[1], 0.03);
   EXPECT_LE(err[1], std::max(1.5 * err[0], 0.01));

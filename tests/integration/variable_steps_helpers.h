@@ -161,4 +161,43 @@ inline VariableRun variable_vs_mono(const model::Model& m, double fixed_safety =
   return r;
 }
 
+/// A run of `m` (several domains) in `scheme` with variable steps against mono at its own steps on
+/// node `gi`: max |u - u_mono| / max |u_mono| at the instants of the domain that owns it; every
+/// domain must end at the same instant (the `last` flag), at or after the end time.
+struct ChainRun {
+  double error = 0.0;
+  std::string cycles;  ///< " name cycles" per domain
+  double coupling_work_J = 0.0, external_work_J = 0.0;
+};
+
+inline ChainRun variable_chain_vs_mono(const model::Model& m, const History& mono, std::size_t gi,
+                                       const std::string& scheme) {
+  cosim::LayerNetworkOptions o;
+  o.run.scheme = scheme;
+  o.run.variable_steps = true;
+  cosim::LayerNetwork net(m, o);
+  net.initialize();
+  const auto& d = net.domains();
+  const std::size_t k_end = d.owner_solver[gi];
+  double du = 0.0, umax = 0.0;
+  EXPECT_TRUE(net.run([&](std::size_t k) {
+    if (k != k_end) return;
+    const double u = net.solver(k).displacement()[3 * d.owner_local[gi]];
+    const double um = mono.at(net.seconds(net.stepper(k).time())).first;
+    du = std::max(du, std::abs(u - um));
+    umax = std::max(umax, std::abs(um));
+  }));
+  ChainRun r;
+  r.error = du / umax;
+  for (std::size_t k = 0; k < net.size(); ++k)
+    r.cycles += " " + net.solver(k).domain_name() + " " + std::to_string(net.solver(k).cycle());
+  for (std::size_t k = 1; k < net.size(); ++k)  // the `last` flag: all end together
+    EXPECT_EQ(net.stepper(k).time(), net.stepper(0).time()) << net.solver(k).domain_name();
+  EXPECT_GE(net.seconds(net.stepper(0).time()), m.controls.end_time_s * (1.0 - 1e-12));
+  const auto e = net.energy();
+  r.coupling_work_J = e.coupling_work_J;
+  r.external_work_J = e.external_work_J;
+  return r;
+}
+
 }  // namespace crashlink::testing
