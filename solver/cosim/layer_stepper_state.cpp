@@ -248,23 +248,40 @@ void LayerStepper::restore_state(const core::StateReader& r) {
     h.work_J = r.get_double(pre + "work.J");
     ps.meter.restore(std::move(h));
     ps.rows.clear();
-    if (form_ == LayerForm::Lts && port.fine_side && variable_) {
-      // (the sizes follow the owner steps: as saved)
-      r.get(pre + "lts.path_prev", ps.path_prev);
-      r.get(pre + "lts.path_cur", ps.path_cur);
-      r.get(pre + "lts.fbar_T", ps.fbar_T);
-      r.get(pre + "lts.fbar_T1", ps.fbar_T1);
+    if (form_ == LayerForm::Lts && port.fine_side) {
+      // Fixed steps: the sizes of the plan, checked on reading; variable: as saved (they follow
+      // the owner steps), checked below.
+      if (!variable_) lts_start_port(port, ps);
+      const auto read = [&](const char* key, std::vector<double>& v) {
+        if (variable_)
+          r.get(pre + key, v);
+        else
+          r.get_exact(pre + key, v);
+      };
+      read("lts.path_prev", ps.path_prev);
+      read("lts.path_cur", ps.path_cur);
+      read("lts.fbar_T", ps.fbar_T);
+      read("lts.fbar_T1", ps.fbar_T1);
       ps.acc_T = r.get_int(pre + "lts.acc_T");
-      r.get(pre + "lts.omega_prev", ps.omega_prev);
-      r.get(pre + "lts.omega_cur", ps.omega_cur);
-      r.get(pre + "lts.mbar_T", ps.mbar_T);
-      r.get(pre + "lts.mbar_T1", ps.mbar_T1);
+      read("lts.omega_prev", ps.omega_prev);
+      read("lts.omega_cur", ps.omega_cur);
+      read("lts.mbar_T", ps.mbar_T);
+      read("lts.mbar_T1", ps.mbar_T1);
+      if (!variable_) {
+        // A checkpoint at an owner instant T: the owner's is written after it used Fbar(T),
+        // which this side sends only p - 1 substeps later (layer_stepper_lts.cpp): not again.
+        ps.consumed = t_saved > 0 && ps.substeps > 1 && t_saved % port.partner_step == 0 &&
+                              ps.acc_T == t_saved
+                          ? t_saved
+                          : -1;
+        continue;
+      }
       r.get(pre + "lts.path_prev_t", ps.path_prev_t);
       r.get(pre + "lts.path_cur_t", ps.path_cur_t);
-      r.get(pre + "lts.fbar_left", ps.fbar_left);
-      r.get(pre + "lts.g_T", ps.g_T);
-      r.get(pre + "lts.mbar_left", ps.mbar_left);
-      r.get(pre + "lts.m_T", ps.m_T);
+      read("lts.fbar_left", ps.fbar_left);
+      read("lts.g_T", ps.g_T);
+      read("lts.mbar_left", ps.mbar_left);
+      read("lts.m_T", ps.m_T);
       ps.H_prev = r.get_int(pre + "lts.H_prev");
       ps.next_step_1 = r.get_int(pre + "lts.next_step_1");
       ps.last_1 = r.get_bool(pre + "lts.last_1");
@@ -292,23 +309,6 @@ void LayerStepper::restore_state(const core::StateReader& r) {
       // step taken up at T: not again.
       const std::int64_t p_new = r.get_int("stepper.substeps");
       ps.consumed = t_saved > 0 && p_new > 1 && ps.acc_T == t_saved ? t_saved : -1;
-    } else if (form_ == LayerForm::Lts && port.fine_side) {
-      lts_start_port(port, ps);  // sizes
-      r.get_exact(pre + "lts.path_prev", ps.path_prev);
-      r.get_exact(pre + "lts.path_cur", ps.path_cur);
-      r.get_exact(pre + "lts.fbar_T", ps.fbar_T);
-      r.get_exact(pre + "lts.fbar_T1", ps.fbar_T1);
-      ps.acc_T = r.get_int(pre + "lts.acc_T");
-      r.get_exact(pre + "lts.omega_prev", ps.omega_prev);
-      r.get_exact(pre + "lts.omega_cur", ps.omega_cur);
-      r.get_exact(pre + "lts.mbar_T", ps.mbar_T);
-      r.get_exact(pre + "lts.mbar_T1", ps.mbar_T1);
-      // A checkpoint at an owner instant T: the owner's is written after it used Fbar(T), which
-      // this side sends only p - 1 substeps later (layer_stepper_lts.cpp): not again.
-      ps.consumed =
-          t_saved > 0 && ps.substeps > 1 && t_saved % port.partner_step == 0 && ps.acc_T == t_saved
-              ? t_saved
-              : -1;
     }
   }
   if (form_ == LayerForm::Lts && !variable_) {
