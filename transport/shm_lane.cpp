@@ -61,6 +61,12 @@ bool ShmLaneIn::receive_into(std::chrono::microseconds timeout, std::string& fro
   }
 }
 
+bool ShmLaneIn::all_opened() const {
+  for (const auto& [partner, q] : queues_)
+    if (!q.opened_by_sender()) return false;
+  return true;
+}
+
 std::optional<std::pair<std::string, std::string>> ShmLaneIn::receive(
     std::chrono::microseconds timeout) {
   std::pair<std::string, std::string> m;
@@ -77,23 +83,26 @@ ShmLaneOut::ShmLaneOut(std::string_view endpoint, std::string self,
   prefix_ = std::string(endpoint.substr(kShmScheme.size()));
 }
 
-void ShmLaneOut::send(std::string_view bytes) {
-  if (!queue_ || !bell_) {
-    // The partner creates its files when it has its Setup, about when we have ours.
-    const auto deadline = Clock::now() + timeout_;
-    for (;;) {
-      if (!queue_) queue_ = ShmQueue::open(prefix_ + ".from." + self_);
-      if (!bell_) bell_ = ShmDoorbell::open(prefix_ + ".bell");
-      if (queue_ && bell_) break;
-      if (Clock::now() >= deadline) {
-        throw TransportError(std::string(kShmScheme) + prefix_,
-                             fmt::format("the partner's lane files {}.from.{} and {}.bell did not "
-                                         "appear within {} ms",
-                                         prefix_, self_, prefix_, timeout_.count()));
-      }
-      std::this_thread::sleep_for(std::chrono::microseconds{200});
+void ShmLaneOut::open() {
+  // The partner creates its files when it has its Setup, about when we have ours.
+  const auto deadline = Clock::now() + timeout_;
+  for (;;) {
+    // The bell first: opening the queue marks it opened, after which the receiver may end.
+    if (!bell_) bell_ = ShmDoorbell::open(prefix_ + ".bell");
+    if (bell_ && !queue_) queue_ = ShmQueue::open(prefix_ + ".from." + self_);
+    if (queue_ && bell_) return;
+    if (Clock::now() >= deadline) {
+      throw TransportError(std::string(kShmScheme) + prefix_,
+                           fmt::format("the partner's lane files {}.from.{} and {}.bell did not "
+                                       "appear within {} ms",
+                                       prefix_, self_, prefix_, timeout_.count()));
     }
+    std::this_thread::sleep_for(std::chrono::microseconds{200});
   }
+}
+
+void ShmLaneOut::send(std::string_view bytes) {
+  if (!queue_ || !bell_) open();
   queue_->push(bytes, timeout_);
   bell_->ring();
 }

@@ -2,8 +2,11 @@
 // A daemon's shared-memory lane (shm_queue.h; docs/processes.md "Lanes"), for daemons that share
 // a machine (an ipc session): lane endpoint "shm://PREFIX".
 //   receiving end (ShmLaneIn): PREFIX.bell, and PREFIX.from.<partner> for every partner;
-//   sending end (ShmLaneOut): opens the partner's PREFIX.from.<self> and PREFIX.bell at the first
-//   send (the partner creates them once it has its Setup), then pushes and rings.
+//   sending end (ShmLaneOut): opens the partner's PREFIX.from.<self> and PREFIX.bell (open(), or
+//   the first send; the partner creates them once it has its Setup), then pushes and rings.
+// A receiver that ends keeps its files until every sender has opened them (all_opened()): a
+// partner still running may send one last vector its owner step began with, which nobody reads,
+// but whose files must be there to open.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -38,6 +41,8 @@ class ShmLaneIn {
   /// a fresh buffer of a large vector would be fresh pages, a page fault each); false after
   /// `timeout`.
   bool receive_into(std::chrono::microseconds timeout, std::string& from, std::string& bytes);
+  /// Whether every partner's sending end has opened its queue.
+  bool all_opened() const;
 
  private:
   bool poll_once(std::string& from, std::string& bytes);
@@ -53,6 +58,9 @@ class ShmLaneOut {
   /// `endpoint` "shm://PREFIX" of the partner; `self` this daemon's domain; `timeout` bounds the
   /// wait for the partner's files and for room in its ring.
   ShmLaneOut(std::string_view endpoint, std::string self, std::chrono::milliseconds timeout);
+  /// Opens the partner's files, waiting up to the timeout for them to appear; TransportError
+  /// after it. send() calls it when the files are not open yet.
+  void open();
   void send(std::string_view bytes);
   /// Serialises `message` into a buffer kept for the next one, then send().
   template <class Message>

@@ -219,10 +219,11 @@ void ShmDoorbell::sleep(std::uint32_t seen, std::chrono::microseconds timeout) {
 // ---------------------------------------------------------------------------------------------
 struct ShmQueue::Header {
   std::uint64_t magic;
-  std::uint64_t bytes;                          // the file's size: header + ring
-  std::uint64_t capacity;                       // ring bytes, a power of two
-  alignas(64) std::atomic<std::uint64_t> head;  // bytes written, ever (sender)
-  alignas(64) std::atomic<std::uint64_t> tail;  // bytes read, ever (receiver)
+  std::uint64_t bytes;                            // the file's size: header + ring
+  std::uint64_t capacity;                         // ring bytes, a power of two
+  alignas(64) std::atomic<std::uint64_t> head;    // bytes written, ever (sender)
+  alignas(64) std::atomic<std::uint64_t> tail;    // bytes read, ever (receiver)
+  alignas(64) std::atomic<std::uint32_t> opened;  // 1 once the sender has mapped the file
 };
 
 ShmQueue ShmQueue::create(const std::string& path, std::size_t capacity) {
@@ -230,10 +231,12 @@ ShmQueue ShmQueue::create(const std::string& path, std::size_t capacity) {
     throw TransportError("shm://" + path,
                          fmt::format("ring capacity {} is not a power of two >= 4096", capacity));
   }
+  static_assert(sizeof(Header) <= kHeaderBytes);
   ShmMapping m(path, kHeaderBytes + capacity, true);
   auto* h = new (m.data()) Header{};
   h->head.store(0);
   h->tail.store(0);
+  h->opened.store(0);
   h->capacity = capacity;
   h->bytes = kHeaderBytes + capacity;
   h->magic = kQueueMagic;
@@ -244,7 +247,13 @@ ShmQueue ShmQueue::create(const std::string& path, std::size_t capacity) {
 std::optional<ShmQueue> ShmQueue::open(const std::string& path) {
   const std::size_t bytes = complete_size(path, kQueueMagic);
   if (bytes <= kHeaderBytes) return std::nullopt;
-  return ShmQueue(ShmMapping(path, bytes, false));
+  ShmQueue q(ShmMapping(path, bytes, false));
+  q.h().opened.store(1, std::memory_order_seq_cst);
+  return q;
+}
+
+bool ShmQueue::opened_by_sender() const {
+  return h().opened.load(std::memory_order_seq_cst) != 0;
 }
 
 unsigned char* ShmQueue::ring() const {

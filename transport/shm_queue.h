@@ -5,8 +5,9 @@
 // here a message is a memcpy and, only when the receiver sleeps, one futex wake-up.
 //
 // The receiver creates both files, ShmDoorbell and ShmQueue (write, then rename: a file that
-// exists is complete) before it can be sent to; a sender opens them when it first sends, waiting
-// up to a timeout for them to appear. Files are removed by their creator.
+// exists is complete) before it can be sent to; a sender opens them, waiting up to a timeout for
+// them to appear, and marks the queue opened. Files are removed by their creator, which keeps
+// them until every sender has opened them.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -95,6 +96,9 @@ class ShmQueue {
   /// enough); false if none is there now.
   bool pop_into(std::string& out);
   bool empty() const;
+  /// Receiver: whether the sender has opened the file. Until it has, the file must stay (a
+  /// receiver that ends removes it): docs/processes.md "Lanes".
+  bool opened_by_sender() const;
   const std::string& path() const { return map_.path(); }
 
  private:

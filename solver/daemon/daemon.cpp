@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <deque>
@@ -309,6 +310,12 @@ class Daemon {
   void finish() {
     send_report();
     output_->finish(seconds_since(wall0_), run_cpu_seconds(), elements_);
+    if (!lanes_.hold_until_opened(o_.session.peer_timeout, [this] { link_->keep_alive(); })) {
+      std::fprintf(stderr,
+                   "crashlink-solver: domain '%s': a partner has not opened this daemon's lane "
+                   "within %lld ms; ending anyway\n",
+                   o_.domain.c_str(), static_cast<long long>(o_.session.peer_timeout.count()));
+    }
     // An Error the coordinator sent meanwhile (another domain failed at the end) is read now, not
     // after a Bye that a coordinator already gone would leave blocked for the send timeout.
     while (auto m = link_->receive(std::chrono::milliseconds{0}))

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <thread>
 #include <utility>
 
 #include "core/errors.h"
@@ -44,6 +47,20 @@ std::string DaemonLanes::public_key() const {
   return zmq_in_ ? zmq_in_->curve_public_key() : std::string();
 }
 
+std::int64_t injected_lane_delay_ms(const std::string& domain) {
+  const char* v = std::getenv("CRASHLINK_INJECT_LANE_DELAY");
+  if (v == nullptr) return 0;
+  const std::string s(v);
+  const auto colon = s.rfind(':');
+  if (colon == std::string::npos || s.substr(0, colon) != domain) return 0;
+  try {
+    return std::stoll(s.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw InputError(fmt::format("CRASHLINK_INJECT_LANE_DELAY='{}': expected DOMAIN:MILLISECONDS",
+                                 core::log_escape(s)));
+  }
+}
+
 void DaemonLanes::connect(const wire::Setup& setup,
                           const std::vector<coupling::LanePartner>& partners) {
   if (setup.lanes_size() == 0) return;
@@ -82,6 +99,14 @@ void DaemonLanes::connect(const wire::Setup& setup,
     out_.emplace(lane.domain(), std::move(out));
   }
   if (zmq_in_) zmq_in_->authorize(std::move(partner_keys));
+  // Every partner's ring is opened now, while the partner is sure to be there: it keeps its files
+  // until every sender has opened them (hold_until_opened), but only until then. A sender that
+  // opened at its first vector found, after a restart a step before the end, a partner that had
+  // ended and taken its files with it (the first send after the restart was the last one).
+  if (const auto ms = injected_lane_delay_ms(domain_); ms > 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds{ms});
+  for (auto& [partner, out] : out_)
+    if (out.shm) out.shm->open();
   for (const auto& p : partners) {
     const auto it = out_.find(p.partner);
     if (it == out_.end()) {
@@ -94,6 +119,18 @@ void DaemonLanes::connect(const wire::Setup& setup,
       of_interface_.resize(p.interface_index + 1, nullptr);
     of_interface_[p.interface_index] = &it->second;
   }
+}
+
+bool DaemonLanes::hold_until_opened(std::chrono::milliseconds timeout,
+                                    const std::function<void()>& keep_alive) const {
+  if (!shm_in_) return true;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!shm_in_->all_opened()) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    keep_alive();
+    std::this_thread::sleep_for(std::chrono::milliseconds{1});
+  }
+  return true;
 }
 
 bool DaemonLanes::send(std::int64_t interface_index, const wire::Envelope& e) {

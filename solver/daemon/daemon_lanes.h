@@ -5,6 +5,7 @@
 // interface's partner's lane; without lanes everything goes through the coordinator.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -20,6 +21,10 @@
 
 namespace crashlink::daemon {
 
+/// CRASHLINK_INJECT_LANE_DELAY=DOMAIN:MS: that daemon waits MS ms between creating its own lane
+/// files and opening its partners' (a test of the lanes' ends, `LaneEnds.*`); 0 otherwise.
+std::int64_t injected_lane_delay_ms(const std::string& domain);
+
 class DaemonLanes {
  public:
   DaemonLanes(std::string domain, const transport::SessionOptions& session)
@@ -32,9 +37,17 @@ class DaemonLanes {
   const std::string& endpoint() const { return endpoint_; }
   std::string public_key() const;
 
-  /// The Setup's lanes: a sender to each partner's lane, named by our domain. Throws
-  /// ProtocolError when the Setup lists lanes this daemon cannot use or misses a partner's.
+  /// The Setup's lanes: a sender to each partner's lane, named by our domain; a shared-memory one
+  /// is opened now (waiting up to the peer timeout for the partner's files). Throws
+  /// ProtocolError when the Setup lists lanes this daemon cannot use or misses a partner's,
+  /// TransportError when a partner's files do not appear.
   void connect(const wire::Setup& setup, const std::vector<coupling::LanePartner>& partners);
+  /// Before this daemon ends: waits until every partner has opened our shared-memory ring, for
+  /// at most `timeout`, calling `keep_alive` between looks. Our files go with us, and a partner
+  /// that has not opened them yet would find none. False after the timeout (a partner that died:
+  /// the coordinator names it).
+  bool hold_until_opened(std::chrono::milliseconds timeout,
+                         const std::function<void()>& keep_alive) const;
   /// Vectors go daemon to daemon.
   bool active() const { return !out_.empty(); }
   /// Sends on the lane of interface `interface_index`; false when it has none.

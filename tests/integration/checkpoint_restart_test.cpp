@@ -282,7 +282,8 @@ TEST(CheckpointRestartRefusals, RestartWithoutCheckpointsIsRefusedNamingWhatEach
 // Run with checkpoints and restarted from the newest, the run ends as the run without them.
 static void lts_restart_case(const std::string& name, const std::string& yaml,
                              const std::string& extra, bool energy = true,
-                             const std::string& interval = "1.1e-3", std::size_t checkpoints = 3) {
+                             const std::string& interval = "1.1e-3", std::size_t checkpoints = 3,
+                             const std::string& restart_env = "") {
   const fs::path dir = fresh_dir(name);
   const std::string scenario = crashlink::proc_test::write_file(dir / "scene.yaml", yaml);
   const std::string run =
@@ -296,7 +297,8 @@ static void lts_restart_case(const std::string& name, const std::string& yaml,
   ASSERT_EQ(status, 0) << out_ck;
   const auto instants = crashlink::run::list_checkpoints(ck.string(), "coordinator");
   ASSERT_EQ(instants.size(), checkpoints) << out_ck;
-  const std::string out = run_command(run + every + "--restart " + ck.string(), status);
+  const std::string out =
+      run_command(restart_env + run + every + "--restart " + ck.string(), status);
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("from the checkpoint at t = "), std::string::npos) << out;
   expect_same_results((dir / "ref" / "result.h5").string(), (ck / "result.h5").string(), 2);
@@ -368,4 +370,17 @@ TEST(CheckpointRestartLts, VariableStepsChainWithOneSubstepAtEveryInstant) {
       "chain3even", 3.0e-5,
       {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 28}});
   lts_restart_case("ckpt_lts_var_even", yaml, "--variable-steps ", false, "1.0e-6", 3);
+}
+
+// The same, restarted with 'coarse' slow to open its partners' lanes (docs/processes.md "Lanes").
+// Restarted one coarse step before the end, 'mid' ends after one substep without coarse's last
+// vector, which coarse still sends. Before the rule that a receiver keeps its files until every
+// sender has opened them, mid took its files with it, and coarse, opening at that first send,
+// failed on files that "did not appear within 5000 ms" (CI, 2026-11-28, under load).
+TEST(LaneEnds, APartnerThatHasEndedStillLetsItsSenderOpenItsLane) {
+  const std::string yaml = crashlink::proc_test::bar_parts_yaml(
+      "chain3even", 3.0e-5,
+      {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 28}});
+  lts_restart_case("lane_ends", yaml, "--variable-steps ", false, "1.0e-6", 3,
+                   "CRASHLINK_INJECT_LANE_DELAY=coarse:1500 ");
 }

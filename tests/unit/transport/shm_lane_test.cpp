@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 
@@ -119,6 +120,37 @@ TEST(ShmLane, ASleepingReaderIsWokenBySend) {
   EXPECT_EQ(m->first, "fine");
   EXPECT_EQ(m->second, "hello");
   EXPECT_LT(waited, 4000ms) << "woken by the timeout, not by the doorbell";
+}
+
+// A receiver keeps its files until every sender has opened them (daemon_lanes.h
+// hold_until_opened): all_opened() says so only once each partner's end has opened, and after
+// the receiver has gone, a sender that had opened still sends into its mapping.
+TEST(ShmLane, SaysWhenEverySenderHasOpenedItsQueue) {
+  const Folder folder("opened");
+  const auto prefix = folder.prefix();
+  auto in = std::make_unique<ShmLaneIn>(prefix);
+  in->add_partner("fine");
+  in->add_partner("coarse");
+  EXPECT_TRUE(std::filesystem::exists(prefix + ".from.fine"));
+  ShmLaneOut fine(in->endpoint(), "fine", 1000ms);
+  ShmLaneOut coarse(in->endpoint(), "coarse", 1000ms);
+  EXPECT_FALSE(in->all_opened());
+  fine.open();
+  EXPECT_FALSE(in->all_opened()) << "coarse has not opened its queue";
+  coarse.send("first");
+  EXPECT_TRUE(in->all_opened());
+  in.reset();  // the receiver ends: its files go
+  EXPECT_FALSE(std::filesystem::exists(prefix + ".from.fine"));
+  EXPECT_NO_THROW(fine.send("nobody reads this")) << "an opened ring outlives its file's name";
+  // A sender that had not opened finds nothing, and says which files and how long it waited.
+  ShmLaneOut late(ShmLaneIn(folder.prefix() + "2").endpoint(), "fine", 50ms);
+  try {
+    late.open();
+    ADD_FAILURE() << "opened the files of a receiver that has ended";
+  } catch (const TransportError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not appear within 50 ms"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ShmLane, CarriesMessagesBetweenTwoProcesses) {
