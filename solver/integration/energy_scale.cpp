@@ -8,6 +8,30 @@
 
 namespace crashlink::integration {
 
+double integral_of_magnitude(const model::Curve& c, double t_end_s) {
+  const std::size_t n = c.t_s.size();
+  if (n == 0 || t_end_s <= 0.0) return 0.0;
+  if (n == 1) return std::abs(c.value[0]) * t_end_s;
+  // |f| over [t0, t1] for f linear from a to b: the trapezoid when they share a sign, the two
+  // triangles on either side of the root otherwise: (t1 - t0)(a^2 + b^2) / (2 (|a| + |b|)).
+  auto piece = [](double t0, double t1, double a, double b) {
+    const double h = t1 - t0;
+    if (h <= 0.0) return 0.0;
+    if (a * b >= 0.0) return 0.5 * h * (std::abs(a) + std::abs(b));
+    return 0.5 * h * (a * a + b * b) / (std::abs(a) + std::abs(b));
+  };
+  double sum = std::abs(c.value[0]) * std::min(std::max(c.t_s[0], 0.0), t_end_s);  // before
+  for (std::size_t i = 1; i < n && c.t_s[i - 1] < t_end_s; ++i) {
+    const double t0 = std::max(c.t_s[i - 1], 0.0);
+    const double t1 = std::min(c.t_s[i], t_end_s);
+    if (t1 <= t0) continue;
+    sum += piece(t0, t1, c.at(t0), c.at(t1));
+  }
+  if (t_end_s > c.t_s[n - 1])
+    sum += std::abs(c.value[n - 1]) * (t_end_s - std::max(c.t_s[n - 1], 0.0));  // after
+  return sum;
+}
+
 double model_energy_scale_J(const Solver& s) {
   const model::Model& m = s.model();
   const std::size_t n = m.nodes.count();
@@ -40,7 +64,28 @@ double model_energy_scale_J(const Solver& s) {
     const auto& per_node = p.dof < 3 ? s.mass() : s.inertia();
     for (auto i : p.nodes) twice += per_node[static_cast<std::size_t>(i)] * peak * peak;
   }
-  return 0.5 * twice;
+  return 0.5 * twice + pushed_energy_J(s);
+}
+
+double pushed_energy_J(const Solver& s) {
+  const model::Model& m = s.model();
+  const double t_end_s = m.controls.end_time_s;
+  double mass_kg = 0.0;  // the model's: free nodes and rigid bodies
+  {
+    const std::size_t n = m.nodes.count();
+    std::vector<std::uint8_t> skip(n, 0);
+    for (const auto& b : s.rigid_bodies())
+      for (auto i : b.nodes) skip[static_cast<std::size_t>(i)] = 1;
+    for (auto g : s.ghost_nodes()) skip[static_cast<std::size_t>(g)] = 1;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!skip[i]) mass_kg += s.mass()[i];
+    for (const auto& b : s.rigid_bodies()) mass_kg += b.mass_kg;
+  }
+  if (!(mass_kg > 0.0) || !(t_end_s > 0.0)) return 0.0;
+  double impulse_Ns = mass_kg * norm(m.controls.gravity_m_s2) * t_end_s;
+  for (const auto& l : m.loads)
+    impulse_Ns += static_cast<double>(l.nodes.size()) * integral_of_magnitude(l.force, t_end_s);
+  return impulse_Ns * impulse_Ns / (2.0 * mass_kg);
 }
 
 }  // namespace crashlink::integration

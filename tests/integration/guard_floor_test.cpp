@@ -127,6 +127,49 @@ domains:
   EXPECT_NE(run.output().find("estimated ~"), std::string::npos) << run.output();
 }
 
+// A model driven by a load alone: a 1 kN force on the near end's nodes for 20 us, the bar
+// otherwise at rest. The model's energy scale is the kinetic energy of its impulse given to its
+// whole mass (energy_scale.h pushed_energy_J), so the far domain, round-off until the wave
+// arrives, is judged at the model's scale. Before loads were in the scale its floor was 0 and the
+// first check fails (this split run still ended; a variable-step lts run whose coarse step fell
+// as the first energy reached it was stopped on a 1e-23 J balance, session 28).
+TEST(GuardFloor, ALoadDrivenModelGivesTheFarDomainAFloor) {
+  auto m = impacted_bar();
+  model::NodalLoad push;
+  push.name = "push";
+  push.nodes = m.initial_velocities.front().nodes;
+  push.dof = 0;
+  push.force = model::Curve{{0.0, 1e-5, 2e-5}, {0.0, 1000.0, 0.0}};  // [N] per node
+  m.loads.push_back(push);
+  m.initial_velocities.clear();
+  cosim::SplitRunner split(m);
+  split.initialize();
+  const auto& far = far_solver(split);
+  // J = nodes x 1 kN x 10 us; M = 7850 kg/m^3 x 1.25 m x 0.0025 m x 0.0025 m
+  const double impulse_Ns = static_cast<double>(push.nodes.size()) * 1000.0 * 1e-5;
+  const double mass_kg = 7850.0 * 1.25 * 0.0025 * 0.0025;
+  const double scale_J = impulse_Ns * impulse_Ns / (2.0 * mass_kg);
+  EXPECT_NEAR(far.guard_floor_J(), integration::kGuardFloorFraction * scale_J,
+              1e-9 * integration::kGuardFloorFraction * scale_J);
+  int cycles = 0;
+  double far_internal_min_J = 0.0;
+  try {
+    for (;;) {
+      split.begin_cycle();
+      if (split.finished()) break;
+      const double ie = far.energy().internal_J;
+      if (ie != 0.0 && far_internal_min_J == 0.0) far_internal_min_J = ie;
+      split.end_cycle();
+      ++cycles;
+    }
+  } catch (const NumericalError& e) {
+    FAIL() << "stopped at cycle " << cycles << ": " << e.what();
+  }
+  EXPECT_GT(cycles, 40);
+  EXPECT_GT(far_internal_min_J, 0.0) << "the far domain never held any energy: no test";
+  EXPECT_LT(far_internal_min_J, 1e-300) << "the far domain's first energy is not round-off";
+}
+
 // The floor does not blind the guard: a domain of small energy (1e-9 of the model's 1 J) that
 // creates 1e-7 J (twice the bound tolerance x floor = 5e-8 J) is stopped.
 TEST(GuardFloor, CreationInASmallEnergyDomainIsStillCaught) {
