@@ -12,8 +12,9 @@ namespace crashlink::coordinator {
 /// InputError naming the path on failure.
 void write_file_atomically(const std::string& path, const std::string& text);
 
-/// Before an ipc run: the shared-memory lane files that killed runs left in /dev/shm (a SIGKILLed
-/// launcher takes its pieces with it: nobody removed their 4 MB rings); said on `log`.
+/// Before an ipc run: the shared-memory lane files that killed runs left in /dev/shm, and beside
+/// the socket (PATH.*, where the rings go without /dev/shm) (a SIGKILLed launcher takes its
+/// pieces with it: nobody removed their 4 MB rings); said on `log`.
 void reclaim_orphan_lanes(const std::string& bind, std::FILE* log);
 
 /// After the run: the endpoint file, the ipc socket this coordinator bound (an ipc:// path, no

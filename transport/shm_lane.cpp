@@ -83,7 +83,7 @@ ShmLaneOut::ShmLaneOut(std::string_view endpoint, std::string self,
   prefix_ = std::string(endpoint.substr(kShmScheme.size()));
 }
 
-void ShmLaneOut::open() {
+void ShmLaneOut::open(const std::function<void()>& between) {
   // The partner creates its files when it has its Setup, about when we have ours.
   const auto deadline = Clock::now() + timeout_;
   for (;;) {
@@ -97,6 +97,7 @@ void ShmLaneOut::open() {
                                        "appear within {} ms",
                                        prefix_, self_, prefix_, timeout_.count()));
     }
+    if (between) between();
     std::this_thread::sleep_for(std::chrono::microseconds{200});
   }
 }

@@ -9,6 +9,7 @@
 // but whose files must be there to open.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,9 +59,10 @@ class ShmLaneOut {
   /// `endpoint` "shm://PREFIX" of the partner; `self` this daemon's domain; `timeout` bounds the
   /// wait for the partner's files and for room in its ring.
   ShmLaneOut(std::string_view endpoint, std::string self, std::chrono::milliseconds timeout);
-  /// Opens the partner's files, waiting up to the timeout for them to appear; TransportError
-  /// after it. send() calls it when the files are not open yet.
-  void open();
+  /// Opens the partner's files, waiting up to the timeout for them to appear (calling `between`,
+  /// if given, between looks: a daemon's heartbeats); TransportError after it. send() calls it
+  /// when the files are not open yet.
+  void open(const std::function<void()>& between = {});
   void send(std::string_view bytes);
   /// Serialises `message` into a buffer kept for the next one, then send().
   template <class Message>

@@ -185,7 +185,7 @@ class Daemon {
       // A new solver (the Setup's masses): the recorder follows it.
       output_->follow(*solver());
     }
-    lanes_.connect(setup, scheme_->lane_partners());
+    lanes_.connect(setup, scheme_->lane_partners(), [this] { link_->keep_alive(); });
     if (setup.restart()) {
       restore(setup.restart_ticks());
     } else {
@@ -310,7 +310,21 @@ class Daemon {
   void finish() {
     send_report();
     output_->finish(seconds_since(wall0_), run_cpu_seconds(), elements_);
-    if (!lanes_.hold_until_opened(o_.session.peer_timeout, [this] { link_->keep_alive(); })) {
+    // A partner may still open our ring (docs/processes.md "Lanes"); the coordinator's Error
+    // (a partner failed) is thrown here, its Bye ends the wait.
+    bool bye_seen = false;
+    const bool held = lanes_.hold_until_opened(o_.session.peer_timeout, [&] {
+      if (o_.stop != nullptr && o_.stop->load())
+        throw transport::StopRequested("stopped on request");
+      while (!bye_seen) {
+        const auto m = link_->receive(std::chrono::milliseconds{0});
+        if (!m) break;
+        bye_seen = m->has_bye();
+      }
+      if (!bye_seen) link_->keep_alive();
+      return !bye_seen;
+    });
+    if (!held && !bye_seen) {
       std::fprintf(stderr,
                    "crashlink-solver: domain '%s': a partner has not opened this daemon's lane "
                    "within %lld ms; ending anyway\n",
@@ -318,8 +332,10 @@ class Daemon {
     }
     // An Error the coordinator sent meanwhile (another domain failed at the end) is read now, not
     // after a Bye that a coordinator already gone would leave blocked for the send timeout.
-    while (auto m = link_->receive(std::chrono::milliseconds{0}))
-      if (m->has_bye()) break;
+    while (!bye_seen) {
+      const auto m = link_->receive(std::chrono::milliseconds{0});
+      if (!m || m->has_bye()) break;
+    }
     wire::Envelope bye = transport::make_bye("end time reached");
     auto* rep = bye.mutable_bye()->mutable_report();
     const auto& s = *solver();

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -52,17 +53,24 @@ std::int64_t injected_lane_delay_ms(const std::string& domain) {
   if (v == nullptr) return 0;
   const std::string s(v);
   const auto colon = s.rfind(':');
-  if (colon == std::string::npos || s.substr(0, colon) != domain) return 0;
-  try {
-    return std::stoll(s.substr(colon + 1));
-  } catch (const std::exception&) {
-    throw InputError(fmt::format("CRASHLINK_INJECT_LANE_DELAY='{}': expected DOMAIN:MILLISECONDS",
-                                 core::log_escape(s)));
+  std::int64_t ms = -1;
+  if (colon != std::string::npos) {
+    const char* first = s.data() + colon + 1;
+    const char* last = s.data() + s.size();
+    const auto [end, ec] = std::from_chars(first, last, ms);
+    if (ec != std::errc() || end != last || first == last) ms = -1;
   }
+  if (ms < 0)
+    throw InputError(
+        fmt::format("CRASHLINK_INJECT_LANE_DELAY='{}': expected DOMAIN:MILLISECONDS "
+                    "(an integer >= 0)",
+                    core::log_escape(s)));
+  return s.substr(0, colon) == domain ? ms : 0;
 }
 
 void DaemonLanes::connect(const wire::Setup& setup,
-                          const std::vector<coupling::LanePartner>& partners) {
+                          const std::vector<coupling::LanePartner>& partners,
+                          const std::function<void()>& keep_alive) {
   if (setup.lanes_size() == 0) return;
   if (endpoint_.empty()) {
     throw ProtocolError("coordinator",
@@ -103,10 +111,15 @@ void DaemonLanes::connect(const wire::Setup& setup,
   // until every sender has opened them (hold_until_opened), but only until then. A sender that
   // opened at its first vector found, after a restart a step before the end, a partner that had
   // ended and taken its files with it (the first send after the restart was the last one).
-  if (const auto ms = injected_lane_delay_ms(domain_); ms > 0)
-    std::this_thread::sleep_for(std::chrono::milliseconds{ms});
+  if (const auto ms = injected_lane_delay_ms(domain_); ms > 0) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds{ms};
+    while (std::chrono::steady_clock::now() < until) {
+      keep_alive();
+      std::this_thread::sleep_for(std::chrono::milliseconds{10});
+    }
+  }
   for (auto& [partner, out] : out_)
-    if (out.shm) out.shm->open();
+    if (out.shm) out.shm->open(keep_alive);
   for (const auto& p : partners) {
     const auto it = out_.find(p.partner);
     if (it == out_.end()) {
@@ -122,12 +135,11 @@ void DaemonLanes::connect(const wire::Setup& setup,
 }
 
 bool DaemonLanes::hold_until_opened(std::chrono::milliseconds timeout,
-                                    const std::function<void()>& keep_alive) const {
+                                    const std::function<bool()>& go_on) const {
   if (!shm_in_) return true;
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!shm_in_->all_opened()) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    keep_alive();
+    if (std::chrono::steady_clock::now() >= deadline || !go_on()) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds{1});
   }
   return true;

@@ -21,8 +21,9 @@
 
 namespace crashlink::daemon {
 
-/// CRASHLINK_INJECT_LANE_DELAY=DOMAIN:MS: that daemon waits MS ms between creating its own lane
-/// files and opening its partners' (a test of the lanes' ends, `LaneEnds.*`); 0 otherwise.
+/// CRASHLINK_INJECT_LANE_DELAY=DOMAIN:MS: that daemon waits MS ms (an integer >= 0) between
+/// creating its own lane files and opening its partners' (a test of the lanes' ends,
+/// `LaneEnds.*`); 0 for another domain or without the variable. InputError for another form.
 std::int64_t injected_lane_delay_ms(const std::string& domain);
 
 class DaemonLanes {
@@ -38,16 +39,19 @@ class DaemonLanes {
   std::string public_key() const;
 
   /// The Setup's lanes: a sender to each partner's lane, named by our domain; a shared-memory one
-  /// is opened now (waiting up to the peer timeout for the partner's files). Throws
+  /// is opened now, waiting up to the peer timeout for the partner's files and calling
+  /// `keep_alive` meanwhile (the coordinator must go on hearing this daemon). Throws
   /// ProtocolError when the Setup lists lanes this daemon cannot use or misses a partner's,
   /// TransportError when a partner's files do not appear.
-  void connect(const wire::Setup& setup, const std::vector<coupling::LanePartner>& partners);
+  void connect(const wire::Setup& setup, const std::vector<coupling::LanePartner>& partners,
+               const std::function<void()>& keep_alive);
   /// Before this daemon ends: waits until every partner has opened our shared-memory ring, for
-  /// at most `timeout`, calling `keep_alive` between looks. Our files go with us, and a partner
-  /// that has not opened them yet would find none. False after the timeout (a partner that died:
-  /// the coordinator names it).
+  /// at most `timeout`. Our files go with us, and a partner that has not opened them yet would
+  /// find none. Between looks it calls `go_on` (the daemon's heartbeats, its stop flag, the
+  /// coordinator's Error or Bye), and stops waiting when that says false. False when it stopped
+  /// before every partner had opened.
   bool hold_until_opened(std::chrono::milliseconds timeout,
-                         const std::function<void()>& keep_alive) const;
+                         const std::function<bool()>& go_on) const;
   /// Vectors go daemon to daemon.
   bool active() const { return !out_.empty(); }
   /// Sends on the lane of interface `interface_index`; false when it has none.

@@ -22,10 +22,18 @@ double integral_of_magnitude(const model::Curve& c, double t_end_s) {
   };
   double sum = std::abs(c.value[0]) * std::min(std::max(c.t_s[0], 0.0), t_end_s);  // before
   for (std::size_t i = 1; i < n && c.t_s[i - 1] < t_end_s; ++i) {
-    const double t0 = std::max(c.t_s[i - 1], 0.0);
-    const double t1 = std::min(c.t_s[i], t_end_s);
-    if (t1 <= t0) continue;
-    sum += piece(t0, t1, c.at(t0), c.at(t1));
+    double t0 = c.t_s[i - 1], t1 = c.t_s[i], a = c.value[i - 1], b = c.value[i];
+    if (t1 <= 0.0) continue;
+    const double slope = (b - a) / (t1 - t0);  // abscissae strictly increasing
+    if (t0 < 0.0) {  // clipped at 0 and at the end time: the curve's values there
+      a += slope * (0.0 - t0);
+      t0 = 0.0;
+    }
+    if (t1 > t_end_s) {
+      b = a + slope * (t_end_s - t0);
+      t1 = t_end_s;
+    }
+    sum += piece(t0, t1, a, b);
   }
   if (t_end_s > c.t_s[n - 1])
     sum += std::abs(c.value[n - 1]) * (t_end_s - std::max(c.t_s[n - 1], 0.0));  // after

@@ -24,7 +24,8 @@ double integral_of_magnitude(const model::Curve& c, double t_end_s);
 
 /// The kinetic energy of the whole model pushed by its loads and gravity over the run [J]:
 ///   E = J^2 / (2 M),   J = sum_(loads, nodes) int_0^T |F(t)| dt + M |g| T
-/// with M the mass of the free nodes and rigid bodies and T the end time: the least kinetic
+/// with M the mass of the nodes not in a rigid body (held ones too) and of the rigid bodies, T the
+/// end time: the least kinetic
 /// energy a body of mass M can hold with momentum J, which the loads give it when they push one
 /// way on a free model. A scale, not a bound: loads that oppose each other count as adding, and
 /// a supported model held for many periods of its lowest mode holds less (for n periods,

@@ -246,8 +246,11 @@ void Solver::initialize() {
     if (inertia_[i] > 0.0) inv_inertia_[i] = 1.0 / inertia_[i];
   }
   apply_initial_velocities();
-  guard_floor_J_ = kGuardFloorFraction *
-                   std::max(model_.controls.model_energy_scale_J, model_energy_scale_J(*this));
+  // The whole model's scale when the decomposition gave one: a domain's own could exceed it (the
+  // loads' impulse on a light domain's mass, energy_scale.h pushed_energy_J).
+  guard_floor_J_ = kGuardFloorFraction * (model_.controls.model_energy_scale_J > 0.0
+                                              ? model_.controls.model_energy_scale_J
+                                              : model_energy_scale_J(*this));
   contacts_.clear();
   for (const auto& c : model_.contacts) contacts_.emplace_back(model_, c, mass_.data());
   contact_steps_.assign(contacts_.size(), {});

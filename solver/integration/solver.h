@@ -380,8 +380,8 @@ class Solver {
   void apply_rigid_walls(double dt_pair);
 
   EnergyAccount energy_;
-  /// The guard's floor under energy_.reference_J [J]: kGuardFloorFraction x the larger of the
-  /// model's energy scale (Controls::model_energy_scale_J) and this solver's own
+  /// The guard's floor under energy_.reference_J [J]: kGuardFloorFraction x the model's energy
+  /// scale (Controls::model_energy_scale_J) when the decomposition set it, else this solver's own
   /// (energy_scale.h); set by initialize(), constant.
   double guard_floor_J_ = 0.0;
   double time_s_ = 0.0;

@@ -382,5 +382,5 @@ TEST(LaneEnds, APartnerThatHasEndedStillLetsItsSenderOpenItsLane) {
       "chain3even", 3.0e-5,
       {{"fine", 0.0, 0.1, 20}, {"mid", 0.1, 0.2, 20}, {"coarse", 0.3, 0.3, 28}});
   lts_restart_case("lane_ends", yaml, "--variable-steps ", false, "1.0e-6", 3,
-                   "CRASHLINK_INJECT_LANE_DELAY=coarse:1500 ");
+                   "CRASHLINK_INJECT_LANE_DELAY=coarse:3000 ");
 }

@@ -70,8 +70,8 @@ TEST(DaemonLanes, APartnersVectorPassesAndAnythingElseIsTheLanesProtocolError) {
   b.open_own("tcp://127.0.0.1:5555");
   ASSERT_FALSE(a.endpoint().empty());
   ASSERT_FALSE(b.endpoint().empty());
-  a.connect(lane_to("b", b), {{0, "b", 4}});
-  b.connect(lane_to("a", a), {{0, "a", 4}});
+  a.connect(lane_to("b", b), {{0, "b", 4}}, [] {});
+  b.connect(lane_to("a", a), {{0, "a", 4}}, [] {});
   ASSERT_TRUE(a.active());
   const ForcesOnly scheme;
 

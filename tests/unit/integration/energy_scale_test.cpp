@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using crashlink::integration::integral_of_magnitude;
 using crashlink::model::Curve;
 
@@ -26,4 +28,17 @@ TEST(IntegralOfMagnitude, IsExactForPiecewiseLinearCurves) {
   EXPECT_NEAR(integral_of_magnitude(pulse, 5e-3), 1e-2, 1e-17);
   EXPECT_NEAR(integral_of_magnitude(pulse, 1e-3), 5e-3, 1e-17);
   EXPECT_DOUBLE_EQ(integral_of_magnitude(pulse, 0.0), 0.0);
+  // points before t = 0 count from 0 on: -2 at -1 s to +2 at +1 s, over [0, 1]: 0 to 2
+  EXPECT_DOUBLE_EQ(integral_of_magnitude(Curve{{-1.0, 1.0}, {-2.0, 2.0}}, 1.0), 1.0);
+  // a root inside a segment cut by the end time: -1 at 0 to +3 at 4, over [0, 2] (value 1)
+  EXPECT_DOUBLE_EQ(integral_of_magnitude(Curve{{0.0, 4.0}, {-1.0, 3.0}}, 2.0), 0.5 + 0.5);
+  // a long tabulated curve costs one pass: 10^6 points of |sin| over [0, pi]
+  Curve sine;
+  const std::size_t n = 1000001;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 3.141592653589793 * static_cast<double>(i) / static_cast<double>(n - 1);
+    sine.t_s.push_back(t);
+    sine.value.push_back(std::sin(t));
+  }
+  EXPECT_NEAR(integral_of_magnitude(sine, 4.0), 2.0 + 0.0, 1e-9);
 }
