@@ -286,8 +286,8 @@ namespace {
 
 struct BandRun {
   double max_rel = 0.0, min_rel = 0.0, end_rel = 0.0;  ///< of (KE + IE + HG) / E0 - 1
-  double max_at = 0.0;  ///< where max_rel is, as a fraction of the run
-  double late_mean_rel = 0.0;                          ///< its mean over the second half
+  double max_at = 0.0;         ///< where max_rel is, as a fraction of the run
+  double late_mean_rel = 0.0;  ///< its mean over the second half
   std::size_t coarse_steps_distinct = 0;
   std::int64_t coarse_cycles = 0;
 };
@@ -374,8 +374,7 @@ TEST(LtsVariableSteps, FreeVibrationGainsNoMoreEnergyThanFixedSteps) {
           "%.2e with variable steps (%zu coarse steps, %lld coarse cycles); fixed steps [%.2e, "
           "%.2e], %.2e, %.2e (%lld cycles)\n",
           studies::shape_name(shape), bulk ? "on" : "off", variable.min_rel, variable.max_rel,
-          variable.max_at,
-          variable.late_mean_rel, variable.end_rel, variable.coarse_steps_distinct,
+          variable.max_at, variable.late_mean_rel, variable.end_rel, variable.coarse_steps_distinct,
           static_cast<long long>(variable.coarse_cycles), fixed.min_rel, fixed.max_rel,
           fixed.late_mean_rel, fixed.end_rel, static_cast<long long>(fixed.coarse_cycles));
       EXPECT_LE(variable.max_rel, fixed.max_rel + 5e-3) << studies::shape_name(shape);
