@@ -24,18 +24,21 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   if (ec) throw InputError(fmt::format("cannot rename {} to {}: {}", tmp, path, ec.message()));
 }
 
+std::size_t reclaim_lanes_beside_socket(const std::string& socket_path) {
+  const std::filesystem::path socket(socket_path);
+  const auto dir = socket.parent_path().empty() ? std::filesystem::path(".") : socket.parent_path();
+  return transport::reclaim_orphan_shm_files(dir.string(), socket.filename().string() + ".", true);
+}
+
 void reclaim_orphan_lanes(const std::string& bind, std::FILE* log) {
   if (bind.rfind("ipc://", 0) != 0) return;
   std::size_t n = transport::reclaim_orphan_shm_files("/dev/shm", "crashlink-");
-  // Without /dev/shm the rings sit beside the socket, PATH.<domain>.* (lane_endpoint.h): a run
-  // killed there and restarted in the same folder would otherwise leave a partner, which opens
-  // its rings at once, a stale file to map before the receiver has replaced it.
-  if (bind.find('*') == std::string::npos) {
-    const std::filesystem::path socket(bind.substr(6));
-    const auto dir =
-        socket.parent_path().empty() ? std::filesystem::path(".") : socket.parent_path();
-    n += transport::reclaim_orphan_shm_files(dir.string(), socket.filename().string() + ".");
-  }
+  // Without /dev/shm the rings sit beside the socket (lane_endpoint.h): a run killed there and
+  // restarted in the same folder would otherwise leave a partner, which opens its rings at once,
+  // a stale file to map before the receiver has replaced it.
+  std::error_code ec;
+  if (!std::filesystem::is_directory("/dev/shm", ec) && bind.find('*') == std::string::npos)
+    n += reclaim_lanes_beside_socket(bind.substr(6));
   if (n > 0 && log != nullptr) {
     std::fprintf(log,
                  "crashlink-coordinator: removed %zu shared-memory lane file(s) left by runs "

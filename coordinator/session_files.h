@@ -12,10 +12,14 @@ namespace crashlink::coordinator {
 /// InputError naming the path on failure.
 void write_file_atomically(const std::string& path, const std::string& text);
 
-/// Before an ipc run: the shared-memory lane files that killed runs left in /dev/shm, and beside
-/// the socket (PATH.*, where the rings go without /dev/shm) (a SIGKILLed launcher takes its
-/// pieces with it: nobody removed their 4 MB rings); said on `log`.
+/// Before an ipc run: the shared-memory lane files that killed runs left in /dev/shm (a SIGKILLed
+/// launcher takes its pieces with it: nobody removed their 4 MB rings), or, on a machine without
+/// /dev/shm, beside the socket (reclaim_lanes_beside_socket); said on `log`.
 void reclaim_orphan_lanes(const std::string& bind, std::FILE* log);
+/// The lane files beside the ipc socket PATH (where they go without /dev/shm) that no live
+/// process holds: PATH.<domain>.bell and PATH.<domain>.from.<partner> only, never the user's
+/// PATH.yaml or the like. Returns how many were removed.
+std::size_t reclaim_lanes_beside_socket(const std::string& socket_path);
 
 /// After the run: the endpoint file, the ipc socket this coordinator bound (an ipc:// path, no
 /// wildcard), and the lanes of the registered daemons (lane_endpoints; a daemon that died leaves

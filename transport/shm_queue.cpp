@@ -102,12 +102,16 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
   return *this;
 }
 
-std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix) {
+std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix,
+                                     bool ring_names_only) {
   std::size_t removed = 0;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0 || !e.is_regular_file(ec)) continue;
+    if (ring_names_only && name.find(".bell", prefix.size()) == std::string::npos &&
+        name.find(".from.", prefix.size()) == std::string::npos)
+      continue;
     // PATH.tmp<pid> (being written by <pid>) and PATH.orphan<pid> (being removed by <pid>): the
     // pid's own business while it lives
     const auto tmp = name.rfind(".tmp"), moving = name.rfind(".orphan");

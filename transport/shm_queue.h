@@ -48,7 +48,10 @@ class ShmMapping {
 /// Removes the files under `dir` named `prefix`* whose owner died: a final name that no process
 /// holds a flock on, and a PATH.tmp<pid> of a pid that no longer exists. Returns how many were
 /// removed. Never throws. The coordinator calls it at its start (for "/dev/shm", "crashlink-").
-std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix);
+/// `ring_names_only`: only names a lane gives its files (PREFIX...bell, PREFIX...from.<domain>,
+/// and their .tmp / .orphan forms), for a folder that holds other files too.
+std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix,
+                                     bool ring_names_only = false);
 
 /// One 4 KiB file per receiving daemon, PATH.bell: a futex word every sender bumps after a push,
 /// and a flag saying the receiver sleeps on it.

@@ -185,7 +185,14 @@ class Daemon {
       // A new solver (the Setup's masses): the recorder follows it.
       output_->follow(*solver());
     }
-    lanes_.connect(setup, scheme_->lane_partners(), [this] { link_->keep_alive(); });
+    // while it waits for its partners' rings: heartbeats, the stop flag, the coordinator's Error
+    // (a partner failed: thrown at once), what else comes kept for the loop
+    lanes_.connect(setup, scheme_->lane_partners(), [this] {
+      if (o_.stop != nullptr && o_.stop->load())
+        throw transport::StopRequested("stopped on request");
+      while (auto m = link_->receive(std::chrono::milliseconds{0}))
+        pending_.push_back(std::move(*m));
+    });
     if (setup.restart()) {
       restore(setup.restart_ticks());
     } else {
@@ -311,17 +318,16 @@ class Daemon {
     send_report();
     output_->finish(seconds_since(wall0_), run_cpu_seconds(), elements_);
     // A partner may still open our ring (docs/processes.md "Lanes"); the coordinator's Error
-    // (a partner failed) is thrown here, its Bye ends the wait.
+    // (a partner failed) is thrown here, a Bye (none is sent today) would end the wait.
     bool bye_seen = false;
     const bool held = lanes_.hold_until_opened(o_.session.peer_timeout, [&] {
       if (o_.stop != nullptr && o_.stop->load())
         throw transport::StopRequested("stopped on request");
-      while (!bye_seen) {
+      while (!bye_seen) {  // receive() sends the heartbeats and judges the coordinator's silence
         const auto m = link_->receive(std::chrono::milliseconds{0});
         if (!m) break;
         bye_seen = m->has_bye();
       }
-      if (!bye_seen) link_->keep_alive();
       return !bye_seen;
     });
     if (!held && !bye_seen) {

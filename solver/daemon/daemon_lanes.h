@@ -48,8 +48,8 @@ class DaemonLanes {
   /// Before this daemon ends: waits until every partner has opened our shared-memory ring, for
   /// at most `timeout`. Our files go with us, and a partner that has not opened them yet would
   /// find none. Between looks it calls `go_on` (the daemon's heartbeats, its stop flag, the
-  /// coordinator's Error or Bye), and stops waiting when that says false. False when it stopped
-  /// before every partner had opened.
+  /// coordinator's Error), and stops waiting when that says false. False when it stopped before
+  /// every partner had opened.
   bool hold_until_opened(std::chrono::milliseconds timeout,
                          const std::function<bool()>& go_on) const;
   /// Vectors go daemon to daemon.

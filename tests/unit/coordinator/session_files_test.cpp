@@ -1,5 +1,6 @@
-// The coordinator's clean-up of lane files that killed runs left (coordinator/session_files.h):
-// beside the socket, where the rings go without /dev/shm, as in /dev/shm. A live ring stays.
+// The coordinator's clean-up of lane files that killed runs left beside its socket, where the
+// rings go on a machine without /dev/shm (coordinator/session_files.h): the dead ones go, a live
+// ring and the user's files named like the socket stay.
 #include "coordinator/session_files.h"
 
 #include <gtest/gtest.h>
@@ -18,22 +19,20 @@ TEST(SessionFiles, LaneFilesOfKilledRunsBesideTheSocketAreReclaimed) {
       fs::temp_directory_path() / ("crashlink-session-files-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string socket = (dir / "coordinator.sock").string();
+  const std::string socket = (dir / "scene").string();  // --bind ipc://DIR/scene
   std::ofstream(socket + ".fine.from.coarse") << "a ring whose owner was killed";
   std::ofstream(socket + ".fine.bell") << "its bell";
-  std::ofstream(dir / "notes.txt") << "not a lane";
+  std::ofstream(socket + ".yaml") << "the user's scenario, named like the socket";
+  std::ofstream(socket + ".log") << "and a log";
   {
     // a live run's ring, its creator holding its lock
     auto live = crashlink::transport::ShmQueue::create(socket + ".mid.from.fine", 4096);
-    crashlink::coordinator::reclaim_orphan_lanes("ipc://" + socket, nullptr);
+    EXPECT_EQ(crashlink::coordinator::reclaim_lanes_beside_socket(socket), 2u);
     EXPECT_FALSE(fs::exists(socket + ".fine.from.coarse"));
     EXPECT_FALSE(fs::exists(socket + ".fine.bell"));
-    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+    EXPECT_TRUE(fs::exists(socket + ".yaml")) << "a user's file was removed";
+    EXPECT_TRUE(fs::exists(socket + ".log")) << "a user's file was removed";
     EXPECT_TRUE(fs::exists(socket + ".mid.from.fine")) << "a live ring was removed";
   }
-  // tcp and inproc sessions have no rings: nothing is touched
-  std::ofstream(socket + ".fine.bell") << "again";
-  crashlink::coordinator::reclaim_orphan_lanes("tcp://127.0.0.1:5555", nullptr);
-  EXPECT_TRUE(fs::exists(socket + ".fine.bell"));
   fs::remove_all(dir);
 }
