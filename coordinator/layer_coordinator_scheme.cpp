@@ -42,7 +42,9 @@ class LayerCoordinatorScheme final : public CoordinatorScheme {
   void start(const std::vector<wire::Register>& regs, const wire::Options& base,
              CoordinatorPort& port) override {
     match_sides(cut_, regs);
-    const auto plan = plan_steps(cut_, regs, o_.run.common_step);
+    const auto plan =
+        plan_steps(cut_, regs, o_.run.common_step,
+                   scheme_ == "lts" && o_.run.variable_steps ? o_.run.ticks_per_second : 0);
     step_ = plan.step;
     std::vector<coupling::LayerRoute> routes;
     for (const auto& c : cut_.interfaces) {

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "coupling/interface_match.h"
+#include "coupling/step_policy.h"
 
 namespace crashlink::coordinator {
 
@@ -139,11 +140,27 @@ void match_sides(const LayerCut& cut, const std::vector<wire::Register>& regs) {
 }
 
 coupling::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Register>& regs,
-                              bool common) {
+                              bool common, std::int64_t lts_variable_tps) {
   std::vector<coupling::Tick> proposal;
-  for (const auto& r : regs) proposal.push_back(r.stable_step_ticks());
+  std::vector<double> elements;
+  for (const auto& r : regs) {
+    proposal.push_back(r.stable_step_ticks());
+    elements.push_back(static_cast<double>(r.elements()));
+  }
   std::vector<std::pair<int, int>> links;
   for (const auto& c : cut.interfaces) links.emplace_back(c.coarse, c.fine);
+  if (lts_variable_tps > 0 && !common) {
+    // the followers' proposals without the step safety, as their steppers send them: the stable
+    // step each registered in seconds, never below its registered proposal
+    const coupling::TickClock clock(lts_variable_tps);
+    std::vector<coupling::Tick> raw;
+    for (const auto& r : regs) {
+      const double s = r.stable_step_s();
+      const coupling::Tick t = std::isfinite(s) && s > 0.0 && s < 1e3 ? clock.step_to_ticks(s) : 0;
+      raw.push_back(r.stable_step_ticks() > 0 ? std::max(r.stable_step_ticks(), t) : 0);
+    }
+    proposal = coupling::lts_variable_first_proposals(proposal, raw, links, elements, cut.names);
+  }
   return coupling::nested_steps(proposal, links, common, cut.names);
 }
 

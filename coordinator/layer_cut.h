@@ -54,8 +54,12 @@ void check_register(const LayerCut& cut, int k, const wire::Register& reg);
 void match_sides(const LayerCut& cut, const std::vector<wire::Register>& regs);
 
 /// The fixed steps from the registered proposals (Register.stable_step_ticks; 0: no limit).
+/// `lts_variable_tps` > 0 (the ticks per second): `lts` with variable steps, whose plan is the
+/// first owner step: planned from the proposals the steppers' cost rule sees at t = 0
+/// (coupling::lts_variable_first_proposals; the followers' from Register.stable_step_s, the costs
+/// the registered element counts).
 coupling::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Register>& regs,
-                              bool common);
+                              bool common, std::int64_t lts_variable_tps = 0);
 
 /// A Setup with the fields every scheme's carries: mode, coupling, options, tick, end instant.
 wire::Envelope setup_envelope(bool common, const std::string& scheme, const wire::Options& options,

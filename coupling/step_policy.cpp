@@ -54,4 +54,46 @@ Tick leader_step(Tick own, double leader_safety, double own_cost,
   return best;
 }
 
+std::vector<Tick> lts_variable_first_proposals(const std::vector<Tick>& proposal,
+                                               const std::vector<Tick>& raw,
+                                               const std::vector<std::pair<int, int>>& links,
+                                               const std::vector<double>& cost,
+                                               const std::vector<std::string>& names) {
+  const std::size_t n = proposal.size();
+  std::vector<char> is_fine(n, 0);
+  for (const auto& [c, f] : links) is_fine[static_cast<std::size_t>(f)] = 1;
+  // a follower's subtree's least raw proposal (0: no limit), as it sends it to its owner
+  std::vector<char> busy(n, 0);
+  auto subtree = [&](auto&& self, std::size_t k) -> Tick {
+    if (busy[k]) return raw[k];  // a cycle: nested_steps names it
+    busy[k] = 1;
+    Tick p = raw[k];
+    for (const auto& [c, f] : links) {
+      if (static_cast<std::size_t>(c) != k) continue;
+      const Tick q = self(self, static_cast<std::size_t>(f));
+      if (q > 0 && (p == 0 || q < p)) p = q;
+    }
+    busy[k] = 0;
+    return p;
+  };
+  std::vector<Tick> out = raw;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (is_fine[k]) continue;
+    out[k] = proposal[k];
+    std::vector<HolderProposal> holders;  // one per partner, as LayerStepper::choose_step
+    std::vector<int> seen;
+    for (const auto& [c, f] : links) {
+      if (static_cast<std::size_t>(c) != k || std::find(seen.begin(), seen.end(), f) != seen.end())
+        continue;
+      seen.push_back(f);
+      holders.push_back({subtree(subtree, static_cast<std::size_t>(f)),
+                         std::max(cost[static_cast<std::size_t>(f)], 1.0)});
+    }
+    if (holders.empty()) continue;
+    out[k] = leader_step(proposal[k], 1.0, std::max(cost[k], 1.0), holders, 0,
+                         k < names.size() ? names[k] : std::to_string(k));
+  }
+  return out;
+}
+
 }  // namespace crashlink::coupling

@@ -9,6 +9,8 @@
 // Fixed steps need no policy: the plan (nested_steps.h) is kept for the whole run.
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "coupling/ticks.h"
 
@@ -33,5 +35,21 @@ struct HolderProposal {
 /// limit (rigid bodies only).
 Tick leader_step(Tick own, double leader_safety, double own_cost,
                  std::span<const HolderProposal> holders, Tick last, const std::string& domain);
+
+/// `lts` with variable steps (docs/multirate.md "Variable steps under lts"): the plan gives the
+/// first owner step, and each leader's rule (leader_step) the later ones. Where the plan's ceil
+/// rule (nested_steps) and the cost rule chose different kinds of step (p = 3 at the leader's own
+/// proposal against p = 2 at twice a holder's), the fine step jumped by up to half at the end of
+/// the first owner step, and with it the central-difference energy ([2]): -4.4 % of balance on
+/// a bar whose end plane starts at 30 m/s. The proposals nested_steps is then to plan with,
+/// those the steppers' rule sees at t = 0: a leader's (a domain that is no link's fine side)
+/// leader_step's choice from its `proposal` (the step safety in it, as a leader takes it) and
+/// from its holders' subtrees' least `raw` proposals (without it, as followers send them) and
+/// element counts (`cost`); every other domain's its `raw` one.
+std::vector<Tick> lts_variable_first_proposals(const std::vector<Tick>& proposal,
+                                               const std::vector<Tick>& raw,
+                                               const std::vector<std::pair<int, int>>& links,
+                                               const std::vector<double>& cost,
+                                               const std::vector<std::string>& names);
 
 }  // namespace crashlink::coupling

@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/state_archive.h"
+#include "coupling/step_policy.h"
 
 namespace crashlink::cosim {
 
@@ -64,6 +65,20 @@ void LayerNetwork::build_steppers() {
   for (std::size_t i = 0; i < fine_of_.size(); ++i)
     links.emplace_back(static_cast<int>(coarse_of_[i]), static_cast<int>(fine_of_[i]));
   for (const auto& s : d_.solvers) names.push_back(s->domain_name());
+  if (options_.run.scheme == "lts" && options_.run.variable_steps && !options_.run.common_step) {
+    // the plan is the first owner step: from what the steppers' cost rule sees at t = 0
+    // (coordinator::plan_steps alike): the followers' proposals without the step safety
+    std::vector<Tick> raw(proposal.size());
+    std::vector<double> elements;
+    for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
+      const double dt = d_.solvers[k]->step_proposal();
+      raw[k] = proposal[k] > 0 && std::isfinite(dt) && dt < 1e3
+                   ? std::max(proposal[k], clock.step_to_ticks(dt))
+                   : 0;
+      elements.push_back(static_cast<double>(d_.solvers[k]->model().element_count()));
+    }
+    proposal = coupling::lts_variable_first_proposals(proposal, raw, links, elements, names);
+  }
   plan_ = coupling::nested_steps(proposal, links, options_.run.common_step, names);
   auto ports = layer_ports(d_);
   steppers_.clear();

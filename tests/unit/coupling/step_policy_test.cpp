@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -61,3 +62,29 @@ TEST(StepPolicy, WithoutALimitTheLeaderTakesItsHoldersAndNeitherIsRefused) {
 }
 
 }  // namespace
+
+// lts with variable steps plans its first owner step from what the leader's rule sees at t = 0
+// (coupling::lts_variable_first_proposals): the session-29 bar (coarse 21 hexes, own 2867 ticks;
+// fine 9, 1315 without the safety) takes 2 substeps at 2630, where the ceil rule took 3 at 2867.
+TEST(LtsVariableFirstProposals, TheLeaderTakesTheRulesFirstChoiceAndFollowersTheirRawProposals) {
+  using crashlink::coupling::lts_variable_first_proposals;
+  const std::vector<std::pair<int, int>> bar{{0, 1}};  // (coarse, fine)
+  const auto p =
+      lts_variable_first_proposals({2867, 1183}, {3186, 1315}, bar, {21, 9}, {"coarse", "fine"});
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0], 2630);  // 2 x 1315: (21 + 2 x 9) / 2630 below (21 + 3 x 9) / 2867
+  EXPECT_EQ(p[1], 1315);
+  EXPECT_EQ(p[0], step(2867, {{1315, 9}}, 0, 21));
+  // a chain coarse | mid | fine: the leader sees mid's subtree's least raw proposal; mid and fine
+  // keep their own raw ones
+  const std::vector<std::pair<int, int>> chain{{0, 1}, {1, 2}};
+  const auto c = lts_variable_first_proposals({900, 450, 200}, {1000, 500, 220}, chain,
+                                              {1000, 10, 10}, {"coarse", "mid", "fine"});
+  EXPECT_EQ(c[0], step(900, {{220, 10}}, 0, 1000));
+  EXPECT_EQ(c[1], 500);
+  EXPECT_EQ(c[2], 220);
+  // two interfaces to one partner count it once, as LayerStepper::choose_step does
+  const auto twice = lts_variable_first_proposals({2867, 1183}, {3186, 1315}, {{0, 1}, {0, 1}},
+                                                  {21, 9}, {"coarse", "fine"});
+  EXPECT_EQ(twice[0], 2630);
+}
