@@ -150,11 +150,16 @@ coupling::StepPlan plan_steps(const LayerCut& cut, const std::vector<wire::Regis
   std::vector<std::pair<int, int>> links;
   for (const auto& c : cut.interfaces) links.emplace_back(c.coarse, c.fine);
   if (lts_variable_tps > 0 && !common) {
-    // the followers' proposals without the step safety, as their steppers send them: the stable
-    // step each registered in seconds, never below its registered proposal
+    // the followers' proposals without the step safety, as their steppers send them: each
+    // daemon's own_step_ticks (an older daemon's stable step in seconds, never below its
+    // registered proposal)
     const coupling::TickClock clock(lts_variable_tps);
     std::vector<coupling::Tick> raw;
     for (const auto& r : regs) {
+      if (r.own_step_ticks() > 0) {
+        raw.push_back(r.own_step_ticks());
+        continue;
+      }
       const double s = r.stable_step_s();
       const coupling::Tick t = std::isfinite(s) && s > 0.0 && s < 1e3 ? clock.step_to_ticks(s) : 0;
       raw.push_back(r.stable_step_ticks() > 0 ? std::max(r.stable_step_ticks(), t) : 0);

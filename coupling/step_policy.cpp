@@ -62,36 +62,39 @@ std::vector<Tick> lts_variable_first_proposals(const std::vector<Tick>& proposal
   const std::size_t n = proposal.size();
   std::vector<char> is_fine(n, 0);
   for (const auto& [c, f] : links) is_fine[static_cast<std::size_t>(f)] = 1;
-  // a follower's subtree's least raw proposal (0: no limit), as it sends it to its owner
-  std::vector<char> busy(n, 0);
-  auto subtree = [&](auto&& self, std::size_t k) -> Tick {
-    if (busy[k]) return raw[k];  // a cycle: nested_steps names it
-    busy[k] = 1;
-    Tick p = raw[k];
-    for (const auto& [c, f] : links) {
-      if (static_cast<std::size_t>(c) != k) continue;
-      const Tick q = self(self, static_cast<std::size_t>(f));
-      if (q > 0 && (p == 0 || q < p)) p = q;
-    }
-    busy[k] = 0;
-    return p;
-  };
   std::vector<Tick> out = raw;
   for (std::size_t k = 0; k < n; ++k) {
     if (is_fine[k]) continue;
     out[k] = proposal[k];
-    std::vector<HolderProposal> holders;  // one per partner, as LayerStepper::choose_step
+    // one per partner, each with its own proposal: what its Fbar carries under lts with variable
+    // steps (LayerStepper::choose_step)
+    std::vector<HolderProposal> holders;
     std::vector<int> seen;
     for (const auto& [c, f] : links) {
       if (static_cast<std::size_t>(c) != k || std::find(seen.begin(), seen.end(), f) != seen.end())
         continue;
       seen.push_back(f);
-      holders.push_back({subtree(subtree, static_cast<std::size_t>(f)),
-                         std::max(cost[static_cast<std::size_t>(f)], 1.0)});
+      holders.push_back(
+          {raw[static_cast<std::size_t>(f)], std::max(cost[static_cast<std::size_t>(f)], 1.0)});
     }
     if (holders.empty()) continue;
     out[k] = leader_step(proposal[k], 1.0, std::max(cost[k], 1.0), holders, 0,
                          k < names.size() ? names[k] : std::to_string(k));
+  }
+  // A follower never steps longer than its owner (one substep of the owner step): capped here, or
+  // nested_steps would take its larger proposal as the base and halve its owner's step. Down the
+  // tree: a pass per level.
+  for (std::size_t pass = 0; pass < n; ++pass) {
+    bool changed = false;
+    for (const auto& [c, f] : links) {
+      const Tick owner = out[static_cast<std::size_t>(c)];
+      Tick& mine = out[static_cast<std::size_t>(f)];
+      if (owner > 0 && mine > owner) {
+        mine = owner;
+        changed = true;
+      }
+    }
+    if (!changed) break;
   }
   return out;
 }

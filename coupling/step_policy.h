@@ -44,8 +44,8 @@ Tick leader_step(Tick own, double leader_safety, double own_cost,
 /// a bar whose end plane starts at 30 m/s. The proposals nested_steps is then to plan with,
 /// those the steppers' rule sees at t = 0: a leader's (a domain that is no link's fine side)
 /// leader_step's choice from its `proposal` (the step safety in it, as a leader takes it) and
-/// from its holders' subtrees' least `raw` proposals (without it, as followers send them) and
-/// element counts (`cost`); every other domain's its `raw` one.
+/// from its holders' own `raw` proposals (without it, as each follower's Fbar carries its own)
+/// and element counts (`cost`); every other domain's its `raw` one, capped at its owner's.
 std::vector<Tick> lts_variable_first_proposals(const std::vector<Tick>& proposal,
                                                const std::vector<Tick>& raw,
                                                const std::vector<std::pair<int, int>>& links,

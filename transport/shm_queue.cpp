@@ -102,6 +102,27 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
   return *this;
 }
 
+namespace {
+
+/// Whether `rest` (a file name after its lane prefix PATH.) is a ring's: <domain>.bell or
+/// <domain>.from.<partner>, maybe with .tmp<pid> or .orphan<pid> after it.
+bool ring_name(std::string rest) {
+  for (const std::string mark : {".tmp", ".orphan"}) {
+    const auto at = rest.rfind(mark);
+    if (at != std::string::npos && at + mark.size() < rest.size() &&
+        rest.find_first_not_of("0123456789", at + mark.size()) == std::string::npos)
+      rest.resize(at);
+  }
+  const std::string bell = ".bell";
+  if (rest.size() > bell.size() && rest.compare(rest.size() - bell.size(), bell.size(), bell) == 0)
+    return rest.find('.') == rest.size() - bell.size();
+  const auto from = rest.find(".from.");
+  return from != std::string::npos && from > 0 && from + 6 < rest.size() &&
+         rest.find('.', from + 6) == std::string::npos && rest.find('.') == from;
+}
+
+}  // namespace
+
 std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& prefix,
                                      bool ring_names_only) {
   std::size_t removed = 0;
@@ -109,9 +130,7 @@ std::size_t reclaim_orphan_shm_files(const std::string& dir, const std::string& 
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0 || !e.is_regular_file(ec)) continue;
-    if (ring_names_only && name.find(".bell", prefix.size()) == std::string::npos &&
-        name.find(".from.", prefix.size()) == std::string::npos)
-      continue;
+    if (ring_names_only && !ring_name(name.substr(prefix.size()))) continue;
     // PATH.tmp<pid> (being written by <pid>) and PATH.orphan<pid> (being removed by <pid>): the
     // pid's own business while it lives
     const auto tmp = name.rfind(".tmp"), moving = name.rfind(".orphan");

@@ -91,10 +91,10 @@ bool LayerStepper::lts_step_after(std::int64_t index, Tick next, Tick& after) {
   if (!follower_) {
     // A leader's choice, its rise limited against the step it takes next; at t = 0 free, as
     // `layer`'s first. The plan's first owner step is the rule's choice from the same proposals
-    // (coupling::lts_variable_first_proposals), so the two agree. (While the plan took the ceil
-    // rule's kind, the free choice jumped the fine step by 38 % after the first owner step on a
-    // bar started at 30 m/s at one end, -4.4 % of energy balance; held against the plan's step,
-    // the rule's hysteresis kept it for tens of steps and then fell 28 % at once.)
+    // (coupling::lts_variable_first_proposals), so the two agree to a tick. (While the plan took
+    // the ceil rule's kind, the free choice jumped the fine step by 38 % after the first owner step
+    // on a bar started at 30 m/s at one end, -4.4 % of energy balance; held against the plan's
+    // step, the rule's hysteresis kept it for tens of steps and then fell 28 % at once.)
     const Tick taken = std::exchange(h_, t_ == 0 ? 0 : next);
     after = choose_step();
     h_ = taken;

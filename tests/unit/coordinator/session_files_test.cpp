@@ -24,6 +24,8 @@ TEST(SessionFiles, LaneFilesOfKilledRunsBesideTheSocketAreReclaimed) {
   std::ofstream(socket + ".fine.bell") << "its bell";
   std::ofstream(socket + ".yaml") << "the user's scenario, named like the socket";
   std::ofstream(socket + ".log") << "and a log";
+  std::ofstream(socket + ".bellows.csv") << "and names that only look like a ring's";
+  std::ofstream(socket + ".x.from.y.txt") << "too";
   {
     // a live run's ring, its creator holding its lock
     auto live = crashlink::transport::ShmQueue::create(socket + ".mid.from.fine", 4096);
@@ -32,6 +34,8 @@ TEST(SessionFiles, LaneFilesOfKilledRunsBesideTheSocketAreReclaimed) {
     EXPECT_FALSE(fs::exists(socket + ".fine.bell"));
     EXPECT_TRUE(fs::exists(socket + ".yaml")) << "a user's file was removed";
     EXPECT_TRUE(fs::exists(socket + ".log")) << "a user's file was removed";
+    EXPECT_TRUE(fs::exists(socket + ".bellows.csv")) << "a user's file was removed";
+    EXPECT_TRUE(fs::exists(socket + ".x.from.y.txt")) << "a user's file was removed";
     EXPECT_TRUE(fs::exists(socket + ".mid.from.fine")) << "a live ring was removed";
   }
   fs::remove_all(dir);

@@ -75,14 +75,21 @@ TEST(LtsVariableFirstProposals, TheLeaderTakesTheRulesFirstChoiceAndFollowersThe
   EXPECT_EQ(p[0], 2630);  // 2 x 1315: (21 + 2 x 9) / 2630 below (21 + 3 x 9) / 2867
   EXPECT_EQ(p[1], 1315);
   EXPECT_EQ(p[0], step(2867, {{1315, 9}}, 0, 21));
-  // a chain coarse | mid | fine: the leader sees mid's subtree's least raw proposal; mid and fine
-  // keep their own raw ones
+  // a chain coarse | mid | fine: the leader sees mid's own proposal (its Fbar carries no other);
+  // mid and fine keep their own raw ones
   const std::vector<std::pair<int, int>> chain{{0, 1}, {1, 2}};
-  const auto c = lts_variable_first_proposals({900, 450, 200}, {1000, 500, 220}, chain,
-                                              {1000, 10, 10}, {"coarse", "mid", "fine"});
-  EXPECT_EQ(c[0], step(900, {{220, 10}}, 0, 1000));
+  const auto c = lts_variable_first_proposals({1000, 450, 200}, {1100, 500, 220}, chain,
+                                              {10, 1000, 10}, {"coarse", "mid", "fine"});
+  EXPECT_EQ(c[0], step(1000, {{500, 1000}}, 0, 10));
+  EXPECT_EQ(c[0], 1000);  // not 880, which the fine's 220 would have made it
   EXPECT_EQ(c[1], 500);
   EXPECT_EQ(c[2], 220);
+  // a fine side as fast as its coarse side: capped at its owner's step, not taken as the base
+  // (which would halve the owner's first step and then let it jump back)
+  const auto even = lts_variable_first_proposals({90000, 90000}, {100000, 100000}, bar, {10, 10},
+                                                 {"coarse", "fine"});
+  EXPECT_EQ(even[0], 90000);
+  EXPECT_EQ(even[1], 90000);
   // two interfaces to one partner count it once, as LayerStepper::choose_step does
   const auto twice = lts_variable_first_proposals({2867, 1183}, {3186, 1315}, {{0, 1}, {0, 1}},
                                                   {21, 9}, {"coarse", "fine"});
