@@ -24,4 +24,17 @@ std::int64_t proposal_ticks(const integration::Solver& s, const DomainSchemeOpti
   return static_cast<std::int64_t>(x);
 }
 
+double own_step_s(const integration::Solver& s, double max_step_s) {
+  const double dt = s.step_proposal();
+  return max_step_s > 0.0 ? std::min(dt, max_step_s) : dt;
+}
+
+std::int64_t own_step_ticks(const integration::Solver& s, double max_step_s,
+                            std::int64_t ticks_per_second) {
+  const double dt = own_step_s(s, max_step_s);
+  if (!std::isfinite(dt) || dt >= 1e3 || !(dt * static_cast<double>(ticks_per_second) >= 1.0))
+    return 0;
+  return TickClock(ticks_per_second).step_to_ticks(dt);
+}
+
 }  // namespace crashlink::coupling

@@ -129,4 +129,13 @@ class DomainScheme {
 std::int64_t proposal_ticks(const integration::Solver& s, const DomainSchemeOptions& o,
                             std::int64_t ticks_per_second);
 
+/// The step a domain proposes under variable steps, without the step safety [s]: the solver's
+/// step_proposal() capped by max_step_s (> 0). What cosim::LayerStepper::proposal_ticks sends, the
+/// Register's own_step_ticks and LayerNetwork's plan of lts's first owner step read.
+double own_step_s(const integration::Solver& s, double max_step_s);
+/// own_step_s in whole ticks (TickClock::step_to_ticks); 0 when there is no limit (no deformable
+/// element: infinite, or >= 1e3 s) or it is below one tick (the stepper says why).
+std::int64_t own_step_ticks(const integration::Solver& s, double max_step_s,
+                            std::int64_t ticks_per_second);
+
 }  // namespace crashlink::coupling

@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/state_archive.h"
+#include "coupling/domain_scheme.h"
 #include "coupling/step_policy.h"
 
 namespace crashlink::cosim {
@@ -68,14 +69,11 @@ void LayerNetwork::build_steppers() {
   if (options_.run.scheme == "lts" && options_.run.variable_steps && !options_.run.common_step) {
     // the plan is the first owner step: from what the steppers' cost rule sees at t = 0
     // (coordinator::plan_steps alike): the followers' proposals without the step safety
-    std::vector<Tick> raw(proposal.size());
+    std::vector<Tick> raw;
     std::vector<double> elements;
-    for (std::size_t k = 0; k < d_.solvers.size(); ++k) {
-      const double dt = d_.solvers[k]->step_proposal();
-      raw[k] = proposal[k] > 0 && std::isfinite(dt) && dt < 1e3
-                   ? std::max(proposal[k], clock.step_to_ticks(dt))
-                   : 0;
-      elements.push_back(static_cast<double>(d_.solvers[k]->model().element_count()));
+    for (const auto& s : d_.solvers) {
+      raw.push_back(coupling::own_step_ticks(*s, 0.0, options_.run.ticks_per_second));
+      elements.push_back(static_cast<double>(s->model().element_count()));
     }
     proposal = coupling::lts_variable_first_proposals(proposal, raw, links, elements, names);
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "coupling/domain_scheme.h"
 #include "coupling/step_policy.h"
 #include "solver/cosim/layer_stepper.h"
 
@@ -31,8 +32,7 @@ bool LayerStepper::at_owner_instant(const LayerPort& port) const {
 }
 
 Tick LayerStepper::proposal_ticks() const {
-  double dt = solver_.step_proposal();
-  if (max_step_s_ > 0.0) dt = std::min(dt, max_step_s_);
+  const double dt = coupling::own_step_s(solver_, max_step_s_);
   if (!std::isfinite(dt) || dt >= 1e3) return 0;  // rigid bodies only: no limit of its own
   if (!(dt * static_cast<double>(ticks_per_second_) >= 1.0))
     throw NumericalError(

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "core/errors.h"
@@ -21,12 +20,7 @@ wire::Envelope register_message(const coupling::DomainScheme& scheme,
   auto* r = e.mutable_registration();
   r->set_stable_step_ticks(coupling::proposal_ticks(s, options, ticks_per_second));
   r->set_stable_step_s(s.dt_s());
-  {
-    double dt = s.step_proposal();  // LayerStepper::proposal_ticks at t = 0
-    if (options.max_step_s > 0.0) dt = std::min(dt, options.max_step_s);
-    if (std::isfinite(dt) && dt < 1e3 && dt * static_cast<double>(ticks_per_second) >= 1.0)
-      r->set_own_step_ticks(coupling::TickClock(ticks_per_second).step_to_ticks(dt));
-  }
+  r->set_own_step_ticks(coupling::own_step_ticks(s, options.max_step_s, ticks_per_second));
   r->set_end_time_s(sub.controls.end_time_s);
   r->set_end_time_ticks(static_cast<std::int64_t>(
       std::llround(sub.controls.end_time_s * static_cast<double>(ticks_per_second))));

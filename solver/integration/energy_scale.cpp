@@ -40,13 +40,24 @@ double integral_of_magnitude(const model::Curve& c, double t_end_s) {
   return sum;
 }
 
-double model_energy_scale_J(const Solver& s) {
-  const model::Model& m = s.model();
-  const std::size_t n = m.nodes.count();
-  std::vector<std::uint8_t> skip(n, 0);  // rigid and ghost nodes: their energy is elsewhere
+namespace {
+
+/// [n] 1 for the nodes a domain's energy leaves out: a rigid body's (its energy is the body's)
+/// and ghosts (the owner's).
+std::vector<std::uint8_t> skipped_nodes(const Solver& s) {
+  std::vector<std::uint8_t> skip(s.model().nodes.count(), 0);
   for (const auto& b : s.rigid_bodies())
     for (auto i : b.nodes) skip[static_cast<std::size_t>(i)] = 1;
   for (auto g : s.ghost_nodes()) skip[static_cast<std::size_t>(g)] = 1;
+  return skip;
+}
+
+}  // namespace
+
+double model_energy_scale_J(const Solver& s) {
+  const model::Model& m = s.model();
+  const std::size_t n = m.nodes.count();
+  const auto skip = skipped_nodes(s);
   const auto& v = s.velocity_mid();  // v^0 after initialize()
   const auto& w = s.angular_velocity_mid();
   double twice = 0.0;  // 2 E
@@ -78,17 +89,11 @@ double model_energy_scale_J(const Solver& s) {
 double pushed_energy_J(const Solver& s) {
   const model::Model& m = s.model();
   const double t_end_s = m.controls.end_time_s;
-  double mass_kg = 0.0;  // the model's: free nodes and rigid bodies
-  {
-    const std::size_t n = m.nodes.count();
-    std::vector<std::uint8_t> skip(n, 0);
-    for (const auto& b : s.rigid_bodies())
-      for (auto i : b.nodes) skip[static_cast<std::size_t>(i)] = 1;
-    for (auto g : s.ghost_nodes()) skip[static_cast<std::size_t>(g)] = 1;
-    for (std::size_t i = 0; i < n; ++i)
-      if (!skip[i]) mass_kg += s.mass()[i];
-    for (const auto& b : s.rigid_bodies()) mass_kg += b.mass_kg;
-  }
+  double mass_kg = 0.0;  // the model's: the nodes the energy counts and the rigid bodies
+  const auto skip = skipped_nodes(s);
+  for (std::size_t i = 0; i < skip.size(); ++i)
+    if (!skip[i]) mass_kg += s.mass()[i];
+  for (const auto& b : s.rigid_bodies()) mass_kg += b.mass_kg;
   if (!(mass_kg > 0.0) || !(t_end_s > 0.0)) return 0.0;
   double impulse_Ns = mass_kg * norm(m.controls.gravity_m_s2) * t_end_s;
   for (const auto& l : m.loads)
