@@ -168,7 +168,8 @@ std::size_t ContactInterface::slave_node_count() const {
 /// with dt v^{n+1/2} = u^{n+1} - u^n. Step: dt_stable_s = 2 sqrt(min m_eff / k) over the
 /// candidate pairs; at the start (dt = 0) also 2 / sqrt(max k / m_eff) over every pair that may
 /// ever touch (ContactPass::max_stiffness_over_mass).
-ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
+ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f,
+                                      parallel::ThreadTeam* team) {
   Impl& s = *impl_;
   ContactStep out;
   // Work of the forces of t^n over this step (the first half of the trapezoid rule).
@@ -177,7 +178,7 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
   double min_ratio = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < s.passes.size(); ++p) {
     PassResult r;
-    s.passes[p].compute(x, v, dt, s.friction, s.rule, f, s.applied, r);
+    s.passes[p].compute(x, v, dt, s.friction, s.rule, f, s.applied, r, team);
     // the resultant on the slave side: pass 2 pushes the master nodes, the reaction is on it
     const double sign = p == 0 ? 1.0 : -1.0;
     for (int a = 0; a < 3; ++a) out.resultant_N[a] += sign * r.resultant_N[a];

@@ -12,6 +12,10 @@
 #include "core/state_archive.h"
 #include "solver/model/model.h"
 
+namespace crashlink::parallel {
+class ThreadTeam;
+}
+
 namespace crashlink::contact {
 
 struct ContactStep {
@@ -39,8 +43,10 @@ class ContactInterface {
 
   /// Adds the contact forces at configuration x (t^{n+1}) with mid-step velocities v into f
   /// (f is an external-force accumulator: positive pushes the node). dt = dt^n, the step just
-  /// taken (friction's elastic predictor uses v * dt).
-  ContactStep compute(const double* x, const double* v, double dt, double* f);
+  /// taken (friction's elastic predictor uses v * dt). With a team, the slave nodes are tested
+  /// on its threads, with the same result to the bit (ContactPass::compute).
+  ContactStep compute(const double* x, const double* v, double dt, double* f,
+                      parallel::ThreadTeam* team = nullptr);
 
   /// The step the soft stiffness is sized with (contact_pass.cpp pair_stiffness): the domain's
   /// stable step at the start, before any contact. Set once; later calls are ignored (a

@@ -15,6 +15,7 @@
 
 #include "core/errors.h"
 #include "solver/contact/projection.h"
+#include "solver/parallel/thread_team.h"
 
 namespace crashlink::contact {
 
@@ -156,6 +157,7 @@ ContactPass::ContactPass(const model::Model& m, std::vector<std::int32_t> nodes,
   side_.assign(ns, 0);
   side_seg_.assign(ns, -1);
   wake_m_.assign(ns, 0.0);
+  blocks_.resize((ns + kBlockNodes - 1) / kBlockNodes);
   if (self_) {
     // Skipped for node s: every segment sharing a node with a segment that holds s (its own
     // segments and their neighbours, which lie within about one element of it).
@@ -319,7 +321,7 @@ void ContactPass::sort(const double* x) {
 ///   g = h - d.
 /// Returns false when the segment cannot be the node's nearest surface (deeper than half its
 /// element below a one-sided face); otherwise the projection, g, the unit direction of the push
-/// on the node and the shell side, and last_dist_ = the node's distance to the segment.
+/// on the node and the shell side, and dist = the node's distance to the segment.
 ///   inside the segment (or within 1e-6 of its size off the normal through the closest point):
 ///     d = (x_s - x_c) . n (shells: on the node's side), push along n;
 ///   off an edge, outside (or a shell): d = |x_s - x_c|, push along x_s - x_c (rounded edges:
@@ -333,7 +335,7 @@ void ContactPass::sort(const double* x) {
 /// Solid faces are one-sided (outward normal) and accept penetrations up to depth_m (half the
 /// element's thickness).
 bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const double* p,
-                           Projection& pr, double& g, double* dir, int& side) {
+                           Projection& pr, double& g, double* dir, int& side, double& dist) const {
   pr = seg_.triangle(i) ? project_triangle(xa, p) : project_quad(xa, p);
   const double r[3] = {p[0] - pr.xc[0], p[1] - pr.xc[1], p[2] - pr.xc[2]};
   const double dn = r[0] * pr.normal[0] + r[1] * pr.normal[1] + r[2] * pr.normal[2];
@@ -364,12 +366,12 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
       return false;  // deeper than half the element: not this face
     }
     d = sgn * dn;
-    last_dist_ = std::fabs(dn);
+    dist = std::fabs(dn);
     for (int a = 0; a < 3; ++a) dir[a] = sgn * pr.normal[a];
   } else if (two || dn > -tol) {  // on the face's plane within round-off: outside
     side = two ? (dn >= 0.0 ? 1 : -1) : 0;
     d = rl;
-    last_dist_ = rl;
+    dist = rl;
     for (int a = 0; a < 3; ++a) dir[a] = r[a] / rl;
   } else {
     // Only within the least half-thickness of all the pass's faces: every face whose edge or
@@ -379,7 +381,7 @@ bool ContactPass::classify(std::size_t k, std::size_t i, const double* xa, const
     // taken for 5 mm inside.
     if (rl > std::min(seg_.depth_m[i], gap_cap_m_)) return false;
     d = -rl;
-    last_dist_ = rl;
+    dist = rl;
     for (int a = 0; a < 3; ++a) dir[a] = -r[a] / rl;
   }
   g = h - d;
@@ -445,10 +447,10 @@ void ContactPass::mean_direction(const std::vector<Hit>& group, double* dir) {
 /// mean direction, the force shared equally, the largest penetration and stiffness of them, so
 /// that mirror images get mirror forces. Friction (friction.h: the node's one history F_t, stick
 /// stiffness = the same k) on the first pair only.
+/// Recorded into the block (`out`), applied by compute() after every block is done.
 void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const double* dir,
                        const double* v, double dt, const FrictionLaw& friction,
-                       const StiffnessRule& rule, double* f, AppliedForces& applied,
-                       PassResult& out, bool first) {
+                       const StiffnessRule& rule, Block& out, bool first) {
   const std::int32_t sn = nodes_[k];
   double* ft = &ft_N_[3 * k];
   double g = 0.0, kp = 0.0;
@@ -458,7 +460,9 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
                   pair_stiffness(k, h.i, reduced_mass(node_mass_kg_[k], seg_mass_kg_[h.i]), rule));
   }
   const double fn = kp * g;
-  out.potential_J += 0.5 * kp * g * g;
+  const auto spring = static_cast<std::int32_t>(out.spring.size() / 5);
+  out.spring.push_back(0.5 * kp * g);  // the potential's factors: compute() adds their product
+  out.spring.push_back(g);
   double F[3];
   for (int a = 0; a < 3; ++a) F[a] = fn * dir[a];
   if (first && friction.active()) {
@@ -478,14 +482,14 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
   } else if (first) {
     ft[0] = ft[1] = ft[2] = 0.0;
   }
-  applied.apply(f, sn, F, 1.0);
-  for (int a = 0; a < 3; ++a) out.resultant_N[a] += F[a];
+  for (int a = 0; a < 3; ++a) out.spring.push_back(F[a]);
+  out.entry.push_back({sn, spring, 1.0});
   const double share = 1.0 / static_cast<double>(group.size());
   for (const auto& h : group) {
     const std::int32_t* q = &seg_.nodes[4 * h.i];
     const int nn = seg_.triangle(h.i) ? 3 : 4;
     for (int b = 0; b < nn; ++b)
-      if (h.pr.N[b] != 0.0) applied.apply(f, q[b], F, -share * h.pr.N[b]);
+      if (h.pr.N[b] != 0.0) out.entry.push_back({q[b], spring, -share * h.pr.N[b]});
   }
 }
 
@@ -503,9 +507,13 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
 /// segments, the nearest and its ties push too when they say penetrating; the potential is then
 ///   1/2 k_1 g_1^2 + 1/2 k_2 g_2^2,
 /// smooth across the middle. Shell segments only, on both walls.
+/// Threads: each block of kBlockNodes nodes records its forces and springs (compute_block, on
+/// whichever thread takes it: a node writes only its own friction, side and wake state), then
+/// they are applied here block after block, as one thread applies them node after node: f, the
+/// record and every sum the same to the bit for any team.
 void ContactPass::compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
                           const StiffnessRule& rule, double* f, AppliedForces& applied,
-                          PassResult& out) {
+                          PassResult& out, parallel::ThreadTeam* team) {
   if (dt > 0.0) {
     double v2 = 0.0;
     for (auto i : moving_) {
@@ -516,13 +524,37 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     if (2.0 * travelled_m_ > margin_m_) need_sort_ = true;
   }
   if (need_sort_) sort(x);
-  const std::size_t ns = nodes_.size();
-  for (std::size_t k = 0; k < ns; ++k) {
+  const auto run = [&](std::size_t b) { compute_block(b, x, v, dt, friction, rule); };
+  if (team != nullptr && blocks_.size() > 1)
+    team->for_each(blocks_.size(), run);
+  else
+    for (std::size_t b = 0; b < blocks_.size(); ++b) run(b);
+  for (auto& B : blocks_) {
+    for (const auto& e : B.entry) applied.apply(f, e.node, &B.spring[5 * e.spring + 2], e.scale);
+    for (std::size_t r = 0; r < B.spring.size(); r += 5) {
+      out.potential_J += B.spring[r] * B.spring[r + 1];
+      for (int a = 0; a < 3; ++a) out.resultant_N[a] += B.spring[r + 2 + a];
+    }
+    out.active_pairs += B.active_pairs;
+    slept += B.slept;
+  }
+  applied.sum_new();
+}
+
+void ContactPass::compute_block(std::size_t b, const double* x, const double* v, double dt,
+                                const FrictionLaw& friction, const StiffnessRule& rule) {
+  Block& B = blocks_[b];
+  B.entry.clear();
+  B.spring.clear();
+  B.active_pairs = 0;
+  B.slept = 0;
+  const std::size_t k1 = std::min(nodes_.size(), (b + 1) * kBlockNodes);
+  for (std::size_t k = b * kBlockNodes; k < k1; ++k) {
     const auto b0 = static_cast<std::size_t>(cand_.offset[k]);
     const auto b1 = static_cast<std::size_t>(cand_.offset[k + 1]);
     double* ft = &ft_N_[3 * k];
     const bool asleep = travelled_m_ < wake_m_[k];
-    slept += asleep ? 1 : 0;
+    B.slept += asleep ? 1 : 0;
     if (b0 == b1 || asleep) {
       ft[0] = ft[1] = ft[2] = 0.0;
       side_[k] = 0;
@@ -534,7 +566,7 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     // Every candidate's verdict first, then the nearest and its ties (within 1e-9 of the largest
     // segment size among them), taken in the order of their nodes' ids: the same pair, force and
     // sums whatever the order of the segments in this model (mono or a cut one).
-    hits_.clear();
+    B.hits.clear();
     double sleep_gap = kInf;
     for (std::size_t c = b0; c < b1; ++c) {
       const auto i = static_cast<std::size_t>(cand_.segment[c]);
@@ -557,56 +589,54 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
       }
       sleep_gap = 0.0;
       Hit hit;
-      if (!classify(k, i, xa, p, hit.pr, hit.g, hit.dir, hit.side)) continue;
-      hit.dist = last_dist_;
+      if (!classify(k, i, xa, p, hit.pr, hit.g, hit.dir, hit.side, hit.dist)) continue;
       const double size = seg_size_m_[i];
       // Touching a face it does not penetrate, within round-off: no witness of being outside
       // (a slave edge node of two flush bars lies on the master's side plane, at distance ~0
       // from it, and inside the end face it hits).
       if (!(hit.g > 1e-10 * size) && hit.dist <= 1e-9 * size) continue;
       hit.i = i;
-      hits_.push_back(hit);
+      B.hits.push_back(hit);
     }
     // The nearest segments (the pair), then, when a wall on the other side squeezes the node
     // too, the nearest of that wall (a second pair): see the function's comment.
-    nearest(hits_, pair_);
+    nearest(B.hits, B.pair);
     // Contact when the nearest segments all say penetrating (beyond round-off, 1e-10 of the
     // segment size). A tie that disagrees is a node in front of a face and level with the
     // plane of the face beside it, off that one's edge: outside (a convex edge).
-    if (!penetrating(pair_)) {
+    if (!penetrating(B.pair)) {
       ft[0] = ft[1] = ft[2] = 0.0;
       side_[k] = 0;
       side_seg_[k] = -1;
-      if (pair_.empty() && sleep_gap > 0.0 && std::isfinite(sleep_gap))
+      if (B.pair.empty() && sleep_gap > 0.0 && std::isfinite(sleep_gap))
         wake_m_[k] = travelled_m_ + 0.5 * sleep_gap;
       continue;
     }
-    ++out.active_pairs;
-    side_[k] = static_cast<std::int8_t>(pair_[0].side);
-    side_seg_[k] = static_cast<std::int32_t>(pair_[0].i);
+    ++B.active_pairs;
+    side_[k] = static_cast<std::int8_t>(B.pair[0].side);
+    side_seg_[k] = static_cast<std::int32_t>(B.pair[0].i);
     double dir[3];
-    mean_direction(pair_, dir);
-    opposing_.clear();
+    mean_direction(B.pair, dir);
+    B.opposing.clear();
     // Shells only: a one-sided solid face accepts a node up to half its element's depth, so the
     // top and bottom faces of a thin (or thinned, or tapered) solid would both push and hold a
     // node at the mid-plane; the nearest solid face alone pushes it out the right way.
     bool shell_pair = true;
-    for (const auto& p1 : pair_) shell_pair = shell_pair && seg_.two_sided[p1.i] != 0;
-    for (const auto& h : hits_) {
+    for (const auto& p1 : B.pair) shell_pair = shell_pair && seg_.two_sided[p1.i] != 0;
+    for (const auto& h : B.hits) {
       if (!shell_pair || seg_.two_sided[h.i] == 0) continue;
       bool near_pair = false;
-      for (const auto& p1 : pair_) near_pair = near_pair || share_node(h.i, p1.i);
+      for (const auto& p1 : B.pair) near_pair = near_pair || share_node(h.i, p1.i);
       if (!near_pair && h.dir[0] * dir[0] + h.dir[1] * dir[1] + h.dir[2] * dir[2] < kOpposingCos)
-        opposing_.push_back(h);
+        B.opposing.push_back(h);
     }
-    nearest(opposing_, second_);
-    push(k, pair_, dir, v, dt, friction, rule, f, applied, out, true);
-    if (penetrating(second_)) {
+    nearest(B.opposing, B.second);
+    push(k, B.pair, dir, v, dt, friction, rule, B, true);
+    if (penetrating(B.second)) {
       double dir2[3];
-      mean_direction(second_, dir2);
-      push(k, second_, dir2, v, dt, friction, rule, f, applied, out, false);
+      mean_direction(B.second, dir2);
+      push(k, B.second, dir2, v, dt, friction, rule, B, false);
     }
-    applied.sum_new();  // this node's entries, still in cache
   }
 }
 

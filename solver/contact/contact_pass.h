@@ -14,6 +14,10 @@
 #include "solver/contact/projection.h"
 #include "solver/contact/segments.h"
 
+namespace crashlink::parallel {
+class ThreadTeam;
+}
+
 namespace crashlink::contact {
 
 /// The pair stiffness rule (contact_pass.cpp, pair_stiffness) and what it needs.
@@ -87,8 +91,13 @@ class ContactPass {
   ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
               const NodeProperties& np, bool self, double node_half_thickness_m = 0.0);
 
+  /// The pass's forces (contact_pass.cpp); with a team, its nodes' blocks on the team's threads,
+  /// the same bits as on one.
   void compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
-               const StiffnessRule& rule, double* f, AppliedForces& applied, PassResult& out);
+               const StiffnessRule& rule, double* f, AppliedForces& applied, PassResult& out,
+               parallel::ThreadTeam* team = nullptr);
+  /// Nodes per block: the unit a thread takes (compute).
+  static constexpr std::size_t kBlockNodes = 64;
   /// Smallest m_eff / k over the candidate pairs [s^2] (infinity without candidates).
   double min_mass_over_stiffness(const StiffnessRule& rule);
   /// Largest k / m_eff any pair could have [1/s^2] (contact_pass.cpp).
@@ -110,23 +119,38 @@ class ContactPass {
                         const StiffnessRule& rule) const;
   void sort(const double* x);
   bool classify(std::size_t k, std::size_t i, const double* xa, const double* p, Projection& pr,
-                double& g, double* dir, int& side);
-  double last_dist_ = 0.0;  // classify's distance of the node to the segment [m]
-  struct Hit {              // one candidate's verdict (compute)
+                double& g, double* dir, int& side, double& dist) const;
+  struct Hit {  // one candidate's verdict (compute)
     double g = 0.0, dist = 0.0;
     double dir[3] = {0.0, 0.0, 0.0};
     Projection pr;
     std::size_t i = 0;
     int side = 0;
   };
-  std::vector<Hit> hits_, pair_, opposing_, second_;  // scratch, kept between calls
+  /// One block of kBlockNodes nodes: its scratch, and what its nodes add, in node order, for
+  /// compute() to apply after every block is done (vectors kept between calls: no allocation
+  /// once they have grown).
+  struct Block {
+    std::vector<Hit> hits, pair, opposing, second;
+    struct Entry {
+      std::int32_t node;    ///< where the force goes
+      std::int32_t spring;  ///< whose force F it is: an index into `spring`
+      double scale;         ///< the share of F: 1 on the node, -N_a / (group size) on a segment's
+    };
+    std::vector<Entry> entry;    ///< the forces, in the order one thread applies them
+    std::vector<double> spring;  ///< [4 per spring] its potential 1/2 k g^2 [J], F [N]
+    std::int64_t active_pairs = 0, slept = 0;
+  };
+  std::vector<Block> blocks_;
+  void compute_block(std::size_t b, const double* x, const double* v, double dt,
+                     const FrictionLaw& friction, const StiffnessRule& rule);
   bool share_node(std::size_t i, std::size_t j) const;
   void nearest(const std::vector<Hit>& in, std::vector<Hit>& out) const;
   bool penetrating(const std::vector<Hit>& group) const;
   static void mean_direction(const std::vector<Hit>& group, double* dir);
   void push(std::size_t k, const std::vector<Hit>& group, const double* dir, const double* v,
-            double dt, const FrictionLaw& friction, const StiffnessRule& rule, double* f,
-            AppliedForces& applied, PassResult& out, bool first);
+            double dt, const FrictionLaw& friction, const StiffnessRule& rule, Block& out,
+            bool first);
   std::vector<std::array<std::int64_t, 4>> seg_key_;  // [nseg] sorted node ids: tie order
   double gap_cap_m_ = 0.0;  // least depth of the one-sided faces [m] (classify)
 

@@ -1,5 +1,6 @@
 #include "solver/contact/projection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -50,7 +51,9 @@ double closest_on_edge(const double* a, const double* b, const double* p, double
     ab2 += ab[d] * ab[d];
     apab += ap[d] * ab[d];
   }
-  t = ab2 > 0.0 ? std::fmin(1.0, std::fmax(0.0, apab / ab2)) : 0.0;
+  // std::min/max with the bound first: a NaN quotient gives the bound, as fmin/fmax do, and it
+  // compiles to two instructions (fmin/fmax were calls into libm: 1.8 % of the head impact).
+  t = ab2 > 0.0 ? std::min(1.0, std::max(0.0, apab / ab2)) : 0.0;
   double r2 = 0.0;
   for (int d = 0; d < 3; ++d) {
     const double r = ap[d] - t * ab[d];
@@ -100,8 +103,8 @@ Projection project_quad(const double* xa_in, const double* p_in) {
   }
   constexpr double kTol = 1e-12;
   if (converged && std::fabs(xi) <= 1.0 + kTol && std::fabs(eta) <= 1.0 + kTol) {
-    xi = std::fmin(1.0, std::fmax(-1.0, xi));
-    eta = std::fmin(1.0, std::fmax(-1.0, eta));
+    xi = std::min(1.0, std::max(-1.0, xi));  // finite here (converged)
+    eta = std::min(1.0, std::max(-1.0, eta));
     pr.interior = true;
   } else {
     // Boundary: the nearest of the four straight edges a -> a+1.

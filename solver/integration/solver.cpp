@@ -458,7 +458,10 @@ void Solver::set_contact_step_references() {
 
 void Solver::compute_contact_forces(double dt) {
   if (contacts_.empty()) return;
-  std::fill(f_cont_.begin(), f_cont_.end(), 0.0);
+  on_node_ranges([&](std::size_t i0, std::size_t i1) {
+    std::fill(f_cont_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
+              f_cont_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
+  });
   // The penalty springs add to the highest frequency of the nodes they hold: a node of the
   // critical element on a spring of frequency w_c vibrates at up to sqrt(w_e^2 + w_c^2) (the
   // largest eigenvalue of a sum of positive semi-definite stiffnesses is at most the sum of
@@ -471,9 +474,11 @@ void Solver::compute_contact_forces(double dt) {
   // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up.
   const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
-  const double t0 = core::thread_cpu_seconds();  // the contacts run on the calling thread
+  // CPU of the calling thread, and of the team's workers when there is a team (the nodes'
+  // tests run on them too)
+  const double t0 = core::thread_cpu_seconds() + team_cpu_seconds();
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data());
+    contact_steps_[k] = contacts_[k].compute(x_.data(), v_.data(), dt, f_cont_.data(), team_.get());
     contact_cost_.node_cycles += static_cast<std::int64_t>(contacts_[k].slave_node_count());
     const double bound = share * contact_steps_[k].dt_stable_s;
     if (bound < dt_stable_) {
@@ -483,7 +488,7 @@ void Solver::compute_contact_forces(double dt) {
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }
   }
-  contact_cost_.seconds += core::thread_cpu_seconds() - t0;
+  contact_cost_.seconds += core::thread_cpu_seconds() + team_cpu_seconds() - t0;
 }
 
 void Solver::compute_external_forces(double t) {

@@ -1,8 +1,9 @@
 // Issue 24 item 1: a solver's element forces on 1 to 4 threads give the same run to the bit
 // (integration::ElementChunks, docs/threads.md). Each scene runs the same cycles on every thread
 // count and compares every nodal vector, the energies and the step bit by bit with one thread's:
-//   * a J2 shell plate hit by a rigid sphere (contact, plasticity, a damped strip: shells, the
-//     penalty step), 40 chunks over many shared nodes;
+//   * a J2 shell plate hit by a rigid sphere (contact with friction, both passes over blocks of
+//     nodes on the team; plasticity, a damped strip: shells, the penalty step), 40 chunks over
+//     many shared nodes;
 //   * a hex block twisted by an initial spin about a clamped face (hexes, bulk viscosity);
 //   * the head-impact CI scene, mono: the whole run to the bit, through run_single_domain.
 // A scatter plan that let two threads add into one node, or a fold of the chunk results in the
@@ -71,12 +72,17 @@ void expect_same(const Ending& one, const Ending& other, int threads) {
 }
 
 /// The sphere on a 100 x 100 J2 plate, its middle rows damped; the sphere lands within the run.
+/// Two contact passes with friction, each over several blocks of nodes (ContactPass::kBlockNodes):
+/// the plate's 10 201 nodes against the sphere, the sphere's nodes against the plate.
 model::Model sphere_on_plate() {
   crashlink::testing::SpherePlateSpec spec;
   spec.plate_divisions = 100;
   spec.j2 = true;
   spec.speed_m_s = 30.0;
+  spec.sphere_divisions = 16;
   auto b = crashlink::testing::make_sphere_plate(spec);
+  b.m.contacts[0].static_friction = 0.3;
+  b.m.contacts[0].dynamic_friction = 0.2;
   auto& plate = b.m.parts[0];
   plate.element_damping_ratio.assign(plate.element_count(), 0.0);
   for (std::size_t e = 4000; e < 6000; ++e) plate.element_damping_ratio[e] = 0.05;
