@@ -19,6 +19,7 @@
 #include "solver/contact/contact_pass.h"
 #include "solver/contact/node_properties.h"
 #include "solver/contact/segments.h"
+#include "solver/parallel/thread_team.h"
 
 namespace crashlink::contact {
 
@@ -29,6 +30,10 @@ struct ContactInterface::Impl {
   StiffnessRule rule;
   AppliedForces applied;
   double energy_J = 0.0;
+  // the cycle between begin() and finish()
+  const double* x = nullptr;
+  const double* v = nullptr;
+  double dt = 0.0, work_old = 0.0;
 };
 
 namespace {
@@ -170,15 +175,53 @@ std::size_t ContactInterface::slave_node_count() const {
 /// ever touch (ContactPass::max_stiffness_over_mass).
 ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f,
                                       parallel::ThreadTeam* team) {
+  begin(x, v, dt);
+  const std::size_t blocks = block_count();
+  if (team != nullptr && blocks > 1)  // a fixed run of blocks per thread (Solver does the same)
+    team->on_each_thread([&](int t) {
+      const auto T = static_cast<std::size_t>(team->size()), k = static_cast<std::size_t>(t);
+      for (std::size_t b = blocks * k / T; b < blocks * (k + 1) / T; ++b) block(b);
+    });
+  else
+    for (std::size_t b = 0; b < blocks; ++b) block(b);
+  return finish(f);
+}
+
+void ContactInterface::begin(const double* x, const double* v, double dt) {
+  Impl& s = *impl_;
+  s.x = x;
+  s.v = v;
+  s.dt = dt;
+  // Work of the forces of t^n over this step (the first half of the trapezoid rule).
+  s.work_old = dt > 0.0 ? s.applied.work(v, dt) : 0.0;
+  s.applied.clear(dt > 0.0 ? v : nullptr);  // sums this step's F^{n+1} . v as it applies them
+  for (auto& p : s.passes) p.prepare(x, v, dt);
+}
+
+std::size_t ContactInterface::block_count() const {
+  std::size_t n = 0;
+  for (const auto& p : impl_->passes) n += p.block_count();
+  return n;
+}
+
+void ContactInterface::block(std::size_t b) {
+  Impl& s = *impl_;
+  for (auto& p : s.passes) {
+    if (b < p.block_count()) {
+      p.compute_block(b, s.x, s.v, s.dt, s.friction, s.rule);
+      return;
+    }
+    b -= p.block_count();
+  }
+}
+
+ContactStep ContactInterface::finish(double* f) {
   Impl& s = *impl_;
   ContactStep out;
-  // Work of the forces of t^n over this step (the first half of the trapezoid rule).
-  const double work_old = dt > 0.0 ? s.applied.work(v, dt) : 0.0;
-  s.applied.clear(dt > 0.0 ? v : nullptr);  // sums this step's F^{n+1} . v as it applies them
   double min_ratio = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < s.passes.size(); ++p) {
     PassResult r;
-    s.passes[p].compute(x, v, dt, s.friction, s.rule, f, s.applied, r, team);
+    s.passes[p].apply_blocks(f, s.applied, r);
     // the resultant on the slave side: pass 2 pushes the master nodes, the reaction is on it
     const double sign = p == 0 ? 1.0 : -1.0;
     for (int a = 0; a < 3; ++a) out.resultant_N[a] += sign * r.resultant_N[a];
@@ -186,7 +229,8 @@ ContactStep ContactInterface::compute(const double* x, const double* v, double d
     out.potential_J += r.potential_J;
     min_ratio = std::min(min_ratio, s.passes[p].min_mass_over_stiffness(s.rule));
   }
-  if (dt > 0.0) s.energy_J -= 0.5 * (work_old + s.applied.summed_work(dt));
+  const double dt = s.dt;
+  if (dt > 0.0) s.energy_J -= 0.5 * (s.work_old + s.applied.summed_work(dt));
   out.energy_J = s.energy_J;
   out.dt_stable_s = std::isfinite(min_ratio) ? 2.0 * std::sqrt(min_ratio)
                                              : std::numeric_limits<double>::infinity();

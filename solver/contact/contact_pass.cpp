@@ -15,7 +15,6 @@
 
 #include "core/errors.h"
 #include "solver/contact/projection.h"
-#include "solver/parallel/thread_team.h"
 
 namespace crashlink::contact {
 
@@ -493,7 +492,8 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
   }
 }
 
-/// The pass's forces at configuration x (t^{n+1}) with mid-step velocities v, added into f.
+/// The pass's forces at configuration x (t^{n+1}) with mid-step velocities v, added into f:
+/// prepare() (the travel and the sort), compute_block() for each block, apply_blocks().
 /// Search (docs/contact.md "Search"): a pair (s, i) can come into contact only if x_s lies
 /// within the reach of segment i, its node box inflated by h (+ depth for solid faces); the sort
 /// inflates it further by margin_m_. Since the sort every node has moved at most
@@ -509,11 +509,9 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
 /// smooth across the middle. Shell segments only, on both walls.
 /// Threads: each block of kBlockNodes nodes records its forces and springs (compute_block, on
 /// whichever thread takes it: a node writes only its own friction, side and wake state), then
-/// they are applied here block after block, as one thread applies them node after node: f, the
-/// record and every sum the same to the bit for any team.
-void ContactPass::compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
-                          const StiffnessRule& rule, double* f, AppliedForces& applied,
-                          PassResult& out, parallel::ThreadTeam* team) {
+/// apply_blocks() applies them block after block, as one thread applies them node after node:
+/// f, the record and every sum the same to the bit for any team.
+void ContactPass::prepare(const double* x, const double* v, double dt) {
   if (dt > 0.0) {
     double v2 = 0.0;
     for (auto i : moving_) {
@@ -524,11 +522,9 @@ void ContactPass::compute(const double* x, const double* v, double dt, const Fri
     if (2.0 * travelled_m_ > margin_m_) need_sort_ = true;
   }
   if (need_sort_) sort(x);
-  const auto run = [&](std::size_t b) { compute_block(b, x, v, dt, friction, rule); };
-  if (team != nullptr && blocks_.size() > 1)
-    team->for_each(blocks_.size(), run);
-  else
-    for (std::size_t b = 0; b < blocks_.size(); ++b) run(b);
+}
+
+void ContactPass::apply_blocks(double* f, AppliedForces& applied, PassResult& out) {
   for (auto& B : blocks_) {
     for (const auto& e : B.entry) applied.apply(f, e.node, &B.spring[5 * e.spring + 2], e.scale);
     for (std::size_t r = 0; r < B.spring.size(); r += 5) {

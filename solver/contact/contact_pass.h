@@ -14,10 +14,6 @@
 #include "solver/contact/projection.h"
 #include "solver/contact/segments.h"
 
-namespace crashlink::parallel {
-class ThreadTeam;
-}
-
 namespace crashlink::contact {
 
 /// The pair stiffness rule (contact_pass.cpp, pair_stiffness) and what it needs.
@@ -91,12 +87,16 @@ class ContactPass {
   ContactPass(const model::Model& m, std::vector<std::int32_t> nodes, SegmentSet seg,
               const NodeProperties& np, bool self, double node_half_thickness_m = 0.0);
 
-  /// The pass's forces (contact_pass.cpp); with a team, its nodes' blocks on the team's threads,
-  /// the same bits as on one.
-  void compute(const double* x, const double* v, double dt, const FrictionLaw& friction,
-               const StiffnessRule& rule, double* f, AppliedForces& applied, PassResult& out,
-               parallel::ThreadTeam* team = nullptr);
-  /// Nodes per block: the unit a thread takes (compute).
+  /// One cycle of the pass at configuration x (t^{n+1}) with mid-step velocities v, in three
+  /// steps (contact_pass.cpp, compute_block): prepare() (the travel, a new sort when due), then
+  /// compute_block(b) for every block b < block_count(), on any thread in any order, then
+  /// apply_blocks() adds their forces into f in block order: the same bits for any order.
+  void prepare(const double* x, const double* v, double dt);
+  std::size_t block_count() const { return blocks_.size(); }
+  void compute_block(std::size_t b, const double* x, const double* v, double dt,
+                     const FrictionLaw& friction, const StiffnessRule& rule);
+  void apply_blocks(double* f, AppliedForces& applied, PassResult& out);
+  /// Nodes per block: the unit a thread takes.
   static constexpr std::size_t kBlockNodes = 64;
   /// Smallest m_eff / k over the candidate pairs [s^2] (infinity without candidates).
   double min_mass_over_stiffness(const StiffnessRule& rule);
@@ -129,8 +129,9 @@ class ContactPass {
   };
   /// One block of kBlockNodes nodes: its scratch, and what its nodes add, in node order, for
   /// compute() to apply after every block is done (vectors kept between calls: no allocation
-  /// once they have grown).
-  struct Block {
+  /// once they have grown). A cache line of its own: two threads on neighbouring blocks would
+  /// otherwise write into one line at every hit (false sharing).
+  struct alignas(64) Block {
     std::vector<Hit> hits, pair, opposing, second;
     struct Entry {
       std::int32_t node;    ///< where the force goes
@@ -142,8 +143,6 @@ class ContactPass {
     std::int64_t active_pairs = 0, slept = 0;
   };
   std::vector<Block> blocks_;
-  void compute_block(std::size_t b, const double* x, const double* v, double dt,
-                     const FrictionLaw& friction, const StiffnessRule& rule);
   bool share_node(std::size_t i, std::size_t j) const;
   void nearest(const std::vector<Hit>& in, std::vector<Hit>& out) const;
   bool penetrating(const std::vector<Hit>& group) const;

@@ -334,6 +334,7 @@ class Solver {
   std::vector<WeldFailure> weld_failures_;  ///< spot welds that let go, in order
   std::vector<contact::ContactInterface> contacts_;
   std::vector<contact::ContactStep> contact_steps_;
+  std::vector<std::size_t> contact_block_end_;  ///< [contacts] one past each one's last block
   ContactCost contact_cost_;
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n

@@ -28,7 +28,7 @@ class TopEigenvalue {
   /// `steps` Lanczos steps from the last run's Ritz vector (or the fixed start), apply(in, out):
   /// out = A in over [m] (in has norm 1). Keeps the new Ritz vector for the next run. Stops early
   /// when the Krylov space is invariant (beta below 1e-12 of the largest alpha): theta is then
-  /// exact. Dot products in index order: the same bits for the same inputs.
+  /// exact. Dot products in a fixed order (eight partial sums): the same bits for the same inputs.
   template <class Apply>
   Estimate run(int steps, Apply&& apply);
 
