@@ -446,7 +446,7 @@ void ContactPass::mean_direction(const std::vector<Hit>& group, double* dir) {
 /// mean direction, the force shared equally, the largest penetration and stiffness of them, so
 /// that mirror images get mirror forces. Friction (friction.h: the node's one history F_t, stick
 /// stiffness = the same k) on the first pair only.
-/// Recorded into the block (`out`), applied by compute() after every block is done.
+/// Recorded into the block (`out`), applied by apply_blocks() after every block is done.
 void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const double* dir,
                        const double* v, double dt, const FrictionLaw& friction,
                        const StiffnessRule& rule, Block& out, bool first) {
@@ -460,7 +460,7 @@ void ContactPass::push(std::size_t k, const std::vector<Hit>& group, const doubl
   }
   const double fn = kp * g;
   const auto spring = static_cast<std::int32_t>(out.spring.size() / 5);
-  out.spring.push_back(0.5 * kp * g);  // the potential's factors: compute() adds their product
+  out.spring.push_back(0.5 * kp * g);  // the potential's factors: apply_blocks() adds their product
   out.spring.push_back(g);
   double F[3];
   for (int a = 0; a < 3; ++a) F[a] = fn * dir[a];
@@ -526,7 +526,8 @@ void ContactPass::prepare(const double* x, const double* v, double dt) {
 
 void ContactPass::apply_blocks(double* f, AppliedForces& applied, PassResult& out) {
   for (auto& B : blocks_) {
-    for (const auto& e : B.entry) applied.apply(f, e.node, &B.spring[5 * e.spring + 2], e.scale);
+    for (const auto& e : B.entry)
+      applied.apply(f, e.node, &B.spring[5 * static_cast<std::size_t>(e.spring) + 2], e.scale);
     for (std::size_t r = 0; r < B.spring.size(); r += 5) {
       out.potential_J += B.spring[r] * B.spring[r + 1];
       for (int a = 0; a < 3; ++a) out.resultant_N[a] += B.spring[r + 2 + a];

@@ -39,13 +39,16 @@ struct AppliedForces {
     power_W_ = 0.0;
     summed_ = 0;
   }
-  /// f[node] += scale F, recorded.
+  /// f[node] += scale F, recorded. The product is rounded once and both uses take it: what f
+  /// gains is what the record says (a product written twice may be fused into the addition, an
+  /// FMA, where F may alias f and the compiler reads it again after the store).
   void apply(double* f, std::int32_t i, const double* F, double scale) {
     double* fi = f + 3 * static_cast<std::size_t>(i);
     node.push_back(i);
     for (int a = 0; a < 3; ++a) {
-      fi[a] += scale * F[a];
-      force_N.push_back(scale * F[a]);
+      const double c = scale * F[a];
+      force_N.push_back(c);
+      fi[a] += c;
     }
   }
   /// dt sum of F . v over the entries (v = v^{n+1/2}: dt v = u^{n+1} - u^n) [J].
@@ -128,7 +131,7 @@ class ContactPass {
     int side = 0;
   };
   /// One block of kBlockNodes nodes: its scratch, and what its nodes add, in node order, for
-  /// compute() to apply after every block is done (vectors kept between calls: no allocation
+  /// apply_blocks() to apply after every block is done (vectors kept between calls: no allocation
   /// once they have grown). A cache line of its own: two threads on neighbouring blocks would
   /// otherwise write into one line at every hit (false sharing).
   struct alignas(64) Block {
@@ -138,8 +141,10 @@ class ContactPass {
       std::int32_t spring;  ///< whose force F it is: an index into `spring`
       double scale;         ///< the share of F: 1 on the node, -N_a / (group size) on a segment's
     };
-    std::vector<Entry> entry;    ///< the forces, in the order one thread applies them
-    std::vector<double> spring;  ///< [4 per spring] its potential 1/2 k g^2 [J], F [N]
+    std::vector<Entry> entry;  ///< the forces, in the order one thread applies them
+    /// [5 per spring] its potential's factors 1/2 k g [N] and g [m] (their product: the
+    /// potential 1/2 k g^2 [J]), then F [N]
+    std::vector<double> spring;
     std::int64_t active_pairs = 0, slept = 0;
   };
   std::vector<Block> blocks_;

@@ -478,9 +478,9 @@ void Solver::compute_contact_forces(double dt) {
   // former bound sqrt(2 m / k) = 1.41 / w_c let a corner node blow up.
   const double sf = std::min(model_.controls.dt_scale, 0.995);  // s -> 1 leaves no room
   const double share = std::sqrt(1.0 - sf * sf) / sf;
-  // CPU of the calling thread, and of the team's workers when there is a team (the nodes'
-  // tests run on them too)
-  const double t0 = core::thread_cpu_seconds() + team_cpu_seconds();
+  // CPU of the calling thread, and of each worker's run of blocks (not its wait: a worker spins
+  // before it sleeps, and that is no contact's cost)
+  const double t0 = core::thread_cpu_seconds();
   // Every interface's blocks of slave nodes in one loop of the team, a fixed run of them per
   // thread (so that each block's nodes' friction, side and wake state stay in one core's cache:
   // handed out to whichever thread was free, the blocks, a few microseconds each, cost more
@@ -495,7 +495,9 @@ void Solver::compute_contact_forces(double dt) {
   if (team_ && blocks > 1)
     team_->on_each_thread([&](int t) {
       const auto T = static_cast<std::size_t>(team_->size()), k = static_cast<std::size_t>(t);
+      const double c0 = t > 0 ? core::thread_cpu_seconds() : 0.0;
       for (std::size_t b = blocks * k / T; b < blocks * (k + 1) / T; ++b) run_block(b);
+      if (t > 0) contact_worker_cpu_[k] += core::thread_cpu_seconds() - c0;
     });
   else
     for (std::size_t b = 0; b < blocks; ++b) run_block(b);
@@ -510,7 +512,12 @@ void Solver::compute_contact_forces(double dt) {
       critical_local_ = -1 - static_cast<std::int64_t>(k);
     }
   }
-  contact_cost_.seconds += core::thread_cpu_seconds() + team_cpu_seconds() - t0;
+  double workers = 0.0;
+  for (auto& c : contact_worker_cpu_) {
+    workers += c;
+    c = 0.0;
+  }
+  contact_cost_.seconds += core::thread_cpu_seconds() - t0 + workers;
 }
 
 void Solver::compute_external_forces(double t) {

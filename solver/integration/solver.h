@@ -335,6 +335,7 @@ class Solver {
   std::vector<contact::ContactInterface> contacts_;
   std::vector<contact::ContactStep> contact_steps_;
   std::vector<std::size_t> contact_block_end_;  ///< [contacts] one past each one's last block
+  std::vector<double> contact_worker_cpu_;      ///< [threads] a cycle's contact CPU per worker [s]
   ContactCost contact_cost_;
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
