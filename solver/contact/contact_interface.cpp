@@ -19,7 +19,6 @@
 #include "solver/contact/contact_pass.h"
 #include "solver/contact/node_properties.h"
 #include "solver/contact/segments.h"
-#include "solver/parallel/thread_team.h"
 
 namespace crashlink::contact {
 
@@ -173,17 +172,9 @@ std::size_t ContactInterface::slave_node_count() const {
 /// with dt v^{n+1/2} = u^{n+1} - u^n. Step: dt_stable_s = 2 sqrt(min m_eff / k) over the
 /// candidate pairs; at the start (dt = 0) also 2 / sqrt(max k / m_eff) over every pair that may
 /// ever touch (ContactPass::max_stiffness_over_mass).
-ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f,
-                                      parallel::ThreadTeam* team) {
+ContactStep ContactInterface::compute(const double* x, const double* v, double dt, double* f) {
   begin(x, v, dt);
-  const std::size_t blocks = block_count();
-  if (team != nullptr && blocks > 1)  // a fixed run of blocks per thread (Solver does the same)
-    team->on_each_thread([&](int t) {
-      const auto T = static_cast<std::size_t>(team->size()), k = static_cast<std::size_t>(t);
-      for (std::size_t b = blocks * k / T; b < blocks * (k + 1) / T; ++b) block(b);
-    });
-  else
-    for (std::size_t b = 0; b < blocks; ++b) block(b);
+  for (std::size_t b = 0; b < block_count(); ++b) block(b);
   return finish(f);
 }
 

@@ -12,10 +12,6 @@
 #include "core/state_archive.h"
 #include "solver/model/model.h"
 
-namespace crashlink::parallel {
-class ThreadTeam;
-}
-
 namespace crashlink::contact {
 
 struct ContactStep {
@@ -43,13 +39,12 @@ class ContactInterface {
 
   /// Adds the contact forces at configuration x (t^{n+1}) with mid-step velocities v into f
   /// (f is an external-force accumulator: positive pushes the node). dt = dt^n, the step just
-  /// taken (friction's elastic predictor uses v * dt). With a team, the slave nodes are tested
-  /// on its threads, with the same result to the bit: begin(), block(b) for every
-  /// b < block_count() on any thread in any order, then finish().
-  ContactStep compute(const double* x, const double* v, double dt, double* f,
-                      parallel::ThreadTeam* team = nullptr);
-  /// compute() in three steps, so that a solver runs the blocks of all its interfaces in one
-  /// loop of its team. Between begin() and finish(), x and v must not change.
+  /// taken (friction's elastic predictor uses v * dt).
+  ContactStep compute(const double* x, const double* v, double dt, double* f);
+  /// compute() in three steps, so that a solver runs the blocks of all its interfaces on its
+  /// threads: begin(), block(b) for every b < block_count() on any thread in any order, then
+  /// finish(), with the same result to the bit. Between begin() and finish(), x and v must not
+  /// change.
   void begin(const double* x, const double* v, double dt);
   std::size_t block_count() const;
   void block(std::size_t b);

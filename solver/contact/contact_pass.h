@@ -123,7 +123,7 @@ class ContactPass {
   void sort(const double* x);
   bool classify(std::size_t k, std::size_t i, const double* xa, const double* p, Projection& pr,
                 double& g, double* dir, int& side, double& dist) const;
-  struct Hit {  // one candidate's verdict (compute)
+  struct Hit {  // one candidate's verdict (compute_block)
     double g = 0.0, dist = 0.0;
     double dir[3] = {0.0, 0.0, 0.0};
     Projection pr;

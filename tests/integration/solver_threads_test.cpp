@@ -19,6 +19,7 @@
 #include "solver/integration/solver.h"
 #include "solver/model/mesh_generators.h"
 #include "tests/integration/contact_sphere_plate.h"
+#include "tests/integration/contact_tube.h"
 #include "tests/integration/test_models.h"
 
 using namespace crashlink;
@@ -31,6 +32,7 @@ struct Ending {
   std::vector<double> energies;  // kinetic, internal, hourglass, contact, external, damping
   double dt = 0.0, dt_stable = 0.0;
   std::string critical;
+  std::vector<std::int64_t> active_pairs;  // per contact interface, the last cycle
 };
 
 Ending run(const model::Model& m, int threads, int cycles) {
@@ -42,11 +44,22 @@ Ending run(const model::Model& m, int threads, int cycles) {
     s.end_cycle();
   }
   s.begin_cycle();
-  Ending e{s.displacement(), s.velocity_mid(), s.acceleration(),    s.angular_velocity_mid(), {},
-           s.dt_s(),         s.dt_stable_s(),  s.critical_element()};
+  Ending e{s.displacement(),
+           s.velocity_mid(),
+           s.acceleration(),
+           s.angular_velocity_mid(),
+           {},
+           s.dt_s(),
+           s.dt_stable_s(),
+           s.critical_element(),
+           {}};
   const auto& en = s.energy();
   e.energies = {en.kinetic_J, en.internal_J, en.hourglass_J, en.contact_J, en.external_work_J};
   for (const auto& p : s.parts()) e.energies.push_back(p.damping_energy_J);
+  for (const auto& c : s.contact_steps()) {
+    e.active_pairs.push_back(c.active_pairs);
+    e.energies.push_back(c.energy_J);
+  }
   return e;
 }
 
@@ -69,6 +82,7 @@ void expect_same(const Ending& one, const Ending& other, int threads) {
   EXPECT_EQ(std::bit_cast<std::uint64_t>(one.dt_stable),
             std::bit_cast<std::uint64_t>(other.dt_stable));
   EXPECT_EQ(one.critical, other.critical);
+  EXPECT_EQ(one.active_pairs, other.active_pairs) << threads << " threads: contact pairs";
 }
 
 /// The sphere on a 100 x 100 J2 plate, its middle rows damped; the sphere lands within the run.
@@ -104,6 +118,20 @@ TEST(SolverThreads, ShellPlateUnderASphereIsTheSameToTheBitOn1To4Threads) {
   // the run did what it is here to check: contact and plastic work
   ASSERT_GT(one.energies[3], 0.0) << "no contact energy: the sphere never landed";
   for (int t = 2; t <= 4; ++t) expect_same(one, run(m, t, 400), t);
+}
+
+// Single-surface contact on the team: a J2 square tube (1 721 nodes, 27 blocks of the self
+// contact's nodes and 27 of the ram's) crushed at 30 m/s until its walls fold onto each other
+// (the self contact's first pairs at cycle 1 359 on one thread).
+TEST(SolverThreads, TubeFoldingOntoItselfIsTheSameToTheBitOn1And3Threads) {
+  crashlink::testing::TubeSpec spec;
+  spec.fine_length_m = 0.0;
+  spec.ram_speed_m_s = 30.0;
+  const auto tube = crashlink::testing::make_tube(spec);
+  ASSERT_EQ(tube.m.contacts.back().kind, model::ContactKind::SingleSurface);
+  const auto one = run(tube.m, 1, 1500);
+  ASSERT_GT(one.active_pairs.back(), 0) << "the tube's walls never met: no self-contact pair";
+  expect_same(one, run(tube.m, 3, 1500), 3);
 }
 
 TEST(SolverThreads, HexBlockIsTheSameToTheBitOn1To4Threads) {
