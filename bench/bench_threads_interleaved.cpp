@@ -1,0 +1,165 @@
+// Mono on 1 thread and on N threads in one process, the two solvers stepping the same scene in
+// alternating blocks of K cycles (docs/threads.md "Measured"). Both run the same cycles to the
+// same bits, so each pair of blocks compares like with like, and the host's slow drift (runs of
+// the same command vary by up to 30 % on a shared VM) falls out of the per-pair ratios:
+//   bench_threads_interleaved [--scene FILE] [--threads N] [--blocks B] [--cycles K]
+//                             [--warmup W]
+// defaults: scenarios/head_impact.yaml, 2, 40, 250, 2000. Prints per pair the wall and CPU per
+// cycle of each side, then the medians of the per-pair ratios: speed-up (wall 1 / wall N) and CPU
+// per cycle (N / 1). The scene's end time is lifted so that no block runs out of cycles. Exit 1
+// if the two sides' time and energies differ at the end (they must agree to the bit), 2 on a bad
+// argument.
+#include <fmt/format.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "solver/integration/solver.h"
+#include "solver/io/scenario_reader.h"
+
+using namespace crashlink;
+
+namespace {
+
+double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double wall_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Side {
+  std::unique_ptr<model::Model> model;
+  std::unique_ptr<integration::Solver> solver;
+};
+
+Side make_side(const std::string& scene, int threads) {
+  Side s;
+  s.model = std::make_unique<model::Model>(io::read_scenario(scene));
+  s.model->domains.clear();
+  s.model->controls.end_time_s = 1.0;  // never finished inside the benchmark
+  s.solver = std::make_unique<integration::Solver>(*s.model, "mono");
+  s.solver->set_threads(threads);
+  s.solver->initialize();
+  return s;
+}
+
+struct Block {
+  double wall_s = 0, cpu_s = 0;
+};
+
+Block run_block(integration::Solver& solver, int cycles) {
+  const double w0 = wall_s(), c0 = process_cpu_s();
+  for (int i = 0; i < cycles; ++i) {
+    solver.begin_cycle();
+    solver.end_cycle();
+  }
+  return {wall_s() - w0, process_cpu_s() - c0};
+}
+
+int usage(std::string_view why) {
+  fmt::print(stderr,
+             "bench_threads_interleaved: {}\nusage: bench_threads_interleaved [--scene FILE] "
+             "[--threads N] [--blocks B] [--cycles K] [--warmup W]\n",
+             why);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  std::string scene = std::string(CRASHLINK_SCENARIO_DIR) + "/head_impact.yaml";
+  int threads = 2, blocks = 40, cycles = 250, warmup = 2000;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if (i + 1 >= argc) return usage(fmt::format("{} needs a value", a));
+    const std::string v = argv[++i];
+    if (a == "--scene") {
+      scene = v;
+      continue;
+    }
+    char* end = nullptr;
+    const long n = std::strtol(v.c_str(), &end, 10);
+    if (*end != '\0' || n < 1 || n > 1000000)
+      return usage(fmt::format("{} {}: a whole number from 1 to 10^6 is needed", a, v));
+    if (a == "--threads")
+      threads = static_cast<int>(n);
+    else if (a == "--blocks")
+      blocks = static_cast<int>(n);
+    else if (a == "--cycles")
+      cycles = static_cast<int>(n);
+    else if (a == "--warmup")
+      warmup = static_cast<int>(n);
+    else
+      return usage(fmt::format("unknown option {}", a));
+  }
+  Side one = make_side(scene, 1), many = make_side(scene, threads);
+  run_block(*one.solver, warmup);
+  run_block(*many.solver, warmup);
+  fmt::print("{}: 1 thread against {} threads, {} pairs of {} cycles after {} warm-up cycles\n",
+             scene, threads, blocks, cycles, warmup);
+  fmt::print("{:>5} {:>14} {:>14} {:>14} {:>14} {:>9} {:>9}\n", "pair", "wall 1 [us]",
+             fmt::format("wall {} [us]", threads), "CPU 1 [us]",
+             fmt::format("CPU {} [us]", threads), "speed-up", "CPU N/1");
+  std::vector<double> speed_up, cpu_ratio, w1s, wns, c1s, cns;
+  for (int b = 0; b < blocks; ++b) {
+    // Alternate which side goes first, so that neither always follows the other's cache state.
+    Block b1, bn;
+    if (b % 2 == 0) {
+      b1 = run_block(*one.solver, cycles);
+      bn = run_block(*many.solver, cycles);
+    } else {
+      bn = run_block(*many.solver, cycles);
+      b1 = run_block(*one.solver, cycles);
+    }
+    const double k = 1e6 / cycles;
+    w1s.push_back(k * b1.wall_s);
+    wns.push_back(k * bn.wall_s);
+    c1s.push_back(k * b1.cpu_s);
+    cns.push_back(k * bn.cpu_s);
+    speed_up.push_back(b1.wall_s / bn.wall_s);
+    cpu_ratio.push_back(bn.cpu_s / b1.cpu_s);
+    fmt::print("{:>5} {:>14.1f} {:>14.1f} {:>14.1f} {:>14.1f} {:>9.3f} {:>9.3f}\n", b + 1,
+               w1s.back(), wns.back(), c1s.back(), cns.back(), speed_up.back(), cpu_ratio.back());
+  }
+  // The two sides must have run the same cycles to the same bits (docs/threads.md): else the
+  // comparison is not like with like, and the threads have a bug.
+  const auto& e1 = one.solver->energy();
+  const auto& en = many.solver->energy();
+  if (one.solver->time_s() != many.solver->time_s() || e1.kinetic_J != en.kinetic_J ||
+      e1.internal_J != en.internal_J || e1.contact_J != en.contact_J) {
+    fmt::print(stderr,
+               "bench_threads_interleaved: the sides differ after the same cycles: t {} against "
+               "{} s, kinetic {} against {} J, internal {} against {} J, contact {} against {} J\n",
+               one.solver->time_s(), many.solver->time_s(), e1.kinetic_J, en.kinetic_J,
+               e1.internal_J, en.internal_J, e1.contact_J, en.contact_J);
+    return 1;
+  }
+  fmt::print(
+      "medians per cycle: wall 1 thread {:.1f} us, {} threads {:.1f} us; CPU {:.1f} against "
+      "{:.1f} us\n",
+      median(w1s), threads, median(wns), median(c1s), median(cns));
+  fmt::print(
+      "median of the pairs' ratios: speed-up {:.3f}, CPU per cycle {} threads / 1 = {:.3f}\n",
+      median(speed_up), threads, median(cpu_ratio));
+  return 0;
+} catch (const std::exception& e) {
+  fmt::print(stderr, "bench_threads_interleaved: {}\n", e.what());
+  return 1;
+}
