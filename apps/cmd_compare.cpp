@@ -9,6 +9,7 @@
 #include "apps/result_head.h"
 #include "apps/timing_reader.h"
 #include "core/errors.h"
+#include "core/median.h"
 #include "solver/io/result_reader.h"
 
 namespace crashlink::apps {
@@ -196,15 +197,7 @@ Comparison compare_runs(const CompareOptions& options, std::FILE* out) {
   return c;
 }
 
-namespace {
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
-}  // namespace
+using core::median;
 
 Comparison print_medians(const std::vector<Comparison>& pairs, std::FILE* out) {
   auto med = [&](double Comparison::*field) {

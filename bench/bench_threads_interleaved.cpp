@@ -13,41 +13,22 @@
 // if the two sides' time and energies differ at the end (they must agree to the bit), 2 on a bad
 // argument.
 #include <fmt/format.h>
-#include <time.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <exception>
-#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/cpu_clock.h"
+#include "core/median.h"
 #include "solver/integration/solver.h"
 #include "solver/io/scenario_reader.h"
 
 using namespace crashlink;
 
 namespace {
-
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double wall_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct Side {
   std::unique_ptr<model::Model> model;
@@ -70,12 +51,12 @@ struct Block {
 };
 
 Block run_block(integration::Solver& solver, int cycles) {
-  const double w0 = wall_s(), c0 = process_cpu_s();
+  const double w0 = core::wall_seconds(), c0 = core::process_cpu_seconds();
   for (int i = 0; i < cycles; ++i) {
     solver.begin_cycle();
     solver.end_cycle();
   }
-  return {wall_s() - w0, process_cpu_s() - c0};
+  return {core::wall_seconds() - w0, core::process_cpu_seconds() - c0};
 }
 
 int usage(std::string_view why) {
@@ -161,10 +142,10 @@ int main(int argc, char** argv) try {
   fmt::print(
       "medians per cycle: wall 1 thread {:.1f} us, {} threads {:.1f} us; CPU {:.1f} against "
       "{:.1f} us\n",
-      median(w1s), threads, median(wns), median(c1s), median(cns));
+      core::median(w1s), threads, core::median(wns), core::median(c1s), core::median(cns));
   fmt::print(
       "median of the pairs' ratios: speed-up {:.3f}, CPU per cycle {} threads / 1 = {:.3f}\n",
-      median(speed_up), threads, median(cpu_ratio));
+      core::median(speed_up), threads, core::median(cpu_ratio));
   double w1 = 0, wn = 0, c1 = 0, cn = 0;
   for (std::size_t b = 0; b < w1s.size(); ++b) {
     w1 += w1s[b];
