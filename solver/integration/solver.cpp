@@ -598,19 +598,19 @@ double Solver::velocity_pass(double dt_mid) {
   // m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in node order over the
   // nodes kinetic_energy() counts, per tile, the tiles' sums then in tile order (the same bits
   // for every thread count; docs/threads.md).
-  double* __restrict v = v_.data();
-  double* __restrict vp = v_prev_.data();
-  double* __restrict w = omega_.data();
-  double* __restrict wp = omega_prev_.data();
-  const double* __restrict a = a_.data();
-  const double* __restrict al = alpha_.data();
-  return sum_over_tiles([&](std::size_t i0, std::size_t i1) {
-    for (std::size_t k = 3 * i0; k < 3 * i1; ++k) {
-      vp[k] = v[k];
-      v[k] += dt_mid * a[k];
-      wp[k] = w[k];
-      w[k] += dt_mid * al[k];
-    }
+  // advance_velocity per field and tile: its restrict parameters let it vectorise, which a loop
+  // through this lambda's captures did not (scalar, dt reloaded per dof: 2.2x the nodal cost,
+  // perf on bar_three_levels' middle domain, 2026-11-28). The same expression, the same bits.
+  double* v = v_.data();
+  double* vp = v_prev_.data();
+  double* w = omega_.data();
+  double* wp = omega_prev_.data();
+  const double* a = a_.data();
+  const double* al = alpha_.data();
+  return sum_over_tiles([=, this](std::size_t i0, std::size_t i1) {
+    const std::size_t k0 = 3 * i0, len = 3 * (i1 - i0);
+    advance_velocity(v + k0, vp + k0, a + k0, dt_mid, len);
+    advance_velocity(w + k0, wp + k0, al + k0, dt_mid, len);
     zero_held(model_.fixed, v, w, i0, i1);
     return kinetic_sum(i0, i1, 0.0);
   });
