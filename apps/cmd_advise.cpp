@@ -188,15 +188,17 @@ int run_advise(const AdviseOptions& options, std::FILE* out) {
         options.domains == 2 ? "two-domain" : fmt::format("{}-domain", options.domains).c_str());
   }
   // More daemons than cores: they take turns, and every turn costs a switch, a wake-up and cold
-  // caches that element counts cannot see (docs/benchmarks.md "Three domains": 3 domains on 2
-  // cores measured 18 % under the prediction, median of 6 pairs; 2 domains 4 %).
+  // caches that element counts cannot see. How much depends on the host (docs/benchmarks.md
+  // "Three domains": 3 domains on 2 cores measured 18 % under the prediction on one host, within
+  // 2 % of it on another).
   if (const int cores = parallel::available_cores(); a.best >= 0 && options.domains > cores) {
     std::fprintf(out,
                  "\nnote: %d domains on %d core%s: the daemons will take turns on the cores, and "
                  "each turn costs a switch, a wake-up and cold caches that the predicted gain "
-                 "(element-cycles) does not count; on 2 cores a 3-domain cut measured 18 %% under "
-                 "its prediction (median of 6 runs, 11-32 %%; docs/benchmarks.md \"Three "
-                 "domains\"). Give each domain a core, or take fewer domains.\n",
+                 "(element-cycles) does not count; on 2 cores a 3-domain cut measured from 2 %% to "
+                 "18 %% under its prediction, depending on the host (medians of 6 and 28 runs; "
+                 "docs/benchmarks.md \"Three domains\"). Give each domain a core, or take fewer "
+                 "domains.\n",
                  options.domains, cores, cores == 1 ? "" : "s");
   }
   if (options.domains > 2) {  // against the best of two, which needs no more processes
