@@ -61,11 +61,15 @@ bool LayerStepper::forces_wait_for_holders() const {
 
 Tick LayerStepper::choose_step() const {
   if (common_) {  // split: the least proposal of all (LayerSteps, layer_stepper.h)
-    const Tick H = subtree_proposal();
+    Tick H = subtree_proposal();
     if (H == 0)
       throw ModelError("layer stepper '" + solver_.domain_name() +
                        "': no domain of this coupling has a stable-step limit (rigid bodies "
                        "only?); set controls.dt_max");
+    // mono's step hold (integration::kStepHold), on the step in force
+    if (h_ > 0 && H >= h_ &&
+        static_cast<double>(H) < static_cast<double>(h_) * (1.0 + integration::kStepHold))
+      H = h_;
     return H;
   }
   // A leader's next step (LayerSteps, layer_stepper.h; coupling/step_policy.h): the holders'

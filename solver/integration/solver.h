@@ -50,6 +50,11 @@ struct ProbeValue {
   Vec3 acceleration_m_s2{};
 };
 
+/// One domain's step hold (propose_step; docs/elements.md "Step hold"): a proposal that exceeds
+/// the step in force by less than this fraction keeps the step. A split run's common step holds
+/// alike (cosim::LayerStepper::choose_step), so that it stays mono's.
+inline constexpr double kStepHold = 1e-3;
+
 class Solver {
  public:
   /// The model must outlive the solver. Validates it (ModelError on inconsistency).
@@ -389,6 +394,7 @@ class Solver {
   double time_s_ = 0.0;
   std::int64_t cycle_ = 0;
   double dt_ = 0.0, dt_prev_ = 0.0, dt_min_ = 0.0, dt_stable_ = 0.0;
+  bool steps_imposed_ = false;  ///< a coordinator imposes the steps (impose_step): no hold
   bool record_element_steps_ = false;
   std::size_t critical_part_ = 0;
   std::int64_t critical_local_ = -1;

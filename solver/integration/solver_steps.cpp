@@ -37,7 +37,10 @@ double Solver::step_proposal() const {
 }
 
 void Solver::propose_step() {
-  const double dt = step_proposal();
+  double dt = step_proposal();
+  // The step holds while the proposal exceeds it by less than kStepHold (mono only: a coordinator
+  // imposes the coupled steps).
+  if (!steps_imposed_ && dt >= dt_ && dt < dt_ * (1.0 + kStepHold)) dt = dt_;
   if (!std::isfinite(dt))
     throw ModelError(
         fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
@@ -80,6 +83,7 @@ std::string Solver::critical_element() const {
 }
 
 void Solver::impose_step(double dt) {
+  steps_imposed_ = true;
   if (!(dt > 0.0) || dt > dt_ * (1.0 + 1e-9)) {
     const auto& c = model_.controls;
     const auto [imposed, allowed] = apart(dt, dt_);
@@ -96,6 +100,7 @@ void Solver::impose_step(double dt) {
 }
 
 void Solver::impose_committed_step(double dt) {
+  steps_imposed_ = true;
   const double cap = model_.controls.dt_max_s;
   const double limit = cap > 0.0 ? std::min(dt_stable_, cap) : dt_stable_;
   if (!(dt > 0.0) || dt > limit * (1.0 + 1e-9)) {

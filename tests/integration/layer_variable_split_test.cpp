@@ -1,7 +1,8 @@
 // `split` with variable steps (cosim::LayerSteps::VariableCommon, layer_stepper.h "Variable
 // common"): every domain at the least proposal of all at every instant, as a mono run takes its
 // step. Checked against mono stepping by the same rule (its own proposal floored to whole ticks at
-// every cycle, to the first instant at or after the end time), on the chain coarse | mid | fine,
+// every cycle and held as one domain holds its step, integration::kStepHold, to the first instant
+// at or after the end time), on the chain coarse | mid | fine,
 // where mid holds ghosts of coarse and has fine's: the least proposal, fine's, reaches coarse
 // only through mid's g_A. A pulse with bulk viscosity makes the stable step move.
 #include <gtest/gtest.h>
@@ -37,8 +38,11 @@ TEST(LayerVariableSplit, ChainFollowsTheLeastProposalOfAllAsMonoDoes) {
   integration::Solver mono(m, "mono");
   mono.initialize();
   std::int64_t n = 0;
+  double held = 0.0;  // ticks: the step in force, held as mono holds its own (kStepHold)
   for (;; ++n) {
-    mono.impose_step(std::floor(mono.dt_s() * tps) / tps);  // the daemons' proposal in ticks
+    const double proposal = std::floor(mono.dt_s() * tps);  // the daemons' proposal in ticks
+    if (!(proposal >= held && proposal < held * (1.0 + integration::kStepHold))) held = proposal;
+    mono.impose_step(held / tps);
     mono.begin_cycle();
     if (mono.finished()) break;
     mono.end_cycle();

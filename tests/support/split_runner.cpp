@@ -66,8 +66,10 @@ void SplitRunner::send_coupling_forces() {
 }
 
 void SplitRunner::impose_common_step() {
-  dt_ = std::numeric_limits<double>::infinity();
-  for (const auto& s : d_.solvers) dt_ = std::min(dt_, s->dt_s());
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& s : d_.solvers) dt = std::min(dt, s->dt_s());
+  // mono's step hold (integration::kStepHold) on the step in force, as mono takes its own
+  if (!(dt >= dt_ && dt < dt_ * (1.0 + integration::kStepHold))) dt_ = dt;
   for (auto& s : d_.solvers) s->impose_step(dt_);
 }
 
