@@ -66,7 +66,7 @@ Tick LayerStepper::choose_step() const {
       throw ModelError("layer stepper '" + solver_.domain_name() +
                        "': no domain of this coupling has a stable-step limit (rigid bodies "
                        "only?); set controls.dt_max");
-    // mono's step hold (integration::kStepHold), on the step in force
+    // a mono run's step hold (integration::kStepHold), in whole ticks, on the step in force
     if (h_ > 0 && H >= h_ &&
         static_cast<double>(H) < static_cast<double>(h_) * (1.0 + integration::kStepHold))
       H = h_;

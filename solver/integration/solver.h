@@ -50,9 +50,9 @@ struct ProbeValue {
   Vec3 acceleration_m_s2{};
 };
 
-/// One domain's step hold (propose_step; docs/elements.md "Step hold"): a proposal that exceeds
-/// the step in force by less than this fraction keeps the step. A split run's common step holds
-/// alike (cosim::LayerStepper::choose_step), so that it stays mono's.
+/// One domain's step hold (Solver::set_step_hold; docs/elements.md "Step hold"): a proposal that
+/// exceeds the step in force by less than this fraction keeps the step. A split run's common step
+/// holds alike, in whole ticks (cosim::LayerStepper::choose_step).
 inline constexpr double kStepHold = 1e-3;
 
 class Solver {
@@ -67,6 +67,10 @@ class Solver {
   /// count: fixed element chunks assembled in one order, fixed node tiles summed in one order
   /// (docs/threads.md).
   void set_threads(int threads);
+  /// One domain's run (run::run_single_domain) holds its step: propose_step keeps the step in
+  /// force while the proposal exceeds it by less than kStepHold (docs/elements.md "Step hold").
+  /// Off by default: a coupled domain takes the steps its coordinator imposes.
+  void set_step_hold(bool on) { step_hold_ = on; }
   int threads() const { return threads_; }
   /// CPU seconds of the team's worker threads (0 with one thread): what a solver running as a
   /// thread of a bigger process adds to its own thread's clock.
@@ -394,7 +398,7 @@ class Solver {
   double time_s_ = 0.0;
   std::int64_t cycle_ = 0;
   double dt_ = 0.0, dt_prev_ = 0.0, dt_min_ = 0.0, dt_stable_ = 0.0;
-  bool steps_imposed_ = false;  ///< a coordinator imposes the steps (impose_step): no hold
+  bool step_hold_ = false;  ///< set_step_hold
   bool record_element_steps_ = false;
   std::size_t critical_part_ = 0;
   std::int64_t critical_local_ = -1;

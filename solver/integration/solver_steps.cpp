@@ -38,9 +38,8 @@ double Solver::step_proposal() const {
 
 void Solver::propose_step() {
   double dt = step_proposal();
-  // The step holds while the proposal exceeds it by less than kStepHold (mono only: a coordinator
-  // imposes the coupled steps).
-  if (!steps_imposed_ && dt >= dt_ && dt < dt_ * (1.0 + kStepHold)) dt = dt_;
+  // The step holds while the proposal exceeds it by less than kStepHold (set_step_hold)
+  if (step_hold_ && dt >= dt_ && dt < dt_ * (1.0 + kStepHold)) dt = dt_;
   if (!std::isfinite(dt))
     throw ModelError(
         fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "
@@ -83,7 +82,6 @@ std::string Solver::critical_element() const {
 }
 
 void Solver::impose_step(double dt) {
-  steps_imposed_ = true;
   if (!(dt > 0.0) || dt > dt_ * (1.0 + 1e-9)) {
     const auto& c = model_.controls;
     const auto [imposed, allowed] = apart(dt, dt_);
@@ -100,7 +98,6 @@ void Solver::impose_step(double dt) {
 }
 
 void Solver::impose_committed_step(double dt) {
-  steps_imposed_ = true;
   const double cap = model_.controls.dt_max_s;
   const double limit = cap > 0.0 ? std::min(dt_stable_, cap) : dt_stable_;
   if (!(dt > 0.0) || dt > limit * (1.0 + 1e-9)) {

@@ -40,6 +40,7 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   sum.result_xdmf = writer.xdmf_path();
   integration::Solver solver(model, options.domain_name);
   solver.set_threads(options.threads);
+  solver.set_step_hold(true);  // docs/elements.md "Step hold"
   sum.threads = options.threads;
   DomainRecorder recorder(writer, solver);
   double cpu_before = 0.0;  // of the runs before the checkpoint restarted from

@@ -1,10 +1,10 @@
 // `split` with variable steps (cosim::LayerSteps::VariableCommon, layer_stepper.h "Variable
 // common"): every domain at the least proposal of all at every instant, as a mono run takes its
 // step. Checked against mono stepping by the same rule (its own proposal floored to whole ticks at
-// every cycle and held as one domain holds its step, integration::kStepHold, to the first instant
-// at or after the end time), on the chain coarse | mid | fine,
-// where mid holds ghosts of coarse and has fine's: the least proposal, fine's, reaches coarse
-// only through mid's g_A. A pulse with bulk viscosity makes the stable step move.
+// every cycle and held as LayerStepper holds the common step, integration::kStepHold, to the first
+// instant at or after the end time), on the chain coarse | mid | fine, where mid holds ghosts of
+// coarse and has fine's: the least proposal, fine's, reaches coarse only through mid's g_A. A pulse
+// with bulk viscosity makes the stable step move.
 #include <gtest/gtest.h>
 
 #include <algorithm>
