@@ -61,16 +61,14 @@ bool LayerStepper::forces_wait_for_holders() const {
 
 Tick LayerStepper::choose_step() const {
   if (common_) {  // split: the least proposal of all (LayerSteps, layer_stepper.h)
-    Tick H = subtree_proposal();
+    const Tick H = subtree_proposal();
     if (H == 0)
       throw ModelError("layer stepper '" + solver_.domain_name() +
                        "': no domain of this coupling has a stable-step limit (rigid bodies "
                        "only?); set controls.dt_max");
-    // a mono run's step hold (integration::kStepHold), in whole ticks, on the step in force
-    if (h_ > 0 && H >= h_ &&
-        static_cast<double>(H) < static_cast<double>(h_) * (1.0 + integration::kStepHold))
-      H = h_;
-    return H;
+    // a mono run's step hold, in whole ticks (exact as doubles), on the step in force
+    return static_cast<Tick>(
+        integration::held_step(static_cast<double>(H), static_cast<double>(h_)));
   }
   // A leader's next step (LayerSteps, layer_stepper.h; coupling/step_policy.h): the holders'
   // proposals come with g_A(t), one per partner.

@@ -55,6 +55,13 @@ struct ProbeValue {
 /// holds alike, in whole ticks (cosim::LayerStepper::choose_step).
 inline constexpr double kStepHold = 1e-3;
 
+/// The step to take under the hold: `in_force` when proposal is in [in_force, in_force (1 +
+/// kStepHold)), else `proposal` (at once when it is smaller, so never above it). Seconds or ticks;
+/// in_force 0 (no step yet): the proposal.
+inline double held_step(double proposal, double in_force) {
+  return proposal >= in_force && proposal < in_force * (1.0 + kStepHold) ? in_force : proposal;
+}
+
 class Solver {
  public:
   /// The model must outlive the solver. Validates it (ModelError on inconsistency).

@@ -37,9 +37,7 @@ double Solver::step_proposal() const {
 }
 
 void Solver::propose_step() {
-  double dt = step_proposal();
-  // The step holds while the proposal exceeds it by less than kStepHold (set_step_hold)
-  if (step_hold_ && dt >= dt_ && dt < dt_ * (1.0 + kStepHold)) dt = dt_;
+  const double dt = step_hold_ ? held_step(step_proposal(), dt_) : step_proposal();
   if (!std::isfinite(dt))
     throw ModelError(
         fmt::format("{}: no deformable element gives a stable step (only rigid bodies?); "

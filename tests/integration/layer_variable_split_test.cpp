@@ -38,10 +38,10 @@ TEST(LayerVariableSplit, ChainFollowsTheLeastProposalOfAllAsMonoDoes) {
   integration::Solver mono(m, "mono");
   mono.initialize();
   std::int64_t n = 0;
-  double held = 0.0;  // ticks: the step in force, held as mono holds its own (kStepHold)
+  double held = 0.0;  // ticks: the step in force, held as mono holds its own
   for (;; ++n) {
     const double proposal = std::floor(mono.dt_s() * tps);  // the daemons' proposal in ticks
-    if (!(proposal >= held && proposal < held * (1.0 + integration::kStepHold))) held = proposal;
+    held = integration::held_step(proposal, held);
     mono.impose_step(held / tps);
     mono.begin_cycle();
     if (mono.finished()) break;

@@ -68,8 +68,7 @@ void SplitRunner::send_coupling_forces() {
 void SplitRunner::impose_common_step() {
   double dt = std::numeric_limits<double>::infinity();
   for (const auto& s : d_.solvers) dt = std::min(dt, s->dt_s());
-  // the step hold of a mono run (integration::kStepHold) on the step in force
-  if (!(dt >= dt_ && dt < dt_ * (1.0 + integration::kStepHold))) dt_ = dt;
+  dt_ = integration::held_step(dt, dt_);  // as a mono run holds its step
   for (auto& s : d_.solvers) s->impose_step(dt_);
 }
 
