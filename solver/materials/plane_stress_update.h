@@ -148,6 +148,21 @@ inline void sqrt_lanes(const double* x, double* y, std::size_t n) {
 #endif
 }
 
+/// y[i] = x[i] for i < n (n a multiple of 4) by 256-bit loads and stores. Not memcpy: GCC turns
+/// the return's copies into `rep movsq` or a libc call (2 % of the J2 shell kernel's instructions
+/// in callgrind); the empty asm makes each vector opaque, or GCC recognises a memcpy again.
+inline void copy_lanes(const double* x, double* y, std::size_t n) {
+#if defined(__AVX__)
+  for (std::size_t i = 0; i < n; i += 4) {
+    __m256d v = _mm256_loadu_pd(x + i);
+    asm("" : "+x"(v));
+    _mm256_storeu_pd(y + i, v);
+  }
+#else
+  std::memcpy(y, x, n * sizeof(double));
+#endif
+}
+
 /// Sum of n values x[i] (n a multiple of 4) in 8 partial sums (two 4-lane accumulators): the
 /// lane counts of the returns below, sums of 0/1 that are exact in any order. GCC keeps a plain
 /// `s += x[i]` loop in order, a scalar chain of n dependent additions (11 % of the return with
@@ -163,6 +178,55 @@ inline double lane_count(const double* x, std::size_t n) {
   for (; i < n; i += 4)
     for (std::size_t j = 0; j < 4; ++j) s0[j] += x[i + j];
   return ((s0[0] + s1[0]) + (s0[1] + s1[1])) + ((s0[2] + s1[2]) + (s0[3] + s1[3]));
+}
+
+/// The end of the lane return (plane_stress_j2_return_lanes), for i < n (n a multiple of 4): a
+/// plastic lane that converged (conv 0) on its segment (ebar < ep1) with dgamma = g >= 0 is ok
+/// and takes the returned stress (sx, sy, sxy), ebar and dz; every other plastic lane is marked
+/// in fallback (1.0, else 0.0) for the scalar return; the others keep their stress, ep_n and no
+/// thickness strain. Selects only, so every lane's bits are those of the scalar loop below; GCC
+/// compiled that loop into compares and branches (about 7 % of the J2 shell kernel's
+/// instructions in callgrind), so with AVX it is written with compares and blends.
+inline void accept_lanes(std::size_t n, const double* ebar, const double* ep1, const double* g,
+                         const double* conv, const double* plastic, const double* sx,
+                         const double* sy, const double* sxy, const double* dz, const double* ep_n,
+                         double* s_xx, double* s_yy, double* s_xy, double* ep_out,
+                         double* d_eps_zz_p, double* fallback) {
+#if defined(__AVX__)
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  for (std::size_t l = 0; l < n; l += 4) {
+    // on_seg: ebar < ep1 and g >= 0 (ordered: false for NaN, as the scalar compares)
+    const __m256d on_seg = _mm256_and_pd(
+        _mm256_cmp_pd(_mm256_loadu_pd(ebar + l), _mm256_loadu_pd(ep1 + l), _CMP_LT_OQ),
+        _mm256_cmp_pd(_mm256_loadu_pd(g + l), zero, _CMP_GE_OQ));
+    const __m256d good =
+        _mm256_and_pd(_mm256_cmp_pd(_mm256_loadu_pd(conv + l), zero, _CMP_EQ_OQ), on_seg);
+    const __m256d is_plastic = _mm256_cmp_pd(_mm256_loadu_pd(plastic + l), zero, _CMP_NEQ_UQ);
+    const __m256d ok = _mm256_and_pd(is_plastic, good);
+    _mm256_storeu_pd(fallback + l, _mm256_and_pd(_mm256_andnot_pd(good, is_plastic), one));
+    _mm256_storeu_pd(s_xx + l,
+                     _mm256_blendv_pd(_mm256_loadu_pd(s_xx + l), _mm256_loadu_pd(sx + l), ok));
+    _mm256_storeu_pd(s_yy + l,
+                     _mm256_blendv_pd(_mm256_loadu_pd(s_yy + l), _mm256_loadu_pd(sy + l), ok));
+    _mm256_storeu_pd(s_xy + l,
+                     _mm256_blendv_pd(_mm256_loadu_pd(s_xy + l), _mm256_loadu_pd(sxy + l), ok));
+    _mm256_storeu_pd(ep_out + l,
+                     _mm256_blendv_pd(_mm256_loadu_pd(ep_n + l), _mm256_loadu_pd(ebar + l), ok));
+    _mm256_storeu_pd(d_eps_zz_p + l, _mm256_and_pd(ok, _mm256_loadu_pd(dz + l)));
+  }
+#else
+  for (std::size_t l = 0; l < n; ++l) {
+    const double on_seg = ebar[l] < ep1[l] ? (g[l] >= 0.0 ? 1.0 : 0.0) : 0.0;
+    const double good = conv[l] == 0.0 ? on_seg : 0.0;
+    fallback[l] = plastic[l] != 0.0 ? (good != 0.0 ? 0.0 : 1.0) : 0.0;
+    const double ok = plastic[l] != 0.0 ? good : 0.0;
+    s_xx[l] = ok != 0.0 ? sx[l] : s_xx[l];
+    s_yy[l] = ok != 0.0 ? sy[l] : s_yy[l];
+    s_xy[l] = ok != 0.0 ? sxy[l] : s_xy[l];
+    ep_out[l] = ok != 0.0 ? ebar[l] : ep_n[l];
+    d_eps_zz_p[l] = ok != 0.0 ? dz[l] : 0.0;
+  }
+#endif
 }
 
 /// Curves up to this many points use a branch-free segment search in the lane return, longer
@@ -306,7 +370,7 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
       g_new[l] = done != 0.0 ? g[l] : g_new[l];
       conv[l] = 1.0 - done;  // 1 for a plastic lane still moving
     }
-    std::memcpy(g, g_new, sizeof g);
+    copy_lanes(g_new, g, n);
     if (lane_count(conv, n) == 0.0) break;  // no plastic lane still moving
   }
   // Accept the converged lanes that stayed on their segment (selects), redo the others with the
@@ -320,18 +384,8 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
     // d_eps_p_xx + d_eps_p_yy = dgamma (s_xx + s_yy) / 3 (as in plane_stress_j2_return)
     vm2[l] = -(2.0 / 3.0) * g[l] * a[l];
   }
-  for (std::size_t l = 0; l < n; ++l) {
-    // ok: a plastic lane, converged, on its segment, dgamma >= 0 (nested selects, see above)
-    const double on_seg = ebar[l] < ep1[l] ? (g[l] >= 0.0 ? 1.0 : 0.0) : 0.0;
-    const double good = conv[l] == 0.0 ? on_seg : 0.0;
-    fallback[l] = plastic[l] != 0.0 ? (good != 0.0 ? 0.0 : 1.0) : 0.0;
-    const double ok = plastic[l] != 0.0 ? good : 0.0;
-    s_xx[l] = ok != 0.0 ? a_tr[l] : s_xx[l];
-    s_yy[l] = ok != 0.0 ? b_tr[l] : s_yy[l];
-    s_xy[l] = ok != 0.0 ? cc[l] : s_xy[l];
-    ep_out[l] = ok != 0.0 ? ebar[l] : ep_n[l];
-    d_eps_zz_p[l] = ok != 0.0 ? vm2[l] : 0.0;
-  }
+  accept_lanes(n, ebar, ep1, g, conv, plastic, a_tr, b_tr, cc, vm2, ep_n, s_xx, s_yy, s_xy, ep_out,
+               d_eps_zz_p, fallback);
   if (lane_count(fallback, n) != 0.0) {
     for (std::size_t l = 0; l < n; ++l) {
       if (fallback[l] == 0.0) continue;
@@ -345,7 +399,7 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
       ep_out[l] = ep;
     }
   }
-  std::memcpy(eps_p, ep_out, n * sizeof(double));
+  copy_lanes(ep_out, eps_p, n);
 }
 
 /// Von Mises stress of a shell point, plane stress plus the transverse shears [Pa]:
