@@ -1,5 +1,5 @@
 // The core's measured arithmetic peak, against which the element kernels' rates are quoted
-// (docs/benchmarks.md "Element kernels: the arithmetic bound"): chains of independent fused
+// (docs/benchmarks.md "The arithmetic bound"): chains of independent fused
 // multiply-adds on 256-bit vectors of 4 doubles (the Release build's x86-64-v3), 2 flops per lane
 // each. 12 independent accumulators cover the FMA latency (4 cycles) times the two FMA ports of
 // current x86 cores, so the loop runs at the issue rate. Counter: gflops (per second of CPU).

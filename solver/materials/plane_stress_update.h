@@ -373,10 +373,8 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
     copy_lanes(g_new, g, n);
     if (lane_count(conv, n) == 0.0) break;  // no plastic lane still moving
   }
-  // Accept the converged lanes that stayed on their segment (selects), redo the others with the
-  // safeguarded scalar return.
-  // (selects of constants or of stored values only, into fresh arrays: GCC turns anything else
-  // into branches here, see above)
+  // Accept the converged lanes that stayed on their segment (accept_lanes: blends), redo the
+  // others with the safeguarded scalar return.
   double ep_out[W], fallback[W];
   for (std::size_t l = 0; l < n; ++l) {
     a_tr[l] = a[l] + bb[l];  // the trial values are no longer needed: reuse as outputs
