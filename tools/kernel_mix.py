@@ -33,7 +33,10 @@ def executed_counts(bench, filt):
                '--compress-pos=no', f'--callgrind-out-file={out}', '--toggle-collect=*_forces<*',
                '--dump-after=crashlink::elements::*_internal_forces*', bench,
                f'--benchmark_filter={filt}$', '--benchmark_min_time=0.01']
-        r = subprocess.run(cmd, capture_output=True, text=True)
+        try:
+            r = subprocess.run(cmd, capture_output=True, text=True)
+        except FileNotFoundError:
+            sys.exit('kernel_mix: valgrind is not installed (apt-get install valgrind)')
         dumps = sorted(glob.glob(out + '.*'), key=lambda p: int(p.rsplit('.', 1)[1]))
         if r.returncode != 0 or not dumps:
             sys.exit(f'kernel_mix: callgrind found no kernel call of {filt} in {bench} '
@@ -78,12 +81,17 @@ def main():
     ap.add_argument('--top', type=int, default=12)
     a = ap.parse_args()
     counts, ins = executed_counts(a.bench, a.benchmark), mnemonics(a.bench)
+    if not any(addr in ins for addr in counts):
+        sys.exit(f'kernel_mix: no executed instruction of {a.bench} itself was recorded (a '
+                 'symlink, or VALGRIND_OPTS adding events?); run the bench binary by its path')
     total, flops = 0, 0.0
     mix, kinds = collections.Counter(), collections.Counter()
     for addr, c in counts.items():
         if addr not in ins:
             continue
         mn, ops = ins[addr]
+        if not mn.startswith('v') and re.match(r'^(add|sub|mul|div|sqrt)(pd|sd)$', mn):
+            mn = 'v' + mn  # SSE2 forms (a build without x86-64-v3): count them alike
         total += c
         mix[mn] += c
         lanes = 1 if mn.endswith('sd') else 4 if '%ymm' in ops else 2 if '%xmm' in ops else 0

@@ -152,6 +152,7 @@ inline void sqrt_lanes(const double* x, double* y, std::size_t n) {
 /// the return's copies into `rep movsq` or a libc call (2 % of the J2 shell kernel's instructions
 /// in callgrind); the empty asm makes each vector opaque, or GCC recognises a memcpy again.
 inline void copy_lanes(const double* x, double* y, std::size_t n) {
+  assert(n % 4 == 0);
 #if defined(__AVX__)
   for (std::size_t i = 0; i < n; i += 4) {
     __m256d v = _mm256_loadu_pd(x + i);
