@@ -33,21 +33,13 @@ struct ShellConstants {
   double r_hg = 0.0;
 };
 
-/// Copies n doubles (n a multiple of 4) by 256-bit loads and stores. Not memcpy: GCC turns a
-/// memcpy of a few hundred bytes into `rep movsq` and one of a runtime size into a libc call, whose
-/// start-up costs showed in the cycle's profile (docs/elements.md "Shell kernel performance"); the
-/// empty asm makes each vector opaque, or GCC recognises the loop as a memcpy again.
+/// Copies n doubles (n a multiple of 4) by 256-bit loads and stores (materials::copy_lanes). Not
+/// memcpy: GCC turns a memcpy of a few hundred bytes into `rep movsq` and one of a runtime size
+/// into a libc call, whose start-up costs showed in the cycle's profile (docs/elements.md "Shell
+/// kernel performance").
 inline void copy_doubles(double* __restrict dst, const double* __restrict src, std::size_t n) {
   CRASHLINK_ASSERT(n % 4 == 0);
-#if defined(__AVX__)
-  for (std::size_t i = 0; i < n; i += 4) {
-    __m256d v = _mm256_loadu_pd(src + i);
-    asm("" : "+x"(v));
-    _mm256_storeu_pd(dst + i, v);
-  }
-#else
-  std::memcpy(dst, src, n * sizeof(double));
-#endif
+  materials::copy_lanes(src, dst, n);
 }
 
 /// Zeroes n doubles (n a multiple of 4), for the same reason (`rep stosq` or memset otherwise).
