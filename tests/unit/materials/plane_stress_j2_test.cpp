@@ -195,3 +195,61 @@ TEST(PlaneStressJ2, LaneReturnEqualsScalarReturn) {
     EXPECT_LT(plastic, 400);  // and some do not
   }
 }
+
+// The shell kernel packs its return candidates and calls the lane return on the first n of W
+// lanes (n a multiple of 4, n < W). Over n = 8 of W = 16 lanes (elastic lanes, plastic lanes and
+// kink crossings, which take the scalar fallback) the first n lanes equal the scalar return (the
+// tolerances of LaneReturnEqualsScalarReturn) and lanes n..W-1 (stresses, plastic strain,
+// thickness strain) stay as they were: the return's copies and its accept step (accept_lanes)
+// stop at n. (Not to the bit against an instance with W = 8: the two instances differ in the last
+// bits, as GCC vectorises their loops differently; the kernel uses one.)
+TEST(PlaneStressJ2, LaneReturnOnTheFirstLanesOnlyTouchesThose) {
+  const Material m = steel();
+  const auto el = PlaneStressElastic::from(m);
+  const auto hv = HardeningView::from(m.hardening);
+  constexpr std::size_t kN = 8, kW = 16;
+  constexpr double kSentinel = -12345.0;
+  int crossings = 0, elastic = 0;
+  for (int batch = 0; batch < 40; ++batch) {
+    double sx[kW], sy[kW], sxy[kW], ep[kW], dz[kW];
+    Point ref[kN];
+    double dz_ref[kN];
+    for (std::size_t l = 0; l < kW; ++l) {
+      const double t = 0.53 * static_cast<double>(batch * 16 + static_cast<int>(l));
+      const double scale = 0.5 + 0.6 * (1.0 + std::sin(2.9 * t));  // 0.5 .. 1.7 x yield
+      // plastic strains just below the kinks at 0.02 and 0.1: large returns cross them
+      const double ep0 = l % 3 == 0 ? 0.0 : (l % 3 == 1 ? 0.0199 : 0.0999);
+      sx[l] = l < kN ? scale * 300e6 * std::cos(t) : kSentinel;
+      sy[l] = l < kN ? scale * 300e6 * std::sin(1.3 * t) : kSentinel;
+      sxy[l] = l < kN ? scale * 150e6 * std::sin(0.7 * t + 1.0) : kSentinel;
+      ep[l] = l < kN ? ep0 : kSentinel;
+      dz[l] = kSentinel;
+      if (l < kN) {
+        ref[l] = Point{sx[l], sy[l], sxy[l], ep[l]};
+        dz_ref[l] = crashlink::materials::plane_stress_j2_return(el, hv, ref[l].sxx, ref[l].syy,
+                                                                 ref[l].sxy, ref[l].ep)
+                        .d_eps_zz_p;
+        if ((ep0 < 0.02 && ref[l].ep > 0.02) || (ep0 < 0.1 && ref[l].ep > 0.1)) ++crossings;
+        if (dz_ref[l] == 0.0) ++elastic;
+      }
+    }
+    crashlink::materials::plane_stress_j2_return_lanes<kW>(el, hv, kN, sx, sy, sxy, ep, dz);
+    for (std::size_t l = 0; l < kN; ++l) {
+      const double s_y = m.hardening.yield(ref[l].ep);
+      EXPECT_NEAR(sx[l], ref[l].sxx, 1e-10 * s_y);
+      EXPECT_NEAR(sy[l], ref[l].syy, 1e-10 * s_y);
+      EXPECT_NEAR(sxy[l], ref[l].sxy, 1e-10 * s_y);
+      EXPECT_NEAR(ep[l], ref[l].ep, 1e-12);
+      EXPECT_NEAR(dz[l], dz_ref[l], 1e-12);
+    }
+    for (std::size_t l = kN; l < kW; ++l) {
+      EXPECT_EQ(sx[l], kSentinel);
+      EXPECT_EQ(sy[l], kSentinel);
+      EXPECT_EQ(sxy[l], kSentinel);
+      EXPECT_EQ(ep[l], kSentinel);
+      EXPECT_EQ(dz[l], kSentinel);
+    }
+  }
+  EXPECT_GT(crossings, 10);  // the batches cross kinks (the scalar fallback runs)
+  EXPECT_GT(elastic, 10);    // and hold elastic lanes
+}
