@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "solver/integration/step_hold.h"
 
 namespace crashlink::coupling {
 
@@ -51,6 +52,11 @@ Tick leader_step(Tick own, double leader_safety, double own_cost,
   if (last > 0)
     best = std::min(
         best, last + std::max<Tick>(1, static_cast<Tick>(kStepChange * static_cast<double>(last))));
+  // The step hold (docs/elements.md "Step hold"): a rise of less than kStepHold keeps the last
+  // step, so the step does not follow the vibration's jitter of the proposals and pump energy.
+  if (last > 0)
+    best = static_cast<Tick>(
+        integration::held_step(static_cast<double>(best), static_cast<double>(last)));
   return best;
 }
 

@@ -4,8 +4,9 @@
 //   - common (split): every domain at the least proposal of all;
 //   - a leader's (multi): its own proposal, or a whole multiple of a holder's proposal below it,
 //     whichever costs least per unit of simulated time (cost: elements x cycles), kept near the
-//     last step unless another is cheaper by more than kSwitchGain (hysteresis), and raised by at
-//     most kStepChange of the last step per step (ramp); lowered at once.
+//     last step unless another is cheaper by more than kSwitchGain (hysteresis), raised by at
+//     most kStepChange of the last step per step (ramp), held against rises under
+//     integration::kStepHold (solver/integration/step_hold.h); lowered at once.
 // Fixed steps need no policy: the plan (nested_steps.h) is kept for the whole run.
 #include <span>
 #include <string>

@@ -25,6 +25,7 @@
 #include "solver/integration/global_step.h"
 #include "solver/integration/guard.h"
 #include "solver/integration/rigid_body.h"
+#include "solver/integration/step_hold.h"
 #include "solver/model/model.h"
 #include "solver/parallel/thread_team.h"
 
@@ -49,18 +50,6 @@ struct ProbeValue {
   Vec3 velocity_m_s{};
   Vec3 acceleration_m_s2{};
 };
-
-/// One domain's step hold (Solver::set_step_hold; docs/elements.md "Step hold"): a proposal that
-/// exceeds the step in force by less than this fraction keeps the step. A split run's common step
-/// holds alike, in whole ticks (cosim::LayerStepper::choose_step).
-inline constexpr double kStepHold = 1e-3;
-
-/// The step to take under the hold: `in_force` when proposal is in [in_force, in_force (1 +
-/// kStepHold)), else `proposal` (at once when it is smaller, so never above it). Seconds or ticks;
-/// in_force 0 (no step yet): the proposal.
-inline double held_step(double proposal, double in_force) {
-  return proposal >= in_force && proposal < in_force * (1.0 + kStepHold) ? in_force : proposal;
-}
 
 class Solver {
  public:

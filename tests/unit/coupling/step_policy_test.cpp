@@ -1,7 +1,7 @@
 // coupling::leader_step, the variable `layer` leader's choice of H (coupling/step_policy.h): the
 // cost model picks the own proposal or a multiple of a holder's, hysteresis keeps the last kind
-// of step, the ramp raises by at most 2 % per step and lowers at once, the safety scales the own
-// proposal, a domain without a limit takes its holders'.
+// of step, the ramp raises by at most 2 % per step and lowers at once, rises under 0.1 % are held,
+// the safety scales the own proposal, a domain without a limit takes its holders'.
 #include "coupling/step_policy.h"
 
 #include <gtest/gtest.h>
@@ -48,6 +48,18 @@ TEST(StepPolicy, TheStepRisesByAtMostTwoPercentAndFallsAtOnce) {
   EXPECT_EQ(step(200, {}, 100), 102);  // up: 100 + 2 % of 100
   EXPECT_EQ(step(200, {}, 10), 11);    // at least one tick
   EXPECT_EQ(step(50, {}, 100), 50);    // down: at once
+}
+
+// The step hold (integration::kStepHold = 0.1 %): a proposal that jitters above the last step by
+// less than that keeps it (a multi leader's step must not follow the vibration, docs/elements.md
+// "Step hold"); a rise of 0.1 % or more is taken, a fall at once.
+TEST(StepPolicy, RisesUnderATenthOfAPercentKeepTheLastStep) {
+  EXPECT_EQ(step(100099, {}, 100000), 100000);  // +0.099 %: held
+  EXPECT_EQ(step(100100, {}, 100000), 100100);  // +0.1 %: taken
+  EXPECT_EQ(step(99999, {}, 100000), 99999);    // down: at once
+  EXPECT_EQ(step(100099, {}, 0), 100099);       // the first step: no hold
+  // a multiple of a holder's jittering proposal alike: 3 x 33 366 = 100 098
+  EXPECT_EQ(step(100099, {{33366, 1e6}}, 100000), 100000);
 }
 
 TEST(StepPolicy, TheSafetyScalesTheOwnProposal) {
