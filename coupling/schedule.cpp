@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.h"
+#include "solver/integration/step_hold.h"
 
 namespace crashlink::coupling {
 
@@ -146,6 +147,13 @@ std::optional<Answer> Schedule::pop() {
   a.domain = k;
   a.time = t;
   a.slot = d.latest_slot();
+  // The step hold (docs/elements.md "Step hold"): a step that rises by less than
+  // integration::kStepHold keeps the one in force, as a mono run's does, so that variable steps
+  // do not follow the jitter of the stable steps (fixed steps never rise: no effect).
+  const auto hold = [](Tick proposal, Tick in_force) {
+    return static_cast<Tick>(
+        integration::held_step(static_cast<double>(proposal), static_cast<double>(in_force)));
+  };
   Tick step = d.step[a.slot];
   if (policy_ == StepPolicy::common) {
     if (common_time_ != t) {  // first answer at t: every domain's latest state is at t
@@ -155,8 +163,11 @@ std::optional<Answer> Schedule::pop() {
         CRASHLINK_ASSERT(o.time[o.latest_slot()] == t);
         common_step_ = std::min(common_step_, o.step[o.latest_slot()]);
       }
+      common_step_ = common_in_force_ = hold(common_step_, common_in_force_);
     }
     step = common_step_;
+  } else {
+    step = d.in_force = hold(step, d.in_force);
   }
   a.stop = t >= end_;
   a.imposed_step = a.stop ? 0 : clip_ ? std::min(step, end_ - t) : step;

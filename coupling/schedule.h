@@ -49,6 +49,8 @@ struct Answer {
 
 /// Step policy: `common` (modes mono and split) imposes the minimum stable step over all domains
 /// and gates every state on all domains; `own` (mode multi) lets each domain keep its own step.
+/// Both hold the step in force against rises under integration::kStepHold, as a mono run does
+/// (docs/elements.md "Step hold").
 /// Both clip the last step so every domain lands on the end time exactly (a single shorter final
 /// step; docs/design.md §2.7's warning is about shortening every coarse step, not this one),
 /// unless `common` is built unclipped: then every domain stops at the first common instant at or
@@ -106,6 +108,7 @@ class Schedule {
   struct DomainState {
     std::array<Tick, 2> time{};  // times of the last two states, by slot
     std::array<Tick, 2> step{};  // their stable steps
+    Tick in_force = 0;           // `own`: the step last imposed (before the end's clip), held
     std::int64_t count = 0;      // states submitted; the latest is in slot (count - 1) % 2
     Tick expected = 0;
     bool waiting = false;
@@ -128,6 +131,7 @@ class Schedule {
   Tick end_;
   Tick common_time_ = -1;  // `common`: the instant whose imposed step is cached
   Tick common_step_ = 0;
+  Tick common_in_force_ = 0;  // `common`: the common step last imposed, held
   bool clip_ = true;
 };
 

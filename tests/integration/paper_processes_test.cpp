@@ -317,14 +317,15 @@ double three_domain_split_vs_mono(bool variable, const std::string& label) {
   for (const auto& [name, step] : steps) EXPECT_EQ(step, steps["fine"]) << name;
 
   // Mono: fixed, the common step to the coordinator's end; variable, the daemons' rule at every
-  // cycle (floor(dt x ticks) of its own stable step) until the first instant >= the end time.
+  // cycle (floor(dt x ticks) of its own stable step) held as the coordinator holds the common
+  // step (coupling::Schedule, integration::held_step), until the first instant >= the end time.
   const auto m = io::read_scenario(scenario);
   integration::Solver mono(m, "mono");
   mono.initialize();
+  double in_force = 0.0;  // ticks
   const auto own = [&] {
-    return static_cast<double>(
-               static_cast<coupling::Tick>(std::floor(mono.dt_s() * static_cast<double>(tps)))) /
-           static_cast<double>(tps);
+    in_force = integration::held_step(std::floor(mono.dt_s() * static_cast<double>(tps)), in_force);
+    return in_force / static_cast<double>(tps);
   };
   const auto end = coordinator::paper_end_ticks(2.0e-4, {h}, tps);
   std::int64_t n = 0;

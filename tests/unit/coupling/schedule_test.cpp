@@ -188,6 +188,32 @@ TEST(Schedule, CommonPolicyImposesTheGlobalMinimumStep) {
   EXPECT_EQ(st.interpolated, 0);
 }
 
+// The step hold (integration::kStepHold = 0.1 %, docs/elements.md "Step hold"): a proposal that
+// rises above the step in force by less than that keeps it, a larger rise is taken, a fall at
+// once; under `own` per domain, under `common` for the common step.
+TEST(Schedule, StepsHoldAgainstRisesUnderATenthOfAPercent) {
+  const std::vector<Tick> proposals{100000, 100050, 100099, 100100, 99000, 99050};
+  const std::vector<Tick> imposed{100000, 100000, 100000, 100100, 99000, 99000};
+  for (const auto policy : {StepPolicy::own, StepPolicy::common}) {
+    const int n = policy == StepPolicy::own ? 1 : 2;
+    Schedule s(n, n == 2 ? Pairs{{0, 1}} : Pairs{}, policy, 10000000);
+    Tick t = 0;
+    for (std::size_t i = 0; i < proposals.size(); ++i) {
+      s.submit(0, t, proposals[i]);
+      if (n == 2) s.submit(1, t, 3 * proposals[i]);  // the common step is domain 0's
+      Tick step = -1;
+      for (int k = 0; k < n; ++k) {
+        const auto a = s.pop();
+        ASSERT_TRUE(a.has_value());
+        EXPECT_EQ(a->time, t);
+        step = a->imposed_step;
+        EXPECT_EQ(step, imposed[i]) << "state " << i << ", " << n << " domain(s)";
+      }
+      t += step;
+    }
+  }
+}
+
 struct RatioCase {
   const char* name;
   std::vector<double> dt_s;
