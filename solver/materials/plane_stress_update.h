@@ -230,6 +230,39 @@ inline void accept_lanes(std::size_t n, const double* ebar, const double* ep1, c
 #endif
 }
 
+/// The end of one Newton iteration of the lane return (plane_stress_j2_return_lanes), for i < n
+/// (n a multiple of 4): a lane is done when it is not plastic or its residual is within the
+/// tolerance (excess <= 0; false for NaN); a done lane keeps its multiplier (go = gi), the others
+/// take the Newton update already in go; conv is 0 for a done lane, 1 for one still moving.
+/// Returns whether any lane still moves. The same selects as the scalar loop below, bit for bit;
+/// with AVX as compares and blends, and the answer from the compare masks: GCC's code for the loop
+/// and a lane_count of conv was 6 % of the return's instructions.
+inline bool settle_lanes(std::size_t n, const double* plastic, const double* excess,
+                         const double* gi, double* go, double* conv) {
+#if defined(__AVX__)
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  __m256d all_done = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  for (std::size_t l = 0; l < n; l += 4) {
+    const __m256d done = _mm256_or_pd(_mm256_cmp_pd(_mm256_loadu_pd(plastic + l), zero, _CMP_EQ_OQ),
+                                      _mm256_cmp_pd(_mm256_loadu_pd(excess + l), zero, _CMP_LE_OQ));
+    _mm256_storeu_pd(go + l,
+                     _mm256_blendv_pd(_mm256_loadu_pd(go + l), _mm256_loadu_pd(gi + l), done));
+    _mm256_storeu_pd(conv + l, _mm256_andnot_pd(done, one));
+    all_done = _mm256_and_pd(all_done, done);
+  }
+  return _mm256_movemask_pd(all_done) != 0xF;
+#else
+  bool moving = false;
+  for (std::size_t l = 0; l < n; ++l) {
+    const double done = plastic[l] == 0.0 ? 1.0 : (excess[l] <= 0.0 ? 1.0 : 0.0);
+    go[l] = done != 0.0 ? gi[l] : go[l];
+    conv[l] = 1.0 - done;
+    moving = moving || done == 0.0;
+  }
+  return moving;
+#endif
+}
+
 /// Curves up to this many points use a branch-free segment search in the lane return, longer
 /// ones a binary search per lane.
 inline constexpr std::size_t kLaneSegmentSearchMax = 16;
@@ -340,9 +373,14 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
   double a[W], bb[W], cc[W], f1[W], f2[W], vm[W], ebar[W];
   double g_new[W], excess[W];
   double conv[W];  // after the loop: 0 for a converged lane (or an elastic one)
-  for (int it = 0; it < kMaxIterations; ++it) {
+  // One Newton iteration from gi into go; false when no plastic lane moves any more. The
+  // iterations alternate g -> g_new -> g (no copy between them): a lane that is done has
+  // go = gi, and a lane still moving after the last iteration falls back, so g is the multiplier
+  // of every lane accepted below whichever iteration stopped (it ends with go = gi for all lanes
+  // that stop; when the iterations run out, the last one wrote g).
+  auto iterate = [&](const double(&gi)[W], double(&go)[W]) {
     for (std::size_t l = 0; l < n; ++l) {
-      const double d1 = 1.0 + k1 * g[l], d2 = 1.0 + k2 * g[l];
+      const double d1 = 1.0 + k1 * gi[l], d2 = 1.0 + k2 * gi[l];
       const double inv = 1.0 / (d1 * d2);
       f1[l] = d2 * inv;  // 1 / (1 + k1 dgamma)
       f2[l] = d1 * inv;  // 1 / (1 + k2 dgamma)
@@ -353,26 +391,24 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
     }
     sqrt_lanes(vm2, vm, n);
     for (std::size_t l = 0; l < n; ++l) {
-      ebar[l] = ep_n[l] + (2.0 / 3.0) * g[l] * vm[l];  // d_eps_bar = 2/3 dgamma vm
+      ebar[l] = ep_n[l] + (2.0 / 3.0) * gi[l] * vm[l];  // d_eps_bar = 2/3 dgamma vm
       const double sy = sy0[l] + H[l] * (ebar[l] - ep0[l]);
       const double r = vm[l] - sy;
       excess[l] = std::abs(r) - tol * sy;  // > 0 (or NaN): not converged
       const double q = bb[l] * bb[l] + cc[l] * cc[l];
       const double S = k1 * f1[l] * a[l] * a[l] + 3.0 * k2 * f2[l] * q;
-      const double den = S + (2.0 / 3.0) * H[l] * (vm2[l] - g[l] * S);
-      g_new[l] = g[l] + r * vm[l] / den;
+      const double den = S + (2.0 / 3.0) * H[l] * (vm2[l] - gi[l] * S);
+      go[l] = gi[l] + r * vm[l] / den;
     }
     // The selects in a loop of their own (GCC would otherwise sink the arithmetic above into the
     // select's arm, where under -ftrapping-math it blocks the if-conversion and the
-    // vectorisation), into g_new (a conditional store back into g would be a branch again), as
-    // nested selects on double compares (blends; a bool & bool costs mask conversions).
-    for (std::size_t l = 0; l < n; ++l) {
-      const double done = plastic[l] == 0.0 ? 1.0 : (excess[l] <= 0.0 ? 1.0 : 0.0);
-      g_new[l] = done != 0.0 ? g[l] : g_new[l];
-      conv[l] = 1.0 - done;  // 1 for a plastic lane still moving
-    }
-    copy_lanes(g_new, g, n);
-    if (lane_count(conv, n) == 0.0) break;  // no plastic lane still moving
+    // vectorisation), into go (a conditional store back into gi would be a branch again).
+    return settle_lanes(n, plastic, excess, gi, go, conv);
+  };
+  static_assert(kMaxIterations % 2 == 0, "the iterations come in pairs, g -> g_new -> g");
+  for (int it = 0; it < kMaxIterations; it += 2) {
+    if (!iterate(g, g_new)) break;  // g_new = g on every lane: all stopped
+    if (!iterate(g_new, g)) break;
   }
   // Accept the converged lanes that stayed on their segment (accept_lanes: blends), redo the
   // others with the safeguarded scalar return.
