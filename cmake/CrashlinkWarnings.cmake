@@ -8,6 +8,11 @@ function(crashlink_target_defaults target)
   if(CRASHLINK_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-march=x86-64-v3>)
   endif()
+  # std::sqrt without errno (nothing here reads errno after a math call): GCC then vectorises
+  # loops with a square root instead of keeping a branch to the library for negative arguments
+  # (the J2 shell's lane return, materials/plane_stress_update.h). The results are the same: a
+  # square root is correctly rounded either way.
+  target_compile_options(${target} PRIVATE -fno-math-errno)
 endfunction()
 
 # crashlink_library(<name> [DEPS ...]): one library per folder, alias crashlink::<name>,

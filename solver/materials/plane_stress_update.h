@@ -137,8 +137,9 @@ PlaneStressReturn plane_stress_j2_return(const PlaneStressElastic& c, const Hard
                                          double& s_xx, double& s_yy, double& s_xy, double& eps_p);
 
 /// y[i] = sqrt(x[i]) for i < n (n a multiple of 4), x >= 0: vsqrtpd where available. A plain loop
-/// of std::sqrt is not vectorised by GCC under -fmath-errno (the default): it keeps a branch to the
-/// library call for negative arguments.
+/// of std::sqrt is not vectorised by GCC under -fmath-errno (GCC's default; crashlink's targets
+/// build with -fno-math-errno, CrashlinkWarnings.cmake, but this does not depend on it): it keeps
+/// a branch to the library call for negative arguments.
 inline void sqrt_lanes(const double* x, double* y, std::size_t n) {
 #if defined(__AVX__)
   for (std::size_t i = 0; i < n; i += 4)
@@ -351,9 +352,7 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
     b_tr[l] = 0.5 * (s_xx[l] - s_yy[l]);
     c_tr[l] = s_xy[l];
     vm2[l] = a_tr[l] * a_tr[l] + 3.0 * (b_tr[l] * b_tr[l] + c_tr[l] * c_tr[l]);
-  }
-  sqrt_lanes(vm2, vm_tr, n);
-  for (std::size_t l = 0; l < n; ++l) {
+    vm_tr[l] = std::sqrt(vm2[l]);  // vsqrtpd: built with -fno-math-errno (CrashlinkWarnings.cmake)
     const double sy_n = sy0[l] + H[l] * (ep_n[l] - ep0[l]);
     const bool p = vm_tr[l] > sy_n * (1.0 + tol);
     plastic[l] = p ? 1.0 : 0.0;
@@ -370,7 +369,7 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
   // Reductions in loops of their own: GCC turns a masked sum inside the loops above into a
   // branch (an FP add that "could trap"), which stops their vectorisation.
   if (lane_count(plastic, n) == 0.0) return;
-  double a[W], bb[W], cc[W], f1[W], f2[W], vm[W], ebar[W];
+  double a[W], bb[W], cc[W], ebar[W];
   double g_new[W], excess[W];
   double conv[W];  // after the loop: 0 for a converged lane (or an elastic one)
   // One Newton iteration from gi into go; false when no plastic lane moves any more. The
@@ -378,27 +377,28 @@ inline void plane_stress_j2_return_lanes(const PlaneStressElastic& c, const Hard
   // go = gi, and a lane still moving after the last iteration falls back, so g is the multiplier
   // of every lane accepted below whichever iteration stopped (it ends with go = gi for all lanes
   // that stop; when the iterations run out, the last one wrote g).
+  // One loop per iteration: the square root vectorises in it (-fno-math-errno), where it took a
+  // loop of its own (sqrt_lanes) between two lane loops that stored and reloaded the factors, the
+  // stresses and vm (6 % of the J2 shell kernel's instructions), and q is computed once.
   auto iterate = [&](const double(&gi)[W], double(&go)[W]) {
     for (std::size_t l = 0; l < n; ++l) {
       const double d1 = 1.0 + k1 * gi[l], d2 = 1.0 + k2 * gi[l];
       const double inv = 1.0 / (d1 * d2);
-      f1[l] = d2 * inv;  // 1 / (1 + k1 dgamma)
-      f2[l] = d1 * inv;  // 1 / (1 + k2 dgamma)
-      a[l] = a_tr[l] * f1[l];
-      bb[l] = b_tr[l] * f2[l];
-      cc[l] = c_tr[l] * f2[l];
-      vm2[l] = a[l] * a[l] + 3.0 * (bb[l] * bb[l] + cc[l] * cc[l]);
-    }
-    sqrt_lanes(vm2, vm, n);
-    for (std::size_t l = 0; l < n; ++l) {
-      ebar[l] = ep_n[l] + (2.0 / 3.0) * gi[l] * vm[l];  // d_eps_bar = 2/3 dgamma vm
+      const double f1 = d2 * inv;  // 1 / (1 + k1 dgamma)
+      const double f2 = d1 * inv;  // 1 / (1 + k2 dgamma)
+      a[l] = a_tr[l] * f1;
+      bb[l] = b_tr[l] * f2;
+      cc[l] = c_tr[l] * f2;
+      const double v2 = a[l] * a[l] + 3.0 * (bb[l] * bb[l] + cc[l] * cc[l]);
+      const double v = std::sqrt(v2);
+      ebar[l] = ep_n[l] + (2.0 / 3.0) * gi[l] * v;  // d_eps_bar = 2/3 dgamma vm
       const double sy = sy0[l] + H[l] * (ebar[l] - ep0[l]);
-      const double r = vm[l] - sy;
+      const double r = v - sy;
       excess[l] = std::abs(r) - tol * sy;  // > 0 (or NaN): not converged
       const double q = bb[l] * bb[l] + cc[l] * cc[l];
-      const double S = k1 * f1[l] * a[l] * a[l] + 3.0 * k2 * f2[l] * q;
-      const double den = S + (2.0 / 3.0) * H[l] * (vm2[l] - gi[l] * S);
-      go[l] = gi[l] + r * vm[l] / den;
+      const double S = k1 * f1 * a[l] * a[l] + 3.0 * k2 * f2 * q;
+      const double den = S + (2.0 / 3.0) * H[l] * (v2 - gi[l] * S);
+      go[l] = gi[l] + r * v / den;
     }
     // The selects in a loop of their own (GCC would otherwise sink the arithmetic above into the
     // select's arm, where under -ftrapping-math it blocks the if-conversion and the
