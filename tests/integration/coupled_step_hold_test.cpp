@@ -17,6 +17,7 @@
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
 #include "studies/free_vibration.h"
+#include "tests/integration/variable_steps_helpers.h"
 
 using namespace crashlink;
 
@@ -32,17 +33,7 @@ struct Band {
 
 Band run(studies::FreeVibrationShape shape, const std::string& scheme, bool variable,
          double fine_cycles) {
-  studies::FreeVibrationConfig cfg;
-  cfg.damping = {0.0, 1};
-  auto m = studies::free_vibration_model(shape, 3.0, cfg);
-  m.controls.bulk_viscosity = m.controls.shell_bulk_viscosity = false;
-  {
-    model::Model mono = m;
-    mono.domains.clear();
-    integration::Solver probe(mono, "probe");
-    probe.initialize();
-    m.controls.end_time_s = fine_cycles * probe.dt_s();
-  }
+  const auto m = crashlink::testing::undamped_free_vibration(shape, false, fine_cycles);
   cosim::LayerNetworkOptions o;
   if (variable) {
     o.run.scheme = scheme;

@@ -1,7 +1,8 @@
 #pragma once
 // Variable steps in process (LayerNetwork, LayerSteps::Variable) against mono at its own steps:
 // the study's Hann-pulse bar and the interface history, for `layer` and `lts`
-// (layer_variable_steps_test.cpp, lts_variable_steps_test.cpp).
+// (layer_variable_steps_test.cpp, lts_variable_steps_test.cpp), and the study's free vibration
+// without damping (lts_variable_steps_test.cpp, coupled_step_hold_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,9 +14,27 @@
 
 #include "solver/cosim/layer_network.h"
 #include "solver/integration/solver.h"
+#include "studies/free_vibration.h"
 #include "tests/unit/partition/partition_models.h"
 
 namespace crashlink::testing {
+
+/// The coupling study's free vibration (studies/free_vibration.h) at mesh ratio 3, domains "fine"
+/// and "coarse", without interface damping, bulk viscosity (solids and shells) on or off, ending
+/// after `fine_steps` of mono's stable step.
+inline model::Model undamped_free_vibration(studies::FreeVibrationShape shape, bool bulk,
+                                            double fine_steps) {
+  studies::FreeVibrationConfig cfg;
+  cfg.damping = {0.0, 1};
+  auto m = studies::free_vibration_model(shape, 3.0, cfg);
+  m.controls.bulk_viscosity = m.controls.shell_bulk_viscosity = bulk;
+  model::Model mono = m;
+  mono.domains.clear();
+  integration::Solver probe(mono, "probe");
+  probe.initialize();
+  m.controls.end_time_s = fine_steps * probe.dt_s();
+  return m;
+}
 
 /// The study's 1-D bar as in layer_network_test.cpp: fine [0, 1] m (n_fine elements), coarse
 /// [1, 1 + coarse_length] m with elements r times longer, far end fixed, Hann velocity pulse on
