@@ -36,6 +36,25 @@ double von_mises(const Point& p) {
   return crashlink::materials::shell_von_mises(p.sxx, p.syy, p.sxy, 0.0, 0.0);
 }
 
+/// The scalar return of a trial point (the lane return's reference): the returned point in ref,
+/// its plastic thickness strain returned.
+double scalar_return(const PlaneStressElastic& el, const HardeningView& hv, Point& ref) {
+  return crashlink::materials::plane_stress_j2_return(el, hv, ref.sxx, ref.syy, ref.sxy, ref.ep)
+      .d_eps_zz_p;
+}
+
+/// One lane of the lane return against the scalar return: the stresses to 1e-10 of the yield
+/// stress, the plastic and thickness strains to 1e-12.
+void expect_lane_equals_scalar(const Material& m, double sx, double sy, double sxy, double ep,
+                               double dz, const Point& ref, double dz_ref) {
+  const double s_y = m.hardening.yield(ref.ep);
+  EXPECT_NEAR(sx, ref.sxx, 1e-10 * s_y);
+  EXPECT_NEAR(sy, ref.syy, 1e-10 * s_y);
+  EXPECT_NEAR(sxy, ref.sxy, 1e-10 * s_y);
+  EXPECT_NEAR(ep, ref.ep, 1e-12);
+  EXPECT_NEAR(dz, dz_ref, 1e-12);
+}
+
 }  // namespace
 
 // Uniaxial stress (s_yy = 0 enforced by solving for d_eps_yy each increment): s_xx must follow the
@@ -176,18 +195,11 @@ TEST(PlaneStressJ2, LaneReturnEqualsScalarReturn) {
         sxy[l] = scale * 150e6 * std::sin(0.6 * t + 1.0);
         ep[l] = l % 3 == 0 ? 0.0 : 0.05 * (1.0 + std::cos(2.3 * t));  // 0 .. 0.1
         ref[l] = Point{sx[l], sy[l], sxy[l], ep[l]};
-        dz_ref[l] = crashlink::materials::plane_stress_j2_return(el, hv, ref[l].sxx, ref[l].syy,
-                                                                 ref[l].sxy, ref[l].ep)
-                        .d_eps_zz_p;
+        dz_ref[l] = scalar_return(el, hv, ref[l]);
       }
       crashlink::materials::plane_stress_j2_return_lanes<W>(el, hv, W, sx, sy, sxy, ep, dz);
       for (std::size_t l = 0; l < W; ++l) {
-        const double s_y = m.hardening.yield(ref[l].ep);
-        EXPECT_NEAR(sx[l], ref[l].sxx, 1e-10 * s_y);
-        EXPECT_NEAR(sy[l], ref[l].syy, 1e-10 * s_y);
-        EXPECT_NEAR(sxy[l], ref[l].sxy, 1e-10 * s_y);
-        EXPECT_NEAR(ep[l], ref[l].ep, 1e-12);
-        EXPECT_NEAR(dz[l], dz_ref[l], 1e-12);
+        expect_lane_equals_scalar(m, sx[l], sy[l], sxy[l], ep[l], dz[l], ref[l], dz_ref[l]);
         if (dz_ref[l] != 0.0) ++plastic;
       }
     }
@@ -226,22 +238,14 @@ TEST(PlaneStressJ2, LaneReturnOnTheFirstLanesOnlyTouchesThose) {
       dz[l] = kSentinel;
       if (l < kN) {
         ref[l] = Point{sx[l], sy[l], sxy[l], ep[l]};
-        dz_ref[l] = crashlink::materials::plane_stress_j2_return(el, hv, ref[l].sxx, ref[l].syy,
-                                                                 ref[l].sxy, ref[l].ep)
-                        .d_eps_zz_p;
+        dz_ref[l] = scalar_return(el, hv, ref[l]);
         if ((ep0 < 0.02 && ref[l].ep > 0.02) || (ep0 < 0.1 && ref[l].ep > 0.1)) ++crossings;
         if (dz_ref[l] == 0.0) ++elastic;
       }
     }
     crashlink::materials::plane_stress_j2_return_lanes<kW>(el, hv, kN, sx, sy, sxy, ep, dz);
-    for (std::size_t l = 0; l < kN; ++l) {
-      const double s_y = m.hardening.yield(ref[l].ep);
-      EXPECT_NEAR(sx[l], ref[l].sxx, 1e-10 * s_y);
-      EXPECT_NEAR(sy[l], ref[l].syy, 1e-10 * s_y);
-      EXPECT_NEAR(sxy[l], ref[l].sxy, 1e-10 * s_y);
-      EXPECT_NEAR(ep[l], ref[l].ep, 1e-12);
-      EXPECT_NEAR(dz[l], dz_ref[l], 1e-12);
-    }
+    for (std::size_t l = 0; l < kN; ++l)
+      expect_lane_equals_scalar(m, sx[l], sy[l], sxy[l], ep[l], dz[l], ref[l], dz_ref[l]);
     for (std::size_t l = kN; l < kW; ++l) {
       EXPECT_EQ(sx[l], kSentinel);
       EXPECT_EQ(sy[l], kSentinel);
