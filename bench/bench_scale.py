@@ -13,6 +13,14 @@ falls on all alike; the figures are medians over the runs, with their range:
                   CPU before the first cycle, /timing setup_cpu_seconds, left out)
   mem B/el        peak resident memory (VmHWM) / elements: mono's process; multi's daemons
                   summed; and the marginal memory between consecutive sizes
+                  mono's broken down: the hex and the shell kernels' CPU per element-cycle
+                  of their kind (sampled by the solver on every 16th cycle: /timing
+                  *_kernel_seconds, *_element_cycles), the global step's refreshes (probes
+                  and Lanczos, /timing global_step_seconds) and the rest of the cycles' CPU
+                  but the contacts (nodal passes, rigid bodies, output) per element-cycle; the
+                  element mix changes with the size (the
+                  wiper's hexes refine in 3-D, the shells in 2-D), so mono's single figure
+                  grows where neither kernel does
   contact ns      contact CPU time per slave node-cycle
   checkpoint      a mono run of its own per size (to 0.2 ms at most), one checkpoint at half of
                   it: state MB, ms, folder MB (the runs above take none: a checkpoint's state
@@ -146,6 +154,9 @@ def timing(h5_path):
             out["domains"][name] = {k: float(a[k]) for k in (
                 "cpu_seconds", "cycles", "elements", "contact_seconds", "contact_node_cycles",
                 "peak_rss_bytes", "setup_cpu_seconds")}
+            for k in ("hex_kernel_seconds", "hex_element_cycles", "shell_kernel_seconds",
+                      "shell_element_cycles", "global_step_seconds"):  # before 2026-11-29: nan
+                out["domains"][name][k] = float(a[k]) if k in a else math.nan
     return out
 
 
@@ -166,12 +177,35 @@ def checkpoint_line(log):
     return math.nan, math.nan
 
 
+def breakdown(d):
+    """One domain's cycles, broken down per element-cycle: the kernels' CPU of each kind (from
+    the cycles the solver samples; nan for a kind the domain has not), the global step's
+    refreshes, and the rest (nodal passes, rigid bodies, output, the coupling's exchanges) less
+    the contacts, with the kernels' share taken to all cycles."""
+    cycle_cpu_s = d["cpu_seconds"] - d["setup_cpu_seconds"]
+    element_cycles = d["elements"] * d["cycles"]
+    counted = d["hex_element_cycles"] + d["shell_element_cycles"]
+    kernels_s, out = 0.0, {}
+    for kind in ("hex", "shell"):
+        n = d[f"{kind}_element_cycles"]
+        per = d[f"{kind}_kernel_seconds"] / n if n > 0 else math.nan
+        out[f"ns_{kind}"] = 1e9 * per
+        if n > 0:
+            kernels_s += per * element_cycles * n / counted
+    rest_s = cycle_cpu_s - kernels_s - d["contact_seconds"] - d["global_step_seconds"]
+    out["hex_fraction"] = d["hex_element_cycles"] / max(counted, 1)
+    out["ns_global_step"] = 1e9 * d["global_step_seconds"] / element_cycles
+    out["ns_rest"] = 1e9 * rest_s / element_cycles
+    return out
+
+
 def measure_mono(exe, scene, out, log):
     run([exe, "run", scene, "--mode", "mono", "--quiet", "--out", out], scene, log)
     t = timing(os.path.join(out, "result.h5"))
     (d,) = t["domains"].values()
     cycle_cpu_s = d["cpu_seconds"] - d["setup_cpu_seconds"]
     return {
+        **breakdown(d),
         "elements": d["elements"],
         "tree_cpu_s": tree_cpu(out),
         "cycle_cpu_s": cycle_cpu_s,
@@ -212,6 +246,7 @@ def measure_multi(exe, scene, out, log):
         r[f"ns_{name}"] = 1e9 * (d["cpu_seconds"] - d["setup_cpu_seconds"]) / (
             d["elements"] * d["cycles"])
         r[f"el_{name}"] = d["elements"]
+        r[f"parts_{name}"] = breakdown(d)
     return r
 
 
@@ -305,9 +340,26 @@ def measure_family(a, exe, levels, work):
         row(f"  of which {d}", lambda L, k, d=d: multi[L][k][f"el_{d}"], "{:.0f}")
     figures["ns_mono"] = row("mono ns/element-cycle",
                              lambda L, k: mono[L][k]["ns_per_element_cycle"], "{:.1f}")
+    row("  hexes of the elements computed", lambda L, k: mono[L][k]["hex_fraction"], "{:.3f}")
+    figures["ns_hex"] = row("  hex kernel ns/hex-cycle", lambda L, k: mono[L][k]["ns_hex"],
+                            "{:.1f}")
+    figures["ns_shell"] = row("  shell kernel ns/shell-cycle",
+                              lambda L, k: mono[L][k]["ns_shell"], "{:.1f}")
+    row("  global step ns/element-cycle", lambda L, k: mono[L][k]["ns_global_step"], "{:.1f}")
+    figures["ns_rest"] = row("  rest ns/element-cycle", lambda L, k: mono[L][k]["ns_rest"],
+                             "{:.1f}")
     for d in domains:
         figures[f"ns_{d}"] = row(f"multi {d} ns/element-cycle",
                                  lambda L, k, d=d: multi[L][k][f"ns_{d}"], "{:.1f}")
+        for part, label in (("hex", "hex kernel ns/hex-cycle"),
+                            ("shell", "shell kernel ns/shell-cycle"),
+                            ("global_step", "global step ns/element-cycle"),
+                            ("rest", "rest ns/element-cycle")):
+            if all(math.isnan(multi[L][k][f"parts_{d}"][f"ns_{part}"])
+                   for L in levels for k in range(a.runs)):
+                continue  # a kind this domain has not
+            row(f"  {label}", lambda L, k, d=d, part=part: multi[L][k][f"parts_{d}"][f"ns_{part}"],
+                "{:.1f}")
     figures["mem_mono"] = row("mono peak memory B/element",
                               lambda L, k: mono[L][k]["rss_bytes"] / elements[L], "{:.0f}")
     figures["mem_multi"] = row("multi peak memory B/element",
@@ -347,7 +399,8 @@ def measure_family(a, exe, levels, work):
     if len(levels) > 1:
         print(f"\nagainst the {10.0 / levels[0]:g} mm size (issue 24: within 15 %; gain >= 0.95 "
               f"of ideal):")
-        for key in ["ns_mono"] + [f"ns_{d}" for d in domains] + ["mem_mono", "mem_multi"]:
+        for key in (["ns_mono", "ns_hex", "ns_shell", "ns_rest"] + [f"ns_{d}" for d in domains]
+                    + ["mem_mono", "mem_multi"]):
             rel = [v / figures[key][0] for v in figures[key]]
             print(f"  {key:<12}" + "".join(f"{r:>10.3f}" for r in rel))
     if a.check:

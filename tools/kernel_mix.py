@@ -12,8 +12,8 @@ bench_fma_peak measures) it also prints the rate and its fraction of the peak.
 The host's hardware counters are not needed (this VM has none), and the count does not depend
 on the machine's load. docs/benchmarks.md "The arithmetic bound" quotes it.
 
-  tools/kernel_mix.py build/bench/bench_shell BM_ShellPlastic5 99856 [--ns 160 --peak-gflops 40.7]
-  tools/kernel_mix.py build/bench/bench_hex8 BM_Hex8Elastic 100000
+  tools/kernel_mix.py build/bench/bench_shell BM_ShellPlastic5/316 99856 [--ns 160 --peak-gflops 40.7]
+  tools/kernel_mix.py build/bench/bench_hex8 BM_Hex8Elastic/100/100/10 100000
 """
 import argparse
 import collections
@@ -74,7 +74,8 @@ def mnemonics(bench):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('bench')
-    ap.add_argument('benchmark', help='the benchmark name, e.g. BM_ShellPlastic5')
+    ap.add_argument('benchmark',
+                    help='the benchmark with its size, e.g. BM_ShellPlastic5/316')
     ap.add_argument('elements', type=float, help="the benchmark's element count")
     ap.add_argument('--ns', type=float, help='measured ns per element-cycle')
     ap.add_argument('--peak-gflops', type=float, help="bench_fma_peak's GFLOP/s")

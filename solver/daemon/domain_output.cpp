@@ -8,7 +8,7 @@
 
 #include "core/errors.h"
 #include "core/log_escape.h"
-#include "solver/run/peak_memory.h"
+#include "solver/run/domain_timing.h"
 
 namespace crashlink::daemon {
 
@@ -71,11 +71,8 @@ void DomainOutput::close_after_failure(double wall_s, double cpu_s,
 
 /// The domain's timing and the spot welds that let go in it (gathered into result.h5).
 void DomainOutput::write_timing(double wall_s, double cpu_s, std::int64_t elements) {
-  const auto& contact = solver_->contact_cost();
-  writer_.write_timing(
-      wall_s, 0.0,
-      {{domain_, cpu_s, solver_->cycle(), solver_->dt_min_s(), elements, solver_->threads(),
-        contact.seconds, contact.node_cycles, run::peak_resident_bytes(), setup_cpu_s_}});
+  writer_.write_timing(wall_s, 0.0,
+                       {run::domain_timing(*solver_, domain_, cpu_s, elements, setup_cpu_s_)});
   std::vector<io::SpotWeldFailure> welds;
   for (const auto& w : solver_->weld_failures())
     welds.push_back({w.name, w.time_s, w.normal_N, w.shear_N});

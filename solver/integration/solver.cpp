@@ -334,20 +334,39 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
   for (const auto& c : chunks) prepare_element_steps(c.part);
   const bool ratio = global_.on && !probe;
   const bool rate_terms = s == 0 || ghost_bulk_viscosity_;  // set_ghost_bulk_viscosity
-  const auto run_chunks = [&](std::size_t k0, std::size_t k1) {
+  // kernel_cost(): the sampled cycles, and every probe (slot 2)
+  const bool timed = probe || cycle_ % kKernelSampleCycles == 0;
+  const auto kind = [&](std::size_t p) {
+    return probe ? std::size_t{2} : static_cast<std::size_t>(model_.parts[p].kind);
+  };
+  const auto run_chunks = [&](std::size_t k0, std::size_t k1, std::array<double, 3>& cpu_s) {
+    // Timed calls read this thread's clock where the element kind changes (the chunks are in
+    // part order), so a few reads per span, not one per chunk.
+    double c0 = timed && k0 < k1 ? core::thread_cpu_seconds() : 0.0;
     for (std::size_t k = k0; k < k1; ++k) {
       const auto& c = chunks[k];
+      if (timed && k > k0 && kind(c.part) != kind(chunks[k - 1].part)) {
+        const double c1 = core::thread_cpu_seconds();
+        cpu_s[kind(chunks[k - 1].part)] += c1 - c0;
+        c0 = c1;
+      }
       chunks_.clear_slots(c);
       chunk_results_[k] = run_kernel(c.part, dt, c.first, c.end, chunks_.scatter(c.part), probe,
                                      rate_terms, s == 1 && !probe);
       if (ratio)
         global_.chunk_ratio[k] = element_ratio(c.part, c.first, c.end, global_.chunk_element[k]);
     }
+    if (timed && k0 < k1) cpu_s[kind(chunks[k1 - 1].part)] += core::thread_cpu_seconds() - c0;
   };
   if (chunks.empty()) return;
+  if (timed && !probe)
+    for (const auto& c : chunks)
+      kernel_element_cycles_[kind(c.part)] += static_cast<std::int64_t>(c.end - c.first);
   if (team_) {
     const auto& cut = chunk_cut_[s];
-    team_->on_each_thread([&](int t) { run_chunks(cut[t], cut[t + 1]); });
+    team_->on_each_thread([&](int t) {
+      run_chunks(cut[t], cut[t + 1], kernel_worker_cpu_[static_cast<std::size_t>(t)]);
+    });
     const std::size_t shared = chunks_.shared_nodes(s);
     const auto parts = static_cast<std::size_t>(team_->size());
     if (shared > 0)
@@ -356,8 +375,20 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
         chunks_.replay(s, shared * k / parts, shared * (k + 1) / parts, f, m);
       });
   } else {
-    run_chunks(0, chunks.size());
+    run_chunks(0, chunks.size(), kernel_worker_cpu_[0]);
   }
+}
+
+Solver::KernelCost Solver::kernel_cost() const {
+  KernelCost c;
+  c.element_cycles = kernel_element_cycles_;
+  for (const auto& t : kernel_worker_cpu_)
+    for (std::size_t k = 0; k < 2; ++k) c.seconds[k] += t[k];
+  // The calling thread's probes are in its own refresh time; the workers' are added.
+  c.global_step_seconds = global_step_cpu_s_;
+  for (std::size_t t = 1; t < kernel_worker_cpu_.size(); ++t)
+    c.global_step_seconds += kernel_worker_cpu_[t][2];
+  return c;
 }
 
 void Solver::prepare_element_steps(std::size_t p) {

@@ -9,6 +9,7 @@
 //                   external forces, a^{n+1} = M^{-1}(f_ext - f_int) ([1]), next stable step.
 // Run loop: initialize(); for (;;) { begin_cycle(); sample(); if (finished()) break; end_cycle(); }
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -240,6 +241,19 @@ class Solver {
     std::int64_t node_cycles = 0;
   };
   const ContactCost& contact_cost() const { return contact_cost_; }
+  /// What the element kernels have cost this process so far (not kept in checkpoints), sampled
+  /// on every kKernelSampleCycles-th cycle to keep the clock's price (~0.4 us a read here) off
+  /// the others: thread CPU seconds in the kernels of those cycles, summed over the threads, and
+  /// the element-cycles they computed, per model::ElementKind (the scale benchmark's ns per hex-
+  /// and per shell-cycle). The global step's probes are not in them: `global_step_seconds` is
+  /// the CPU of its refreshes after the first cycle (probes and Lanczos), every one timed.
+  struct KernelCost {
+    std::array<double, 2> seconds{};               ///< [kind] CPU [s]
+    std::array<std::int64_t, 2> element_cycles{};  ///< [kind]
+    double global_step_seconds = 0.0;              ///< CPU [s]
+  };
+  static constexpr std::int64_t kKernelSampleCycles = 16;
+  KernelCost kernel_cost() const;
   /// Rigid wall k (model.rigid_walls[k]): its force on the nodes it stops at this cycle, summed
   /// over them [N] (along its normal), and the work it has done on them since t = 0 [J] (< 0:
   /// kinetic energy it took).
@@ -342,6 +356,10 @@ class Solver {
   std::vector<std::size_t> contact_block_end_;  ///< [contacts] one past each one's last block
   std::vector<double> contact_worker_cpu_;      ///< [threads] a cycle's contact CPU per worker [s]
   ContactCost contact_cost_;
+  /// [threads][kind, probes]: sampled kernel CPU and the global step's probes' CPU [s]
+  std::vector<std::array<double, 3>> kernel_worker_cpu_;
+  std::array<std::int64_t, 2> kernel_element_cycles_{};  ///< [kind] of the sampled cycles
+  double global_step_cpu_s_ = 0.0;  ///< the calling thread's CPU in the refreshes [s]
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
   struct PrescribedDof {

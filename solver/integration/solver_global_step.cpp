@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_clock.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::integration {
@@ -66,6 +67,7 @@ void Solver::set_up_global_step() {
   g.chunk_element.assign(g.chunk_ratio.size(), -1);
   g.lanczos.reset(6 * n_, GlobalStep::kSteps);
   refresh_global_step(GlobalStep::kInitialRuns);
+  for (auto& t : kernel_worker_cpu_) t[2] = 0.0;  // kernel_cost(): the refreshes after set-up
   g.binds = false;
   const double dt = g.dt_global_s * std::min(1.0, g.ratio);
   if (std::isfinite(dt) && dt > dt_stable_) {
@@ -213,8 +215,11 @@ void Solver::apply_global_step() {
   auto& g = global_;
   if (!g.on) return;
   if (cycle_ - g.refresh_cycle >= GlobalStep::kRefreshCycles ||
-      g.ratio < GlobalStep::kRefreshDrop * g.ratio_at_refresh)
+      g.ratio < GlobalStep::kRefreshDrop * g.ratio_at_refresh) {
+    const double c0 = core::thread_cpu_seconds();
     refresh_global_step(1);
+    global_step_cpu_s_ += core::thread_cpu_seconds() - c0;
+  }
   g.binds = false;
   const double dt = g.dt_global_s * std::min(1.0, g.ratio);
   if (std::isfinite(dt) && dt > dt_stable_) {

@@ -30,6 +30,7 @@ void Solver::set_up_threads() {
   chunk_results_.assign(std::max(chunks_.chunks(0).size(), chunks_.chunks(1).size()), {});
   tile_sum_.assign(2 * tiles(), 0.0);
   contact_worker_cpu_.assign(static_cast<std::size_t>(threads_), 0.0);
+  kernel_worker_cpu_.assign(static_cast<std::size_t>(threads_), {0.0, 0.0, 0.0});
   team_.reset();
   const auto T = static_cast<std::size_t>(threads_);
   // Thread t takes whole tiles [t n / T, (t + 1) n / T) of the nodes and, of each span, the run

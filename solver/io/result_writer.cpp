@@ -619,6 +619,11 @@ void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seco
     write_attribute(dat, "contact_node_cycles", d.contact_node_cycles);
     write_attribute(dat, "peak_rss_bytes", d.peak_rss_bytes);
     write_attribute(dat, "setup_cpu_seconds", d.setup_cpu_seconds);
+    write_attribute(dat, "hex_kernel_seconds", d.hex_kernel_seconds);
+    write_attribute(dat, "hex_element_cycles", d.hex_element_cycles);
+    write_attribute(dat, "shell_kernel_seconds", d.shell_kernel_seconds);
+    write_attribute(dat, "shell_element_cycles", d.shell_element_cycles);
+    write_attribute(dat, "global_step_seconds", d.global_step_seconds);
   }
   w.flush_file();
 }

@@ -12,8 +12,8 @@
 #include "solver/io/result_writer.h"
 #include "solver/model/run_estimate.h"
 #include "solver/run/domain_recorder.h"
+#include "solver/run/domain_timing.h"
 #include "solver/run/mono_checkpoints.h"
-#include "solver/run/peak_memory.h"
 #include "solver/run/progress.h"
 
 namespace crashlink::run {
@@ -97,11 +97,9 @@ RunSummary run_single_domain(const model::Model& model, const RunOptions& option
   }
   sum.cpu_seconds = cpu_before + core::process_cpu_seconds() - cpu0;
   sum.wall_seconds = core::wall_seconds() - wall0;
-  const auto& contact = solver.contact_cost();
-  writer.write_timing(sum.wall_seconds, 0.0,
-                      {{options.domain_name, sum.cpu_seconds, sum.cycles, sum.dt_min_s,
-                        sum.elements, options.threads, contact.seconds, contact.node_cycles,
-                        peak_resident_bytes(), setup_cpu_s}});
+  writer.write_timing(
+      sum.wall_seconds, 0.0,
+      {domain_timing(solver, options.domain_name, sum.cpu_seconds, sum.elements, setup_cpu_s)});
   writer.close();
   return sum;
 }

@@ -22,10 +22,12 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
 #include "solver/contact/contact_interface.h"
+#include "solver/integration/solver.h"
 #include "solver/io/coupling_history_writer.h"
 #include "solver/io/result_reader.h"
 #include "solver/io/result_writer.h"
@@ -615,6 +617,25 @@ TEST(GatherResults, ContactHistoryComesFromTheDomainHoldingIt) {
   EXPECT_GT(setup_s, 0.0);
   EXPECT_LT(setup_s, cpu);
   EXPECT_GT(r.attr_int64("/timing/model", "peak_rss_bytes"), std::int64_t{1} << 20);  // > 1 MiB
+  // The kernels' cost, sampled on every 16th cycle: each sampled cycle computes every element of
+  // a kind once (18 hexes, 32 shells), in about cycles / 16 sampled cycles; the CPU is the run's.
+  std::int64_t hexes = 0, shells = 0;
+  for (const auto& p : m.parts)
+    (p.kind == model::ElementKind::Hex8 ? hexes : shells) +=
+        static_cast<std::int64_t>(p.element_count());
+  ASSERT_EQ(hexes, 18);
+  ASSERT_EQ(shells, 32);
+  const std::int64_t sampled = cycles / integration::Solver::kKernelSampleCycles;
+  const std::pair<std::string, std::int64_t> kinds[] = {{"hex", hexes}, {"shell", shells}};
+  for (const auto& [kind, of_kind] : kinds) {
+    const std::int64_t ec = r.attr_int64("/timing/model", kind + "_element_cycles");
+    const double sec = r.attr_double("/timing/model", kind + "_kernel_seconds");
+    EXPECT_EQ(ec % of_kind, 0) << kind;
+    EXPECT_GE(ec / of_kind, sampled - 1) << kind;
+    EXPECT_LE(ec / of_kind, sampled + 1) << kind;
+    EXPECT_GT(sec, 0.0) << kind;
+    EXPECT_LT(sec, cpu - setup_s) << kind;
+  }
 
   // /history/contacts/<name>/energy (issue 21): the interface's own energy. With one contact it
   // is glstat's contact_energy, in mono and gathered (from the domain that computes the contact,

@@ -13,6 +13,7 @@
 #include <bit>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/integration/element_chunks.h"
@@ -171,4 +172,52 @@ TEST(SolverThreads, ChunksSplitTheElementsAndShareTheBoundaryNodes) {
   direct.build(m, split, {1, 0}, false);
   EXPECT_EQ(direct.scatter(0), nullptr);
   EXPECT_EQ(direct.shared_nodes(0), 0u);
+}
+
+// What the kernels cost (Solver::kernel_cost, /timing, the scale benchmark's ns per hex- and per
+// shell-cycle): every kKernelSampleCycles-th cycle times each kind's chunks on every thread, so
+// the element-cycles counted are whole multiples of the kind's elements, the same on any team;
+// the global step's refreshes are timed on their own, and only when it is on.
+TEST(SolverThreads, KernelCostCountsTheSampledCyclesOfEachKindOnAnyTeam) {
+  auto plate = sphere_on_plate();  // shells (the sphere is rigid: no chunks)
+  plate.controls.global_stable_step = true;
+  const auto block = twisted_block();  // hexes
+  const auto shell = static_cast<std::size_t>(model::ElementKind::Shell4);
+  const auto hex = static_cast<std::size_t>(model::ElementKind::Hex8);
+  constexpr int kCycles = 250;  // a global step refresh within them (kRefreshCycles 200)
+  for (const model::Model* m : {&std::as_const(plate), &block}) {
+    const bool shells = m == &std::as_const(plate);
+    std::int64_t deformable = 0;
+    for (const auto& p : m->parts)
+      if (p.kind == (shells ? model::ElementKind::Shell4 : model::ElementKind::Hex8) &&
+          m->materials[static_cast<std::size_t>(p.material)].kind != materials::MaterialKind::Rigid)
+        deformable += static_cast<std::int64_t>(p.element_count());
+    ASSERT_GT(deformable, 0);
+    std::int64_t counted_on_one = -1;
+    for (int threads : {1, 3}) {
+      integration::Solver s(*m, "costs");
+      s.set_threads(threads);
+      s.initialize();
+      for (int c = 0; c < kCycles; ++c) {
+        s.begin_cycle();
+        s.end_cycle();
+      }
+      const auto cost = s.kernel_cost();
+      const std::size_t k = shells ? shell : hex, other = shells ? hex : shell;
+      const std::int64_t counted = cost.element_cycles[k];
+      const std::int64_t sampled = kCycles / integration::Solver::kKernelSampleCycles;
+      EXPECT_EQ(counted % deformable, 0) << threads << " threads";
+      EXPECT_GE(counted / deformable, sampled) << threads << " threads";
+      EXPECT_LE(counted / deformable, sampled + 1) << threads << " threads";
+      if (counted_on_one < 0) counted_on_one = counted;
+      EXPECT_EQ(counted, counted_on_one) << threads << " threads";
+      EXPECT_GT(cost.seconds[k], 0.0) << threads << " threads";
+      EXPECT_EQ(cost.element_cycles[other], 0) << threads << " threads";
+      EXPECT_EQ(cost.seconds[other], 0.0) << threads << " threads";
+      if (shells)
+        EXPECT_GT(cost.global_step_seconds, 0.0) << threads << " threads";
+      else
+        EXPECT_EQ(cost.global_step_seconds, 0.0) << threads << " threads";
+    }
+  }
 }

@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""A kernel benchmark alone and as two copies at once: what one core loses when the other works.
+
+    tools/bench_side_by_side.py BENCH FILTER [--rounds 3] [--min-time 1]
+
+Runs the Google Benchmark binary BENCH (build/bench/bench_shell, build/bench/bench_hex8) on each
+benchmark FILTER selects, one benchmark per invocation, in rounds: alone pinned to the first CPU,
+alone pinned to the second, then two copies at once, one pinned to each, so that the machine's
+drift falls on every setting alike. Prints, per benchmark and setting, the median over the
+rounds of ns per element (the `ns_per_element` counter; the real time per iteration where a
+benchmark has none), every round's figure, and the ratio of the paired to the alone medians
+(both CPUs summed).
+
+Two copies share nothing in software: separate processes, separate memory, no lock, no wait.
+A paired/alone ratio above 1 is what the hardware (caches, memory bandwidth) takes from each
+core when both work; alone figures that differ between the CPUs, or from round to round, are
+vCPUs whose speed the host moves (a host core shared with another guest). Either bounds every
+two-core figure of the same work: a thread team waits at each pass for its slower member, and
+two domains running at once against a mono run with the other core idle pay the ratio
+(docs/threads.md "Measured", docs/benchmarks.md "Scale family").
+"""
+
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+
+def figures(report):
+    """{benchmark name: ns per element (or per iteration)} of one JSON report."""
+    out = {}
+    for b in json.loads(report)["benchmarks"]:
+        if b.get("run_type") == "aggregate":
+            continue
+        ns = b.get("ns_per_element")  # an inverted rate scaled by 1e9: ns per element
+        if ns is None:
+            ns = b["real_time"] * {"ns": 1, "us": 1e3, "ms": 1e6, "s": 1e9}[b["time_unit"]]
+        out.setdefault(b["name"], []).append(ns)
+    return {k: statistics.median(v) for k, v in out.items()}
+
+
+def run_on(cmd, cpus):
+    """Runs cmd once on each CPU of `cpus`, all at the same time; their reports in that order."""
+    procs = [subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              preexec_fn=lambda c=c: os.sched_setaffinity(0, {c}))
+             for c in cpus]
+    reports = []
+    for p in procs:
+        out, err = p.communicate()
+        if p.returncode != 0:
+            sys.exit(f"bench_side_by_side: {' '.join(cmd)} exited {p.returncode}: {err.strip()}")
+        reports.append(figures(out))
+    return reports
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("bench", help="a Google Benchmark binary, e.g. build/bench/bench_shell")
+    ap.add_argument("filter", help="--benchmark_filter, e.g. 'Elastic5/'")
+    ap.add_argument("--rounds", type=int, default=3, help="alternations of alone and paired")
+    ap.add_argument("--min-time", type=float, default=1.0, help="--benchmark_min_time, s")
+    a = ap.parse_args()
+    listed = subprocess.run([a.bench, f"--benchmark_filter={a.filter}", "--benchmark_list_tests"],
+                            capture_output=True, text=True, check=True).stdout.split()
+    cpus = sorted(os.sched_getaffinity(0))[:2]
+    if len(cpus) < 2:
+        sys.exit("bench_side_by_side: needs two CPUs")
+    # [name][setting] -> figures; settings: alone on each CPU, and each CPU's copy side by side.
+    got = {}
+    # One benchmark per invocation, so that the two copies run the same one at the same time.
+    for r in range(a.rounds):
+        for name in listed:
+            cmd = [a.bench, f"--benchmark_filter=^{re.escape(name)}$", "--benchmark_format=json",
+                   f"--benchmark_min_time={a.min_time}", "--benchmark_repetitions=3"]
+            g = got.setdefault(name, {})
+            for c in cpus:
+                g.setdefault(f"alone {c}", []).append(run_on(cmd, [c])[0][name])
+            for c, rep in zip(cpus, run_on(cmd, cpus)):
+                g.setdefault(f"paired {c}", []).append(rep[name])
+        print(f"round {r + 1} of {a.rounds} done", file=sys.stderr, flush=True)
+    if not got:
+        sys.exit(f"bench_side_by_side: no benchmark matches {a.filter!r}")
+    print(f"{a.bench}, {a.rounds} rounds, ns per element (medians; each round: alone on CPU "
+          f"{cpus[0]}, alone on CPU {cpus[1]}, both at once)")
+    heads = [f"alone {c}" for c in cpus] + [f"paired {c}" for c in cpus]
+    print(f"{'benchmark':<32}" + "".join(f"{h:>11}" for h in heads) + f"{'paired/alone':>14}")
+    for name, g in got.items():
+        med = {h: statistics.median(g[h]) for h in heads}
+        ratio = (med[heads[2]] + med[heads[3]]) / (med[heads[0]] + med[heads[1]])
+        print(f"{name:<32}" + "".join(f"{med[h]:>11.1f}" for h in heads) + f"{ratio:>14.3f}")
+        for h in heads:  # every round, for the spread
+            print(f"{'':<4}{h:<10}" + " ".join(f"{x:.1f}" for x in g[h]))
+
+if __name__ == "__main__":
+    main()
