@@ -15,7 +15,8 @@ falls on all alike; the figures are medians over the runs, with their range:
                   summed; and the marginal memory between consecutive sizes
                   mono's broken down: the hex and the shell kernels' CPU per element-cycle
                   of their kind (sampled by the solver on every 16th cycle: /timing
-                  *_kernel_seconds, *_element_cycles), the global step's refreshes (probes
+                  *_kernel_seconds, *_element_cycles, kernel_sampled_cycles; nan from older
+                  result files, which --check refuses), the global step's refreshes (probes
                   and Lanczos, /timing global_step_seconds) and the rest of the cycles' CPU
                   but the contacts (nodal passes, rigid bodies, output) per element-cycle; the
                   element mix changes with the size (the
@@ -154,8 +155,9 @@ def timing(h5_path):
             out["domains"][name] = {k: float(a[k]) for k in (
                 "cpu_seconds", "cycles", "elements", "contact_seconds", "contact_node_cycles",
                 "peak_rss_bytes", "setup_cpu_seconds")}
-            for k in ("hex_kernel_seconds", "hex_element_cycles", "shell_kernel_seconds",
-                      "shell_element_cycles", "global_step_seconds"):  # before 2026-11-29: nan
+            for k in ("kernel_sampled_cycles", "hex_kernel_seconds", "hex_element_cycles",
+                      "shell_kernel_seconds", "shell_element_cycles",
+                      "global_step_seconds"):  # absent before 2026-11-29: nan
                 out["domains"][name][k] = float(a[k]) if k in a else math.nan
     return out
 
@@ -178,22 +180,24 @@ def checkpoint_line(log):
 
 
 def breakdown(d):
-    """One domain's cycles, broken down per element-cycle: the kernels' CPU of each kind (from
-    the cycles the solver samples; nan for a kind the domain has not), the global step's
-    refreshes, and the rest (nodal passes, rigid bodies, output, the coupling's exchanges) less
-    the contacts, with the kernels' share taken to all cycles."""
+    """One domain's cycles, broken down per element-cycle (elements: the model's, rigid ones
+    too, as in ns/element-cycle): the kernels' CPU per element-cycle of each kind (from the
+    cycles the solver samples; nan for a kind the domain has not), the global step's refreshes,
+    and the rest (nodal passes, rigid bodies, output, the coupling's exchanges) less the
+    contacts, with the kernels' CPU of the sampled cycles taken to all cycles. Result files
+    from before these figures give nan."""
     cycle_cpu_s = d["cpu_seconds"] - d["setup_cpu_seconds"]
     element_cycles = d["elements"] * d["cycles"]
-    counted = d["hex_element_cycles"] + d["shell_element_cycles"]
-    kernels_s, out = 0.0, {}
+    out = {}
     for kind in ("hex", "shell"):
         n = d[f"{kind}_element_cycles"]
-        per = d[f"{kind}_kernel_seconds"] / n if n > 0 else math.nan
-        out[f"ns_{kind}"] = 1e9 * per
-        if n > 0:
-            kernels_s += per * element_cycles * n / counted
+        out[f"ns_{kind}"] = 1e9 * d[f"{kind}_kernel_seconds"] / n if n > 0 else math.nan
+    sampled = d["kernel_sampled_cycles"]
+    kernels_s = ((d["hex_kernel_seconds"] + d["shell_kernel_seconds"]) * d["cycles"] / sampled
+                 if sampled > 0 else math.nan)
     rest_s = cycle_cpu_s - kernels_s - d["contact_seconds"] - d["global_step_seconds"]
-    out["hex_fraction"] = d["hex_element_cycles"] / max(counted, 1)
+    counted = d["hex_element_cycles"] + d["shell_element_cycles"]
+    out["hex_fraction"] = d["hex_element_cycles"] / counted if counted > 0 else math.nan
     out["ns_global_step"] = 1e9 * d["global_step_seconds"] / element_cycles
     out["ns_rest"] = 1e9 * rest_s / element_cycles
     return out
@@ -340,7 +344,7 @@ def measure_family(a, exe, levels, work):
         row(f"  of which {d}", lambda L, k, d=d: multi[L][k][f"el_{d}"], "{:.0f}")
     figures["ns_mono"] = row("mono ns/element-cycle",
                              lambda L, k: mono[L][k]["ns_per_element_cycle"], "{:.1f}")
-    row("  hexes of the elements computed", lambda L, k: mono[L][k]["hex_fraction"], "{:.3f}")
+    row("  hexes of the deformable elements", lambda L, k: mono[L][k]["hex_fraction"], "{:.3f}")
     figures["ns_hex"] = row("  hex kernel ns/hex-cycle", lambda L, k: mono[L][k]["ns_hex"],
                             "{:.1f}")
     figures["ns_shell"] = row("  shell kernel ns/shell-cycle",

@@ -335,7 +335,7 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
   const bool ratio = global_.on && !probe;
   const bool rate_terms = s == 0 || ghost_bulk_viscosity_;  // set_ghost_bulk_viscosity
   // kernel_cost(): the sampled cycles, and every probe (slot 2)
-  const bool timed = probe || cycle_ % kKernelSampleCycles == 0;
+  const bool timed = probe || cycle_ % kKernelSampleCycles == kKernelSampleCycles - 1;
   const auto kind = [&](std::size_t p) {
     return probe ? std::size_t{2} : static_cast<std::size_t>(model_.parts[p].kind);
   };
@@ -359,9 +359,14 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
     if (timed && k0 < k1) cpu_s[kind(chunks[k1 - 1].part)] += core::thread_cpu_seconds() - c0;
   };
   if (chunks.empty()) return;
-  if (timed && !probe)
+  if (timed && !probe) {
     for (const auto& c : chunks)
       kernel_element_cycles_[kind(c.part)] += static_cast<std::int64_t>(c.end - c.first);
+    if (cycle_ != kernel_last_sampled_) {  // a cycle's two spans (interior, rim) count once
+      kernel_last_sampled_ = cycle_;
+      ++kernel_sampled_cycles_;
+    }
+  }
   if (team_) {
     const auto& cut = chunk_cut_[s];
     team_->on_each_thread([&](int t) {
@@ -381,6 +386,7 @@ void Solver::run_span(int s, double dt, bool probe, double* f, double* m) {
 
 Solver::KernelCost Solver::kernel_cost() const {
   KernelCost c;
+  c.sampled_cycles = kernel_sampled_cycles_;
   c.element_cycles = kernel_element_cycles_;
   for (const auto& t : kernel_worker_cpu_)
     for (std::size_t k = 0; k < 2; ++k) c.seconds[k] += t[k];

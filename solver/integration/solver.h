@@ -242,12 +242,15 @@ class Solver {
   };
   const ContactCost& contact_cost() const { return contact_cost_; }
   /// What the element kernels have cost this process so far (not kept in checkpoints), sampled
-  /// on every kKernelSampleCycles-th cycle to keep the clock's price (~0.4 us a read here) off
-  /// the others: thread CPU seconds in the kernels of those cycles, summed over the threads, and
-  /// the element-cycles they computed, per model::ElementKind (the scale benchmark's ns per hex-
-  /// and per shell-cycle). The global step's probes are not in them: `global_step_seconds` is
-  /// the CPU of its refreshes after the first cycle (probes and Lanczos), every one timed.
+  /// on the last cycle of every kKernelSampleCycles (not cycle 0, whose caches are cold) to keep
+  /// the clock's price (~0.4 us a read here) off the others: the cycles sampled, thread CPU
+  /// seconds in the kernels of those cycles summed over the threads, and the element-cycles they
+  /// computed, per model::ElementKind (the scale benchmark's ns per hex- and per shell-cycle).
+  /// The global step's probes are not in them: `global_step_seconds` is the CPU of its
+  /// refreshes after set-up, every one: the calling thread's and the workers' probe kernels (the
+  /// workers' part of its node loops is not counted).
   struct KernelCost {
+    std::int64_t sampled_cycles = 0;
     std::array<double, 2> seconds{};               ///< [kind] CPU [s]
     std::array<std::int64_t, 2> element_cycles{};  ///< [kind]
     double global_step_seconds = 0.0;              ///< CPU [s]
@@ -359,7 +362,9 @@ class Solver {
   /// [threads][kind, probes]: sampled kernel CPU and the global step's probes' CPU [s]
   std::vector<std::array<double, 3>> kernel_worker_cpu_;
   std::array<std::int64_t, 2> kernel_element_cycles_{};  ///< [kind] of the sampled cycles
-  double global_step_cpu_s_ = 0.0;  ///< the calling thread's CPU in the refreshes [s]
+  std::int64_t kernel_sampled_cycles_ = 0;
+  std::int64_t kernel_last_sampled_ = -1;  ///< the cycle sampled last
+  double global_step_cpu_s_ = 0.0;         ///< the calling thread's CPU in the refreshes [s]
 
   // prescribed dofs: (dof index into [3n] or rotational [3n] + 3n offset), curve, reaction R^n
   struct PrescribedDof {

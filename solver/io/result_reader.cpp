@@ -456,6 +456,9 @@ TimingData ResultReader::timing() const {
         read_number_attribute<std::int64_t>(dat, "peak_rss_bytes", H5T_NATIVE_INT64).value_or(0);
     d.setup_cpu_seconds =
         read_number_attribute<double>(dat, "setup_cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+    d.kernel_sampled_cycles =
+        read_number_attribute<std::int64_t>(dat, "kernel_sampled_cycles", H5T_NATIVE_INT64)
+            .value_or(0);
     d.hex_kernel_seconds =
         read_number_attribute<double>(dat, "hex_kernel_seconds", H5T_NATIVE_DOUBLE).value_or(0);
     d.hex_element_cycles =

@@ -619,6 +619,7 @@ void ResultWriter::write_timing(double wall_seconds, double coordinator_cpu_seco
     write_attribute(dat, "contact_node_cycles", d.contact_node_cycles);
     write_attribute(dat, "peak_rss_bytes", d.peak_rss_bytes);
     write_attribute(dat, "setup_cpu_seconds", d.setup_cpu_seconds);
+    write_attribute(dat, "kernel_sampled_cycles", d.kernel_sampled_cycles);
     write_attribute(dat, "hex_kernel_seconds", d.hex_kernel_seconds);
     write_attribute(dat, "hex_element_cycles", d.hex_element_cycles);
     write_attribute(dat, "shell_kernel_seconds", d.shell_kernel_seconds);

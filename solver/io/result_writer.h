@@ -84,12 +84,13 @@ struct DomainTiming {
   /// CPU before the first cycle [s] (of cpu_seconds): reading, cutting, masses, the first step
   double setup_cpu_seconds = 0.0;
   /// The element kernels' CPU [s] and the element-cycles they computed, per kind, over the
-  /// cycles the solver samples (integration::Solver::kernel_cost: every 16th)
+  /// cycles the solver samples (integration::Solver::kernel_cost: one in 16), and how many
+  std::int64_t kernel_sampled_cycles = 0;
   double hex_kernel_seconds = 0.0;
   std::int64_t hex_element_cycles = 0;
   double shell_kernel_seconds = 0.0;
   std::int64_t shell_element_cycles = 0;
-  /// The global step's refreshes after the first cycle, CPU [s] (every one; 0 without it)
+  /// The global step's refreshes after set-up, CPU [s] (every one; 0 without it)
   double global_step_seconds = 0.0;
 };
 

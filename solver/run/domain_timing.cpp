@@ -23,6 +23,7 @@ io::DomainTiming domain_timing(const integration::Solver& solver, std::string na
   const auto kernels = solver.kernel_cost();
   const auto hex = static_cast<std::size_t>(model::ElementKind::Hex8);
   const auto shell = static_cast<std::size_t>(model::ElementKind::Shell4);
+  d.kernel_sampled_cycles = kernels.sampled_cycles;
   d.hex_kernel_seconds = kernels.seconds[hex];
   d.hex_element_cycles = kernels.element_cycles[hex];
   d.shell_kernel_seconds = kernels.seconds[shell];

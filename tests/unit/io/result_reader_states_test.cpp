@@ -64,9 +64,9 @@ TEST(ResultReaderStates, FileStemMeshStatesContactsAndTimingRoundTrip) {
     s2.time_s = 0.75;
     s2.displacement_m = u;
     w.write_field_state(s2);
-    w.write_timing(
-        2.0, 0.0,
-        {{"fine", 1.5, 42, 1e-7, 3, 2, 0.25, 4200, 123456789, 0.125, 0.5, 16, 0.75, 32, 0.0625}});
+    w.write_timing(2.0, 0.0,
+                   {{"fine", 1.5, 42, 1e-7, 3, 2, 0.25, 4200, 123456789, 0.125, 2, 0.5, 16, 0.75,
+                     32, 0.0625}});
   }
   // The xdmf names its own h5 file.
   std::ifstream xdmf(dir + "/fine.xdmf");
@@ -127,6 +127,7 @@ TEST(ResultReaderStates, FileStemMeshStatesContactsAndTimingRoundTrip) {
   EXPECT_EQ(t.domains[0].contact_node_cycles, 4200);
   EXPECT_EQ(t.domains[0].peak_rss_bytes, 123456789);
   EXPECT_EQ(t.domains[0].setup_cpu_seconds, 0.125);
+  EXPECT_EQ(t.domains[0].kernel_sampled_cycles, 2);
   EXPECT_EQ(t.domains[0].hex_kernel_seconds, 0.5);
   EXPECT_EQ(t.domains[0].hex_element_cycles, 16);
   EXPECT_EQ(t.domains[0].shell_kernel_seconds, 0.75);
