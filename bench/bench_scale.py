@@ -359,11 +359,14 @@ def measure_family(a, exe, levels, work):
                             ("shell", "shell kernel ns/shell-cycle"),
                             ("global_step", "global step ns/element-cycle"),
                             ("rest", "rest ns/element-cycle")):
-            if all(math.isnan(multi[L][k][f"parts_{d}"][f"ns_{part}"])
-                   for L in levels for k in range(a.runs)):
+            if part != "rest" and all(math.isnan(multi[L][k][f"parts_{d}"][f"ns_{part}"])
+                                      for L in levels for k in range(a.runs)):
                 continue  # a kind this domain has not
-            row(f"  {label}", lambda L, k, d=d, part=part: multi[L][k][f"parts_{d}"][f"ns_{part}"],
-                "{:.1f}")
+            medians = row(f"  {label}",
+                          lambda L, k, d=d, part=part: multi[L][k][f"parts_{d}"][f"ns_{part}"],
+                          "{:.1f}")
+            if part == "rest":  # nan if a daemon did not write its kernels' figures
+                figures[f"ns_rest_{d}"] = medians
     figures["mem_mono"] = row("mono peak memory B/element",
                               lambda L, k: mono[L][k]["rss_bytes"] / elements[L], "{:.0f}")
     figures["mem_multi"] = row("multi peak memory B/element",

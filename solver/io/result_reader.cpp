@@ -439,38 +439,30 @@ TimingData ResultReader::timing() const {
   for (const std::string& link : child_names(at)) {
     GroupHandle dg = open_group(at, link);
     const Location dat{dg.get(), impl_->h5_path, at.child(link)};
+    // absent attributes (files from before them): 0, threads 1
+    const auto f64 = [&](const char* name) {
+      return read_number_attribute<double>(dat, name, H5T_NATIVE_DOUBLE).value_or(0);
+    };
+    const auto i64 = [&](const char* name, std::int64_t absent = 0) {
+      return read_number_attribute<std::int64_t>(dat, name, H5T_NATIVE_INT64).value_or(absent);
+    };
     DomainTiming d;
     d.name = read_string_attribute(dat, "name").value_or(link);
-    d.cpu_seconds =
-        read_number_attribute<double>(dat, "cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
-    d.cycles = read_number_attribute<std::int64_t>(dat, "cycles", H5T_NATIVE_INT64).value_or(0);
-    d.dt_min_s = read_number_attribute<double>(dat, "dt_min", H5T_NATIVE_DOUBLE).value_or(0);
-    d.elements = read_number_attribute<std::int64_t>(dat, "elements", H5T_NATIVE_INT64).value_or(0);
-    d.threads = read_number_attribute<std::int64_t>(dat, "threads", H5T_NATIVE_INT64).value_or(1);
-    d.contact_seconds =
-        read_number_attribute<double>(dat, "contact_seconds", H5T_NATIVE_DOUBLE).value_or(0);
-    d.contact_node_cycles =
-        read_number_attribute<std::int64_t>(dat, "contact_node_cycles", H5T_NATIVE_INT64)
-            .value_or(0);
-    d.peak_rss_bytes =
-        read_number_attribute<std::int64_t>(dat, "peak_rss_bytes", H5T_NATIVE_INT64).value_or(0);
-    d.setup_cpu_seconds =
-        read_number_attribute<double>(dat, "setup_cpu_seconds", H5T_NATIVE_DOUBLE).value_or(0);
-    d.kernel_sampled_cycles =
-        read_number_attribute<std::int64_t>(dat, "kernel_sampled_cycles", H5T_NATIVE_INT64)
-            .value_or(0);
-    d.hex_kernel_seconds =
-        read_number_attribute<double>(dat, "hex_kernel_seconds", H5T_NATIVE_DOUBLE).value_or(0);
-    d.hex_element_cycles =
-        read_number_attribute<std::int64_t>(dat, "hex_element_cycles", H5T_NATIVE_INT64)
-            .value_or(0);
-    d.shell_kernel_seconds =
-        read_number_attribute<double>(dat, "shell_kernel_seconds", H5T_NATIVE_DOUBLE).value_or(0);
-    d.shell_element_cycles =
-        read_number_attribute<std::int64_t>(dat, "shell_element_cycles", H5T_NATIVE_INT64)
-            .value_or(0);
-    d.global_step_seconds =
-        read_number_attribute<double>(dat, "global_step_seconds", H5T_NATIVE_DOUBLE).value_or(0);
+    d.cpu_seconds = f64("cpu_seconds");
+    d.cycles = i64("cycles");
+    d.dt_min_s = f64("dt_min");
+    d.elements = i64("elements");
+    d.threads = i64("threads", 1);
+    d.contact_seconds = f64("contact_seconds");
+    d.contact_node_cycles = i64("contact_node_cycles");
+    d.peak_rss_bytes = i64("peak_rss_bytes");
+    d.setup_cpu_seconds = f64("setup_cpu_seconds");
+    d.kernel_sampled_cycles = i64("kernel_sampled_cycles");
+    d.hex_kernel_seconds = f64("hex_kernel_seconds");
+    d.hex_element_cycles = i64("hex_element_cycles");
+    d.shell_kernel_seconds = f64("shell_kernel_seconds");
+    d.shell_element_cycles = i64("shell_element_cycles");
+    d.global_step_seconds = f64("global_step_seconds");
     t.domains.push_back(std::move(d));
   }
   return t;
