@@ -206,6 +206,10 @@ void ContactInterface::block(std::size_t b) {
   }
 }
 
+const std::vector<std::int32_t>& ContactInterface::applied_nodes() const {
+  return impl_->applied.node;
+}
+
 ContactStep ContactInterface::finish(double* f) {
   Impl& s = *impl_;
   ContactStep out;

@@ -49,6 +49,9 @@ class ContactInterface {
   std::size_t block_count() const;
   void block(std::size_t b);
   ContactStep finish(double* f);
+  /// The nodes the last finish() (or compute()) pushed, in the order it pushed them, repeated
+  /// where pushed more than once: f is untouched at every other node.
+  const std::vector<std::int32_t>& applied_nodes() const;
 
   /// The step the soft stiffness is sized with (contact_pass.cpp pair_stiffness): the domain's
   /// stable step at the start, before any contact. Set once; later calls are ignored (a

@@ -2,20 +2,26 @@
 
 namespace crashlink::integration {
 
-void gather_rigid_load(RigidBodyState& b, const double* f_ext, const double* f_int, const double* x,
-                       const Vec3& gravity, const double* m_ext, const double* m_int) {
+void gather_rigid_load(RigidBodyState& b, const NodalLoads& loads, const double* x,
+                       const Vec3& gravity) {
   Vec3 f = b.mass_kg * gravity;
   Vec3 t{};
-  for (std::int32_t i : b.nodes) {
-    const Vec3 fi{f_ext[3 * i] - f_int[3 * i], f_ext[3 * i + 1] - f_int[3 * i + 1],
-                  f_ext[3 * i + 2] - f_int[3 * i + 2]};
+  const auto net = [&](std::size_t k) {
+    return loads.f_ext[k] + loads.f_cont[k] + loads.f_coup[k] - loads.f_int[k];
+  };
+  for (std::int32_t node : b.nodes) {
+    const auto i = static_cast<std::size_t>(node);
+    const Vec3 fi{net(3 * i), net(3 * i + 1), net(3 * i + 2)};
     const Vec3 r = Vec3{x[3 * i], x[3 * i + 1], x[3 * i + 2]} - b.centre;
     f = f + fi;
     t = t + cross(r, fi);
   }
-  for (std::int32_t i : b.turning)
-    t = t + Vec3{m_ext[3 * i] - m_int[3 * i], m_ext[3 * i + 1] - m_int[3 * i + 1],
-                 m_ext[3 * i + 2] - m_int[3 * i + 2]};
+  for (std::int32_t node : b.turning) {
+    const auto i = static_cast<std::size_t>(node);
+    t = t + Vec3{loads.m_ext[3 * i] - loads.m_int[3 * i],
+                 loads.m_ext[3 * i + 1] - loads.m_int[3 * i + 1],
+                 loads.m_ext[3 * i + 2] - loads.m_int[3 * i + 2]};
+  }
   b.force = f;
   b.torque = t;
 }

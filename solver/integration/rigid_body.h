@@ -44,11 +44,17 @@ struct RigidBodyState {
   std::uint8_t failed = 0;      ///< 1: let go of its nodes (they move on their own)
 };
 
-/// Sums the nodal forces f_ext - f_int ([3n] each) of the body's nodes and the body force
+/// The nodal loads on a body: the driving load f_ext + f_cont + f_coup, f_int, and the moments
+/// m_ext and m_int ([3n] each, N and N m).
+struct NodalLoads {
+  const double *f_ext, *f_cont, *f_coup, *f_int, *m_ext, *m_int;
+};
+
+/// Sums the nodal forces f_ext + f_cont + f_coup - f_int of the body's nodes and the body force
 /// mass*gravity into F^n and T^n (about c^n; x = current node coordinates [3n]), and the moments
-/// m_ext - m_int ([3n] each) of its turning nodes into T^n.
-void gather_rigid_load(RigidBodyState& b, const double* f_ext, const double* f_int, const double* x,
-                       const Vec3& gravity, const double* m_ext, const double* m_int);
+/// m_ext - m_int of its turning nodes into T^n.
+void gather_rigid_load(RigidBodyState& b, const NodalLoads& loads, const double* x,
+                       const Vec3& gravity);
 
 /// Momentum update to n+1/2 with dt^{n-1/2}; omega from L with the current orientation.
 void update_rigid_momenta(RigidBodyState& b, double dt_mid);

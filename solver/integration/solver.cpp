@@ -36,35 +36,46 @@ void zero_held(const std::vector<std::uint8_t>& fixed, double* t, double* r, std
 /// The nodal arrays of Solver::compute_accelerations.
 struct AccelerationArrays {
   const double *f_ext, *f_cont, *f_coup, *f_int, *m_coup, *m_int, *inv_mass, *inv_inertia;
-  double *f_load, *a, *alpha;
+  double *a, *alpha;
   std::size_t n;
 };
 
-/// One pass over the nodes: the driving load f_load = f_ext + f_cont + f_coup, a = (f_load -
-/// f_int) / m ([1], lumped mass; inv_mass 0 for rigid, ghost and massless nodes) and the
-/// rotational alpha = (m_coup - m_int) / I. Memory-bound (bench/bench_cycle.cpp), so the arrays
-/// known to be zero are not read: f_ext without gravity or loads (kExt false), and f_coup and
-/// m_coup everywhere (coupling_pass redoes the few nodes that carry coupling loads). Adding an
-/// exact zero changes no value, so the results are those of the full expression.
-template <bool kExt>
+/// One pass over the nodes: a = (f - f_int) / m with the driving load f = f_ext + f_cont + f_coup
+/// ([1], lumped mass; inv_mass 0 for rigid, ghost and massless nodes) and the rotational
+/// alpha = (m_coup - m_int) / I. Memory-bound (bench/bench_cycle.cpp), so the arrays known to be
+/// zero are not read: f_ext without gravity or loads (kExt false), and f_cont, f_coup and m_coup
+/// everywhere (contact_node_pass and coupling_pass redo the few nodes that carry them). Adding an
+/// exact zero changes no value (f_cont is never -0: it starts at +0 and sums), so the results are
+/// those of the full expression.
+template <bool kExt, bool kTurn>
 void acceleration_pass(const AccelerationArrays& s, std::size_t i0, std::size_t i1) {
   const double* __restrict fe = s.f_ext;
-  const double* __restrict fc = s.f_cont;
   const double* __restrict fi = s.f_int;
   const double* __restrict mi = s.m_int;
   const double* __restrict wm = s.inv_mass;
   const double* __restrict wi = s.inv_inertia;
-  double* __restrict fl = s.f_load;
   double* __restrict a = s.a;
   double* __restrict al = s.alpha;
   for (std::size_t i = i0; i < i1; ++i) {
     const double w = wm[i], wr = wi[i];
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
-      double f = fc[k];
+      double f = 0.0;  // f_cont off the contact nodes
       if constexpr (kExt) f = fe[k] + f;
-      fl[k] = f;
       a[k] = (f - fi[k]) * w;
-      al[k] = -mi[k] * wr;
+      if constexpr (kTurn) al[k] = -mi[k] * wr;  // else zero and left so
+    }
+  }
+}
+
+/// acceleration_pass's translational expression with f_cont, at the nodes the contacts pushed.
+template <bool kExt>
+void contact_node_pass(const AccelerationArrays& s, const std::vector<std::int32_t>& nodes) {
+  for (const auto node : nodes) {
+    const auto i = static_cast<std::size_t>(node);
+    for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      double f = s.f_cont[k];
+      if constexpr (kExt) f = s.f_ext[k] + f;
+      s.a[k] = (f - s.f_int[k]) * s.inv_mass[i];
     }
   }
 }
@@ -75,28 +86,52 @@ void coupling_pass(const AccelerationArrays& s, const std::vector<std::int32_t>&
     const auto i = static_cast<std::size_t>(node);
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
       const double f = s.f_ext[k] + s.f_cont[k] + s.f_coup[k];
-      s.f_load[k] = f;
       s.a[k] = (f - s.f_int[k]) * s.inv_mass[i];
       s.alpha[k] = (s.m_coup[k] - s.m_int[k]) * s.inv_inertia[i];
     }
   }
 }
 
-/// The F^n halves of the external and contact work (Solver::positions_and_work) over dofs [k0,
-/// k1) in one pass with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass.
+/// The F^n half of the external work (Solver::positions_and_work) over dofs [k0, k1) in one pass
+/// with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass. The contact forces'
+/// half is summed over their nodes alone (sparse_dot).
 template <bool kExt>
 void positions_pass(const double* __restrict x0, const double* __restrict u,
-                    const double* __restrict du, const double* __restrict fe,
-                    const double* __restrict fc, double* __restrict x, std::size_t k0,
-                    std::size_t k1, double& external, double& contact) {
-  double ext = 0.0, cont = 0.0;  // each in index order
+                    const double* __restrict du, const double* __restrict fe, double* __restrict x,
+                    std::size_t k0, std::size_t k1, double& external) {
+  double ext = 0.0;  // in index order
   for (std::size_t k = k0; k < k1; ++k) {
     x[k] = x0[k] + u[k];
     if constexpr (kExt) ext += fe[k] * du[k];
-    cont += fc[k] * du[k];
   }
   external = ext;
-  contact = cont;
+}
+
+/// [2] and positions_pass in one pass over dofs [k0, k1): du = dt v, u += dt v, dtheta = dt omega
+/// (advance_displacement's expressions), x = x0 + u and the F^n half of the external work, on one
+/// tile. Memory-bound: u and du are not read back from memory by a second pass over all nodes.
+template <bool kExt, bool kTurn>
+double displacement_pass(double* __restrict u, double* __restrict du, double* __restrict dtheta,
+                         const double* __restrict v, const double* __restrict omega,
+                         const double* __restrict x0, const double* __restrict fe,
+                         double* __restrict x, double dt, std::size_t k0, std::size_t k1) {
+  for (std::size_t k = k0; k < k1; ++k) {
+    const double d = dt * v[k];
+    du[k] = d;
+#ifdef __FMA__
+    const double uk = std::fma(dt, v[k], u[k]);  // advance_displacement's rounding
+#else
+    const double uk = u[k] + dt * v[k];
+#endif
+    u[k] = uk;
+    if constexpr (kTurn) dtheta[k] = dt * omega[k];  // else zero and left so
+    x[k] = x0[k] + uk;
+  }
+  // apart, so that the loop above vectorises; du is still in L1 (a tile)
+  double ext = 0.0;  // in index order, as positions_pass
+  if constexpr (kExt)
+    for (std::size_t k = k0; k < k1; ++k) ext += fe[k] * du[k];
+  return ext;
 }
 
 /// sum a[k] b[k] over dofs [k0, k1), in index order.
@@ -192,14 +227,14 @@ void Solver::apply_initial_velocities() {
 void Solver::initialize() {
   const std::size_t n3 = 3 * n_;
   for (auto* vec : {&x_, &u_, &v_, &v_prev_, &a_, &omega_, &omega_prev_, &alpha_, &f_int_, &f_ext_,
-                    &m_int_, &du_, &f_cont_, &f_load_, &f_coup_, &m_coup_, &dtheta_})
+                    &m_int_, &du_, &f_cont_, &f_coup_, &m_coup_, &dtheta_})
     vec->assign(n3, 0.0);
   x_ = model_.nodes.x0;
   const Vec3& gravity = model_.controls.gravity_m_s2;
   external_loads_ =
       gravity[0] != 0.0 || gravity[1] != 0.0 || gravity[2] != 0.0 || !model_.loads.empty();
-  coupled_mark_.assign(n_, 0);
-  coupled_nodes_.clear();
+  coupled_.reset(n_);
+  contact_nodes_.reset(n_);
   assemble_masses();
   if (!mass_override_.empty()) {
     if (mass_override_.size() != n_)
@@ -297,8 +332,11 @@ void Solver::compute_forces(double dt, ElementSpan span) {
     on_node_ranges([&](std::size_t i0, std::size_t i1) {
       std::fill(f_int_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
                 f_int_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
-      std::fill(m_int_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
-                m_int_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
+      for (std::size_t b = i0; b < i1; b += kNodeTile)  // zero and left so off the turning tiles
+        if (turning(b))
+          std::fill(m_int_.begin() + static_cast<std::ptrdiff_t>(3 * b),
+                    m_int_.begin() + static_cast<std::ptrdiff_t>(3 * std::min(i1, b + kNodeTile)),
+                    0.0);
     });
     dt_stable_ = std::numeric_limits<double>::infinity();
     for (auto& rt : parts_) rt.last = {};
@@ -499,10 +537,12 @@ void Solver::set_contact_step_references() {
 
 void Solver::compute_contact_forces(double dt) {
   if (contacts_.empty()) return;
-  on_node_ranges([&](std::size_t i0, std::size_t i1) {
-    std::fill(f_cont_.begin() + static_cast<std::ptrdiff_t>(3 * i0),
-              f_cont_.begin() + static_cast<std::ptrdiff_t>(3 * i1), 0.0);
-  });
+  // f_cont is zero but at the nodes the contacts pushed last time (contact_nodes_)
+  for (const auto node : contact_nodes_.nodes())
+    for (std::size_t k = 3 * static_cast<std::size_t>(node);
+         k < 3 * static_cast<std::size_t>(node) + 3; ++k)
+      f_cont_[k] = 0.0;
+  contact_nodes_.clear();
   // The penalty springs add to the highest frequency of the nodes they hold: a node of the
   // critical element on a spring of frequency w_c vibrates at up to sqrt(w_e^2 + w_c^2) (the
   // largest eigenvalue of a sum of positive semi-definite stiffnesses is at most the sum of
@@ -540,6 +580,7 @@ void Solver::compute_contact_forces(double dt) {
     for (std::size_t b = 0; b < blocks; ++b) run_block(b);
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     contact_steps_[k] = contacts_[k].finish(f_cont_.data());
+    add_contact_nodes(k);
     contact_cost_.node_cycles += static_cast<std::int64_t>(contacts_[k].slave_node_count());
     const double bound = share * contact_steps_[k].dt_stable_s;
     if (bound < dt_stable_) {
@@ -576,22 +617,37 @@ void Solver::compute_external_forces(double t) {
 }
 
 void Solver::compute_accelerations() {
-  const AccelerationArrays arrays{f_ext_.data(),    f_cont_.data(),      f_coup_.data(),
-                                  f_int_.data(),    m_coup_.data(),      m_int_.data(),
-                                  inv_mass_.data(), inv_inertia_.data(), f_load_.data(),
-                                  a_.data(),        alpha_.data(),       n_};
+  const AccelerationArrays arrays{f_ext_.data(),
+                                  f_cont_.data(),
+                                  f_coup_.data(),
+                                  f_int_.data(),
+                                  m_coup_.data(),
+                                  m_int_.data(),
+                                  inv_mass_.data(),
+                                  inv_inertia_.data(),
+                                  a_.data(),
+                                  alpha_.data(),
+                                  n_};
   on_node_ranges([&](std::size_t i0, std::size_t i1) {
-    if (external_loads_)
-      acceleration_pass<true>(arrays, i0, i1);
-    else
-      acceleration_pass<false>(arrays, i0, i1);
+    for (std::size_t b = i0; b < i1; b += kNodeTile) {
+      const std::size_t e = std::min(i1, b + kNodeTile);
+      if (turning(b))
+        external_loads_ ? acceleration_pass<true, true>(arrays, b, e)
+                        : acceleration_pass<false, true>(arrays, b, e);
+      else
+        external_loads_ ? acceleration_pass<true, false>(arrays, b, e)
+                        : acceleration_pass<false, false>(arrays, b, e);
+    }
   });
-  coupling_pass(arrays, coupled_nodes_);
-  const double* f_drive = f_load_.data();
+  if (external_loads_)
+    contact_node_pass<true>(arrays, contact_nodes_.nodes());
+  else
+    contact_node_pass<false>(arrays, contact_nodes_.nodes());
+  coupling_pass(arrays, coupled_.nodes());
+  const NodalLoads loads{f_ext_.data(), f_cont_.data(), f_coup_.data(),
+                         f_int_.data(), m_coup_.data(), m_int_.data()};
   for (auto& b : bodies_)
-    if (!b.failed)
-      gather_rigid_load(b, f_drive, f_int_.data(), x_.data(), model_.controls.gravity_m_s2,
-                        m_coup_.data(), m_int_.data());
+    if (!b.failed) gather_rigid_load(b, loads, x_.data(), model_.controls.gravity_m_s2);
   check_spot_welds();
   on_node_ranges([&](std::size_t i0, std::size_t i1) {
     zero_held(model_.fixed, a_.data(), alpha_.data(), i0, i1);
@@ -612,6 +668,17 @@ double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {
   const double* __restrict vp = v_prev_.data();
   const double* __restrict w = omega_.data();
   const double* __restrict wp = omega_prev_.data();
+  if (!turning(i0)) {  // omega and I are zero on the tile
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (rigid_node_[i] || ghost_[i]) continue;
+      const std::size_t k = 3 * i;
+      const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
+      // + 0.0 for the I rot term: m tr is rounded before the sum takes it, as below (without it
+      // the compiler fuses m tr into the sum, one rounding fewer: other bits)
+      sum += mass_[i] * tr + 0.0;
+    }
+    return sum;
+  }
   for (std::size_t i = i0; i < i1; ++i) {
     if (rigid_node_[i] || ghost_[i]) continue;
     const std::size_t k = 3 * i;
@@ -647,7 +714,7 @@ double Solver::velocity_pass(double dt_mid) {
   return sum_over_tiles([=, this](std::size_t i0, std::size_t i1) {
     const std::size_t k0 = 3 * i0, len = 3 * (i1 - i0);
     advance_velocity(v + k0, vp + k0, a + k0, dt_mid, len);
-    advance_velocity(w + k0, wp + k0, al + k0, dt_mid, len);
+    if (turning(i0)) advance_velocity(w + k0, wp + k0, al + k0, dt_mid, len);
     zero_held(model_.fixed, v, w, i0, i1);
     return kinetic_sum(i0, i1, 0.0);
   });
@@ -744,12 +811,31 @@ void Solver::end_cycle_positions() {
       ghost_reaction_[3 * k + d] = ghost_reaction(i);
       ghost_reaction_moment_[3 * k + d] = ghost_reaction_moment(i);
     }
-  // [2] for every node; the ghosts' values are provisional (apply_ghost_motion).
-  on_node_ranges([&](std::size_t i0, std::size_t i1) {
-    const std::size_t k = 3 * i0;
-    advance_displacement(u_.data() + k, du_.data() + k, dtheta_.data() + k, v_.data() + k,
-                         omega_.data() + k, dt, 3 * (i1 - i0));
-  });
+  // [2] for every node; the ghosts' values are provisional (apply_ghost_motion). A tile without
+  // a rigid body's node takes x^{n+1} = x0 + u^{n+1} and its F^n half of the external work in the
+  // same pass (its sum in tile_sum_); the others once the bodies have moved (positions_and_work).
+  {
+    double *u = u_.data(), *du = du_.data(), *dth = dtheta_.data(), *x = x_.data();
+    const double *v = v_.data(), *om = omega_.data(), *x0 = model_.nodes.x0.data(),
+                 *fe = f_ext_.data();
+    double* sums = tile_sum_.data();
+    on_node_ranges([&](std::size_t i0, std::size_t i1) {
+      for (std::size_t b = i0; b < i1; b += kNodeTile) {
+        const std::size_t k0 = 3 * b, k1 = 3 * std::min(i1, b + kNodeTile);
+        double& sum = sums[b / kNodeTile];
+        if (rigid_tile_[b / kNodeTile])
+          advance_displacement(u + k0, du + k0, dth + k0, v + k0, om + k0, dt, k1 - k0);
+        else if (turning(b))
+          sum = external_loads_
+                    ? displacement_pass<true, true>(u, du, dth, v, om, x0, fe, x, dt, k0, k1)
+                    : displacement_pass<false, true>(u, du, dth, v, om, x0, fe, x, dt, k0, k1);
+        else
+          sum = external_loads_
+                    ? displacement_pass<true, false>(u, du, dth, v, om, x0, fe, x, dt, k0, k1)
+                    : displacement_pass<false, false>(u, du, dth, v, om, x0, fe, x, dt, k0, k1);
+      }
+    });
+  }
   for (auto& rw : walls_) rw.travel_m += dt * rw.velocity_m_s;  // a moving wall's plane
   const Vec3& g = model_.controls.gravity_m_s2;
   double rigid_gravity_work = 0.0;
@@ -765,8 +851,8 @@ void Solver::end_cycle_positions() {
   }
   time_s_ += dt;
   // Every work term by the trapezoid rule 1/2 (F^n + F^{n+1}) . (u^{n+1} - u^n) (energy.h):
-  // first the F^n halves, then the forces at t^{n+1}, then their halves. One pass: x^{n+1}, the
-  // F^n halves, and the coupling loads of t^n cleared.
+  // first the F^n halves, then the forces at t^{n+1}, then their halves. Here: x^{n+1} where the
+  // displacement pass left it, the F^n halves, and the coupling loads of t^n cleared.
   const StepWork w = positions_and_work();
   // Until apply_ghost_motion, a ghost's position and velocity are NaN: a force computed from them
   // (an element taken for interior that is not) is not finite, and the guard stops the run.
@@ -793,29 +879,32 @@ void Solver::end_cycle_interior_forces() {
 
 Solver::StepWork Solver::positions_and_work() {
   StepWork w;
-  const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(), *fe = f_ext_.data(),
-               *fc = f_cont_.data();
-  // per tile of nodes, the tiles' sums in tile order (velocity_pass)
+  const double *x0 = model_.nodes.x0.data(), *u = u_.data(), *du = du_.data(), *fe = f_ext_.data();
+  // per tile of nodes, the tiles' sums in tile order (velocity_pass); end_cycle_positions did
+  // the tiles without rigid nodes
   double* x = x_.data();
-  double* contact = tile_sum_.data() + tile_sum_.size() / 2;
-  w.external = sum_over_tiles([&](std::size_t i0, std::size_t i1) {
-    double ext = 0.0;
-    if (external_loads_)
-      positions_pass<true>(x0, u, du, fe, fc, x, 3 * i0, 3 * i1, ext, contact[i0 / kNodeTile]);
-    else
-      positions_pass<false>(x0, u, du, fe, fc, x, 3 * i0, 3 * i1, ext, contact[i0 / kNodeTile]);
-    return ext;
-  });
-  w.contact = 0.0;
-  for (std::size_t t = 0; t < tiles(); ++t) w.contact += contact[t];
+  double* sums = tile_sum_.data();
+  if (any_rigid_tile_)
+    on_node_ranges([&](std::size_t i0, std::size_t i1) {
+      for (std::size_t b = i0; b < i1; b += kNodeTile) {
+        if (!rigid_tile_[b / kNodeTile]) continue;
+        const std::size_t k0 = 3 * b, k1 = 3 * std::min(i1, b + kNodeTile);
+        if (external_loads_)
+          positions_pass<true>(x0, u, du, fe, x, k0, k1, sums[b / kNodeTile]);
+        else
+          positions_pass<false>(x0, u, du, fe, x, k0, k1, sums[b / kNodeTile]);
+      }
+    });
+  w.external = 0.0;
+  for (std::size_t t = 0; t < tiles(); ++t) w.external += sums[t];
+  w.contact = sparse_dot(contact_nodes_.nodes(), f_cont_.data(), du);
   // The coupling loads live on few nodes: their work in index order (the sums over all dofs,
   // which add exact zeros elsewhere), then cleared.
-  if (!std::is_sorted(coupled_nodes_.begin(), coupled_nodes_.end()))
-    std::sort(coupled_nodes_.begin(), coupled_nodes_.end());
+  coupled_.sort();
   double coup = 0.0, mom = 0.0;
   double* __restrict fk = f_coup_.data();
   double* __restrict mk = m_coup_.data();
-  for (const auto node : coupled_nodes_) {
+  for (const auto node : coupled_.nodes()) {
     const auto i = static_cast<std::size_t>(node);
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
       coup += fk[k] * du[k];
@@ -823,11 +912,10 @@ Solver::StepWork Solver::positions_and_work() {
       fk[k] = 0.0;
       mk[k] = 0.0;
     }
-    coupled_mark_[i] = 0;
   }
   w.coupling = coup;
   w.coupling_moment = mom;
-  coupled_nodes_.clear();
+  coupled_.clear();
   return w;
 }
 
@@ -847,9 +935,7 @@ void Solver::end_cycle_compute() {
                                  return dot_range(f_ext_, du_, 3 * i0, 3 * i1);
                                });
   if (!contacts_.empty())
-    energy_.contact_J -= 0.5 * sum_over_tiles([&](std::size_t i0, std::size_t i1) {
-                           return dot_range(f_cont_, du_, 3 * i0, 3 * i1);
-                         });
+    energy_.contact_J -= 0.5 * sparse_dot(contact_nodes_.nodes(), f_cont_.data(), du_.data());
   energy_.coupling_work_J += ghost_reaction_work(0.5);
 }
 

@@ -25,6 +25,7 @@
 #include "solver/integration/energy.h"
 #include "solver/integration/global_step.h"
 #include "solver/integration/guard.h"
+#include "solver/integration/node_set.h"
 #include "solver/integration/rigid_body.h"
 #include "solver/integration/step_hold.h"
 #include "solver/model/model.h"
@@ -293,8 +294,9 @@ class Solver {
   void set_contact_step_references();      // the soft springs' step (needs element_dt_s)
   void compute_accelerations();
   double kinetic_energy() const;
-  /// sum + m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} of nodes [i0, i1), in node
-  /// order, over the nodes the kinetic energy counts (not rigid, not ghosts).
+  /// sum + m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} of nodes [i0, i1) (within
+  /// the tile of i0), in node order, over the nodes the kinetic energy counts (not rigid, not
+  /// ghosts).
   double kinetic_sum(std::size_t i0, std::size_t i1, double sum) const;
   /// 1/2 node_sum plus the rigid bodies' kinetic energy.
   double kinetic_energy_from(double node_sum) const;
@@ -313,8 +315,8 @@ class Solver {
   struct StepWork {
     double external = 0.0, contact = 0.0, coupling = 0.0, coupling_moment = 0.0;
   };
-  /// One pass after the displacement update: x = x0 + u, the StepWork sums, f_coup and m_coup
-  /// cleared.
+  /// After the bodies moved: x = x0 + u on the tiles with rigid nodes (end_cycle_positions did
+  /// the others), the StepWork sums, f_coup and m_coup cleared.
   StepWork positions_and_work();
   void propose_step();
   GuardContext guard_context() const;
@@ -334,7 +336,6 @@ class Solver {
   std::vector<double> omega_, omega_prev_, alpha_;  // [3n] rotational dofs
   std::vector<double> f_int_, f_ext_, m_int_;       // [3n]
   std::vector<double> f_cont_;                      // [3n] contact forces (push on the node)
-  std::vector<double> f_load_;                      // [3n] f_ext + f_cont + f_coup: what drives
   std::vector<double> f_coup_;                      // [3n] coupling forces at t^n
   std::vector<double> mass_override_;               // [n] or empty
   std::vector<double> inertia_override_;            // [n] or empty
@@ -435,9 +436,24 @@ class Solver {
   std::vector<elements::KernelResult> chunk_results_;  // [chunks of the larger span]
   std::vector<std::size_t> chunk_cut_[2];              // [threads + 1]: thread t's chunks of span s
   std::vector<std::size_t> node_cut_;  // [threads + 1]: thread t's nodes (whole tiles)
-  std::vector<double> tile_sum_;       // [2 tiles] partial sums
-  /// initialize(): the chunks, the team, the cuts (after interior_end_).
+  std::vector<double> tile_sum_;       // [tiles] partial sums
+  // [tiles] 1: the tile holds a node of a rigid body (built before the threads; one let go by a
+  // failed spot weld stays marked): its positions wait for the bodies' motion (end_cycle_positions)
+  std::vector<std::uint8_t> rigid_tile_;
+  bool any_rigid_tile_ = false;
+  // [tiles] 0: no node of the tile can turn (hexes' nodes only: no inertia, no initial spin, no
+  // rigid, ghost or prescribed rotation): omega, omega_prev, dtheta and m_int stay the zeros
+  // initialize() made, alpha too but at coupled nodes (coupling_pass: a moment times the zero
+  // 1/I), and the nodal passes leave them out there (memory-bound). Empty before
+  // set_up_threads(): every tile turns.
+  std::vector<std::uint8_t> turning_tile_;
+  bool turning(std::size_t first_node) const {
+    return turning_tile_.empty() || turning_tile_[first_node / kNodeTile];
+  }
+  /// initialize(): the chunks, the team, the cuts (after interior_end_), the rigid and turning
+  /// tiles (after the bodies, ghosts, prescribed dofs and initial velocities).
   void set_up_threads();
+  void set_up_turning_tiles();
   std::size_t tiles() const { return (n_ + kNodeTile - 1) / kNodeTile; }
   /// f(i0, i1) over every thread's node range, at once.
   template <class F>
@@ -501,13 +517,22 @@ class Solver {
   std::vector<double> ghost_u_prev_, ghost_reaction_, ghost_reaction_moment_;
   // Arrays known to hold zeros, not read by the nodal passes (they are memory-bound):
   bool external_loads_ = false;  // gravity or loads: f_ext may be non-zero
-  // The nodes whose f_coup / m_coup were written since they were last cleared (f_coup and m_coup
-  // are zero elsewhere): the passes over all nodes leave them out and treat these few apart.
-  std::vector<std::uint8_t> coupled_mark_;  // [n]
-  std::vector<std::int32_t> coupled_nodes_;
-  void mark_coupled(std::size_t i);
-  /// After f_coup / m_coup were restored from a checkpoint: the nodes that carry them.
+  // The nodes whose f_coup / m_coup were written since they were last cleared, and those the
+  // contacts pushed in the last compute_contact_forces (in the order they first pushed them:
+  // contact by contact, each in its record's order, which no thread count changes): f_coup,
+  // m_coup and f_cont are zero elsewhere, so the passes over all nodes leave them out and treat
+  // these few apart.
+  NodeSet coupled_, contact_nodes_;
+  void mark_coupled(std::size_t i) { coupled_.insert(i); }
+  /// Contact k's pushed nodes into contact_nodes_ (after its finish(), or restore_state()).
+  void add_contact_nodes(std::size_t k) {
+    for (const auto node : contacts_[k].applied_nodes())
+      contact_nodes_.insert(static_cast<std::size_t>(node));
+  }
+  /// After f_coup and m_coup were restored from a checkpoint: the nodes that carry them.
   void rebuild_coupled_nodes();
+  /// The load that drives node dof k: f_ext + f_cont + f_coup [N] ([1]).
+  double driving_load(std::size_t k) const { return f_ext_[k] + f_cont_[k] + f_coup_[k]; }
 };
 
 }  // namespace crashlink::integration

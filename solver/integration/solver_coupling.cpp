@@ -56,21 +56,11 @@ void Solver::apply_ghost_motion() {
   energy_.coupling_work_J += 0.5 * ghost_work;  // the R^n half of the ghosts' reaction work
 }
 
-void Solver::mark_coupled(std::size_t i) {
-  if (coupled_mark_[i]) return;
-  coupled_mark_[i] = 1;
-  coupled_nodes_.push_back(static_cast<std::int32_t>(i));
-}
-
 void Solver::rebuild_coupled_nodes() {
-  std::fill(coupled_mark_.begin(), coupled_mark_.end(), 0);
-  coupled_nodes_.clear();
+  coupled_.reset(n_);
   for (std::size_t i = 0; i < n_; ++i)
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
-      if (f_coup_[k] != 0.0 || m_coup_[k] != 0.0) {
-        mark_coupled(i);
-        break;
-      }
+      if (f_coup_[k] != 0.0 || m_coup_[k] != 0.0) coupled_.insert(i);
 }
 
 void Solver::set_mass_override(std::vector<double> mass_kg) {

@@ -235,17 +235,17 @@ void Solver::check_spot_welds() {
     auto& b = bodies_[k];
     if (!b.breakable || b.failed) continue;
     const auto& f = model_.rigid_bodies[k].failure;
-    // The force the weld applies to node 2: R_2 = m_2 a_2 - (f_load - f_int + m_2 g)_2, a_2 the
-    // rigid motion's acceleration at node 2 (rigid_point_acceleration). The weld pulls node 2
-    // back toward node 1 when the sheets are pulled apart: its tension is f_n = -R_2 . axis,
-    // axis from node 1 to node 2 (LS-DYNA's SN acts in tension only); f_s the rest of R_2.
+    // The force the weld applies to node 2: R_2 = m_2 a_2 - (f_ext + f_cont + f_coup - f_int + m_2
+    // g)_2, a_2 the rigid motion's acceleration at node 2 (rigid_point_acceleration). The weld
+    // pulls node 2 back toward node 1 when the sheets are pulled apart: its tension is f_n = -R_2 .
+    // axis, axis from node 1 to node 2 (LS-DYNA's SN acts in tension only); f_s the rest of R_2.
     const auto i1 = static_cast<std::size_t>(b.nodes[0]), i2 = static_cast<std::size_t>(b.nodes[1]);
     const Vec3 x1{x_[3 * i1], x_[3 * i1 + 1], x_[3 * i1 + 2]};
     const Vec3 x2{x_[3 * i2], x_[3 * i2 + 1], x_[3 * i2 + 2]};
     const Vec3 a2 = rigid_point_acceleration(b, x2);
     const double m2 = (b.mass_kg > 0.0 ? b.mass_kg / (mass_[i1] + mass_[i2]) : 1.0) * mass_[i2];
     Vec3 load = m2 * model_.controls.gravity_m_s2;  // its weight: in the body's M g
-    for (std::size_t d = 0; d < 3; ++d) load[d] += f_load_[3 * i2 + d] - f_int_[3 * i2 + d];
+    for (std::size_t d = 0; d < 3; ++d) load[d] += driving_load(3 * i2 + d) - f_int_[3 * i2 + d];
     const Vec3 reaction = m2 * a2 - load;
     const Vec3 axis = (1.0 / norm(x2 - x1)) * (x2 - x1);
     const double fn = -dot(reaction, axis);
@@ -272,7 +272,7 @@ void Solver::release_body(std::size_t k, bool accelerate) {
     }
     // its own acceleration at t^n, the body's no longer
     for (std::size_t d = 0; accelerate && d < 3; ++d) {
-      a_[3 * i + d] = inv_mass_[i] * (f_load_[3 * i + d] - f_int_[3 * i + d]);
+      a_[3 * i + d] = inv_mass_[i] * (driving_load(3 * i + d) - f_int_[3 * i + d]);
       alpha_[3 * i + d] = inv_inertia_[i] * (m_coup_[3 * i + d] - m_int_[3 * i + d]);
     }
   }

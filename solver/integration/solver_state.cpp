@@ -71,7 +71,6 @@ void Solver::visit_state(V& v, Self& s) {
   v.sized("f_ext", s.f_ext_);
   v.sized("m_int", s.m_int_);
   v.sized("f_cont", s.f_cont_);
-  v.sized("f_load", s.f_load_);
   v.sized("f_coup", s.f_coup_);
   v.sized("m_coup", s.m_coup_);
   if constexpr (V::loading) s.rebuild_coupled_nodes();
@@ -93,10 +92,12 @@ void Solver::visit_state(V& v, Self& s) {
   }
   for (std::size_t b = 0; b < s.bodies_.size(); ++b)
     visit_body(v, fmt::format("body{}.", b), s.bodies_[b]);
+  if constexpr (V::loading) s.contact_nodes_.reset(s.n_);
   for (std::size_t k = 0; k < s.contacts_.size(); ++k) {
     const std::string pre = fmt::format("contact{}.", k);
     if constexpr (V::loading) {
       s.contacts_[k].restore_state(v.r, pre);
+      s.add_contact_nodes(k);  // f_cont's nodes, in the order the run had them
     } else {
       s.contacts_[k].save_state(v.w, pre);
     }

@@ -28,7 +28,12 @@ void Solver::set_up_threads() {
     deformable[p] = !std::holds_alternative<std::monostate>(parts_[p].state);
   chunks_.build(model_, interior_end_, deformable, threads_ > 1);
   chunk_results_.assign(std::max(chunks_.chunks(0).size(), chunks_.chunks(1).size()), {});
-  tile_sum_.assign(2 * tiles(), 0.0);
+  tile_sum_.assign(tiles(), 0.0);
+  rigid_tile_.assign(tiles(), 0);
+  any_rigid_tile_ = false;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (rigid_node_[i]) rigid_tile_[i / kNodeTile] = 1, any_rigid_tile_ = true;
+  set_up_turning_tiles();
   contact_worker_cpu_.assign(static_cast<std::size_t>(threads_), 0.0);
   kernel_worker_cpu_.assign(static_cast<std::size_t>(threads_), {0.0, 0.0, 0.0});
   team_.reset();
@@ -56,6 +61,24 @@ void Solver::set_up_threads() {
     }
   }
   if (threads_ > 1) team_ = std::make_unique<parallel::ThreadTeam>(threads_);
+}
+
+void Solver::set_up_turning_tiles() {
+  std::vector<std::uint8_t> turns(n_, 0);
+  for (const auto& part : model_.parts)
+    if (part.kind != model::ElementKind::Hex8)  // a shell's nodes carry moments
+      for (const auto c : part.connectivity) turns[static_cast<std::size_t>(c)] = 1;
+  for (const auto& p : prescribed_)
+    if (p.rotational) turns[p.index / 3] = 1;
+  for (std::size_t i = 0; i < n_; ++i) {
+    const std::size_t k = 3 * i;
+    if (inertia_[i] != 0.0 || rigid_node_[i] || ghost_[i] || omega_[k] != 0.0 ||
+        omega_[k + 1] != 0.0 || omega_[k + 2] != 0.0)
+      turns[i] = 1;
+  }
+  turning_tile_.assign(tiles(), 0);
+  for (std::size_t i = 0; i < n_; ++i)
+    if (turns[i]) turning_tile_[i / kNodeTile] = 1;
 }
 
 }  // namespace crashlink::integration

@@ -103,7 +103,7 @@ TEST(SolverCheckpoint, GlobalStableStepIsRestored) {
 }
 
 // Coupling loads (Solver::add_coupling_force, as a coupled domain receives them) live only on the
-// nodes that were given one (solver.h coupled_nodes_); a checkpoint taken after the accelerations
+// nodes that were given one (solver.h coupled_); a checkpoint taken after the accelerations
 // and before the next positions still holds them (their F^n half of the work is not yet counted)
 // and the restored solver must find them again: same bits to the end, coupling work included.
 TEST(SolverCheckpoint, PendingCouplingLoadsAreRestored) {
