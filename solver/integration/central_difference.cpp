@@ -28,4 +28,17 @@ void advance_displacement(double* __restrict u, double* __restrict du, double* _
   }
 }
 
+void zero_held(const std::vector<std::uint8_t>& fixed, double* t, double* r, std::size_t i0,
+               std::size_t i1) {
+  if (fixed.empty()) return;
+  for (std::size_t i = i0; i < i1; ++i) {
+    const std::uint8_t mask = fixed[i];
+    if (mask == 0) continue;
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (mask & (1u << d)) t[3 * i + d] = 0.0;
+      if (mask & (8u << d)) r[3 * i + d] = 0.0;
+    }
+  }
+}
+
 }  // namespace crashlink::integration

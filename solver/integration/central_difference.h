@@ -6,6 +6,8 @@
 // its arrays: the nodal updates are memory-bound, so a pass saved is time saved
 // (bench/bench_cycle.cpp).
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace crashlink::integration {
 
@@ -21,5 +23,10 @@ void advance_velocity(double* v, double* v_prev, const double* a, double dt_mid,
 /// du[i] = dt * v[i], u[i] += dt * v[i] and dtheta[i] = dt * omega[i], for i < len. [2]
 void advance_displacement(double* u, double* du, double* dtheta, const double* v,
                           const double* omega, double dt, std::size_t len);
+
+/// Zeroes the held dofs of nodes [i0, i1): translations (bits 0-2 of fixed[i]) in t, rotations
+/// (bits 3-5) in r; fixed empty: none held.
+void zero_held(const std::vector<std::uint8_t>& fixed, double* t, double* r, std::size_t i0,
+               std::size_t i1);
 
 }  // namespace crashlink::integration

@@ -315,7 +315,10 @@ class Solver {
   struct StepWork {
     double external = 0.0, contact = 0.0, coupling = 0.0, coupling_moment = 0.0;
   };
-  /// After the bodies moved: x = x0 + u on the tiles with rigid nodes (end_cycle_positions did
+  /// u^{n+1} = u^n + dt v^{n+1/2} ([2]), du, dtheta, and on the tiles without rigid nodes x^{n+1}
+  /// and the tiles' F^n halves of the external work (tile_sum_).
+  void advance_positions(double dt);
+  /// After the bodies moved: x = x0 + u on the tiles with rigid nodes (advance_positions did
   /// the others), the StepWork sums, f_coup and m_coup cleared.
   StepWork positions_and_work();
   void propose_step();
