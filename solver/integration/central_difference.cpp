@@ -12,6 +12,11 @@ void advance_velocity(double* __restrict v, double* __restrict v_prev, const dou
   }
 }
 
+void advance_velocity_into(double* __restrict v_next, const double* __restrict v,
+                           const double* __restrict a, double dt_mid, std::size_t len) {
+  for (std::size_t i = 0; i < len; ++i) v_next[i] = v[i] + dt_mid * a[i];
+}
+
 void advance_displacement(double* __restrict u, double* __restrict du, double* __restrict dtheta,
                           const double* __restrict v, const double* __restrict omega, double dt,
                           std::size_t len) {

@@ -20,6 +20,11 @@ inline double mid_step(double dt_prev, double dt) {
 /// v_prev[i] = v[i], then v[i] += dt_mid * a[i], for i < len: v^{n-1/2} kept, v^{n+1/2} made. [2]
 void advance_velocity(double* v, double* v_prev, const double* a, double dt_mid, std::size_t len);
 
+/// v_next[i] = v[i] + dt_mid * a[i], for i < len: v^{n+1/2} made in another buffer, v^{n-1/2}
+/// left where it is (the caller swaps the two: one store stream fewer than advance_velocity). [2]
+void advance_velocity_into(double* v_next, const double* v, const double* a, double dt_mid,
+                           std::size_t len);
+
 /// du[i] = dt * v[i], u[i] += dt * v[i] and dtheta[i] = dt * omega[i], for i < len. [2]
 void advance_displacement(double* u, double* du, double* dtheta, const double* v,
                           const double* omega, double dt, std::size_t len);

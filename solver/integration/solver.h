@@ -298,6 +298,10 @@ class Solver {
   /// the tile of i0), in node order, over the nodes the kinetic energy counts (not rigid, not
   /// ghosts).
   double kinetic_sum(std::size_t i0, std::size_t i1, double sum) const;
+  /// The same over given arrays: v, w at n+1/2 and vp, wp at n-1/2 (velocity_pass's buffers
+  /// before their swap).
+  double kinetic_sum(const double* v, const double* vp, const double* w, const double* wp,
+                     std::size_t i0, std::size_t i1, double sum) const;
   /// 1/2 node_sum plus the rigid bodies' kinetic energy.
   double kinetic_energy_from(double node_sum) const;
   /// begin_cycle's velocity update, held dofs and nodal kinetic-energy sum in one pass (no

@@ -163,10 +163,12 @@ double Solver::kinetic_energy() const {
 }
 
 double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {
-  const double* __restrict v = v_.data();
-  const double* __restrict vp = v_prev_.data();
-  const double* __restrict w = omega_.data();
-  const double* __restrict wp = omega_prev_.data();
+  return kinetic_sum(v_.data(), v_prev_.data(), omega_.data(), omega_prev_.data(), i0, i1, sum);
+}
+
+double Solver::kinetic_sum(const double* __restrict v, const double* __restrict vp,
+                           const double* __restrict w, const double* __restrict wp, std::size_t i0,
+                           std::size_t i1, double sum) const {
   if (!turning(i0)) {  // omega and I are zero on the tile
     for (std::size_t i = i0; i < i1; ++i) {
       if (rigid_node_[i] || ghost_[i]) continue;
@@ -196,27 +198,34 @@ double Solver::kinetic_energy_from(double node_sum) const {
 }
 
 double Solver::velocity_pass(double dt_mid) {
-  // Per tile of nodes (in L1 for the second and third loops): v^{n-1/2} kept, v^{n+1/2} =
-  // v^{n-1/2} + dt^{n-1/2} a^n ([2]) (omega alike; vectorised), held dofs zeroed, then
-  // m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in node order over the
-  // nodes kinetic_energy() counts, per tile, the tiles' sums then in tile order (the same bits
-  // for every thread count; docs/threads.md).
-  // advance_velocity per field and tile: its restrict parameters let it vectorise, which a loop
-  // through this lambda's captures did not (scalar, dt reloaded per dof: with the kinetic sum,
-  // 1.9x the samples, perf of bench_cycle head_impact, 2026-11-28). Same expression, same bits.
-  double* v = v_.data();
-  double* vp = v_prev_.data();
-  double* w = omega_.data();
-  double* wp = omega_prev_.data();
+  // Per tile of nodes (in L1 for the second and third loops): v^{n+1/2} = v^{n-1/2} +
+  // dt^{n-1/2} a^n ([2]) (omega alike; vectorised) written over v^{n-3/2} in v_prev_'s buffer,
+  // held dofs zeroed, then m v^{n-1/2} . v^{n+1/2} + I omega^{n-1/2} . omega^{n+1/2} summed in
+  // node order over the nodes kinetic_energy() counts, per tile, the tiles' sums then in tile
+  // order (the same bits for every thread count; docs/threads.md). The buffers are swapped
+  // after the pass: v_ is v^{n+1/2}, v_prev_ v^{n-1/2}, with no copy of v (a memmove of 3.1 % of
+  // the 2.5 mm scale run's time, perf, 2026-11-29). Non-turning tiles keep omega zero in both
+  // buffers. Nothing keeps v_.data() across a cycle (velocity_mid() is the vector itself).
+  // advance_velocity_into per field and tile: its restrict parameters let it vectorise, which a
+  // loop through this lambda's captures did not (scalar, dt reloaded per dof: with the kinetic
+  // sum, 1.9x the samples, perf of bench_cycle head_impact, 2026-11-28). Same expression, same
+  // bits.
+  const double* v = v_.data();
+  double* vn = v_prev_.data();
+  const double* w = omega_.data();
+  double* wn = omega_prev_.data();
   const double* a = a_.data();
   const double* al = alpha_.data();
-  return sum_over_tiles([=, this](std::size_t i0, std::size_t i1) {
+  const double sum = sum_over_tiles([=, this](std::size_t i0, std::size_t i1) {
     const std::size_t k0 = 3 * i0, len = 3 * (i1 - i0);
-    advance_velocity(v + k0, vp + k0, a + k0, dt_mid, len);
-    if (turning(i0)) advance_velocity(w + k0, wp + k0, al + k0, dt_mid, len);
-    zero_held(model_.fixed, v, w, i0, i1);
-    return kinetic_sum(i0, i1, 0.0);
+    advance_velocity_into(vn + k0, v + k0, a + k0, dt_mid, len);
+    if (turning(i0)) advance_velocity_into(wn + k0, w + k0, al + k0, dt_mid, len);
+    zero_held(model_.fixed, vn, wn, i0, i1);
+    return kinetic_sum(vn, v, wn, w, i0, i1, 0.0);
   });
+  v_.swap(v_prev_);
+  omega_.swap(omega_prev_);
+  return sum;
 }
 
 void Solver::advance_positions(double dt) {
