@@ -148,9 +148,8 @@ void Solver::compute_accelerations() {
   for (auto& b : bodies_)
     if (!b.failed) gather_rigid_load(b, loads, x_.data(), model_.controls.gravity_m_s2);
   check_spot_welds();
-  on_node_ranges([&](std::size_t i0, std::size_t i1) {
-    zero_held(model_.fixed, a_.data(), alpha_.data(), i0, i1);
-  });
+  on_node_ranges(
+      [&](std::size_t i0, std::size_t i1) { zero_held_tiles(a_.data(), alpha_.data(), i0, i1); });
 }
 
 double Solver::kinetic_energy() const {
@@ -220,7 +219,7 @@ double Solver::velocity_pass(double dt_mid) {
     const std::size_t k0 = 3 * i0, len = 3 * (i1 - i0);
     advance_velocity_into(vn + k0, v + k0, a + k0, dt_mid, len);
     if (turning(i0)) advance_velocity_into(wn + k0, w + k0, al + k0, dt_mid, len);
-    zero_held(model_.fixed, vn, wn, i0, i1);
+    zero_held_tiles(vn, wn, i0, i1);
     return kinetic_sum(vn, v, wn, w, i0, i1, 0.0);
   });
   v_.swap(v_prev_);

@@ -2,7 +2,10 @@
 // chunks and nodes each thread takes.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "core/errors.h"
+#include "solver/integration/central_difference.h"
 #include "solver/integration/solver.h"
 
 namespace crashlink::integration {
@@ -33,6 +36,9 @@ void Solver::set_up_threads() {
   any_rigid_tile_ = false;
   for (std::size_t i = 0; i < n_; ++i)
     if (rigid_node_[i]) rigid_tile_[i / kNodeTile] = 1, any_rigid_tile_ = true;
+  held_tile_.assign(tiles(), 0);
+  for (std::size_t i = 0; i < model_.fixed.size() && i < n_; ++i)
+    if (model_.fixed[i] != 0) held_tile_[i / kNodeTile] = 1;
   set_up_turning_tiles();
   contact_worker_cpu_.assign(static_cast<std::size_t>(threads_), 0.0);
   kernel_worker_cpu_.assign(static_cast<std::size_t>(threads_), {0.0, 0.0, 0.0});
@@ -61,6 +67,12 @@ void Solver::set_up_threads() {
     }
   }
   if (threads_ > 1) team_ = std::make_unique<parallel::ThreadTeam>(threads_);
+}
+
+void Solver::zero_held_tiles(double* t, double* r, std::size_t i0, std::size_t i1) const {
+  for (std::size_t b = i0; b < i1; b = (b / kNodeTile + 1) * kNodeTile)
+    if (held_tile_.empty() || held_tile_[b / kNodeTile])
+      zero_held(model_.fixed, t, r, b, std::min(i1, (b / kNodeTile + 1) * kNodeTile));
 }
 
 void Solver::set_up_turning_tiles() {
