@@ -151,9 +151,10 @@ bool Solver::predict_next_positions(const std::vector<std::size_t>& nodes, doubl
   const double proposal = step_proposal();
   if (!(dt_next > 0.0) || dt_next > proposal * (1.0 + 1e-9) || proposal < 1e-4 * dt_min_)
     return false;
-  // The expressions of coupling_pass, zero_held, velocity_pass (or advance_velocity, the same
-  // update) and advance_displacement, written the same way so that the compiler rounds (and
-  // contracts to FMA) alike; LayerStepper compares the result with the passes' to the bit.
+  // The expressions of coupling_pass, zero_held, velocity_pass (advance_velocity_into's v + dt a,
+  // or advance_velocity's v += dt a: the same update) and advance_displacement, written the same
+  // way so that the compiler rounds (and contracts to FMA) alike; LayerStepper compares the
+  // result with the passes' to the bit.
   const double dt_mid = mid_step(dt_, dt_next);
   const auto& fixed = model_.fixed;
   for (std::size_t j = 0; j < nodes.size(); ++j) {
