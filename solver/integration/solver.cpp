@@ -18,14 +18,6 @@ namespace {
 using materials::MaterialKind;
 using model::ElementKind;
 
-/// sum a[k] b[k] over dofs [k0, k1), in index order.
-double dot_range(const std::vector<double>& a, const std::vector<double>& b, std::size_t k0,
-                 std::size_t k1) {
-  double s = 0.0;
-  for (std::size_t k = k0; k < k1; ++k) s += a[k] * b[k];
-  return s;
-}
-
 }  // namespace
 
 Solver::Solver(const model::Model& model, std::string domain_name)
@@ -180,6 +172,9 @@ void Solver::initialize() {
   time_s_ = 0.0;
   cycle_ = 0;
   dt_prev_ = 0.0;
+  dt_increment_s_ = 0.0;
+  increments_everywhere_ = true;  // du_ and dtheta_ are the zeros above
+  velocity_moved_ = false;
   // The interior elements of each part: those before its first element on a ghost node, in
   // whole batches.
   interior_end_.assign(model_.parts.size(), 0);
@@ -333,6 +328,9 @@ void Solver::begin_cycle() {
   // Without prescribed velocities and after the start, one pass does it all: velocities,
   // held dofs and the nodes' kinetic energy (velocity_pass).
   const bool one_pass = cycle_ > 0 && prescribed_.empty() && walls_.empty();
+  // The last displacement update's velocities move to v_prev_ (du_at reads them there).
+  CRASHLINK_ASSERT(!velocity_moved_ || increments_everywhere_);
+  velocity_moved_ = true;
   if (one_pass) {
     const double ke_nodes = velocity_pass(dt_mid);
     update_rigid_bodies(dt_mid);
@@ -471,10 +469,10 @@ void Solver::end_cycle_compute() {
   compute_external_forces(time_s_);
   if (external_loads_)
     energy_.external_work_J += 0.5 * sum_over_tiles([&](std::size_t i0, std::size_t i1) {
-                                 return dot_range(f_ext_, du_, 3 * i0, 3 * i1);
+                                 return external_increment_work(i0, i1);
                                });
   if (!contacts_.empty())
-    energy_.contact_J -= 0.5 * sparse_dot(contact_nodes_.nodes(), f_cont_.data(), du_.data());
+    energy_.contact_J -= 0.5 * increment_dot(contact_nodes_.nodes(), f_cont_.data());
   energy_.coupling_work_J += ghost_reaction_work(0.5);
 }
 

@@ -65,6 +65,10 @@ class Solver {
   /// count: fixed element chunks assembled in one order, fixed node tiles summed in one order
   /// (docs/threads.md).
   void set_threads(int threads);
+  /// Before initialize(): store du and dtheta on every tile, as before 2026-11-29, instead of
+  /// recomputing them where read on tiles without ghost, rigid, prescribed or wall nodes (the
+  /// tests compare the two runs to the bit).
+  void store_every_increment(bool on) { store_every_increment_ = on; }
   /// One domain's run (run::run_single_domain) holds its step: propose_step keeps the step in
   /// force while the proposal exceeds it by less than kStepHold (docs/elements.md "Step hold").
   /// Off by default: a coupled domain takes the steps its coordinator imposes.
@@ -347,7 +351,7 @@ class Solver {
   std::vector<double> mass_override_;               // [n] or empty
   std::vector<double> inertia_override_;            // [n] or empty
   std::vector<double> m_coup_;                      // [3n] coupling moments
-  std::vector<double> dtheta_;                      // [3n] dt^n omega^{n+1/2}
+  std::vector<double> dtheta_;                      // [3n] dt^n omega^{n+1/2} (dtheta_at)
   std::vector<double> ghost_omega_;                 // [3 * ghosts]
   bool ghost_omega_set_ = false;
   std::vector<std::uint8_t> ghost_;  // [n] 1: ghost node
@@ -356,7 +360,7 @@ class Solver {
   std::vector<std::int32_t> ghost_list_;
   std::vector<double> ghost_target_;  // [3 * ghosts] u^{n+1} of the ghosts
   bool ghost_target_set_ = false;
-  std::vector<double> du_;                // [3n] u^n - u^{n-1}
+  std::vector<double> du_;                // [3n] u^n - u^{n-1}, on increment_tile_ (du_at)
   std::vector<std::uint8_t> rigid_node_;  // [n] 1 if the node follows a rigid body
   std::vector<PartRuntime> parts_;
   std::vector<RigidBodyState> bodies_;
@@ -453,6 +457,44 @@ class Solver {
   std::vector<std::uint8_t> held_tile_;
   /// zero_held over the held tiles of nodes [i0, i1) (whole tiles, or a tile's nodes).
   void zero_held_tiles(double* t, double* r, std::size_t i0, std::size_t i1) const;
+  // [tiles] 1: du_ and dtheta_ are stored on the tile, which holds a ghost, rigid, prescribed or
+  // wall node (there an increment is not dt v, or is read in the next cycle once v has moved).
+  // Elsewhere the displacement pass does not store them: du = dt v and dtheta = dt omega where
+  // they are read (du_at, dtheta_at), 48 B per node-cycle fewer (docs/benchmarks.md "The nodal
+  // passes' floor").
+  std::vector<std::uint8_t> increment_tile_;
+  bool store_every_increment_ = false;  // store_every_increment()
+  double dt_increment_s_ = 0.0;         // dt^n of the last displacement update [s]
+  bool increments_everywhere_ = true;   // du_, dtheta_ hold every dof (start, restore)
+  bool velocity_moved_ = false;  // v, omega updated since then: it is in v_prev_, omega_prev_
+  bool stored_increment(std::size_t node) const {
+    return increments_everywhere_ || increment_tile_.empty() || increment_tile_[node / kNodeTile];
+  }
+  /// u^{n+1} - u^n of dof k (the last displacement update's): stored, or dt^n v^{n+1/2} with the
+  /// same rounding as the pass that did not store it.
+  double du_at(std::size_t k) const {
+    if (stored_increment(k / 3)) return du_[k];
+    return dt_increment_s_ * (velocity_moved_ ? v_prev_[k] : v_[k]);
+  }
+  /// sum over the nodes' dofs of f . du, in their order (sparse_dot with du_at: the same bits).
+  double increment_dot(const std::vector<std::int32_t>& nodes, const double* f) const {
+    double s = 0.0;
+    for (const auto node : nodes)
+      for (std::size_t k = 3 * static_cast<std::size_t>(node);
+           k < 3 * static_cast<std::size_t>(node) + 3; ++k)
+        s += f[k] * du_at(k);
+    return s;
+  }
+  /// f_ext . du over the nodes [i0, i1) of one tile, in index order (dot_range's sum).
+  double external_increment_work(std::size_t i0, std::size_t i1) const;
+  /// advance_positions on tile b (dofs [k0, k1)) without a rigid node; returns its F^n half of the
+  /// external work.
+  double displacement_tile(std::size_t b, std::size_t k0, std::size_t k1, double dt);
+  /// dt^n omega^{n+1/2} of dof k, alike.
+  double dtheta_at(std::size_t k) const {
+    if (stored_increment(k / 3)) return dtheta_[k];
+    return dt_increment_s_ * (velocity_moved_ ? omega_prev_[k] : omega_[k]);
+  }
   // [tiles] 0: no node of the tile can turn (hexes' nodes only: no inertia, no initial spin, no
   // rigid, ghost or prescribed rotation): omega, omega_prev, dtheta and m_int stay the zeros
   // initialize() made, alpha too but at coupled nodes (coupling_pass: a moment times the zero

@@ -93,7 +93,7 @@ void Solver::add_coupling_moment(std::size_t i, const Vec3& m) {
   mark_coupled(i);
   for (std::size_t d = 0; d < 3; ++d) {
     m_coup_[3 * i + d] += m[d];
-    energy_.coupling_work_J += 0.5 * m[d] * dtheta_[3 * i + d];
+    energy_.coupling_work_J += 0.5 * m[d] * dtheta_at(3 * i + d);
   }
 }
 
@@ -107,7 +107,7 @@ void Solver::add_coupling_force(std::size_t i, const Vec3& f) {
   mark_coupled(i);
   for (std::size_t d = 0; d < 3; ++d) {
     f_coup_[3 * i + d] += f[d];
-    energy_.coupling_work_J += 0.5 * f[d] * du_[3 * i + d];  // the F^{n+1} half (see above)
+    energy_.coupling_work_J += 0.5 * f[d] * du_at(3 * i + d);  // the F^{n+1} half (see above)
   }
 }
 
@@ -119,12 +119,12 @@ void Solver::add_coupling_loads(const std::vector<std::size_t>& nodes, const dou
     mark_coupled(i);
     for (std::size_t d = 0; d < 3; ++d) {
       f_coup_[3 * i + d] += f[3 * j + d];
-      work += 0.5 * f[3 * j + d] * du_[3 * i + d];  // the F^{n+1} half
+      work += 0.5 * f[3 * j + d] * du_at(3 * i + d);  // the F^{n+1} half
     }
     if (m != nullptr)
       for (std::size_t d = 0; d < 3; ++d) {
         m_coup_[3 * i + d] += m[3 * j + d];
-        work += 0.5 * m[3 * j + d] * dtheta_[3 * i + d];
+        work += 0.5 * m[3 * j + d] * dtheta_at(3 * i + d);
       }
   }
   energy_.coupling_work_J = work;
@@ -135,7 +135,7 @@ void Solver::set_acceleration(std::size_t i, const Vec3& a) {
   for (std::size_t d = 0; d < 3; ++d) {
     const double f = mass_[i] * (a[d] - a_[3 * i + d]);  // the link force that makes a
     f_coup_[3 * i + d] += f;
-    energy_.coupling_work_J += 0.5 * f * du_[3 * i + d];
+    energy_.coupling_work_J += 0.5 * f * du_at(3 * i + d);
     a_[3 * i + d] = a[d];
   }
 }

@@ -89,27 +89,32 @@ void positions_pass(const double* __restrict x0, const double* __restrict u,
 /// [2] and positions_pass in one pass over dofs [k0, k1): du = dt v, u += dt v, dtheta = dt omega
 /// (advance_displacement's expressions), x = x0 + u and the F^n half of the external work, on one
 /// tile. Memory-bound: u and du are not read back from memory by a second pass over all nodes.
-template <bool kExt, bool kTurn>
+/// kStore false (Solver::increment_tile_): du and dtheta are not stored, and the work takes
+/// f (dt v), the same product rounded alike.
+template <bool kExt, bool kTurn, bool kStore>
 double displacement_pass(double* __restrict u, double* __restrict du, double* __restrict dtheta,
                          const double* __restrict v, const double* __restrict omega,
                          const double* __restrict x0, const double* __restrict fe,
                          double* __restrict x, double dt, std::size_t k0, std::size_t k1) {
   for (std::size_t k = k0; k < k1; ++k) {
-    const double d = dt * v[k];
-    du[k] = d;
+    if constexpr (kStore) du[k] = dt * v[k];
 #ifdef __FMA__
     const double uk = std::fma(dt, v[k], u[k]);  // advance_displacement's rounding
 #else
     const double uk = u[k] + dt * v[k];
 #endif
     u[k] = uk;
-    if constexpr (kTurn) dtheta[k] = dt * omega[k];  // else zero and left so
+    if constexpr (kTurn && kStore) dtheta[k] = dt * omega[k];  // else zero and left so
     x[k] = x0[k] + uk;
   }
-  // apart, so that the loop above vectorises; du is still in L1 (a tile)
+  // apart, so that the loop above vectorises; du (or v) is still in L1 (a tile)
   double ext = 0.0;  // in index order, as positions_pass
-  if constexpr (kExt)
-    for (std::size_t k = k0; k < k1; ++k) ext += fe[k] * du[k];
+  if constexpr (kExt) {
+    for (std::size_t k = k0; k < k1; ++k) {
+      const double d = kStore ? du[k] : dt * v[k];
+      ext += fe[k] * d;
+    }
+  }
   return ext;
 }
 
@@ -231,26 +236,59 @@ void Solver::advance_positions(double dt) {
   // A tile without a rigid body's node takes x^{n+1} = x0 + u^{n+1} and its F^n half of the
   // external work in the same pass (its sum in tile_sum_); the others once the bodies have moved
   // (positions_and_work).
-  double *u = u_.data(), *du = du_.data(), *dth = dtheta_.data(), *x = x_.data();
-  const double *v = v_.data(), *om = omega_.data(), *x0 = model_.nodes.x0.data(),
-               *fe = f_ext_.data();
+  double *u = u_.data(), *du = du_.data(), *dth = dtheta_.data();
+  const double *v = v_.data(), *om = omega_.data();
   double* sums = tile_sum_.data();
+  dt_increment_s_ = dt;
+  increments_everywhere_ = false;
+  velocity_moved_ = false;
   on_node_ranges([&](std::size_t i0, std::size_t i1) {
     for (std::size_t b = i0; b < i1; b += kNodeTile) {
       const std::size_t k0 = 3 * b, k1 = 3 * std::min(i1, b + kNodeTile);
       double& sum = sums[b / kNodeTile];
       if (rigid_tile_[b / kNodeTile])
         advance_displacement(u + k0, du + k0, dth + k0, v + k0, om + k0, dt, k1 - k0);
-      else if (turning(b))
-        sum = external_loads_
-                  ? displacement_pass<true, true>(u, du, dth, v, om, x0, fe, x, dt, k0, k1)
-                  : displacement_pass<false, true>(u, du, dth, v, om, x0, fe, x, dt, k0, k1);
       else
-        sum = external_loads_
-                  ? displacement_pass<true, false>(u, du, dth, v, om, x0, fe, x, dt, k0, k1)
-                  : displacement_pass<false, false>(u, du, dth, v, om, x0, fe, x, dt, k0, k1);
+        sum = displacement_tile(b, k0, k1, dt);
     }
   });
+}
+
+double Solver::displacement_tile(std::size_t b, std::size_t k0, std::size_t k1, double dt) {
+  double *u = u_.data(), *du = du_.data(), *dth = dtheta_.data(), *x = x_.data();
+  const double *v = v_.data(), *om = omega_.data(), *x0 = model_.nodes.x0.data(),
+               *fe = f_ext_.data();
+  const bool turn = turning(b);
+  const bool store = increment_tile_.empty() || increment_tile_[b / kNodeTile];
+  // the eight instances: external loads, a tile that turns, increments stored
+  const auto pass = [&]<bool kExt, bool kTurn, bool kStore>() {
+    return displacement_pass<kExt, kTurn, kStore>(u, du, dth, v, om, x0, fe, x, dt, k0, k1);
+  };
+  const auto by_store = [&]<bool kExt, bool kTurn>() {
+    return store ? pass.template operator()<kExt, kTurn, true>()
+                 : pass.template operator()<kExt, kTurn, false>();
+  };
+  const auto by_turn = [&]<bool kExt>() {
+    return turn ? by_store.template operator()<kExt, true>()
+                : by_store.template operator()<kExt, false>();
+  };
+  return external_loads_ ? by_turn.template operator()<true>()
+                         : by_turn.template operator()<false>();
+}
+
+double Solver::external_increment_work(std::size_t i0, std::size_t i1) const {
+  const double* __restrict f = f_ext_.data();
+  double s = 0.0;
+  if (stored_increment(i0)) {
+    const double* __restrict du = du_.data();
+    for (std::size_t k = 3 * i0; k < 3 * i1; ++k) s += f[k] * du[k];
+    return s;
+  }
+  // f (dt v): du_at's product, rounded alike
+  const double dt = dt_increment_s_;
+  const double* __restrict v = velocity_moved_ ? v_prev_.data() : v_.data();
+  for (std::size_t k = 3 * i0; k < 3 * i1; ++k) s += f[k] * (dt * v[k]);
+  return s;
 }
 
 Solver::StepWork Solver::positions_and_work() {
@@ -273,7 +311,7 @@ Solver::StepWork Solver::positions_and_work() {
     });
   w.external = 0.0;
   for (std::size_t t = 0; t < tiles(); ++t) w.external += sums[t];
-  w.contact = sparse_dot(contact_nodes_.nodes(), f_cont_.data(), du);
+  w.contact = increment_dot(contact_nodes_.nodes(), f_cont_.data());
   // The coupling loads live on few nodes: their work in index order (the sums over all dofs,
   // which add exact zeros elsewhere), then cleared.
   coupled_.sort();
@@ -283,8 +321,8 @@ Solver::StepWork Solver::positions_and_work() {
   for (const auto node : coupled_.nodes()) {
     const auto i = static_cast<std::size_t>(node);
     for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) {
-      coup += fk[k] * du[k];
-      mom += mk[k] * dtheta_[k];
+      coup += fk[k] * du_at(k);
+      mom += mk[k] * dtheta_at(k);
       fk[k] = 0.0;
       mk[k] = 0.0;
     }

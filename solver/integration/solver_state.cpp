@@ -74,8 +74,19 @@ void Solver::visit_state(V& v, Self& s) {
   v.sized("f_coup", s.f_coup_);
   v.sized("m_coup", s.m_coup_);
   if constexpr (V::loading) s.rebuild_coupled_nodes();
-  v.sized("dtheta", s.dtheta_);
-  v.sized("du", s.du_);
+  if constexpr (V::loading) {
+    v.sized("dtheta", s.dtheta_);
+    v.sized("du", s.du_);
+    s.increments_everywhere_ = true;  // every dof's, until the next displacement update
+  } else {  // every dof's: where the run does not store them, du_at's and dtheta_at's
+    std::vector<double> dtheta(s.dtheta_.size()), du(s.du_.size());
+    for (std::size_t k = 0; k < du.size(); ++k) {
+      dtheta[k] = s.dtheta_at(k);
+      du[k] = s.du_at(k);
+    }
+    v.sized("dtheta", dtheta);
+    v.sized("du", du);
+  }
   v.vec("ghost_omega", s.ghost_omega_);
   v.flag("ghost_omega_set", s.ghost_omega_set_);
   v.vec("ghost_target", s.ghost_target_);

@@ -39,6 +39,13 @@ void Solver::set_up_threads() {
   held_tile_.assign(tiles(), 0);
   for (std::size_t i = 0; i < model_.fixed.size() && i < n_; ++i)
     if (model_.fixed[i] != 0) held_tile_[i / kNodeTile] = 1;
+  increment_tile_.assign(tiles(), store_every_increment_ ? 1 : 0);
+  for (std::size_t i = 0; i < n_; ++i)
+    if (rigid_node_[i] || ghost_[i] || prescribed_node_[i]) increment_tile_[i / kNodeTile] = 1;
+  for (const auto& p : prescribed_) increment_tile_[p.index / 3 / kNodeTile] = 1;
+  for (const auto& rw : walls_)
+    for (const auto c : rw.wall->nodes)
+      increment_tile_[static_cast<std::size_t>(c) / kNodeTile] = 1;
   set_up_turning_tiles();
   contact_worker_cpu_.assign(static_cast<std::size_t>(threads_), 0.0);
   kernel_worker_cpu_.assign(static_cast<std::size_t>(threads_), {0.0, 0.0, 0.0});
