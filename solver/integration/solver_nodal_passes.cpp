@@ -118,6 +118,38 @@ double displacement_pass(double* __restrict u, double* __restrict du, double* __
   return ext;
 }
 
+/// What kinetic_tile reads: v, w at n+1/2, vp, wp at n-1/2, and the nodes' masses and flags.
+struct KineticArrays {
+  const double *v, *vp, *w, *wp, *mass, *inertia;
+  const std::uint8_t *rigid, *ghost;
+};
+
+/// sum + m v^{n-1/2} . v^{n+1/2} (+ I omega^{n-1/2} . omega^{n+1/2} when kTurn) over nodes
+/// [i0, i1) in node order; kCheck: leave out rigid and ghost nodes (a tile that has none needs
+/// no test).
+template <bool kCheck, bool kTurn>
+double kinetic_tile(const KineticArrays& a, std::size_t i0, std::size_t i1, double sum) {
+  const double* __restrict v = a.v;
+  const double* __restrict vp = a.vp;
+  const double* __restrict w = a.w;
+  const double* __restrict wp = a.wp;
+  for (std::size_t i = i0; i < i1; ++i) {
+    if constexpr (kCheck)
+      if (a.rigid[i] || a.ghost[i]) continue;
+    const std::size_t k = 3 * i;
+    const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
+    if constexpr (kTurn) {
+      const double rot = wp[k] * w[k] + wp[k + 1] * w[k + 1] + wp[k + 2] * w[k + 2];
+      sum += a.mass[i] * tr + a.inertia[i] * rot;
+    } else {
+      // + 0.0 for the I rot term: m tr is rounded before the sum takes it, as above (without it
+      // the compiler fuses m tr into the sum, one rounding fewer: other bits)
+      sum += a.mass[i] * tr + 0.0;
+    }
+  }
+  return sum;
+}
+
 }  // namespace
 
 void Solver::compute_accelerations() {
@@ -173,25 +205,15 @@ double Solver::kinetic_sum(std::size_t i0, std::size_t i1, double sum) const {
 double Solver::kinetic_sum(const double* __restrict v, const double* __restrict vp,
                            const double* __restrict w, const double* __restrict wp, std::size_t i0,
                            std::size_t i1, double sum) const {
-  if (!turning(i0)) {  // omega and I are zero on the tile
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (rigid_node_[i] || ghost_[i]) continue;
-      const std::size_t k = 3 * i;
-      const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
-      // + 0.0 for the I rot term: m tr is rounded before the sum takes it, as below (without it
-      // the compiler fuses m tr into the sum, one rounding fewer: other bits)
-      sum += mass_[i] * tr + 0.0;
-    }
-    return sum;
-  }
-  for (std::size_t i = i0; i < i1; ++i) {
-    if (rigid_node_[i] || ghost_[i]) continue;
-    const std::size_t k = 3 * i;
-    const double tr = vp[k] * v[k] + vp[k + 1] * v[k + 1] + vp[k + 2] * v[k + 2];
-    const double rot = wp[k] * w[k] + wp[k + 1] * w[k + 1] + wp[k + 2] * w[k + 2];
-    sum += mass_[i] * tr + inertia_[i] * rot;
-  }
-  return sum;
+  const KineticArrays arrays{
+      v, vp, w, wp, mass_.data(), inertia_.data(), rigid_node_.data(), ghost_.data()};
+  // a tile without rigid or ghost nodes skips the two tests per node (the same sum)
+  const bool check = plain_tile_.empty() || !plain_tile_[i0 / kNodeTile];
+  if (!turning(i0))  // omega and I are zero on the tile
+    return check ? kinetic_tile<true, false>(arrays, i0, i1, sum)
+                 : kinetic_tile<false, false>(arrays, i0, i1, sum);
+  return check ? kinetic_tile<true, true>(arrays, i0, i1, sum)
+               : kinetic_tile<false, true>(arrays, i0, i1, sum);
 }
 
 double Solver::kinetic_energy_from(double node_sum) const {

@@ -39,6 +39,9 @@ void Solver::set_up_threads() {
   held_tile_.assign(tiles(), 0);
   for (std::size_t i = 0; i < model_.fixed.size() && i < n_; ++i)
     if (model_.fixed[i] != 0) held_tile_[i / kNodeTile] = 1;
+  plain_tile_.assign(tiles(), 1);
+  for (std::size_t i = 0; i < n_; ++i)
+    if (rigid_node_[i] || ghost_[i]) plain_tile_[i / kNodeTile] = 0;
   increment_tile_.assign(tiles(), store_every_increment_ ? 1 : 0);
   for (std::size_t i = 0; i < n_; ++i)
     if (rigid_node_[i] || ghost_[i] || prescribed_node_[i]) increment_tile_[i / kNodeTile] = 1;
