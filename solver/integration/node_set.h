@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/errors.h"
@@ -43,13 +44,19 @@ class NodeSet {
 /// sum f[k] d[k] over the dofs of `nodes` (3 each), in their order: the sum over every dof when
 /// f is zero elsewhere, the same bits for any thread count (one thread, a fixed order). Not the
 /// bits of a sum over all dofs in tiles: its rounding (and the compiler's contraction into FMAs)
-/// differs in the last place [J for f in N and d in m].
-inline double sparse_dot(const std::vector<std::int32_t>& nodes, const double* f, const double* d) {
+/// differs in the last place [J for f in N and d in m]. d: an array, or d(k) for a value computed
+/// where it is read (Solver::du_at).
+template <class D>
+double sparse_dot(const std::vector<std::int32_t>& nodes, const double* f, const D& d) {
   double s = 0.0;
   for (const auto node : nodes)
     for (std::size_t k = 3 * static_cast<std::size_t>(node);
-         k < 3 * static_cast<std::size_t>(node) + 3; ++k)
-      s += f[k] * d[k];
+         k < 3 * static_cast<std::size_t>(node) + 3; ++k) {
+      if constexpr (std::is_invocable_v<const D&, std::size_t>)
+        s += f[k] * d(k);
+      else
+        s += f[k] * d[k];
+    }
   return s;
 }
 

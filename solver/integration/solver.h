@@ -479,14 +479,9 @@ class Solver {
     if (stored_increment(k / 3)) return du_[k];
     return dt_increment_s_ * (velocity_moved_ ? v_prev_[k] : v_[k]);
   }
-  /// sum over the nodes' dofs of f . du, in their order (sparse_dot with du_at: the same bits).
+  /// sum over the nodes' dofs of f . du, in their order (sparse_dot, du where it is read).
   double increment_dot(const std::vector<std::int32_t>& nodes, const double* f) const {
-    double s = 0.0;
-    for (const auto node : nodes)
-      for (std::size_t k = 3 * static_cast<std::size_t>(node);
-           k < 3 * static_cast<std::size_t>(node) + 3; ++k)
-        s += f[k] * du_at(k);
-    return s;
+    return sparse_dot(nodes, f, [this](std::size_t k) { return du_at(k); });
   }
   /// f_ext . du over the nodes [i0, i1) of one tile, in index order (dot_range's sum).
   double external_increment_work(std::size_t i0, std::size_t i1) const;

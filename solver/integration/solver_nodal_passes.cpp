@@ -73,7 +73,7 @@ void coupling_pass(const AccelerationArrays& s, const std::vector<std::int32_t>&
 
 /// The F^n half of the external work (Solver::positions_and_work) over dofs [k0, k1) in one pass
 /// with x = x0 + u; f_ext skipped when it is zero, as in acceleration_pass. The contact forces'
-/// half is summed over their nodes alone (sparse_dot).
+/// half is summed over their nodes alone (increment_dot).
 template <bool kExt>
 void positions_pass(const double* __restrict x0, const double* __restrict u,
                     const double* __restrict du, const double* __restrict fe, double* __restrict x,

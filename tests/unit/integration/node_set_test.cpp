@@ -53,4 +53,12 @@ TEST(SparseDot, EqualsTheDenseSumWhenTheArrayIsZeroElsewhere) {
   fewer.reset(n);
   for (std::size_t i : {3u, 4u, 255u, 256u, 500u}) fewer.insert(i);
   EXPECT_GT(std::abs(sparse_dot(fewer.nodes(), f.data(), d.data()) - dense), 1e-4);
+  // d computed where read (Solver::du_at): the same sum, and what it computes is what it sums
+  const double dt = 0.5;
+  std::vector<double> dd(3 * n);
+  for (std::size_t k = 0; k < 3 * n; ++k) dd[k] = dt * d[k];
+  EXPECT_EQ(sparse_dot(s.nodes(), f.data(), [&](std::size_t k) { return dt * d[k]; }),
+            sparse_dot(s.nodes(), f.data(), dd.data()));
+  EXPECT_NE(sparse_dot(s.nodes(), f.data(), [&](std::size_t k) { return d[k]; }),
+            sparse_dot(s.nodes(), f.data(), dd.data()));
 }
